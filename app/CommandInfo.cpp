@@ -1,0 +1,123 @@
+// dfrecon info FILE: what a contour file holds (ROIs, slices, nesting,
+// spacing, extent), after the same validation every command applies.
+#include <iomanip>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Progress.hpp"
+#include "io/SlicesFile.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+nlohmann::ordered_json sliceJson(const Slice& slice) {
+    const std::vector<int> depths = nestingDepths(slice);
+    nlohmann::ordered_json contours = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < slice.contours.size(); ++i)
+        contours.push_back({{"points", slice.contours[i].size()},
+                            {"depth", depths[i]},
+                            {"role", depths[i] % 2 == 0 ? "outer" : "hole"},
+                            {"areaMm2", std::abs(signedArea(slice.contours[i]))}});
+    return {{"zMm", slice.zMm}, {"contours", contours}};
+}
+
+nlohmann::ordered_json roiJson(const Roi& roi) {
+    const Extent3 extent = extentOf(roi);
+    const SpacingStats spacing = spacingOf(roi);
+    nlohmann::ordered_json slices = nlohmann::ordered_json::array();
+    std::size_t holes = 0;
+    for (const Slice& slice : roi.slices) {
+        slices.push_back(sliceJson(slice));
+        for (int depth : nestingDepths(slice)) holes += depth % 2;
+    }
+    nlohmann::ordered_json j = {{"name", roi.name},
+                        {"slices", roi.slices.size()},
+                        {"contours", roi.contourCount()},
+                        {"holes", holes},
+                        {"points", roi.pointCount()},
+                        {"spacingMm",
+                         {{"min", spacing.minMm},
+                          {"max", spacing.maxMm},
+                          {"mean", spacing.meanMm},
+                          {"uniform", spacing.uniform}}},
+                        {"perSlice", slices}};
+    j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
+                             : nlohmann::ordered_json(nullptr);
+    if (!extent.empty)
+        j["extentMm"] = {{"min", {extent.min[0], extent.min[1], extent.min[2]}},
+                         {"max", {extent.max[0], extent.max[1], extent.max[2]}}};
+    return j;
+}
+
+void printRoi(const Roi& roi) {
+    const Extent3 extent = extentOf(roi);
+    const SpacingStats spacing = spacingOf(roi);
+    std::cout << "ROI \"" << roi.name << "\"";
+    if (roi.colour)
+        std::cout << " (colour " << roi.colour->r << " " << roi.colour->g << " " << roi.colour->b
+                  << ")";
+    std::cout << ": " << roi.slices.size() << " slices, " << roi.contourCount() << " contours, "
+              << roi.pointCount() << " points\n";
+    if (extent.empty) return;
+    std::cout << "  extent x " << extent.min[0] << " .. " << extent.max[0] << ", y "
+              << extent.min[1] << " .. " << extent.max[1] << ", z " << extent.min[2] << " .. "
+              << extent.max[2] << " mm\n";
+    if (roi.slices.size() > 1)
+        std::cout << "  spacing " << (spacing.uniform ? "uniform " : "uneven ") << spacing.minMm
+                  << (spacing.uniform ? "" : " .. " + std::to_string(spacing.maxMm)) << " mm\n";
+    for (const Slice& slice : roi.slices) {
+        int holes = 0;
+        for (int depth : nestingDepths(slice)) holes += depth % 2;
+        std::cout << "  z " << std::setw(9) << slice.zMm << ": " << slice.contours.size()
+                  << (slice.contours.size() == 1 ? " contour" : " contours");
+        if (holes > 0) std::cout << " (" << holes << " hole" << (holes > 1 ? "s" : "") << ")";
+        std::cout << "\n";
+    }
+}
+
+void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
+    SlicesLoad load;
+    {
+        Progress progress("reading " + path, !global.quiet);
+        load = readSlicesFile(path, {}, [&](double f) { progress.update(f); });
+    }
+    if (!global.quiet)
+        for (const InputWarning& w : load.warnings) std::cerr << w.toString() << "\n";
+    if (json) {
+        nlohmann::ordered_json rois = nlohmann::ordered_json::array();
+        for (const Roi& roi : load.contours.rois) rois.push_back(roiJson(roi));
+        nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+        for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
+        std::cout << nlohmann::ordered_json{{"command", "info"},
+                                    {"file", path},
+                                    {"format", "dfrecon-slices 1"},
+                                    {"rois", rois},
+                                    {"warnings", warnings}}
+                         .dump(2)
+                  << "\n";
+        return;
+    }
+    std::cout << path << ": " << load.contours.rois.size()
+              << (load.contours.rois.size() == 1 ? " ROI" : " ROIs") << "\n";
+    for (const Roi& roi : load.contours.rois) printRoi(roi);
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& root, const GlobalOptions& global) {
+    struct Args {
+        std::string path;
+        bool json = false;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = root.add_subcommand(
+        "info", "Validate a contour file and summarise it: ROIs, slices, contours, holes, extent");
+    cmd->add_option("file", args->path, "Input .slices file")->required();
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    cmd->callback([&global, args] { runInfo(global, args->path, args->json); });
+}
+
+}  // namespace dfrecon::app

@@ -1,0 +1,19 @@
+#pragma once
+// Each subcommand registers itself on the root CLI::App. A command's
+// callback does the work and sets the exit code; exceptions propagate to
+// main(), which maps them to the documented exit codes.
+#include <CLI/CLI.hpp>
+
+namespace dfrecon::app {
+
+/// Options every subcommand shares.
+struct GlobalOptions {
+    std::string device;  // --device, falls back to $DFRECON_DEVICE
+    bool quiet = false;  // --quiet: no progress bar, no warnings on stderr
+};
+
+void addSynthCommand(CLI::App& root, const GlobalOptions& global);
+void addDevicesCommand(CLI::App& root, const GlobalOptions& global);
+void addInfoCommand(CLI::App& root, const GlobalOptions& global);
+
+}  // namespace dfrecon::app

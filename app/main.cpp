@@ -1,0 +1,65 @@
+// dfrecon: watertight, error-bounded surfaces from planar contour slices.
+// main() wires the subcommands and turns failures into exit codes
+// (app/ExitCodes.hpp, docs/cli.md); errors go to stderr.
+#include <cstdio>
+#include <iostream>
+#include <new>
+
+#include "app/Commands.hpp"
+#include "app/ExitCodes.hpp"
+#include "cl/ClError.hpp"
+#include "io/InputError.hpp"
+
+using namespace dfrecon;
+using namespace dfrecon::app;
+
+int main(int argc, char** argv) {
+    CLI::App root{
+        "dfrecon: watertight, error-bounded triangle surfaces from planar contour slices.\n"
+        "Lengths are in millimetres. Exit codes: 0 ok, 1 usage, 2 bad input, 3 device/runtime.",
+        "dfrecon"};
+    root.set_version_flag("--version", std::string(DFRECON_VERSION));
+    root.require_subcommand(1);
+    GlobalOptions global;
+    root.add_option("--device", global.device,
+                    "OpenCL device: cpu, gpu, an index from `dfrecon devices`, or part of its name "
+                    "(default: $DFRECON_DEVICE, else the first GPU, else the CPU)");
+    root.add_flag("-q,--quiet", global.quiet, "No progress bar and no warnings on stderr");
+    root.fallthrough();
+
+    addSynthCommand(root, global);
+    addDevicesCommand(root, global);
+    addInfoCommand(root, global);
+
+    try {
+        root.parse(argc, argv);
+        return kExitOk;
+    } catch (const CLI::CallForHelp& e) {
+        return root.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return root.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return root.exit(e);
+    } catch (const CLI::ParseError& e) {
+        root.exit(e);
+        return kExitUsage;
+    } catch (const InputError& e) {
+        std::cerr << "dfrecon: " << e.what() << "\n";
+        return kExitBadInput;
+    } catch (const ocl::ClError& e) {
+        std::cerr << "dfrecon: OpenCL: " << e.what() << "\n";
+        return kExitRuntime;
+    } catch (const cl::Error& e) {
+        std::cerr << "dfrecon: OpenCL: " << ocl::toClError(e).what() << "\n";
+        return kExitRuntime;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "dfrecon: out of memory\n";
+        return kExitRuntime;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "dfrecon: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::cerr << "dfrecon: " << e.what() << "\n";
+        return kExitRuntime;
+    }
+}

@@ -1,0 +1,72 @@
+#pragma once
+// A typed OpenCL buffer that owns its memory object (released on
+// destruction, movable, not copyable) and knows its element count, so uploads
+// and downloads cannot overrun it.
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "cl/ClError.hpp"
+#include "cl/Runtime.hpp"
+
+namespace dfrecon::ocl {
+
+template <class T>
+class DeviceBuffer {
+public:
+    DeviceBuffer() = default;
+
+    /// Uninitialised device memory for `count` elements (at least one, as
+    /// OpenCL forbids empty buffers).
+    DeviceBuffer(Runtime& runtime, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
+        : count_(count) {
+        try {
+            buffer_ = cl::Buffer(runtime.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1));
+        } catch (const cl::Error& e) {
+            throw toClError(e, "allocating " + std::to_string(sizeof(T) * count) + " bytes");
+        }
+    }
+
+    /// Device memory holding a copy of `host`.
+    DeviceBuffer(Runtime& runtime, const std::vector<T>& host, cl_mem_flags flags = CL_MEM_READ_ONLY)
+        : DeviceBuffer(runtime, host.size(), flags) {
+        upload(runtime, host);
+    }
+
+    DeviceBuffer(const DeviceBuffer&) = delete;
+    DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+    DeviceBuffer(DeviceBuffer&&) noexcept = default;
+    DeviceBuffer& operator=(DeviceBuffer&&) noexcept = default;
+
+    std::size_t size() const { return count_; }
+    const cl::Buffer& get() const { return buffer_; }
+
+    /// Blocking copy host → device; `host` must have size() elements.
+    void upload(Runtime& runtime, const std::vector<T>& host) {
+        if (host.size() != count_) throw std::length_error("DeviceBuffer::upload: size mismatch");
+        if (count_ == 0) return;
+        try {
+            runtime.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count_, host.data());
+        } catch (const cl::Error& e) {
+            throw toClError(e);
+        }
+    }
+
+    /// Blocking copy device → host of all elements.
+    std::vector<T> download(Runtime& runtime) const {
+        std::vector<T> host(count_);
+        if (count_ == 0) return host;
+        try {
+            runtime.queue().enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count_, host.data());
+        } catch (const cl::Error& e) {
+            throw toClError(e);
+        }
+        return host;
+    }
+
+private:
+    cl::Buffer buffer_;
+    std::size_t count_ = 0;
+};
+
+}  // namespace dfrecon::ocl

@@ -1,0 +1,67 @@
+#include "cl/Runtime.hpp"
+
+#include "cl/ClError.hpp"
+#include "kernels/EmbeddedKernels.hpp"
+
+namespace dfrecon::ocl {
+
+Runtime::Runtime(const std::string& deviceSpec) : Runtime(chooseDevice(deviceSpec)) {}
+
+Runtime::Runtime(DeviceInfo device) : device_(std::move(device)) {
+    try {
+        context_ = cl::Context(device_.device);
+        queue_ = cl::CommandQueue(context_, device_.device);
+    } catch (const cl::Error& e) {
+        throw toClError(e, "while opening device '" + device_.deviceName + "'");
+    }
+}
+
+const cl::Program& Runtime::program(const std::vector<std::string>& sourceFiles,
+                                    const std::string& options) {
+    std::string key = options;
+    for (const std::string& file : sourceFiles) key += "|" + file;
+
+    std::lock_guard<std::mutex> lock(cacheMutex_);
+    if (auto found = programs_.find(key); found != programs_.end()) return found->second;
+
+    std::string source;
+    for (const std::string& file : sourceFiles) {
+        try {
+            source += kernels::kernelSource(file);
+        } catch (const std::out_of_range& e) {
+            throw ClError(e.what());
+        }
+        source += "\n";
+    }
+    cl::Program program;
+    try {
+        program = cl::Program(context_, source);
+    } catch (const cl::Error& e) {
+        throw toClError(e);
+    }
+    try {
+        program.build(std::vector<cl::Device>{device_.device}, options.c_str());
+    } catch (const cl::Error& e) {
+        std::string log;
+        try {
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_.device);
+        } catch (const cl::Error&) {
+            log = "(build log unavailable)";
+        }
+        std::string files;
+        for (const std::string& file : sourceFiles) files += (files.empty() ? "" : ", ") + file;
+        throw toClError(e, "building " + files + " for " + device_.deviceName + ":\n" + log);
+    }
+    return programs_.emplace(key, std::move(program)).first->second;
+}
+
+cl::Kernel Runtime::kernel(const std::vector<std::string>& sourceFiles, const std::string& name) {
+    const cl::Program& built = program(sourceFiles);
+    try {
+        return cl::Kernel(built, name.c_str());
+    } catch (const cl::Error& e) {
+        throw toClError(e, "kernel '" + name + "'");
+    }
+}
+
+}  // namespace dfrecon::ocl

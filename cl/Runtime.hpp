@@ -1,0 +1,49 @@
+#pragma once
+// One OpenCL device ready for work: its context, an in-order queue, and a
+// cache of programs built from the embedded kernels/*.cl sources.
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cl/Devices.hpp"
+#include "cl/OpenCL.hpp"
+
+namespace dfrecon::ocl {
+
+class Runtime {
+public:
+    /// Opens the device chosen by chooseDevice(spec). Throws ClError.
+    explicit Runtime(const std::string& deviceSpec = {});
+    explicit Runtime(DeviceInfo device);
+
+    const DeviceInfo& device() const { return device_; }
+    cl::Context& context() { return context_; }
+    cl::CommandQueue& queue() { return queue_; }
+
+    /// The program made of the named embedded sources, concatenated in order
+    /// (shared helpers first), built once per runtime and options string.
+    /// A failed build throws ClError whose message carries the build log.
+    const cl::Program& program(const std::vector<std::string>& sourceFiles,
+                               const std::string& options = {});
+
+    /// A fresh kernel object (kernels hold argument state, so callers get
+    /// their own) from program(sourceFiles).
+    cl::Kernel kernel(const std::vector<std::string>& sourceFiles, const std::string& name);
+
+private:
+    DeviceInfo device_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    std::mutex cacheMutex_;
+    std::map<std::string, cl::Program> programs_;
+};
+
+/// Rounds `n` up to a multiple of `multiple` (global sizes must be multiples
+/// of the work-group size).
+inline std::size_t roundUp(std::size_t n, std::size_t multiple) {
+    return (n + multiple - 1) / multiple * multiple;
+}
+
+}  // namespace dfrecon::ocl

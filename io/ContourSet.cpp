@@ -1,0 +1,110 @@
+#include "io/ContourSet.hpp"
+
+#include <algorithm>
+
+namespace dfrecon {
+
+std::size_t Roi::contourCount() const {
+    std::size_t n = 0;
+    for (const Slice& s : slices) n += s.contours.size();
+    return n;
+}
+
+std::size_t Roi::pointCount() const {
+    std::size_t n = 0;
+    for (const Slice& s : slices)
+        for (const Polygon& c : s.contours) n += c.size();
+    return n;
+}
+
+const Roi* ContourSet::findRoi(const std::string& name) const {
+    for (const Roi& roi : rois)
+        if (roi.name == name) return &roi;
+    return nullptr;
+}
+
+// A point of `inner` that is not on `outer`'s boundary, so the winding test is
+// decisive even when the two contours touch. Vertices first, then edge
+// midpoints; touching contours share at most isolated points, so one exists.
+static bool isInside(const Polygon& inner, const Polygon& outer, const Box2& outerBox) {
+    auto decide = [&](Point2 p, bool& decided) {
+        decided = false;
+        if (!outerBox.contains(p)) {
+            decided = true;
+            return false;
+        }
+        if (distanceToBoundary(p, outer) <= 1e-9 * (1 + length(p))) return false;
+        decided = true;
+        return windingNumber(p, outer) != 0;
+    };
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+        bool decided = false;
+        bool inside = decide(inner[i], decided);
+        if (decided) return inside;
+        const Point2 mid = 0.5 * (inner[i] + inner[(i + 1) % inner.size()]);
+        inside = decide(mid, decided);
+        if (decided) return inside;
+    }
+    return false;  // identical boundaries; validation rejects this as an overlap
+}
+
+std::vector<int> nestingDepths(const Slice& slice) {
+    const std::size_t n = slice.contours.size();
+    std::vector<Box2> boxes(n);
+    for (std::size_t i = 0; i < n; ++i) boxes[i] = boundingBox(slice.contours[i]);
+    std::vector<int> depth(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) {
+            if (i == j) continue;
+            const Box2 &bi = boxes[i], &bj = boxes[j];
+            const bool boxInside = bi.min.x >= bj.min.x && bi.max.x <= bj.max.x &&
+                                   bi.min.y >= bj.min.y && bi.max.y <= bj.max.y;
+            if (boxInside && isInside(slice.contours[i], slice.contours[j], bj)) ++depth[i];
+        }
+    return depth;
+}
+
+std::size_t normaliseOrientation(Slice& slice) {
+    const std::vector<int> depth = nestingDepths(slice);
+    std::size_t reversed = 0;
+    for (std::size_t i = 0; i < slice.contours.size(); ++i) {
+        const bool wantCcw = depth[i] % 2 == 0;
+        const bool isCcw = signedArea(slice.contours[i]) > 0;
+        if (wantCcw != isCcw) {
+            std::reverse(slice.contours[i].begin(), slice.contours[i].end());
+            ++reversed;
+        }
+    }
+    return reversed;
+}
+
+Extent3 extentOf(const Roi& roi) {
+    Extent3 e;
+    for (const Slice& s : roi.slices)
+        for (const Polygon& c : s.contours)
+            for (Point2 p : c) {
+                const double v[3] = {p.x, p.y, s.zMm};
+                for (int k = 0; k < 3; ++k) {
+                    e.min[k] = e.empty ? v[k] : std::min(e.min[k], v[k]);
+                    e.max[k] = e.empty ? v[k] : std::max(e.max[k], v[k]);
+                }
+                e.empty = false;
+            }
+    return e;
+}
+
+SpacingStats spacingOf(const Roi& roi) {
+    SpacingStats s;
+    if (roi.slices.size() < 2) return s;
+    s.minMm = INFINITY;
+    for (std::size_t i = 1; i < roi.slices.size(); ++i) {
+        const double gap = roi.slices[i].zMm - roi.slices[i - 1].zMm;
+        s.minMm = std::min(s.minMm, gap);
+        s.maxMm = std::max(s.maxMm, gap);
+    }
+    s.meanMm = (roi.slices.back().zMm - roi.slices.front().zMm) / double(roi.slices.size() - 1);
+    s.uniform = s.maxMm - s.minMm <= 1e-3;
+    return s;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,66 @@
+#pragma once
+// The contour-slice data model: structures (ROIs) made of planar slices, each
+// slice a set of closed polygons. All coordinates in millimetres.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/Polygon.hpp"
+
+namespace dfrecon {
+
+struct Rgb {
+    int r = 0, g = 0, b = 0;  // 0..255
+};
+
+/// The closed polygons of one plane z = zMm. After loading and
+/// normaliseOrientation(), outer contours are counter-clockwise, holes
+/// clockwise, islands inside holes counter-clockwise again.
+struct Slice {
+    double zMm = 0;
+    std::vector<Polygon> contours;
+};
+
+/// One structure (organ, tumour, ...): slices sorted by increasing z, each z
+/// at most once.
+struct Roi {
+    std::string name;
+    std::optional<Rgb> colour;
+    std::vector<Slice> slices;
+
+    std::size_t contourCount() const;
+    std::size_t pointCount() const;
+};
+
+struct ContourSet {
+    std::vector<Roi> rois;
+
+    /// The ROI with this exact name, or nullptr.
+    const Roi* findRoi(const std::string& name) const;
+};
+
+/// Nesting depth of each contour of a slice: 0 for contours inside no other,
+/// 1 for holes, 2 for islands inside holes, ... Contours may touch but must
+/// not cross. O(c² · n) for c contours of n points (bounding boxes prune).
+std::vector<int> nestingDepths(const Slice& slice);
+
+/// Reverses contours so outer ones (even depth) run counter-clockwise and
+/// holes (odd depth) clockwise. Returns how many were reversed.
+std::size_t normaliseOrientation(Slice& slice);
+
+struct Extent3 {
+    double min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
+    bool empty = true;
+};
+/// Bounding box of every contour point of the ROI (z from the slices).
+Extent3 extentOf(const Roi& roi);
+
+/// Slice spacing statistics of an ROI (0 slices or 1 slice: all zero).
+struct SpacingStats {
+    double minMm = 0, maxMm = 0, meanMm = 0;
+    bool uniform = true;  // max - min within 1e-3 mm
+};
+SpacingStats spacingOf(const Roi& roi);
+
+}  // namespace dfrecon

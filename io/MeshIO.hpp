@@ -1,0 +1,27 @@
+#pragma once
+// Triangle meshes (OpenMesh half-edge structure, double precision in mm) and
+// their files: PLY (binary or ASCII), OBJ, OFF, STL, chosen by extension.
+#include <string>
+
+#include "io/TriMesh.hpp"
+
+namespace dfrecon {
+
+struct MeshWriteOptions {
+    bool binary = true;          // PLY and STL: binary (smaller, exact floats)
+    bool vertexNormals = true;   // PLY, OBJ, OFF: per-vertex normals
+};
+
+/// True for .ply .obj .off .stl (any letter case).
+bool isMeshExtension(const std::string& path);
+
+/// Reads a mesh; throws InputError naming the file when it cannot be read,
+/// has an unsupported extension, or holds no triangles.
+TriMesh readMesh(const std::string& path);
+
+/// Writes `mesh` by extension through a temporary file and a rename, so a
+/// failure leaves no partial file. Throws std::runtime_error on failure,
+/// std::invalid_argument for an unsupported extension.
+void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options = {});
+
+}  // namespace dfrecon

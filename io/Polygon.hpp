@@ -1,0 +1,62 @@
+#pragma once
+// Planar points and closed polygons in millimetres, with the few exact-enough
+// predicates that validation and orientation need.
+#include <cmath>
+#include <vector>
+
+namespace dfrecon {
+
+struct Point2 {
+    double x = 0, y = 0;
+};
+inline Point2 operator+(Point2 a, Point2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Point2 operator-(Point2 a, Point2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Point2 operator*(double s, Point2 a) { return {s * a.x, s * a.y}; }
+inline bool operator==(Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }
+inline bool operator!=(Point2 a, Point2 b) { return !(a == b); }
+inline double dot(Point2 a, Point2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Point2 a, Point2 b) { return a.x * b.y - a.y * b.x; }
+inline double length(Point2 a) { return std::hypot(a.x, a.y); }
+
+/// A closed polygon: the edge from the last point back to the first is
+/// implied, and the last point does not repeat the first.
+using Polygon = std::vector<Point2>;
+
+/// Shoelace area: positive for counter-clockwise polygons. O(n).
+double signedArea(const Polygon& polygon);
+
+/// Winding number of `polygon` around `p` (non-zero inside, 0 outside);
+/// undefined for p exactly on the boundary. O(n).
+int windingNumber(Point2 p, const Polygon& polygon);
+
+/// Distance from p to the closed segment ab.
+double distanceToSegment(Point2 p, Point2 a, Point2 b);
+
+/// Distance from p to the polygon's boundary. O(n).
+double distanceToBoundary(Point2 p, const Polygon& polygon);
+
+/// How two closed segments meet.
+enum class SegmentContact {
+    None,      // disjoint
+    Touch,     // share exactly one point that is an endpoint of at least one
+    Cross,     // interiors cross at one point
+    Overlap,   // collinear with a shared piece of positive length
+};
+
+/// Classifies the contact of segments ab and cd with orientation tests.
+SegmentContact segmentContact(Point2 a, Point2 b, Point2 c, Point2 d);
+
+struct Box2 {
+    Point2 min{INFINITY, INFINITY}, max{-INFINITY, -INFINITY};
+    void add(Point2 p) {
+        min = {std::fmin(min.x, p.x), std::fmin(min.y, p.y)};
+        max = {std::fmax(max.x, p.x), std::fmax(max.y, p.y)};
+    }
+    bool empty() const { return min.x > max.x; }
+    bool contains(Point2 p) const {
+        return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y;
+    }
+};
+Box2 boundingBox(const Polygon& polygon);
+
+}  // namespace dfrecon

@@ -1,0 +1,25 @@
+#pragma once
+// The pixel grid on which a slice's fields are sampled: square pixels of
+// pixelMm, pixel (i, j) centred at origin + ((i + ½)·pixelMm, (j + ½)·pixelMm).
+#include <cstddef>
+
+#include "io/Polygon.hpp"
+
+namespace dfrecon {
+
+struct SliceGrid {
+    Point2 originMm;  // lower-left corner of pixel (0, 0)
+    double pixelMm = 1;
+    int width = 0, height = 0;
+
+    std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+    Point2 pixelCentre(int i, int j) const {
+        return {originMm.x + (i + 0.5) * pixelMm, originMm.y + (j + 0.5) * pixelMm};
+    }
+};
+
+/// The grid with pixels of `pixelMm` covering `box` plus `marginPx` pixels on
+/// every side.
+SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx);
+
+}  // namespace dfrecon
