@@ -33,11 +33,19 @@ const cl::Program& Runtime::program(const std::vector<std::string>& sourceFiles,
         }
         source += "\n";
     }
+    std::string label;
+    for (const std::string& file : sourceFiles) label += (label.empty() ? "" : ", ") + file;
+    cl::Program program = buildProgram(source, label, options);
+    return programs_.emplace(key, std::move(program)).first->second;
+}
+
+cl::Program Runtime::buildProgram(const std::string& source, const std::string& label,
+                                  const std::string& options) {
     cl::Program program;
     try {
         program = cl::Program(context_, source);
     } catch (const cl::Error& e) {
-        throw toClError(e);
+        throw toClError(e, label);
     }
     try {
         program.build(std::vector<cl::Device>{device_.device}, options.c_str());
@@ -48,11 +56,9 @@ const cl::Program& Runtime::program(const std::vector<std::string>& sourceFiles,
         } catch (const cl::Error&) {
             log = "(build log unavailable)";
         }
-        std::string files;
-        for (const std::string& file : sourceFiles) files += (files.empty() ? "" : ", ") + file;
-        throw toClError(e, "building " + files + " for " + device_.deviceName + ":\n" + log);
+        throw toClError(e, "building " + label + " for " + device_.deviceName + ":\n" + log);
     }
-    return programs_.emplace(key, std::move(program)).first->second;
+    return program;
 }
 
 cl::Kernel Runtime::kernel(const std::vector<std::string>& sourceFiles, const std::string& name) {

@@ -28,6 +28,11 @@ public:
     const cl::Program& program(const std::vector<std::string>& sourceFiles,
                                const std::string& options = {});
 
+    /// Builds OpenCL C `source` (not cached); `label` names it in errors.
+    /// A failed build throws ClError whose message carries the build log.
+    cl::Program buildProgram(const std::string& source, const std::string& label,
+                             const std::string& options = {});
+
     /// A fresh kernel object (kernels hold argument state, so callers get
     /// their own) from program(sourceFiles).
     cl::Kernel kernel(const std::vector<std::string>& sourceFiles, const std::string& name);

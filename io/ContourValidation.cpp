@@ -100,7 +100,7 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
                 const SegmentContact contact = segmentContact(s.a, s.b, t.a, t.b);
                 if (contact == SegmentContact::None) continue;
                 ContourDefect defect{ContourDefect::Kind::Crossing, s.contour, s.index, t.contour,
-                                     t.index, contact == SegmentContact::Overlap};
+                                     t.index, contact};
                 if (s.contour == t.contour) {
                     // Neighbours share a vertex; only folding back onto each other is wrong.
                     if (adjacent(s, t, contours[s.contour].size()) &&

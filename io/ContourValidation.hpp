@@ -18,7 +18,7 @@ struct ContourDefect {
     Kind kind;
     // Segment k joins point k and point k+1 (mod n) of its contour.
     std::size_t contourA = 0, segmentA = 0, contourB = 0, segmentB = 0;
-    bool overlap = false;  // collinear overlap rather than a crossing
+    SegmentContact contact = SegmentContact::Cross;
 };
 
 /// Upper bound on segment pairs examined, so that a pathological slice gives

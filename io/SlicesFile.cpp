@@ -298,7 +298,7 @@ private:
 
     Roi finish(SourceRoi& source) {
         std::vector<SourceSlice>& slices = source.slices;
-        const std::string& name = source.roi.name;
+        const std::string name = source.roi.name;
 
         for (SourceSlice& slice : slices)
             for (SourceContour& c : slice.contours) dropRepeatedPoints(c);
@@ -380,7 +380,9 @@ private:
         const SourceContour& b = slice.contours[defect->contourB];
         const std::string segA = describeSegment(a, defect->segmentA);
         const std::string segB = describeSegment(b, defect->segmentB);
-        const std::string how = defect->overlap ? " overlaps " : " crosses ";
+        const std::string how = defect->contact == SegmentContact::Overlap ? " overlaps "
+                                : defect->contact == SegmentContact::Touch ? " touches "
+                                                                           : " crosses ";
         const int line = a.pointLines[defect->segmentA];
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(line, "self-intersecting contour (line " + std::to_string(a.keywordLine) + "): " +

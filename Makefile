@@ -1,0 +1,58 @@
+# dfrecon: the two commands a new user needs are `make demo` and `make test`.
+# Everything else is here for developers. See README.md.
+
+BUILD_DIR      ?= build
+SANITIZE_DIR   ?= build-sanitize
+FUZZ_DIR       ?= build-fuzz
+JOBS           ?= $(shell nproc 2>/dev/null || echo 2)
+FUZZ_SECONDS   ?= 600
+CMAKE_FLAGS    ?=
+# CI sets CI=true: warnings become errors there.
+ifeq ($(CI),true)
+  CMAKE_FLAGS += -DDFRECON_WERROR=ON
+endif
+
+# PoCL caches compiled kernels; keep the cache in the build tree so it works
+# without a usable HOME (as on CI).
+export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD_DIR)/pocl-cache
+
+.PHONY: setup build test demo bench sanitize-test fuzz format clean
+
+setup:
+	@bash scripts/setup.sh
+
+build: setup
+	@cmake --preset release $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@bash scripts/demo.sh $(BUILD_DIR)/bin/dfrecon
+
+bench: build
+	@bash scripts/bench.sh $(BUILD_DIR)
+
+# The tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+sanitize-test: setup
+	@cmake --preset sanitize $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
+	@cd $(SANITIZE_DIR) && POCL_CACHE_DIR=$(CURDIR)/$(SANITIZE_DIR)/pocl-cache \
+	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
+	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer on the .slices parser for FUZZ_SECONDS (docs/fuzzing.md).
+fuzz: setup
+	@cmake --preset fuzz >/dev/null
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_slices_parser
+	@mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/crashes
+	@cp -n examples/*.slices tests/data/fuzz/*.slices $(FUZZ_DIR)/corpus/ 2>/dev/null || true
+	$(FUZZ_DIR)/bin/fuzz_slices_parser -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 \
+	  -timeout=10 -artifact_prefix=$(FUZZ_DIR)/crashes/ $(FUZZ_DIR)/corpus
+
+format:
+	@clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.cl')
+
+clean:
+	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR)

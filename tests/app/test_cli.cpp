@@ -1,0 +1,152 @@
+// The dfrecon program as a user runs it: exit codes, file:line messages,
+// reports, help texts, and no output left behind by a failed run.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/BadSlicesInputs.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int exitCode;
+    std::string out, err;
+};
+
+// ctest runs each test in its own process, several at once: one folder each.
+fs::path scratch() {
+    static const fs::path dir = [] {
+        std::string pattern = (fs::temp_directory_path() / "dfrecon-test-cli-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+        return fs::path(pattern);
+    }();
+    return dir;
+}
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+Result runDfrecon(const std::string& args) {
+    const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
+    const std::string command = std::string(DFRECON_BINARY) + " " + args + " >" + out.string() +
+                                " 2>" + err.string() + " </dev/null";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+}  // namespace
+
+TEST(Cli, EveryMalformedInputExitsTwoWithFileAndLine) {
+    for (const auto& input : dfrecon::testing::badInputs()) {
+        const fs::path file = scratch() / (std::string(input.name) + ".slices");
+        std::ofstream(file, std::ios::binary) << input.text;
+        const Result run = runDfrecon("info " + file.string());
+        EXPECT_EQ(run.exitCode, 2) << input.name << ": " << run.err;
+        const std::string where =
+            file.string() + (input.line > 0 ? ":" + std::to_string(input.line) : "") + ": ";
+        EXPECT_NE(run.err.find(where), std::string::npos) << input.name << ": " << run.err;
+        EXPECT_NE(run.err.find(input.message), std::string::npos) << input.name << ": " << run.err;
+        EXPECT_TRUE(run.out.empty()) << input.name;
+    }
+}
+
+TEST(Cli, MissingInputFileExitsTwo) {
+    const Result run = runDfrecon("info /nonexistent/file.slices");
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.err.find("/nonexistent/file.slices: cannot open file"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitOne) {
+    EXPECT_EQ(runDfrecon("").exitCode, 1);
+    EXPECT_EQ(runDfrecon("frobnicate").exitCode, 1);
+    EXPECT_EQ(runDfrecon("synth cube -o x.slices").exitCode, 1);
+    EXPECT_EQ(runDfrecon("synth sphere").exitCode, 1);  // no -o
+    EXPECT_EQ(runDfrecon("synth sphere -o x.slices --spacing -1").exitCode, 1);
+    EXPECT_EQ(runDfrecon("info").exitCode, 1);
+}
+
+TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
+    for (const std::string sub : {"", "synth ", "devices ", "info "}) {
+        const Result run = runDfrecon(sub + "--help");
+        EXPECT_EQ(run.exitCode, 0) << sub;
+        EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
+    }
+    const Result synth = runDfrecon("synth --help");
+    EXPECT_NE(synth.out.find("--spacing FLOAT:POSITIVE=2"), std::string::npos) << synth.out;
+    EXPECT_NE(synth.out.find("in mm"), std::string::npos);
+    EXPECT_NE(synth.out.find("hollow-sphere"), std::string::npos);
+}
+
+TEST(Cli, TorusInfoShowsANestedContourOnMiddleSlices) {
+    const fs::path file = scratch() / "t.slices";
+    ASSERT_EQ(runDfrecon("synth torus -o " + file.string()).exitCode, 0);
+    const Result run = runDfrecon("info " + file.string() + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    const auto& roi = report["rois"][0];
+    EXPECT_EQ(roi["name"], "torus");
+    const auto& slices = roi["perSlice"];
+    ASSERT_GE(slices.size(), 3u);
+    const auto& middle = slices[slices.size() / 2]["contours"];
+    ASSERT_EQ(middle.size(), 2u);
+    EXPECT_EQ(middle[0]["depth"], 0);
+    EXPECT_EQ(middle[1]["depth"], 1);
+    EXPECT_EQ(middle[1]["role"], "hole");
+    EXPECT_GT(middle[0]["areaMm2"].get<double>(), middle[1]["areaMm2"].get<double>());
+}
+
+TEST(Cli, SynthJsonReportsExactAndSlicedVolume) {
+    const fs::path file = scratch() / "s.slices";
+    const Result run = runDfrecon("synth sphere --spacing 0.5 --points 256 --json -o " + file.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    const double exact = report["exactVolumeMm3"], sliced = report["planimetricVolumeMm3"];
+    EXPECT_NEAR(exact, 4.0 / 3.0 * M_PI * 8000, 1e-6);
+    EXPECT_NEAR(sliced / exact, 1.0, 2e-3);
+}
+
+TEST(Cli, RepairWarningsGoToStderrUnlessQuiet) {
+    const fs::path file = scratch() / "repair.slices";
+    std::ofstream(file) << dfrecon::testing::kHeader << "roi a\nslice 0\ncontour 5\n0 0\n10 0\n"
+                        << "10 10\n0 10\n0 0\n";
+    const Result loud = runDfrecon("info " + file.string());
+    EXPECT_EQ(loud.exitCode, 0);
+    EXPECT_NE(loud.err.find(file.string() + ":5: warning: dropped 1 repeated"), std::string::npos)
+        << loud.err;
+    const Result quiet = runDfrecon("--quiet info " + file.string());
+    EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+}
+
+TEST(Cli, FailedWriteLeavesNothingAndExitsThree) {
+    const fs::path dir = scratch() / "readonly-target";
+    fs::create_directories(dir);
+    const Result run = runDfrecon("synth sphere -o " + (dir / "missing" / "x.slices").string());
+    EXPECT_EQ(run.exitCode, 3) << run.err;
+    EXPECT_NE(run.err.find("cannot write"), std::string::npos) << run.err;
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Cli, DevicesListsPoclAndRejectsUnknownSpecs) {
+    const Result run = runDfrecon("devices --json");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    ASSERT_FALSE(report["devices"].empty());
+    int selected = 0;
+    for (const auto& d : report["devices"]) selected += d["selected"].get<bool>();
+    EXPECT_EQ(selected, 1);
+    const Result bad = runDfrecon("--device no-such-device devices");
+    EXPECT_EQ(bad.exitCode, 3);
+    EXPECT_NE(bad.err.find("no OpenCL device matches 'no-such-device'"), std::string::npos);
+}

@@ -1,0 +1,55 @@
+// Programs from embedded sources, the program cache, build logs and buffers.
+#include <gtest/gtest.h>
+
+#include "cl/ClError.hpp"
+#include "cl/DeviceBuffer.hpp"
+#include "cl/Runtime.hpp"
+#include "kernels/EmbeddedKernels.hpp"
+
+using namespace dfrecon;
+using namespace dfrecon::ocl;
+
+TEST(Runtime, KernelSourcesAreEmbedded) {
+    EXPECT_FALSE(kernels::embeddedKernelSources().empty());
+    EXPECT_NE(kernels::kernelSource("winding_number.cl").find("winding_number_grid"),
+              std::string_view::npos);
+    EXPECT_THROW(kernels::kernelSource("nope.cl"), std::out_of_range);
+}
+
+TEST(Runtime, BuildsAndCachesPrograms) {
+    Runtime runtime("cpu");
+    const cl::Program& first = runtime.program({"winding_number.cl"});
+    const cl::Program& second = runtime.program({"winding_number.cl"});
+    EXPECT_EQ(first(), second());
+    EXPECT_NO_THROW(runtime.kernel({"winding_number.cl"}, "winding_number_grid"));
+    EXPECT_THROW(runtime.kernel({"winding_number.cl"}, "no_such_kernel"), ClError);
+    EXPECT_THROW(runtime.program({"missing.cl"}), ClError);
+}
+
+TEST(Runtime, BuildFailureShowsTheLog) {
+    Runtime runtime("cpu");
+    try {
+        runtime.buildProgram("__kernel void broken(__global int* x) { x[0] = undeclared_name; }",
+                             "broken.cl");
+        FAIL();
+    } catch (const ClError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(e.call(), "clBuildProgram");
+        EXPECT_NE(message.find("CL_BUILD_PROGRAM_FAILURE"), std::string::npos) << message;
+        EXPECT_NE(message.find("broken.cl"), std::string::npos) << message;
+        EXPECT_NE(message.find("undeclared_name"), std::string::npos) << message;
+    }
+}
+
+TEST(Runtime, DeviceBufferRoundTripsAndChecksSizes) {
+    Runtime runtime("cpu");
+    const std::vector<cl_int> data = {1, -2, 3, 1 << 30};
+    DeviceBuffer<cl_int> buffer(runtime, data, CL_MEM_READ_WRITE);
+    EXPECT_EQ(buffer.size(), 4u);
+    EXPECT_EQ(buffer.download(runtime), data);
+    EXPECT_THROW(buffer.upload(runtime, {1, 2}), std::length_error);
+    DeviceBuffer<cl_int> moved = std::move(buffer);
+    EXPECT_EQ(moved.download(runtime), data);
+    DeviceBuffer<cl_float> empty(runtime, 0);
+    EXPECT_TRUE(empty.download(runtime).empty());
+}
