@@ -52,6 +52,10 @@ nlohmann::ordered_json roiJson(const Roi& roi) {
     return j;
 }
 
+std::string counted(std::size_t n, const std::string& noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 void printRoi(const Roi& roi) {
     const Extent3 extent = extentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
@@ -59,8 +63,9 @@ void printRoi(const Roi& roi) {
     if (roi.colour)
         std::cout << " (colour " << roi.colour->r << " " << roi.colour->g << " " << roi.colour->b
                   << ")";
-    std::cout << ": " << roi.slices.size() << " slices, " << roi.contourCount() << " contours, "
-              << roi.pointCount() << " points\n";
+    std::cout << ": " << counted(roi.slices.size(), "slice") << ", "
+              << counted(roi.contourCount(), "contour") << ", " << counted(roi.pointCount(), "point")
+              << "\n";
     if (extent.empty) return;
     std::cout << "  extent x " << extent.min[0] << " .. " << extent.max[0] << ", y "
               << extent.min[1] << " .. " << extent.max[1] << ", z " << extent.min[2] << " .. "
@@ -71,9 +76,9 @@ void printRoi(const Roi& roi) {
     for (const Slice& slice : roi.slices) {
         int holes = 0;
         for (int depth : nestingDepths(slice)) holes += depth % 2;
-        std::cout << "  z " << std::setw(9) << slice.zMm << ": " << slice.contours.size()
-                  << (slice.contours.size() == 1 ? " contour" : " contours");
-        if (holes > 0) std::cout << " (" << holes << " hole" << (holes > 1 ? "s" : "") << ")";
+        std::cout << "  z " << std::setw(9) << slice.zMm << ": "
+                  << counted(slice.contours.size(), "contour");
+        if (holes > 0) std::cout << " (" << counted(std::size_t(holes), "hole") << ")";
         std::cout << "\n";
     }
 }
@@ -100,8 +105,7 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
                   << "\n";
         return;
     }
-    std::cout << path << ": " << load.contours.rois.size()
-              << (load.contours.rois.size() == 1 ? " ROI" : " ROIs") << "\n";
+    std::cout << path << ": " << counted(load.contours.rois.size(), "ROI") << "\n";
     for (const Roi& roi : load.contours.rois) printRoi(roi);
 }
 
