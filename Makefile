@@ -16,7 +16,7 @@ endif
 # without a usable HOME (as on CI).
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD_DIR)/pocl-cache
 
-.PHONY: setup build test demo bench sanitize-test fuzz format clean
+.PHONY: setup build test demo bench sanitize-test fuzz format format-check clean
 
 setup:
 	@bash scripts/setup.sh
@@ -53,6 +53,9 @@ fuzz: setup
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.cl')
+
+format-check:
+	@clang-format --dry-run --Werror $$(git ls-files '*.cpp' '*.hpp' '*.cl')
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR)

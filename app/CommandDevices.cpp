@@ -27,7 +27,8 @@ void runDevices(const GlobalOptions& global, bool json) {
                             {"maxWorkGroupSize", d.maxWorkGroupSize},
                             {"doublePrecision", d.doublePrecision},
                             {"selected", d.index == chosen.index}});
-        std::cout << nlohmann::ordered_json{{"command", "devices"}, {"devices", list}}.dump(2) << "\n";
+        std::cout << nlohmann::ordered_json{{"command", "devices"}, {"devices", list}}.dump(2)
+                  << "\n";
         return;
     }
     for (const ocl::DeviceInfo& d : devices) {

@@ -34,16 +34,16 @@ nlohmann::ordered_json roiJson(const Roi& roi) {
         for (int depth : nestingDepths(slice)) holes += depth % 2;
     }
     nlohmann::ordered_json j = {{"name", roi.name},
-                        {"slices", roi.slices.size()},
-                        {"contours", roi.contourCount()},
-                        {"holes", holes},
-                        {"points", roi.pointCount()},
-                        {"spacingMm",
-                         {{"min", spacing.minMm},
-                          {"max", spacing.maxMm},
-                          {"mean", spacing.meanMm},
-                          {"uniform", spacing.uniform}}},
-                        {"perSlice", slices}};
+                                {"slices", roi.slices.size()},
+                                {"contours", roi.contourCount()},
+                                {"holes", holes},
+                                {"points", roi.pointCount()},
+                                {"spacingMm",
+                                 {{"min", spacing.minMm},
+                                  {"max", spacing.maxMm},
+                                  {"mean", spacing.meanMm},
+                                  {"uniform", spacing.uniform}}},
+                                {"perSlice", slices}};
     j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
                              : nlohmann::ordered_json(nullptr);
     if (!extent.empty)
@@ -64,8 +64,8 @@ void printRoi(const Roi& roi) {
         std::cout << " (colour " << roi.colour->r << " " << roi.colour->g << " " << roi.colour->b
                   << ")";
     std::cout << ": " << counted(roi.slices.size(), "slice") << ", "
-              << counted(roi.contourCount(), "contour") << ", " << counted(roi.pointCount(), "point")
-              << "\n";
+              << counted(roi.contourCount(), "contour") << ", "
+              << counted(roi.pointCount(), "point") << "\n";
     if (extent.empty) return;
     std::cout << "  extent x " << extent.min[0] << " .. " << extent.max[0] << ", y "
               << extent.min[1] << " .. " << extent.max[1] << ", z " << extent.min[2] << " .. "
@@ -97,10 +97,10 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
         std::cout << nlohmann::ordered_json{{"command", "info"},
-                                    {"file", path},
-                                    {"format", "dfrecon-slices 1"},
-                                    {"rois", rois},
-                                    {"warnings", warnings}}
+                                            {"file", path},
+                                            {"format", "dfrecon-slices 1"},
+                                            {"rois", rois},
+                                            {"warnings", warnings}}
                          .dump(2)
                   << "\n";
         return;

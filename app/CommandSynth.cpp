@@ -70,7 +70,8 @@ void addSynthCommand(CLI::App& root, const GlobalOptions&) {
     for (const std::string& name : shapeNames())
         shapes += "\n  " + name + ": " + shapeDescription(name);
     CLI::App* cmd = root.add_subcommand(
-        "synth", "Write contour slices of an analytic test shape (exact volume and distance known)");
+        "synth",
+        "Write contour slices of an analytic test shape (exact volume and distance known)");
     cmd->footer("Shapes (centred at the origin, lengths at --scale 1):" + shapes +
                 "\nSlices sit at cell centres zmin + spacing*(k+1/2).");
     cmd->add_option("shape", args->shape, "Shape name (see below)")

@@ -10,7 +10,9 @@ namespace dfrecon::app {
 Progress::Progress(std::string label, bool enabled)
     : label_(std::move(label)), active_(enabled && ::isatty(STDERR_FILENO)) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+    finish();
+}
 
 void Progress::update(double fraction) {
     if (!active_) return;
@@ -21,7 +23,8 @@ void Progress::update(double fraction) {
     constexpr int kWidth = 30;
     const int filled = int(std::clamp(fraction, 0.0, 1.0) * kWidth);
     std::fprintf(stderr, "\r%s [%s%s] %3d%%", label_.c_str(), std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), int(std::clamp(fraction, 0.0, 1.0) * 100));
+                 std::string(kWidth - filled, ' ').c_str(),
+                 int(std::clamp(fraction, 0.0, 1.0) * 100));
     std::fflush(stderr);
 }
 

@@ -7,7 +7,7 @@
 namespace dfrecon::app {
 
 class Progress {
-public:
+  public:
     /// `enabled` is usually `!quiet`; the bar still stays off without a TTY.
     Progress(std::string label, bool enabled);
     ~Progress();
@@ -19,7 +19,7 @@ public:
     /// Clears the line.
     void finish();
 
-private:
+  private:
     std::string label_;
     bool active_;
     bool drawn_ = false;

@@ -60,7 +60,8 @@ int main() {
                                             {"baseline", "iostream >> without validation"},
                                             {"baselineSeconds", baselineSeconds},
                                             {"speedupOverBaseline", baselineSeconds / readSeconds},
-                                            {"contoursValidated", load.contours.rois[0].contourCount()}}
+                                            {"contoursValidated",
+                                             load.contours.rois[0].contourCount()}}
                          .dump()
                   << "\n";
         std::cout << nlohmann::ordered_json{{"what", "slices_write"},

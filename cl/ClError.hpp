@@ -15,14 +15,14 @@ const char* errorName(cl_int code);
 
 /// Thrown for any failed OpenCL call or missing device/platform.
 class ClError : public std::runtime_error {
-public:
+  public:
     ClError(std::string call, cl_int code, const std::string& detail = {});
     /// For errors that are not a failed call (no device matches, ...).
     explicit ClError(const std::string& message);
     const std::string& call() const { return call_; }
     cl_int code() const { return code_; }
 
-private:
+  private:
     std::string call_;
     cl_int code_ = CL_SUCCESS;
 };

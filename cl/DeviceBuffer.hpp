@@ -13,7 +13,7 @@ namespace dfrecon::ocl {
 
 template <class T>
 class DeviceBuffer {
-public:
+  public:
     DeviceBuffer() = default;
 
     /// Uninitialised device memory for `count` elements (at least one, as
@@ -21,14 +21,16 @@ public:
     DeviceBuffer(Runtime& runtime, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
         : count_(count) {
         try {
-            buffer_ = cl::Buffer(runtime.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1));
+            buffer_ =
+                cl::Buffer(runtime.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1));
         } catch (const cl::Error& e) {
             throw toClError(e, "allocating " + std::to_string(sizeof(T) * count) + " bytes");
         }
     }
 
     /// Device memory holding a copy of `host`.
-    DeviceBuffer(Runtime& runtime, const std::vector<T>& host, cl_mem_flags flags = CL_MEM_READ_ONLY)
+    DeviceBuffer(Runtime& runtime, const std::vector<T>& host,
+                 cl_mem_flags flags = CL_MEM_READ_ONLY)
         : DeviceBuffer(runtime, host.size(), flags) {
         upload(runtime, host);
     }
@@ -46,7 +48,8 @@ public:
         if (host.size() != count_) throw std::length_error("DeviceBuffer::upload: size mismatch");
         if (count_ == 0) return;
         try {
-            runtime.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count_, host.data());
+            runtime.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count_,
+                                               host.data());
         } catch (const cl::Error& e) {
             throw toClError(e);
         }
@@ -64,7 +67,7 @@ public:
         return host;
     }
 
-private:
+  private:
     cl::Buffer buffer_;
     std::size_t count_ = 0;
 };

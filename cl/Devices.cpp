@@ -10,10 +10,14 @@ namespace dfrecon::ocl {
 
 const char* toString(DeviceKind kind) {
     switch (kind) {
-        case DeviceKind::Cpu: return "cpu";
-        case DeviceKind::Gpu: return "gpu";
-        case DeviceKind::Accelerator: return "accelerator";
-        default: return "other";
+        case DeviceKind::Cpu:
+            return "cpu";
+        case DeviceKind::Gpu:
+            return "gpu";
+        case DeviceKind::Accelerator:
+            return "accelerator";
+        default:
+            return "other";
     }
 }
 
@@ -81,7 +85,8 @@ std::vector<DeviceInfo> listDevices() {
     } catch (const cl::Error& e) {
         throw toClError(e);
     }
-    if (devices.empty()) throw ClError(std::string(kNoPlatformHelp) + " (platforms have no devices)");
+    if (devices.empty())
+        throw ClError(std::string(kNoPlatformHelp) + " (platforms have no devices)");
     return devices;
 }
 
@@ -120,7 +125,8 @@ DeviceInfo chooseDevice(const std::string& requested, const std::vector<DeviceIn
             return *d;
     } else if (isIndex(wanted)) {
         const int index = std::stoi(wanted);
-        if (index < static_cast<int>(devices.size())) return devices[static_cast<std::size_t>(index)];
+        if (index < static_cast<int>(devices.size()))
+            return devices[static_cast<std::size_t>(index)];
     } else {
         for (const DeviceInfo& d : devices)
             if (lowercase(d.deviceName).find(wanted) != std::string::npos ||
@@ -132,6 +138,8 @@ DeviceInfo chooseDevice(const std::string& requested, const std::vector<DeviceIn
                   "; available:" + availableList(devices));
 }
 
-DeviceInfo chooseDevice(const std::string& spec) { return chooseDevice(spec, listDevices()); }
+DeviceInfo chooseDevice(const std::string& spec) {
+    return chooseDevice(spec, listDevices());
+}
 
 }  // namespace dfrecon::ocl

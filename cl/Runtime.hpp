@@ -13,7 +13,7 @@
 namespace dfrecon::ocl {
 
 class Runtime {
-public:
+  public:
     /// Opens the device chosen by chooseDevice(spec). Throws ClError.
     explicit Runtime(const std::string& deviceSpec = {});
     explicit Runtime(DeviceInfo device);
@@ -37,7 +37,7 @@ public:
     /// their own) from program(sourceFiles).
     cl::Kernel kernel(const std::vector<std::string>& sourceFiles, const std::string& name);
 
-private:
+  private:
     DeviceInfo device_;
     cl::Context context_;
     cl::CommandQueue queue_;

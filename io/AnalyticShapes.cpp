@@ -14,7 +14,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double norm(Vec3 p) { return std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z); }
+double norm(Vec3 p) {
+    return std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+}
 
 Polygon circle(Point2 centre, double radius, int points) {
     Polygon polygon;
@@ -25,12 +27,14 @@ Polygon circle(Point2 centre, double radius, int points) {
     return polygon;
 }
 
-int atLeast3(int points) { return std::max(points, 3); }
+int atLeast3(int points) {
+    return std::max(points, 3);
+}
 
 // --- sphere ---------------------------------------------------------------
 
 class Sphere : public AnalyticShape {
-public:
+  public:
     Sphere(double radius, Vec3 centre = {}, std::string name = "sphere")
         : r_(radius), c_(centre), name_(std::move(name)) {}
     std::string name() const override { return name_; }
@@ -46,7 +50,7 @@ public:
         return {circle({c_.x, c_.y}, std::sqrt(r_ * r_ - h * h), atLeast3(points))};
     }
 
-private:
+  private:
     double r_;
     Vec3 c_;
     std::string name_;
@@ -138,7 +142,7 @@ double distanceToEllipsoid(double e0, double e1, double e2, double y0, double y1
 }
 
 class Ellipsoid : public AnalyticShape {
-public:
+  public:
     Ellipsoid(double a, double b, double c) : axes_{a, b, c} {}
     std::string name() const override { return "ellipsoid"; }
     double volumeMm3() const override { return 4.0 / 3.0 * kPi * axes_[0] * axes_[1] * axes_[2]; }
@@ -168,14 +172,14 @@ public:
         return {polygon};
     }
 
-private:
+  private:
     std::array<double, 3> axes_;
 };
 
 // --- torus around the z axis ----------------------------------------------------
 
 class Torus : public AnalyticShape {
-public:
+  public:
     Torus(double major, double minor) : R_(major), r_(minor) {}
     std::string name() const override { return "torus"; }
     double volumeMm3() const override { return 2 * kPi * kPi * R_ * r_ * r_; }
@@ -191,14 +195,14 @@ public:
         return {circle({0, 0}, R_ + w, atLeast3(points)), circle({0, 0}, R_ - w, atLeast3(points))};
     }
 
-private:
+  private:
     double R_, r_;
 };
 
 // --- capsule lying along x, so sections are stadiums ------------------------------
 
 class Capsule : public AnalyticShape {
-public:
+  public:
     Capsule(double halfLength, double radius) : h_(halfLength), r_(radius) {}
     std::string name() const override { return "capsule"; }
     double volumeMm3() const override {
@@ -230,7 +234,7 @@ public:
         return {polygon};
     }
 
-private:
+  private:
     double h_, r_;
 };
 
@@ -249,7 +253,7 @@ double distanceToDisc(Vec3 p, Point2 c, double r, double zc) {
 }
 
 class YShape : public AnalyticShape {
-public:
+  public:
     // Stem: disc(0, r) × [-length, 0]; branches: disc((±offset, 0), r) × [0, length].
     // offset in (r, 2r): branches overlap the stem's disc but not each other.
     YShape(double radius, double offset, double length) : r_(radius), d_(offset), L_(length) {}
@@ -268,11 +272,11 @@ public:
         // three circles bound that planar part, so its distance is the
         // in-plane distance to the circles unless p projects into it.
         const Point2 stem{0, 0}, left{-d_, 0}, right{d_, 0};
-        double d = std::min({distanceToCylinderSide(p, stem, r_, -L_, 0),
-                             distanceToDisc(p, stem, r_, -L_),
-                             distanceToCylinderSide(p, left, r_, 0, L_),
-                             distanceToCylinderSide(p, right, r_, 0, L_),
-                             distanceToDisc(p, left, r_, L_), distanceToDisc(p, right, r_, L_)});
+        double d =
+            std::min({distanceToCylinderSide(p, stem, r_, -L_, 0), distanceToDisc(p, stem, r_, -L_),
+                      distanceToCylinderSide(p, left, r_, 0, L_),
+                      distanceToCylinderSide(p, right, r_, 0, L_), distanceToDisc(p, left, r_, L_),
+                      distanceToDisc(p, right, r_, L_)});
         const Point2 q{p.x, p.y};
         auto inDisc = [&](Point2 c) { return length(q - c) <= r_; };
         const bool inStem = inDisc(stem), inBranch = inDisc(left) || inDisc(right);
@@ -281,18 +285,19 @@ public:
             inPlane = std::min({std::abs(length(q - stem) - r_), std::abs(length(q - left) - r_),
                                 std::abs(length(q - right) - r_)});
         d = std::min(d, std::hypot(inPlane, p.z));
-        const bool inside = (p.z >= -L_ && p.z <= 0 && inStem) || (p.z >= 0 && p.z <= L_ && inBranch);
+        const bool inside =
+            (p.z >= -L_ && p.z <= 0 && inStem) || (p.z >= 0 && p.z <= L_ && inBranch);
         return inside ? -d : d;
     }
 
-private:
+  private:
     double r_, d_, L_;
 };
 
 // --- union of disjoint solids: min of exact distances is exact ----------------------
 
 class DisjointUnion : public AnalyticShape {
-public:
+  public:
     DisjointUnion(std::string name, std::vector<std::unique_ptr<AnalyticShape>> parts)
         : name_(std::move(name)), parts_(std::move(parts)) {}
     std::string name() const override { return name_; }
@@ -323,7 +328,7 @@ public:
         return all;
     }
 
-private:
+  private:
     std::string name_;
     std::vector<std::unique_ptr<AnalyticShape>> parts_;
 };
@@ -331,7 +336,7 @@ private:
 // --- hollow sphere: a ball with a concentric spherical cavity ------------------------
 
 class HollowSphere : public AnalyticShape {
-public:
+  public:
     HollowSphere(double outer, double inner) : R_(outer), r_(inner) {}
     std::string name() const override { return "hollow-sphere"; }
     double volumeMm3() const override { return 4.0 / 3.0 * kPi * (R_ * R_ * R_ - r_ * r_ * r_); }
@@ -349,14 +354,14 @@ public:
         return polygons;
     }
 
-private:
+  private:
     double R_, r_;
 };
 
 }  // namespace
 
 const std::vector<std::string>& shapeNames() {
-    static const std::vector<std::string> names = {"sphere", "ellipsoid", "torus", "capsule",
+    static const std::vector<std::string> names = {"sphere", "ellipsoid", "torus",        "capsule",
                                                    "y",      "two-blobs", "hollow-sphere"};
     return names;
 }
@@ -364,7 +369,8 @@ const std::vector<std::string>& shapeNames() {
 std::string shapeDescription(const std::string& name) {
     if (name == "sphere") return "ball of radius 20 mm";
     if (name == "ellipsoid") return "semi-axes 30 x 20 x 15 mm (z smallest)";
-    if (name == "torus") return "major radius 20 mm, minor 8 mm, axis z (annulus slices with a hole)";
+    if (name == "torus")
+        return "major radius 20 mm, minor 8 mm, axis z (annulus slices with a hole)";
     if (name == "capsule") return "radius 10 mm, 30 mm straight part along x (stadium slices)";
     if (name == "y") return "cylinder r 8 mm below z=0 splitting into two at x=+-10 mm above";
     if (name == "two-blobs") return "balls r 12 mm at x=-18 and r 9 mm at x=+18, z=+3";
@@ -406,7 +412,9 @@ ContourSet sliceShape(const AnalyticShape& shape, const SynthOptions& options) {
 
     std::mt19937 random(options.seed);
     std::normal_distribution<double> gauss(0.0, options.noiseMm);
-    auto jitter = [&] { return std::clamp(gauss(random), -3 * options.noiseMm, 3 * options.noiseMm); };
+    auto jitter = [&] {
+        return std::clamp(gauss(random), -3 * options.noiseMm, 3 * options.noiseMm);
+    };
 
     Roi roi;
     roi.name = shape.name();

@@ -15,7 +15,7 @@ struct Vec3 {
 };
 
 class AnalyticShape {
-public:
+  public:
     virtual ~AnalyticShape() = default;
     virtual std::string name() const = 0;
     /// Exact enclosed volume in mm³.

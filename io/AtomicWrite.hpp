@@ -16,6 +16,7 @@ namespace dfrecon {
 void writeAtomically(const std::string& path, const std::function<bool(const std::string&)>& write);
 
 /// Same for stream output: `write(stream)`; a stream failure is an error.
-void writeStreamAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void writeStreamAtomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 }  // namespace dfrecon

@@ -54,7 +54,8 @@ void visitCells(const Grid& grid, const Segment& s, Visit&& visit) {
             y1 = a.y + slope * (x1 - a.x);
         }
         const int r0 = grid.row(std::min(y0, y1)), r1 = grid.row(std::max(y0, y1));
-        for (int r = r0; r <= r1; ++r) visit(std::size_t(r) * std::size_t(grid.size) + std::size_t(c));
+        for (int r = r0; r <= r1; ++r)
+            visit(std::size_t(r) * std::size_t(grid.size) + std::size_t(c));
     }
 }
 
@@ -99,8 +100,8 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
                 const Segment& t = segments[entries[q].second];
                 const SegmentContact contact = segmentContact(s.a, s.b, t.a, t.b);
                 if (contact == SegmentContact::None) continue;
-                ContourDefect defect{ContourDefect::Kind::Crossing, s.contour, s.index, t.contour,
-                                     t.index, contact};
+                ContourDefect defect{
+                    ContourDefect::Kind::Crossing, s.contour, s.index, t.contour, t.index, contact};
                 if (s.contour == t.contour) {
                     // Neighbours share a vertex; only folding back onto each other is wrong.
                     if (adjacent(s, t, contours[s.contour].size()) &&

@@ -11,8 +11,8 @@ namespace dfrecon {
 
 struct ContourDefect {
     enum class Kind {
-        SelfIntersection,  // two segments of one contour meet where they should not
-        Crossing,          // segments of two contours cross or overlap
+        SelfIntersection,    // two segments of one contour meet where they should not
+        Crossing,            // segments of two contours cross or overlap
         PairBudgetExceeded,  // too many candidate pairs to check (hostile input)
     };
     Kind kind;

@@ -12,6 +12,8 @@ InputError::InputError(std::string file, int line, std::string problem)
       line_(line),
       problem_(std::move(problem)) {}
 
-std::string InputWarning::toString() const { return located(file, line, "warning: " + message); }
+std::string InputWarning::toString() const {
+    return located(file, line, "warning: " + message);
+}
 
 }  // namespace dfrecon

@@ -9,13 +9,13 @@ namespace dfrecon {
 /// A defect that stops loading. what() is "file:line: problem" ("file:
 /// problem" when no line applies). The CLI exits with code 2 for these.
 class InputError : public std::runtime_error {
-public:
+  public:
     InputError(std::string file, int line, std::string problem);
     const std::string& file() const { return file_; }
     int line() const { return line_; }
     const std::string& problem() const { return problem_; }
 
-private:
+  private:
     std::string file_;
     int line_;
     std::string problem_;

@@ -37,7 +37,8 @@ TriMesh readMesh(const std::string& path) {
 
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options) {
     if (!isMeshExtension(path))
-        throw std::invalid_argument(path + ": unsupported mesh extension (use .ply .obj .off .stl)");
+        throw std::invalid_argument(path +
+                                    ": unsupported mesh extension (use .ply .obj .off .stl)");
     const std::string ext = lowerExtension(path);
 
     // Normals are computed on a copy so the caller's mesh stays const.

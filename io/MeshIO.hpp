@@ -8,8 +8,8 @@
 namespace dfrecon {
 
 struct MeshWriteOptions {
-    bool binary = true;          // PLY and STL: binary (smaller, exact floats)
-    bool vertexNormals = true;   // PLY, OBJ, OFF: per-vertex normals
+    bool binary = true;         // PLY and STL: binary (smaller, exact floats)
+    bool vertexNormals = true;  // PLY, OBJ, OFF: per-vertex normals
 };
 
 /// True for .ply .obj .off .stl (any letter case).

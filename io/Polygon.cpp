@@ -47,7 +47,9 @@ double distanceToBoundary(Point2 p, const Polygon& polygon) {
     return best;
 }
 
-static int sign(double v) { return (v > 0) - (v < 0); }
+static int sign(double v) {
+    return (v > 0) - (v < 0);
+}
 
 // Is c within the bounding box of ab (used once c is known collinear with ab)?
 static bool withinSpan(Point2 a, Point2 b, Point2 c) {

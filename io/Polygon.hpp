@@ -9,14 +9,30 @@ namespace dfrecon {
 struct Point2 {
     double x = 0, y = 0;
 };
-inline Point2 operator+(Point2 a, Point2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Point2 operator-(Point2 a, Point2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Point2 operator*(double s, Point2 a) { return {s * a.x, s * a.y}; }
-inline bool operator==(Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }
-inline bool operator!=(Point2 a, Point2 b) { return !(a == b); }
-inline double dot(Point2 a, Point2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Point2 a, Point2 b) { return a.x * b.y - a.y * b.x; }
-inline double length(Point2 a) { return std::hypot(a.x, a.y); }
+inline Point2 operator+(Point2 a, Point2 b) {
+    return {a.x + b.x, a.y + b.y};
+}
+inline Point2 operator-(Point2 a, Point2 b) {
+    return {a.x - b.x, a.y - b.y};
+}
+inline Point2 operator*(double s, Point2 a) {
+    return {s * a.x, s * a.y};
+}
+inline bool operator==(Point2 a, Point2 b) {
+    return a.x == b.x && a.y == b.y;
+}
+inline bool operator!=(Point2 a, Point2 b) {
+    return !(a == b);
+}
+inline double dot(Point2 a, Point2 b) {
+    return a.x * b.x + a.y * b.y;
+}
+inline double cross(Point2 a, Point2 b) {
+    return a.x * b.y - a.y * b.x;
+}
+inline double length(Point2 a) {
+    return std::hypot(a.x, a.y);
+}
 
 /// A closed polygon: the edge from the last point back to the first is
 /// implied, and the last point does not repeat the first.
@@ -37,10 +53,10 @@ double distanceToBoundary(Point2 p, const Polygon& polygon);
 
 /// How two closed segments meet.
 enum class SegmentContact {
-    None,      // disjoint
-    Touch,     // share exactly one point that is an endpoint of at least one
-    Cross,     // interiors cross at one point
-    Overlap,   // collinear with a shared piece of positive length
+    None,     // disjoint
+    Touch,    // share exactly one point that is an endpoint of at least one
+    Cross,    // interiors cross at one point
+    Overlap,  // collinear with a shared piece of positive length
 };
 
 /// Classifies the contact of segments ab and cd with orientation tests.

@@ -88,7 +88,7 @@ bool looksNumeric(const std::string& token) {
 }
 
 class Parser {
-public:
+  public:
     Parser(std::istream& in, std::string fileName, const SlicesLimits& limits,
            const SlicesProgress& progress)
         : in_(in), file_(std::move(fileName)), limits_(limits), progress_(progress) {}
@@ -101,7 +101,7 @@ public:
         return result;
     }
 
-private:
+  private:
     [[noreturn]] void fail(int line, const std::string& problem) const {
         throw InputError(file_, line, problem);
     }
@@ -127,8 +127,8 @@ private:
             const char* end = chunk_.data() + chunk_.size();
             const char* newline = std::find(begin, end, '\n');
             if (line.size() + std::size_t(newline - begin) > limits_.maxLineBytes)
-                fail(lineNo_ + 1, "line longer than " + std::to_string(limits_.maxLineBytes) +
-                                      " bytes");
+                fail(lineNo_ + 1,
+                     "line longer than " + std::to_string(limits_.maxLineBytes) + " bytes");
             line.append(begin, newline);
             chunkPos_ += std::size_t(newline - begin);
             if (newline != end) {
@@ -160,10 +160,10 @@ private:
         return value;
     }
 
-    long long integer(const std::string& token, const char* what, long long lo, long long hi) const {
+    long long integer(const std::string& token, const char* what, long long lo,
+                      long long hi) const {
         long long value = 0;
-        const auto [ptr, ec] =
-            std::from_chars(token.data(), token.data() + token.size(), value);
+        const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
         if (ec != std::errc() || ptr != token.data() + token.size() || token.empty())
             fail(lineNo_, std::string(what) + ": '" + token + "' is not an integer");
         if (value < lo || value > hi)
@@ -191,8 +191,9 @@ private:
             }
             if (stage == Stage::Header) {
                 if (key != "dfrecon-slices")
-                    fail(lineNo_, "bad header: expected 'dfrecon-slices 1' as the first line, got '" +
-                                      key + "'");
+                    fail(lineNo_,
+                         "bad header: expected 'dfrecon-slices 1' as the first line, got '" + key +
+                             "'");
                 expectTokens(2, "dfrecon-slices 1");
                 if (tok_.tokens[1] != "1")
                     fail(lineNo_, "unsupported version '" + tok_.tokens[1] +
@@ -275,8 +276,8 @@ private:
         const long long count = integer(tok_.tokens[1], "point count", 1,
                                         static_cast<long long>(limits_.maxPointsPerContour));
         if (totalPoints_ + std::size_t(count) > limits_.maxPointsTotal)
-            fail(lineNo_, "file holds more than " + std::to_string(limits_.maxPointsTotal) +
-                              " points");
+            fail(lineNo_,
+                 "file holds more than " + std::to_string(limits_.maxPointsTotal) + " points");
         SourceContour contour;
         contour.keywordLine = lineNo_;
         slice.contours.push_back(std::move(contour));
@@ -286,8 +287,8 @@ private:
 
     void readPoint() {
         if (tok_.tokens.size() != 2)
-            fail(lineNo_, "expected a point 'x y', got " + std::to_string(tok_.tokens.size()) +
-                              " tokens");
+            fail(lineNo_,
+                 "expected a point 'x y', got " + std::to_string(tok_.tokens.size()) + " tokens");
         SourceContour& c = rois_.back().slices.back().contours.back();
         c.points.push_back({number(tok_.tokens[0], "x"), number(tok_.tokens[1], "y")});
         c.pointLines.push_back(lineNo_);
@@ -303,11 +304,13 @@ private:
         for (SourceSlice& slice : slices)
             for (SourceContour& c : slice.contours) dropRepeatedPoints(c);
 
-        if (!std::is_sorted(slices.begin(), slices.end(),
-                            [](const SourceSlice& a, const SourceSlice& b) { return a.zMm < b.zMm; })) {
+        if (!std::is_sorted(
+                slices.begin(), slices.end(),
+                [](const SourceSlice& a, const SourceSlice& b) { return a.zMm < b.zMm; })) {
             warn(source.line, "slices of ROI '" + name + "' are not in increasing z; sorted");
-            std::stable_sort(slices.begin(), slices.end(),
-                             [](const SourceSlice& a, const SourceSlice& b) { return a.zMm < b.zMm; });
+            std::stable_sort(
+                slices.begin(), slices.end(),
+                [](const SourceSlice& a, const SourceSlice& b) { return a.zMm < b.zMm; });
         }
         mergeDuplicateZ(slices, name);
 
@@ -342,11 +345,11 @@ private:
         c.points.resize(kept);
         c.pointLines.resize(kept);
         if (dropped > 0)
-            warn(c.keywordLine, "dropped " + std::to_string(dropped) +
-                                    " repeated consecutive point(s)");
+            warn(c.keywordLine,
+                 "dropped " + std::to_string(dropped) + " repeated consecutive point(s)");
         if (kept < 3)
-            fail(c.keywordLine, "contour has fewer than 3 distinct points (" +
-                                    std::to_string(kept) + ")");
+            fail(c.keywordLine,
+                 "contour has fewer than 3 distinct points (" + std::to_string(kept) + ")");
     }
 
     void mergeDuplicateZ(std::vector<SourceSlice>& slices, const std::string& name) {
@@ -356,7 +359,8 @@ private:
                 warn(slice.line, "ROI '" + name + "' has slice z=" + formatNumber(slice.zMm) +
                                      " twice (also line " + std::to_string(merged.back().line) +
                                      "); contours merged");
-                for (SourceContour& c : slice.contours) merged.back().contours.push_back(std::move(c));
+                for (SourceContour& c : slice.contours)
+                    merged.back().contours.push_back(std::move(c));
                 continue;
             }
             merged.push_back(std::move(slice));
@@ -385,8 +389,8 @@ private:
                                                                            : " crosses ";
         const int line = a.pointLines[defect->segmentA];
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
-            fail(line, "self-intersecting contour (line " + std::to_string(a.keywordLine) + "): " +
-                           segA + how + segB);
+            fail(line, "self-intersecting contour (line " + std::to_string(a.keywordLine) +
+                           "): " + segA + how + segB);
         fail(line, "contours of ROI '" + name + "' cross on slice z=" + formatNumber(slice.zMm) +
                        ": contour at line " + std::to_string(a.keywordLine) + " " + segA + how +
                        "contour at line " + std::to_string(b.keywordLine) + " " + segB);

@@ -6,7 +6,8 @@
 namespace dfrecon {
 
 SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
-    if (!(pixelMm > 0) || box.empty()) throw std::invalid_argument("gridAround: empty box or pixel");
+    if (!(pixelMm > 0) || box.empty())
+        throw std::invalid_argument("gridAround: empty box or pixel");
     SliceGrid grid;
     grid.pixelMm = pixelMm;
     grid.originMm = {box.min.x - marginPx * pixelMm, box.min.y - marginPx * pixelMm};

@@ -26,9 +26,10 @@ std::vector<int> windingGrid(ocl::Runtime& runtime, const std::vector<Polygon>& 
         kernel.setArg(5, windingBuffer.get());
         // Global size padded to 16 for GPU-friendly shapes; the kernel skips
         // the padding. The runtime picks the work-group size.
-        runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                             cl::NDRange(ocl::roundUp(std::size_t(grid.width), 16),
-                                                         ocl::roundUp(std::size_t(grid.height), 16)));
+        runtime.queue().enqueueNDRangeKernel(
+            kernel, cl::NullRange,
+            cl::NDRange(ocl::roundUp(std::size_t(grid.width), 16),
+                        ocl::roundUp(std::size_t(grid.height), 16)));
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "winding_number_grid");
     }

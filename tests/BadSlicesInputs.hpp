@@ -18,7 +18,9 @@ struct BadInput {
 };
 
 // Lets GoogleTest print the case's name instead of its bytes.
-inline void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
+inline void PrintTo(const BadInput& input, std::ostream* out) {
+    *out << input.name;
+}
 
 inline std::vector<BadInput> badInputs() {
     return {
@@ -43,13 +45,13 @@ inline std::vector<BadInput> badInputs() {
         {"ZeroArea", kHeader + "roi a\nslice 0\ncontour 3\n0 0\n1 1\n2 2\n", 5, "zero area"},
         {"SelfIntersecting", kHeader + "roi a\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 5\n", 6,
          "self-intersecting contour (line 5): segment 1 (lines 6-7) crosses segment 3 (lines 8-9)"},
-        {"SelfTouching",
-         kHeader + "roi a\nslice 0\ncontour 6\n0 0\n10 0\n5 5\n10 10\n0 10\n5 5\n", 7,
-         "segment 2 (lines 7-8) touches segment 5 (lines 10-11)"},
+        {"SelfTouching", kHeader + "roi a\nslice 0\ncontour 6\n0 0\n10 0\n5 5\n10 10\n0 10\n5 5\n",
+         7, "segment 2 (lines 7-8) touches segment 5 (lines 10-11)"},
         {"Spike", kHeader + "roi a\nslice 0\ncontour 5\n0 0\n10 0\n20 0\n10 0.0\n0 10\n", 6,
          "self-intersecting contour (line 5): segment 1 (lines 6-7) touches"},
-        {"ContoursCross", kHeader + "roi a\nslice 0\n" + kSquare + "contour 4\n5 5\n15 5\n15 15\n5 15\n",
-         7, "contours of ROI 'a' cross on slice z=0"},
+        {"ContoursCross",
+         kHeader + "roi a\nslice 0\n" + kSquare + "contour 4\n5 5\n15 5\n15 15\n5 15\n", 7,
+         "contours of ROI 'a' cross on slice z=0"},
         {"ContoursOverlap", kHeader + "roi a\nslice 0\n" + kSquare + kSquare, 6, "overlaps"},
         {"CountTooLarge", kHeader + "roi a\nslice 0\ncontour 5\n0 0\n1 0\n1 1\nslice 1\n", 5,
          "declares 5 points but 3 follow"},

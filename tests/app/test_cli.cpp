@@ -109,7 +109,8 @@ TEST(Cli, TorusInfoShowsANestedContourOnMiddleSlices) {
 
 TEST(Cli, SynthJsonReportsExactAndSlicedVolume) {
     const fs::path file = scratch() / "s.slices";
-    const Result run = runDfrecon("synth sphere --spacing 0.5 --points 256 --json -o " + file.string());
+    const Result run =
+        runDfrecon("synth sphere --spacing 0.5 --points 256 --json -o " + file.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const auto report = nlohmann::json::parse(run.out);
     const double exact = report["exactVolumeMm3"], sliced = report["planimetricVolumeMm3"];

@@ -63,7 +63,8 @@ TEST(Devices, NoMatchListsWhatExists) {
         FAIL();
     } catch (const ClError& e) {
         EXPECT_NE(std::string(e.what()).find("no OpenCL device matches '7'"), std::string::npos);
-        EXPECT_NE(std::string(e.what()).find("1: NVIDIA H100 (gpu, NVIDIA CUDA)"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("1: NVIDIA H100 (gpu, NVIDIA CUDA)"),
+                  std::string::npos);
     }
     std::vector<DeviceInfo> cpuOnly = {fakeDevices()[0]};
     EXPECT_THROW(chooseDevice("gpu", cpuOnly), ClError);

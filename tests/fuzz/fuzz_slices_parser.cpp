@@ -35,8 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const Roi &a = load.contours.rois[r], &b = back.contours.rois[r];
         if (a.name != b.name || a.slices.size() != b.slices.size()) __builtin_trap();
         for (std::size_t s = 0; s < a.slices.size(); ++s)
-            if (a.slices[s].zMm != b.slices[s].zMm ||
-                a.slices[s].contours != b.slices[s].contours)
+            if (a.slices[s].zMm != b.slices[s].zMm || a.slices[s].contours != b.slices[s].contours)
                 __builtin_trap();
     }
     return 0;

@@ -74,8 +74,8 @@ TEST_P(ShapeTest, SlicedAreaTimesSpacingConvergesToExactVolume) {
         SynthOptions options;
         options.spacingMm = spacing;
         options.pointsPerContour = points;
-        const double error =
-            std::abs(planimetricVolume(sliceShape(*shape, options), spacing) / shape->volumeMm3() - 1);
+        const double error = std::abs(
+            planimetricVolume(sliceShape(*shape, options), spacing) / shape->volumeMm3() - 1);
         EXPECT_LT(error, previousError) << "spacing " << spacing;
         previousError = error;
     }
@@ -100,14 +100,16 @@ TEST_P(ShapeTest, SignedDistanceMatchesBruteForceAndMembership) {
         const double d = shape->signedDistance(p);
         double nearest = INFINITY;
         for (const Vec3& s : samples)
-            nearest = std::min(nearest, std::sqrt((p.x - s.x) * (p.x - s.x) + (p.y - s.y) * (p.y - s.y) +
-                                                  (p.z - s.z) * (p.z - s.z)));
+            nearest =
+                std::min(nearest, std::sqrt((p.x - s.x) * (p.x - s.x) + (p.y - s.y) * (p.y - s.y) +
+                                            (p.z - s.z) * (p.z - s.z)));
         // Samples lie on the surface, so none can be nearer than the true distance;
         // they are dense, so the nearest is within the sampling gap of it.
         EXPECT_LE(std::abs(d), nearest + 1e-9) << "p " << p.x << " " << p.y << " " << p.z;
         EXPECT_LE(nearest, std::abs(d) + 0.3) << "p " << p.x << " " << p.y << " " << p.z;
         if (std::abs(d) > 0.05 && p.z > shape->zMinMm() && p.z < shape->zMaxMm()) {
-            EXPECT_EQ(d < 0, insideBySections(*shape, p)) << "p " << p.x << " " << p.y << " " << p.z;
+            EXPECT_EQ(d < 0, insideBySections(*shape, p))
+                << "p " << p.x << " " << p.y << " " << p.z;
         }
         if (p.z <= shape->zMinMm() || p.z >= shape->zMaxMm()) {
             EXPECT_GT(d, -1e-12);

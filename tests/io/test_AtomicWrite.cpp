@@ -40,11 +40,13 @@ TEST(AtomicWrite, FailureKeepsOldContentAndCleansUp) {
                                            throw std::runtime_error("disk on fire");
                                        }),
                  std::runtime_error);
-    EXPECT_THROW(writeAtomically(target.string(), [](const std::string& tmp) {
-                     EXPECT_EQ(fs::path(tmp).extension(), ".ply");  // format detection keeps working
-                     std::ofstream(tmp) << "partial";
-                     return false;
-                 }),
+    EXPECT_THROW(writeAtomically(target.string(),
+                                 [](const std::string& tmp) {
+                                     EXPECT_EQ(fs::path(tmp).extension(),
+                                               ".ply");  // format detection keeps working
+                                     std::ofstream(tmp) << "partial";
+                                     return false;
+                                 }),
                  std::runtime_error);
     EXPECT_EQ(slurp(target), "good");
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);

@@ -41,8 +41,8 @@ TEST(ContourSet, NormaliseOrientationReversesOnlyWrongOnes) {
 
 TEST(ContourSet, ExtentAndSpacing) {
     Roi roi;
-    roi.slices = {{0, {square(0, 0, 1, true)}}, {2, {square(-1, 0, 1, true)}},
-                  {5, {square(0, 3, 1, true)}}};
+    roi.slices = {
+        {0, {square(0, 0, 1, true)}}, {2, {square(-1, 0, 1, true)}}, {5, {square(0, 3, 1, true)}}};
     const Extent3 e = extentOf(roi);
     EXPECT_EQ(e.min[0], -1);
     EXPECT_EQ(e.max[1], 4);

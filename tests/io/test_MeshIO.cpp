@@ -58,13 +58,14 @@ TEST_P(MeshRoundTrip, KeepsTopologyAndPositions) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllFormats, MeshRoundTrip,
-    ::testing::Values(std::pair{".ply", true}, std::pair{".ply", false}, std::pair{".obj", false},
-                      std::pair{".off", false}, std::pair{".stl", true}, std::pair{".stl", false}),
-    [](const auto& testInfo) {
-        return testInfo.param.first.substr(1) + (testInfo.param.second ? "_binary" : "_ascii");
-    });
+INSTANTIATE_TEST_SUITE_P(AllFormats, MeshRoundTrip,
+                         ::testing::Values(std::pair{".ply", true}, std::pair{".ply", false},
+                                           std::pair{".obj", false}, std::pair{".off", false},
+                                           std::pair{".stl", true}, std::pair{".stl", false}),
+                         [](const auto& testInfo) {
+                             return testInfo.param.first.substr(1) +
+                                    (testInfo.param.second ? "_binary" : "_ascii");
+                         });
 
 TEST(MeshIO, FailedWriteLeavesNoFile) {
     const fs::path dir = scratchDir("mesh-fail");

@@ -98,8 +98,8 @@ TEST(SlicesParser, OrientsByNestingDepth) {
 }
 
 TEST(SlicesParser, AcceptsContoursThatTouchAtAPoint) {
-    const SlicesLoad load = parseText(kHeader + "roi a\nslice 0\n" + kSquare +
-                                      "contour 3\n10 10\n20 10\n20 20\n");
+    const SlicesLoad load =
+        parseText(kHeader + "roi a\nslice 0\n" + kSquare + "contour 3\n10 10\n20 10\n20 20\n");
     EXPECT_EQ(load.contours.rois[0].slices[0].contours.size(), 2u);
 }
 
