@@ -76,17 +76,17 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
 
     const Grid grid = makeGrid(segments);
     std::size_t work = 0;
-    auto overBudget = [&] { return ContourDefect{ContourDefect::Kind::PairBudgetExceeded}; };
+    auto overBudget = [&] { return ContourDefect{ContourDefect::Kind::TooComplex}; };
 
     // (cell, segment) entries sorted by cell: each cell's segments contiguous.
+    // Segments much longer than a cell visit many cells; the cap bounds
+    // memory on layouts such as combs of long teeth.
+    const std::size_t maxEntries = 16 * segments.size() + 1'000'000;
     std::vector<std::pair<std::size_t, std::uint32_t>> entries;
     for (std::size_t i = 0; i < segments.size(); ++i) {
-        bool exceeded = false;
-        visitCells(grid, segments[i], [&](std::size_t cell) {
-            if (++work > pairBudget) exceeded = true;
-            entries.emplace_back(cell, std::uint32_t(i));
-        });
-        if (exceeded) return overBudget();
+        visitCells(grid, segments[i],
+                   [&](std::size_t cell) { entries.emplace_back(cell, std::uint32_t(i)); });
+        if (entries.size() > maxEntries) return overBudget();
     }
     std::sort(entries.begin(), entries.end());
 

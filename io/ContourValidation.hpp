@@ -11,9 +11,9 @@ namespace dfrecon {
 
 struct ContourDefect {
     enum class Kind {
-        SelfIntersection,    // two segments of one contour meet where they should not
-        Crossing,            // segments of two contours cross or overlap
-        PairBudgetExceeded,  // too many candidate pairs to check (hostile input)
+        SelfIntersection,  // two segments of one contour meet where they should not
+        Crossing,          // segments of two contours cross or overlap
+        TooComplex,        // over the pair or grid-entry budget (hostile input)
     };
     Kind kind;
     // Segment k joins point k and point k+1 (mod n) of its contour.
@@ -22,7 +22,9 @@ struct ContourDefect {
 };
 
 /// Upper bound on segment pairs examined, so that a pathological slice gives
-/// an error instead of running for hours. Real slices use a tiny fraction.
+/// an error instead of running for hours (grid entries are capped at
+/// 16 per segment plus 10⁶ likewise, bounding memory). Real slices use a tiny
+/// fraction of both.
 inline constexpr std::size_t kDefaultPairBudget = 400'000'000;
 
 /// The first defect found, or nothing if the slice is valid. Segments are

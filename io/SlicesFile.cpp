@@ -377,7 +377,7 @@ class Parser {
 
         const std::optional<ContourDefect> defect = findContourDefect(polygons);
         if (!defect) return;
-        if (defect->kind == ContourDefect::Kind::PairBudgetExceeded)
+        if (defect->kind == ContourDefect::Kind::TooComplex)
             fail(slice.line, "slice z=" + formatNumber(slice.zMm) +
                                  " is too complex to validate (pathological segment layout)");
         const SourceContour& a = slice.contours[defect->contourA];

@@ -82,5 +82,20 @@ TEST(ContourValidation, PairBudgetTurnsPathologyIntoAnError) {
     ASSERT_FALSE(findContourDefect({star}).has_value());
     const auto defect = findContourDefect({star}, 100);
     ASSERT_TRUE(defect.has_value());
-    EXPECT_EQ(defect->kind, ContourDefect::Kind::PairBudgetExceeded);
+    EXPECT_EQ(defect->kind, ContourDefect::Kind::TooComplex);
+}
+
+TEST(ContourValidation, LongSegmentsCannotExhaustMemory) {
+    // A comb of 20000 hair-thin teeth as tall as the comb is wide: every
+    // tooth edge crosses the whole grid. Valid, but refused with an error
+    // instead of billions of grid entries.
+    Polygon comb{{400, 1}, {400, 0}, {0, 0}};
+    for (int i = 0; i < 20000; ++i) {
+        const double x = 0.02 * i;
+        for (Point2 p : {Point2{x, 1}, Point2{x, 400}, Point2{x + 0.01, 400}, Point2{x + 0.01, 1}})
+            comb.push_back(p);
+    }
+    const auto defect = findContourDefect({comb});
+    ASSERT_TRUE(defect.has_value());
+    EXPECT_EQ(defect->kind, ContourDefect::Kind::TooComplex);
 }
