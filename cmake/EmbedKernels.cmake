@@ -1,5 +1,6 @@
 # Turns kernels/*.cl into one C++ source so the program never looks for kernel
-# files at run time. Invoked with -DOUTPUT=... -DSOURCES="a.cl;b.cl".
+# files at run time. Invoked with -DOUTPUT=... -DSOURCES="a.cl|b.cl".
+string(REPLACE "|" ";" SOURCES "${SOURCES}")
 set(body "")
 foreach(src IN LISTS SOURCES)
   file(READ "${src}" text)

@@ -3,7 +3,9 @@
 // pixelMm, pixel (i, j) centred at origin + ((i + ½)·pixelMm, (j + ½)·pixelMm).
 #include <cstddef>
 
-#include "io/Polygon.hpp"
+#include <vector>
+
+#include "io/ContourSet.hpp"
 
 namespace dfrecon {
 
@@ -21,5 +23,16 @@ struct SliceGrid {
 /// The grid with pixels of `pixelMm` covering `box` plus `marginPx` pixels on
 /// every side.
 SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx);
+
+/// Default grid side in pixels and margin (docs/fields.md).
+inline constexpr int kDefaultGridPixels = 512;
+inline constexpr int kGridMarginPx = 8;
+
+/// The one grid shared by all slices of an ROI: covers the union of its
+/// contours' bounding boxes plus kGridMarginPx pixels on each side. With
+/// pixelMm <= 0 the pixel size is chosen so the longer side is about
+/// kDefaultGridPixels. Throws std::invalid_argument for an ROI without
+/// contours or a grid over 16384 pixels a side.
+SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm = 0);
 
 }  // namespace dfrecon

@@ -1,0 +1,251 @@
+#include "recon/SliceFields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "cl/DeviceBuffer.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+constexpr std::uint32_t kTile = 8;               // must match TILE in the kernel
+constexpr std::size_t kCandidateBytes = 128u << 20;  // candidate lists per launch
+
+void checkLimits(const std::vector<Slice>& slices) {
+    for (const Slice& slice : slices) {
+        if (slice.contours.size() >= kMaxContoursPerSlice)
+            throw std::invalid_argument("slice z=" + std::to_string(slice.zMm) + " has over " +
+                                        std::to_string(kMaxContoursPerSlice - 1) + " contours");
+        for (const Polygon& c : slice.contours)
+            if (c.size() >= kMaxPrimitivesPerContour)
+                throw std::invalid_argument("a contour at z=" + std::to_string(slice.zMm) +
+                                            " has over " +
+                                            std::to_string(kMaxPrimitivesPerContour - 1) +
+                                            " points");
+    }
+}
+
+// Segments of a run of slices, flattened in (slice, contour, index) order:
+// endpoints relative to the grid origin and the ids the kernel reports.
+template <class Real4>
+struct FlatSegments {
+    std::vector<Real4> segments;
+    std::vector<cl_uint2> ids;  // (segment id, end vertex id)
+    std::vector<cl_uint> sliceFirst, sliceCount;
+};
+
+template <class Real4>
+FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin, std::size_t end,
+                            Point2 origin) {
+    FlatSegments<Real4> flat;
+    for (std::size_t s = begin; s < end; ++s) {
+        flat.sliceFirst.push_back(cl_uint(flat.segments.size()));
+        const auto& contours = slices[s].contours;
+        for (std::uint32_t c = 0; c < contours.size(); ++c) {
+            const std::uint32_t n = std::uint32_t(contours[c].size());
+            for (std::uint32_t k = 0; k < n; ++k) {
+                const Point2 a = contours[c][k] - origin, b = contours[c][(k + 1) % n] - origin;
+                Real4 r;
+                r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
+                flat.segments.push_back(r);
+                flat.ids.push_back({{PrimitiveId{c, k, false}.encode(),
+                                     PrimitiveId{c, (k + 1) % n, true}.encode()}});
+            }
+        }
+        flat.sliceCount.push_back(cl_uint(flat.segments.size()) - flat.sliceFirst.back());
+    }
+    return flat;
+}
+
+// Where each contour crosses each pixel row, as (first pixel to the right,
+// direction), in double precision with the half-open rule of windingNumber().
+struct RowCrossings {
+    std::vector<cl_uint> rowFirst;  // size rows + 1
+    std::vector<cl_int2> crossings;
+};
+
+RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, std::size_t end,
+                          const SliceGrid& grid) {
+    std::vector<std::vector<cl_int2>> perRow((end - begin) * std::size_t(grid.height));
+    for (std::size_t s = begin; s < end; ++s)
+        for (const Polygon& contour : slices[s].contours)
+            for (std::size_t k = 0; k < contour.size(); ++k) {
+                const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
+                if (a.y == b.y) continue;
+                const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+                const int j0 = std::max(0, int(std::floor((lo - grid.originMm.y) / grid.pixelMm - 0.5)));
+                const int j1 = std::min(grid.height - 1,
+                                        int(std::ceil((hi - grid.originMm.y) / grid.pixelMm - 0.5)));
+                for (int j = j0; j <= j1; ++j) {
+                    const double y = grid.pixelCentre(0, j).y;
+                    const bool up = a.y <= y && y < b.y, down = b.y <= y && y < a.y;
+                    if (!up && !down) continue;
+                    const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                    const double k0 = std::floor((x - grid.originMm.x) / grid.pixelMm - 0.5) + 1;
+                    const int first = int(std::clamp(k0, 0.0, double(grid.width)));
+                    perRow[(s - begin) * std::size_t(grid.height) + std::size_t(j)].push_back(
+                        {{first, up ? 1 : -1}});
+                }
+            }
+    RowCrossings rows;
+    rows.rowFirst.push_back(0);
+    for (const auto& row : perRow) {
+        rows.crossings.insert(rows.crossings.end(), row.begin(), row.end());
+        rows.rowFirst.push_back(cl_uint(rows.crossings.size()));
+    }
+    return rows;
+}
+
+template <class Real, class Real4>
+void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
+              std::size_t end, const SliceGrid& grid, SliceFields& out) {
+    const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid.originMm);
+    const RowCrossings rows = rowCrossings(slices, begin, end, grid);
+    const std::size_t batch = end - begin;
+    const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
+    const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+    const std::size_t tiles = tilesX * tilesY * batch;
+    const cl_uint maxCount = *std::max_element(flat.sliceCount.begin(), flat.sliceCount.end());
+    const cl_uint capacity = std::max<cl_uint>(1, std::min<cl_uint>(maxCount, 1024));
+
+    ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
+    ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
+    ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst), sliceCount(runtime, flat.sliceCount);
+    ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
+    ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
+    ocl::DeviceBuffer<cl_uint> candidates(runtime, tiles * capacity);
+    ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tiles);
+    ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
+    ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
+
+    const std::string options = std::string("-DREAL=") +
+                                (sizeof(Real) == 8 ? "double" : "float") +
+                                " -DTILE=" + std::to_string(kTile);
+    const cl::Program& program = runtime.program({"closest_segment_2d.cl"}, options);
+    try {
+        cl::Kernel cull(program, "tile_candidates");
+        int a = 0;
+        cull.setArg(a++, segments.get());
+        cull.setArg(a++, sliceFirst.get());
+        cull.setArg(a++, sliceCount.get());
+        cull.setArg(a++, cl_uint(grid.width));
+        cull.setArg(a++, cl_uint(grid.height));
+        cull.setArg(a++, Real(grid.pixelMm));
+        cull.setArg(a++, capacity);
+        cull.setArg(a++, candidates.get());
+        cull.setArg(a++, candidateCount.get());
+        runtime.queue().enqueueNDRangeKernel(cull, cl::NullRange,
+                                             cl::NDRange(tilesX, tilesY, batch));
+
+        cl::Kernel field(program, "signed_distance_2d");
+        a = 0;
+        field.setArg(a++, segments.get());
+        field.setArg(a++, ids.get());
+        field.setArg(a++, sliceFirst.get());
+        field.setArg(a++, sliceCount.get());
+        field.setArg(a++, rowFirst.get());
+        field.setArg(a++, crossings.get());
+        field.setArg(a++, cl_uint(grid.width));
+        field.setArg(a++, cl_uint(grid.height));
+        field.setArg(a++, Real(grid.pixelMm));
+        field.setArg(a++, capacity);
+        field.setArg(a++, candidates.get());
+        field.setArg(a++, candidateCount.get());
+        field.setArg(a++, distance.get());
+        field.setArg(a++, nearest.get());
+        // Work-groups of one tile, so a group walks one candidate list.
+        runtime.queue().enqueueNDRangeKernel(
+            field, cl::NullRange, cl::NDRange(tilesX * kTile, tilesY * kTile, batch),
+            cl::NDRange(kTile, kTile, 1));
+    } catch (const cl::Error& e) {
+        throw ocl::toClError(e, "closest_segment_2d.cl");
+    }
+    const std::vector<cl_float> d = distance.download(runtime);
+    const std::vector<cl_uint> id = nearest.download(runtime);
+    const std::size_t offset = begin * grid.pixelCount();
+    std::copy(d.begin(), d.end(), out.distanceMm.begin() + std::ptrdiff_t(offset));
+    std::copy(id.begin(), id.end(), out.nearestId.begin() + std::ptrdiff_t(offset));
+}
+
+SliceFields emptyFields(const std::vector<Slice>& slices, const SliceGrid& grid) {
+    SliceFields fields;
+    fields.grid = grid;
+    for (const Slice& s : slices) fields.zMm.push_back(s.zMm);
+    fields.distanceMm.assign(slices.size() * grid.pixelCount(),
+                             std::numeric_limits<float>::infinity());
+    fields.nearestId.assign(slices.size() * grid.pixelCount(), kNoPrimitive);
+    return fields;
+}
+
+}  // namespace
+
+SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
+                               const SliceGrid& grid) {
+    checkLimits(slices);
+    SliceFields fields = emptyFields(slices, grid);
+    const std::size_t tilesPerSlice = ((std::size_t(grid.width) + kTile - 1) / kTile) *
+                                      ((std::size_t(grid.height) + kTile - 1) / kTile);
+    const std::size_t perBatch =
+        std::max<std::size_t>(1, kCandidateBytes / (tilesPerSlice * 1024 * sizeof(cl_uint)));
+    const bool fp64 = runtime.device().doublePrecision;
+    for (std::size_t begin = 0; begin < slices.size();) {
+        // Slices without contours keep +inf / kNoPrimitive; batches skip them.
+        if (slices[begin].contours.empty()) {
+            ++begin;
+            continue;
+        }
+        std::size_t end = begin;
+        while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty()) ++end;
+        if (fp64)
+            runBatch<cl_double, cl_double4>(runtime, slices, begin, end, grid, fields);
+        else
+            runBatch<cl_float, cl_float4>(runtime, slices, begin, end, grid, fields);
+        begin = end;
+    }
+    return fields;
+}
+
+SliceFields computeSliceFieldsReference(const std::vector<Slice>& slices, const SliceGrid& grid) {
+    checkLimits(slices);
+    SliceFields fields = emptyFields(slices, grid);
+    for (std::size_t s = 0; s < slices.size(); ++s) {
+        const auto& contours = slices[s].contours;
+        if (contours.empty()) continue;
+        for (int j = 0; j < grid.height; ++j)
+            for (int i = 0; i < grid.width; ++i) {
+                const Point2 p = grid.pixelCentre(i, j);
+                double best2 = std::numeric_limits<double>::infinity();
+                std::uint32_t bestId = kNoPrimitive;
+                int winding = 0;
+                for (std::uint32_t c = 0; c < contours.size(); ++c) {
+                    const Polygon& poly = contours[c];
+                    const std::uint32_t n = std::uint32_t(poly.size());
+                    for (std::uint32_t k = 0; k < n; ++k) {
+                        const Point2 a = poly[k], ab = poly[(k + 1) % n] - a, ap = p - a;
+                        const double len2 = dot(ab, ab);
+                        const double t = std::clamp(len2 > 0 ? dot(ap, ab) / len2 : 0.0, 0.0, 1.0);
+                        const Point2 q = ap - t * ab;
+                        const double d2 = dot(q, q);
+                        if (d2 < best2) {
+                            best2 = d2;
+                            bestId = t <= 0   ? PrimitiveId{c, k, true}.encode()
+                                     : t >= 1 ? PrimitiveId{c, (k + 1) % n, true}.encode()
+                                              : PrimitiveId{c, k, false}.encode();
+                        }
+                    }
+                    winding += windingNumber(p, poly);
+                }
+                const std::size_t at = fields.index(s, i, j);
+                const double d = std::sqrt(best2);
+                fields.distanceMm[at] = float(winding != 0 ? -d : d);
+                fields.nearestId[at] = bestId;
+            }
+    }
+    return fields;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,45 @@
+#pragma once
+// Exact 2D signed distance fields with correspondence ids: for every pixel of
+// every slice, the Euclidean distance (mm, negative inside) to the nearest
+// point of the slice's original double-precision contours, and which
+// primitive (recon/PrimitiveId.hpp) that point belongs to.
+#include <cstdint>
+#include <vector>
+
+#include "cl/Runtime.hpp"
+#include "io/ContourSet.hpp"
+#include "recon/PrimitiveId.hpp"
+#include "recon/SliceGrid.hpp"
+
+namespace dfrecon {
+
+/// The fields of a stack of slices on one grid, stored slice after slice,
+/// each row-major (pixel (i, j) of slice s at s·W·H + j·W + i).
+struct SliceFields {
+    SliceGrid grid;
+    std::vector<double> zMm;               // one per slice
+    std::vector<float> distanceMm;         // signed: < 0 inside, > 0 outside
+    std::vector<std::uint32_t> nearestId;  // PrimitiveId::encode(), or kNoPrimitive
+
+    std::size_t sliceCount() const { return zMm.size(); }
+    std::size_t index(std::size_t slice, int i, int j) const {
+        return slice * grid.pixelCount() + std::size_t(j) * std::size_t(grid.width) +
+               std::size_t(i);
+    }
+};
+
+/// Fields of all `slices` on `grid` with the OpenCL kernels of
+/// kernels/closest_segment_2d.cl (culled per 8×8 tile; batches of slices per
+/// launch; fp64 on devices that have it). Sign from the winding number of
+/// all contours, so holes, islands and touching contours come out right.
+/// Work: O(tiles·segments + pixels·candidates) per slice. Throws
+/// std::invalid_argument beyond the PrimitiveId limits, ClError on device
+/// failure.
+SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
+                               const SliceGrid& grid);
+
+/// The plain C++ brute-force reference: every segment at every pixel in
+/// double precision, sign from windingNumber(). O(pixels·segments).
+SliceFields computeSliceFieldsReference(const std::vector<Slice>& slices, const SliceGrid& grid);
+
+}  // namespace dfrecon
