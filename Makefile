@@ -32,7 +32,7 @@ demo: build
 	@bash scripts/demo.sh $(BUILD_DIR)/bin/dfrecon
 
 bench: build
-	@bash scripts/bench.sh $(BUILD_DIR)
+	@$(BUILD_DIR)/bin/dfrecon-bench all
 
 # The tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
 sanitize-test: setup

@@ -8,12 +8,14 @@
 // magnitudes stay small. Pixel (i, j) has its centre at
 // ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm).
 //
-// Culling (tile_candidates): pixels are grouped in TILE x TILE tiles. For a
-// tile with centre c and half-diagonal h, every pixel p in it has
-//   d(p) <= min_s d(c, s) + h =: U,
-// so only segments whose distance to the tile's box is <= U can be nearest
-// to any of its pixels. The candidate list keeps segment order, so ties
-// resolve as in a brute-force scan.
+// Culling (tile_candidates, run coarse then fine): pixels are grouped in
+// square tiles. For a
+// tile with centre c and half-diagonal h (over its pixel centres), every
+// pixel p in it has |p - c| <= h, so
+//   d(p, s) >= d(c, s) - h   and   min_s d(p, s) <= min_s d(c, s) + h.
+// Only segments with d(c, s) <= min_s d(c, s) + 2h can be nearest to any
+// pixel of the tile. The candidate list keeps segment order, so ties resolve
+// as in a brute-force scan.
 #ifndef REAL
 #define REAL float
 #endif
@@ -37,78 +39,64 @@ inline REAL segmentDistance2(REAL2 p, REAL4 s, REAL* t) {
     return dot(q, q);
 }
 
-// Distance from point p to the axis-aligned box [lo, hi].
-inline REAL pointBoxDistance(REAL2 p, REAL2 lo, REAL2 hi) {
-    const REAL2 d = fmax(fmax(lo - p, p - hi), (REAL2)(0, 0));
-    return length(d);
-}
-
-// Does segment ab meet the box [lo, hi]? (Liang–Barsky clipping.)
-inline bool segmentHitsBox(REAL2 a, REAL2 b, REAL2 lo, REAL2 hi) {
-    REAL t0 = 0, t1 = 1;
-    const REAL2 d = b - a;
-    const REAL p[4] = {-d.x, d.x, -d.y, d.y};
-    const REAL q[4] = {a.x - lo.x, hi.x - a.x, a.y - lo.y, hi.y - a.y};
-    for (int k = 0; k < 4; ++k) {
-        if (p[k] == 0) {
-            if (q[k] < 0) return false;
-        } else {
-            const REAL r = q[k] / p[k];
-            if (p[k] < 0) t0 = fmax(t0, r);
-            else t1 = fmin(t1, r);
-        }
-    }
-    return t0 <= t1;
-}
-
-// Exact distance between segment s and the box [lo, hi]: zero if they meet,
-// else attained at an endpoint of the segment or a corner of the box.
-inline REAL segmentBoxDistance(REAL4 s, REAL2 lo, REAL2 hi) {
-    if (segmentHitsBox(s.xy, s.zw, lo, hi)) return 0;
-    REAL best = fmin(pointBoxDistance(s.xy, lo, hi), pointBoxDistance(s.zw, lo, hi));
-    REAL t;
-    best = fmin(best, sqrt(segmentDistance2((REAL2)(lo.x, lo.y), s, &t)));
-    best = fmin(best, sqrt(segmentDistance2((REAL2)(hi.x, lo.y), s, &t)));
-    best = fmin(best, sqrt(segmentDistance2((REAL2)(lo.x, hi.y), s, &t)));
-    best = fmin(best, sqrt(segmentDistance2((REAL2)(hi.x, hi.y), s, &t)));
-    return best;
-}
-
-// One work-item per (tile x, tile y, slice of the batch). Writes up to
-// `capacity` candidate segment indices (global) and the full count, which
-// may exceed capacity: the field kernel then scans the whole slice.
+// One work-item per (tile x, tile y, slice of the batch) for tiles of
+// `tile` pixels. Scans the candidates of the enclosing parent tile (a
+// coarser level of the same kind; parentTile = 0 for none, or when that list
+// overflowed: the whole slice). Writes up to `capacity` candidate segment
+// indices (global, in segment order) and the full count, which may exceed
+// capacity: users then scan the whole slice.
 __kernel void tile_candidates(__global const REAL4* segments, __global const uint* sliceFirst,
                               __global const uint* sliceCount, const uint width, const uint height,
-                              const REAL pixelMm, const uint capacity,
-                              __global uint* candidates, __global uint* candidateCount) {
+                              const REAL pixelMm, const uint tile, const uint parentTile,
+                              __global const uint* parentCandidates,
+                              __global const uint* parentCount, const uint parentCapacity,
+                              const uint capacity, __global uint* candidates,
+                              __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
-    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
+    const uint tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
     if (tx >= tilesX || ty >= tilesY) return;
-    const uint i0 = tx * TILE, j0 = ty * TILE;
-    const uint i1 = min(i0 + TILE, width) - 1, j1 = min(j0 + TILE, height) - 1;
+    const uint i0 = tx * tile, j0 = ty * tile;
+    const uint i1 = min(i0 + tile, width) - 1, j1 = min(j0 + tile, height) - 1;
     // The box of the tile's pixel centres: fields are only sampled there.
     const REAL2 lo = (REAL2)((i0 + (REAL)0.5) * pixelMm, (j0 + (REAL)0.5) * pixelMm);
     const REAL2 hi = (REAL2)((i1 + (REAL)0.5) * pixelMm, (j1 + (REAL)0.5) * pixelMm);
     const REAL2 centre = (lo + hi) / 2;
     const REAL halfDiagonal = length(hi - lo) / 2;
 
-    const uint first = sliceFirst[s], count = sliceCount[s];
-    REAL best2 = INFINITY, t;
-    for (uint k = 0; k < count; ++k)
-        best2 = fmin(best2, segmentDistance2(centre, segments[first + k], &t));
-    // Relative slack so rounding can never drop the true nearest segment.
-    const REAL upper = (sqrt(best2) + halfDiagonal) * (REAL)(1 + 1e-5) + (REAL)1e-6 * pixelMm;
+    // Where to look: the parent's list, or every segment of the slice.
+    const uint first = sliceFirst[s];
+    uint count = sliceCount[s];
+    __global const uint* from = 0;
+    if (parentTile > 0) {
+        const uint parentsX = (width + parentTile - 1) / parentTile;
+        const uint parentsY = (height + parentTile - 1) / parentTile;
+        const size_t parent = ((size_t)s * parentsY + j0 / parentTile) * parentsX + i0 / parentTile;
+        if (parentCount[parent] <= parentCapacity) {
+            count = parentCount[parent];
+            from = parentCandidates + parent * parentCapacity;
+        }
+    }
 
-    const size_t tile = ((size_t)s * tilesY + ty) * tilesX + tx;
-    __global uint* list = candidates + tile * capacity;
+    REAL best2 = INFINITY, t;
+    for (uint k = 0; k < count; ++k) {
+        const uint seg = from ? from[k] : first + k;
+        best2 = fmin(best2, segmentDistance2(centre, segments[seg], &t));
+    }
+    // Compared squared; relative slack so rounding never drops the nearest.
+    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * (REAL)(1 + 1e-5) + (REAL)1e-6 * pixelMm;
+    const REAL reach2 = reach * reach;
+
+    const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
+    __global uint* list = candidates + at * capacity;
     uint n = 0;
     for (uint k = 0; k < count; ++k) {
-        if (segmentBoxDistance(segments[first + k], lo, hi) <= upper) {
-            if (n < capacity) list[n] = first + k;
+        const uint seg = from ? from[k] : first + k;
+        if (segmentDistance2(centre, segments[seg], &t) <= reach2) {
+            if (n < capacity) list[n] = seg;
             ++n;
         }
     }
-    candidateCount[tile] = n;
+    candidateCount[at] = n;
 }
 
 // One work-item per pixel (i, j) of slice s of the batch. ids[k] = (segment
@@ -135,17 +123,23 @@ __kernel void signed_distance_2d(__global const REAL4* segments, __global const 
     const bool useList = listed <= capacity;
     const uint n = useList ? listed : sliceCount[s];
     __global const uint* list = candidates + tile * capacity;
-    REAL best2 = INFINITY;
-    uint bestId = 0xffffffffu;
+    // The search keeps the winning segment and its parameter; ids are looked
+    // up once at the end.
+    REAL best2 = INFINITY, bestT = 0;
+    uint bestSeg = 0;
     for (uint k = 0; k < n; ++k) {
         const uint seg = useList ? list[k] : sliceFirst[s] + k;
         REAL t;
         const REAL d2 = segmentDistance2(p, segments[seg], &t);
-        if (d2 < best2) {
-            best2 = d2;
-            const uint2 id = ids[seg];
-            bestId = t <= 0 ? (id.x | 1u) : (t >= 1 ? id.y : id.x);
-        }
+        const bool better = d2 < best2;
+        best2 = better ? d2 : best2;
+        bestT = better ? t : bestT;
+        bestSeg = better ? seg : bestSeg;
+    }
+    uint bestId = 0xffffffffu;
+    if (n > 0) {
+        const uint2 id = ids[bestSeg];
+        bestId = bestT <= 0 ? (id.x | 1u) : (bestT >= 1 ? id.y : id.x);
     }
 
     const size_t row = (size_t)s * height + j;

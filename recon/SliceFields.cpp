@@ -12,8 +12,17 @@ namespace dfrecon {
 
 namespace {
 
-constexpr std::uint32_t kTile = 8;               // must match TILE in the kernel
+// Culling levels: coarse tiles scan all segments of a slice, fine tiles
+// (the kernel's TILE, one work-group each) scan their coarse tile's list.
+constexpr std::uint32_t kCoarseTile = 32;
+constexpr std::uint32_t kTile = 8;
+constexpr cl_uint kCoarseCapacity = 4096, kFineCapacity = 1024;
 constexpr std::size_t kCandidateBytes = 128u << 20;  // candidate lists per launch
+
+std::size_t tilesOf(const SliceGrid& grid, std::uint32_t tile) {
+    return ((std::size_t(grid.width) + tile - 1) / tile) *
+           ((std::size_t(grid.height) + tile - 1) / tile);
+}
 
 void checkLimits(const std::vector<Slice>& slices) {
     for (const Slice& slice : slices) {
@@ -22,10 +31,9 @@ void checkLimits(const std::vector<Slice>& slices) {
                                         std::to_string(kMaxContoursPerSlice - 1) + " contours");
         for (const Polygon& c : slice.contours)
             if (c.size() >= kMaxPrimitivesPerContour)
-                throw std::invalid_argument("a contour at z=" + std::to_string(slice.zMm) +
-                                            " has over " +
-                                            std::to_string(kMaxPrimitivesPerContour - 1) +
-                                            " points");
+                throw std::invalid_argument(
+                    "a contour at z=" + std::to_string(slice.zMm) + " has over " +
+                    std::to_string(kMaxPrimitivesPerContour - 1) + " points");
     }
 }
 
@@ -77,9 +85,10 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
                 const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
                 if (a.y == b.y) continue;
                 const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-                const int j0 = std::max(0, int(std::floor((lo - grid.originMm.y) / grid.pixelMm - 0.5)));
-                const int j1 = std::min(grid.height - 1,
-                                        int(std::ceil((hi - grid.originMm.y) / grid.pixelMm - 0.5)));
+                const int j0 =
+                    std::max(0, int(std::floor((lo - grid.originMm.y) / grid.pixelMm - 0.5)));
+                const int j1 = std::min(
+                    grid.height - 1, int(std::ceil((hi - grid.originMm.y) / grid.pixelMm - 0.5)));
                 for (int j = j0; j <= j1; ++j) {
                     const double y = grid.pixelCentre(0, j).y;
                     const bool up = a.y <= y && y < b.y, down = b.y <= y && y < a.y;
@@ -106,43 +115,62 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid.originMm);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
-    const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
-    const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-    const std::size_t tiles = tilesX * tilesY * batch;
     const cl_uint maxCount = *std::max_element(flat.sliceCount.begin(), flat.sliceCount.end());
-    const cl_uint capacity = std::max<cl_uint>(1, std::min<cl_uint>(maxCount, 1024));
+    const cl_uint coarseCapacity = std::max<cl_uint>(1, std::min(maxCount, kCoarseCapacity));
+    const cl_uint fineCapacity = std::max<cl_uint>(1, std::min(maxCount, kFineCapacity));
 
     ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
     ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
-    ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst), sliceCount(runtime, flat.sliceCount);
+    ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst),
+        sliceCount(runtime, flat.sliceCount);
     ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
     ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
-    ocl::DeviceBuffer<cl_uint> candidates(runtime, tiles * capacity);
-    ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tiles);
+    const std::size_t coarseTiles = tilesOf(grid, kCoarseTile) * batch;
+    const std::size_t fineTiles = tilesOf(grid, kTile) * batch;
+    ocl::DeviceBuffer<cl_uint> coarse(runtime, coarseTiles * coarseCapacity);
+    ocl::DeviceBuffer<cl_uint> coarseCount(runtime, coarseTiles);
+    ocl::DeviceBuffer<cl_uint> fine(runtime, fineTiles * fineCapacity);
+    ocl::DeviceBuffer<cl_uint> fineCount(runtime, fineTiles);
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
 
-    const std::string options = std::string("-DREAL=") +
-                                (sizeof(Real) == 8 ? "double" : "float") +
+    const std::string options = std::string("-DREAL=") + (sizeof(Real) == 8 ? "double" : "float") +
                                 " -DTILE=" + std::to_string(kTile);
     const cl::Program& program = runtime.program({"closest_segment_2d.cl"}, options);
     try {
-        cl::Kernel cull(program, "tile_candidates");
-        int a = 0;
-        cull.setArg(a++, segments.get());
-        cull.setArg(a++, sliceFirst.get());
-        cull.setArg(a++, sliceCount.get());
-        cull.setArg(a++, cl_uint(grid.width));
-        cull.setArg(a++, cl_uint(grid.height));
-        cull.setArg(a++, Real(grid.pixelMm));
-        cull.setArg(a++, capacity);
-        cull.setArg(a++, candidates.get());
-        cull.setArg(a++, candidateCount.get());
-        runtime.queue().enqueueNDRangeKernel(cull, cl::NullRange,
-                                             cl::NDRange(tilesX, tilesY, batch));
+        auto cull = [&](std::uint32_t tile, std::uint32_t parentTile,
+                        const ocl::DeviceBuffer<cl_uint>& parent,
+                        const ocl::DeviceBuffer<cl_uint>& parentCount, cl_uint parentCapacity,
+                        cl_uint capacity, const ocl::DeviceBuffer<cl_uint>& list,
+                        const ocl::DeviceBuffer<cl_uint>& listCount) {
+            cl::Kernel kernel(program, "tile_candidates");
+            int a = 0;
+            kernel.setArg(a++, segments.get());
+            kernel.setArg(a++, sliceFirst.get());
+            kernel.setArg(a++, sliceCount.get());
+            kernel.setArg(a++, cl_uint(grid.width));
+            kernel.setArg(a++, cl_uint(grid.height));
+            kernel.setArg(a++, Real(grid.pixelMm));
+            kernel.setArg(a++, cl_uint(tile));
+            kernel.setArg(a++, cl_uint(parentTile));
+            kernel.setArg(a++, parent.get());
+            kernel.setArg(a++, parentCount.get());
+            kernel.setArg(a++, parentCapacity);
+            kernel.setArg(a++, capacity);
+            kernel.setArg(a++, list.get());
+            kernel.setArg(a++, listCount.get());
+            runtime.queue().enqueueNDRangeKernel(
+                kernel, cl::NullRange,
+                cl::NDRange((std::size_t(grid.width) + tile - 1) / tile,
+                            (std::size_t(grid.height) + tile - 1) / tile, batch));
+        };
+        // The coarse level has no parent; it gets its own buffers as dummies.
+        cull(kCoarseTile, 0, coarse, coarseCount, 0, coarseCapacity, coarse, coarseCount);
+        cull(kTile, kCoarseTile, coarse, coarseCount, coarseCapacity, fineCapacity, fine,
+             fineCount);
 
         cl::Kernel field(program, "signed_distance_2d");
-        a = 0;
+        int a = 0;
         field.setArg(a++, segments.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
@@ -152,15 +180,17 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, cl_uint(grid.width));
         field.setArg(a++, cl_uint(grid.height));
         field.setArg(a++, Real(grid.pixelMm));
-        field.setArg(a++, capacity);
-        field.setArg(a++, candidates.get());
-        field.setArg(a++, candidateCount.get());
+        field.setArg(a++, fineCapacity);
+        field.setArg(a++, fine.get());
+        field.setArg(a++, fineCount.get());
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
-        // Work-groups of one tile, so a group walks one candidate list.
-        runtime.queue().enqueueNDRangeKernel(
-            field, cl::NullRange, cl::NDRange(tilesX * kTile, tilesY * kTile, batch),
-            cl::NDRange(kTile, kTile, 1));
+        // Work-groups of one fine tile, so a group walks one candidate list.
+        const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
+        const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+        runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
+                                             cl::NDRange(tilesX * kTile, tilesY * kTile, batch),
+                                             cl::NDRange(kTile, kTile, 1));
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
@@ -187,10 +217,10 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
                                const SliceGrid& grid) {
     checkLimits(slices);
     SliceFields fields = emptyFields(slices, grid);
-    const std::size_t tilesPerSlice = ((std::size_t(grid.width) + kTile - 1) / kTile) *
-                                      ((std::size_t(grid.height) + kTile - 1) / kTile);
-    const std::size_t perBatch =
-        std::max<std::size_t>(1, kCandidateBytes / (tilesPerSlice * 1024 * sizeof(cl_uint)));
+    const std::size_t listBytesPerSlice =
+        (tilesOf(grid, kTile) * kFineCapacity + tilesOf(grid, kCoarseTile) * kCoarseCapacity) *
+        sizeof(cl_uint);
+    const std::size_t perBatch = std::max<std::size_t>(1, kCandidateBytes / listBytesPerSlice);
     const bool fp64 = runtime.device().doublePrecision;
     for (std::size_t begin = 0; begin < slices.size();) {
         // Slices without contours keep +inf / kNoPrimitive; batches skip them.
@@ -199,7 +229,8 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             continue;
         }
         std::size_t end = begin;
-        while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty()) ++end;
+        while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty())
+            ++end;
         if (fp64)
             runBatch<cl_double, cl_double4>(runtime, slices, begin, end, grid, fields);
         else

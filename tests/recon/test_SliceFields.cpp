@@ -55,8 +55,8 @@ void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
                 if (!onContour && (dk < 0) != (dr < 0) && worst++ < 5)
                     ADD_FAILURE() << "sign at slice " << s << " pixel " << i << "," << j;
                 inside += dr < 0;
-                const double named =
-                    distanceToPrimitive(grid.pixelCentre(i, j), slices[s].contours, kernel.nearestId[k]);
+                const double named = distanceToPrimitive(grid.pixelCentre(i, j), slices[s].contours,
+                                                         kernel.nearestId[k]);
                 if (std::abs(named - std::abs(double(dr))) > 1e-5 * pixel && worst++ < 5)
                     ADD_FAILURE() << "id at slice " << s << " pixel " << i << "," << j << " names "
                                   << named << " mm away, nearest is " << dr;
@@ -90,8 +90,8 @@ TEST(SliceFields, RandomPolygonsWithHolesAndIslands) {
         slice.zMm = s * 2.5;
         slice.contours = {star(random, {100, -50}, 40 + 13 * s, 30, 40, true),
                           star(random, {100, -50}, 25, 15, 22, false),  // hole
-                          star(random, {100, -50}, 9, 4, 8, true),       // island in the hole
-                          star(random, {160, -50}, 17, 6, 12, true)};    // separate blob
+                          star(random, {100, -50}, 9, 4, 8, true),      // island in the hole
+                          star(random, {160, -50}, 17, 6, 12, true)};   // separate blob
         ASSERT_FALSE(findContourDefect(slice.contours).has_value());
         slices.push_back(slice);
     }
@@ -111,7 +111,8 @@ TEST(SliceFields, TouchingContoursKeepTheirSigns) {
     const SliceFields f = computeSliceFields(runtime(), slices, gridFor(slices, 0.25));
     // Just inside square 2 near the shared corner, and inside the hole.
     const SliceGrid& g = f.grid;
-    const int i = int((10.3 - g.originMm.x) / g.pixelMm), j = int((10.3 - g.originMm.y) / g.pixelMm);
+    const int i = int((10.3 - g.originMm.x) / g.pixelMm),
+              j = int((10.3 - g.originMm.y) / g.pixelMm);
     EXPECT_LT(f.distanceMm[f.index(0, i, j)], 0);
     const int hi = int((36 - g.originMm.x) / g.pixelMm), hj = int((6 - g.originMm.y) / g.pixelMm);
     EXPECT_GT(f.distanceMm[f.index(0, hi, hj)], 0);
@@ -119,8 +120,8 @@ TEST(SliceFields, TouchingContoursKeepTheirSigns) {
 
 TEST(SliceFields, SpikesAndCollinearRuns) {
     Slice slice;
-    Polygon spiky{{0, 0}, {5, 0}, {10, 0}, {15, 0}, {20, 0},   // collinear run
-                  {20, 10}, {12, 10.2}, {10, 30}, {9.9, 10.2},  // thin spike
+    Polygon spiky{{0, 0},   {5, 0},     {10, 0},  {15, 0},     {20, 0},  // collinear run
+                  {20, 10}, {12, 10.2}, {10, 30}, {9.9, 10.2},           // thin spike
                   {0, 10}};
     slice.contours = {spiky};
     normaliseOrientation(slice);

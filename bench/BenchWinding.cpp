@@ -4,14 +4,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/BenchClock.hpp"
+#include "bench/Benchmarks.hpp"
 #include "io/AnalyticShapes.hpp"
 #include "recon/WindingGrid.hpp"
 
-using namespace dfrecon;
+namespace dfrecon::bench {
 
-int main(int argc, char** argv) {
-    ocl::Runtime runtime(argc > 1 ? argv[1] : "");
+int benchWinding(const std::string& device) {
+    ocl::Runtime runtime(device);
     for (int points : {64, 512}) {
         for (int pixels : {256, 512}) {
             SynthOptions options;
@@ -27,12 +27,12 @@ int main(int argc, char** argv) {
             std::vector<int> kernel, reference;
             windingGrid(runtime, slice.contours, grid);  // warm-up: program build
             const double kernelSeconds =
-                bench::bestSeconds(5, [&] { kernel = windingGrid(runtime, slice.contours, grid); });
-            const double referenceSeconds = bench::bestSeconds(
+                bestSeconds(5, [&] { kernel = windingGrid(runtime, slice.contours, grid); });
+            const double referenceSeconds = bestSeconds(
                 2, [&] { reference = windingGridReference(slice.contours, grid); });
             std::size_t mismatches = 0;
             for (std::size_t k = 0; k < kernel.size(); ++k) mismatches += kernel[k] != reference[k];
-            std::cout << nlohmann::ordered_json{{"what", "winding_grid"},
+            std::cout << nlohmann::ordered_json{{"bench", "winding"}, {"case", std::to_string(pixels) + "px " + std::to_string(2 * points) + " segments"}, {"system", "dfrecon"},
                                                 {"size", grid.pixelCount()},
                                                 {"segments", 2 * points},
                                                 {"device", runtime.device().deviceName},
@@ -45,4 +45,7 @@ int main(int argc, char** argv) {
                       << "\n";
         }
     }
+    return 0;
 }
+
+}  // namespace dfrecon::bench

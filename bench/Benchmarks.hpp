@@ -1,10 +1,18 @@
 #pragma once
-// Wall-clock timing for benchmarks: the best of several runs, in seconds.
+// The benchmarks of dfrecon-bench. Each prints JSON lines to stdout with at
+// least {bench, case, system, seconds} and compares against its baseline in
+// the same run; none asserts anything.
 #include <algorithm>
 #include <chrono>
+#include <string>
 
 namespace dfrecon::bench {
 
+int benchFields(const std::string& device);
+int benchSlicesIO();
+int benchWinding(const std::string& device);
+
+/// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>
 double bestSeconds(int runs, F&& work) {
     double best = 1e300;

@@ -7,15 +7,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/BenchClock.hpp"
+#include "bench/Benchmarks.hpp"
 #include "io/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
 
-using namespace dfrecon;
+namespace dfrecon::bench {
 
 // Reads every number of a .slices file with operator>>, skipping keywords:
 // the cost floor of any text parser.
-static double baselineRead(const std::string& path) {
+double baselineRead(const std::string& path) {
     std::ifstream in(path);
     std::string token;
     double sum = 0, value = 0;
@@ -35,7 +35,7 @@ static double baselineRead(const std::string& path) {
     return sum;
 }
 
-int main() {
+int benchSlicesIO() {
     const std::string dir = (std::filesystem::temp_directory_path() / "dfrecon-bench-io").string();
     std::filesystem::create_directories(dir);
     for (int points : {256, 2048}) {
@@ -44,14 +44,14 @@ int main() {
         options.pointsPerContour = points;
         const ContourSet set = sliceShape(*makeShape("torus"), options);
         const std::string path = dir + "/torus-" + std::to_string(points) + ".slices";
-        const double writeSeconds = bench::bestSeconds(3, [&] { writeSlicesFile(set, path); });
+        const double writeSeconds = bestSeconds(3, [&] { writeSlicesFile(set, path); });
         const auto bytes = std::filesystem::file_size(path);
         const std::size_t total = set.rois[0].pointCount();
         SlicesLoad load;
-        const double readSeconds = bench::bestSeconds(3, [&] { load = readSlicesFile(path); });
+        const double readSeconds = bestSeconds(3, [&] { load = readSlicesFile(path); });
         double sink = 0;
-        const double baselineSeconds = bench::bestSeconds(3, [&] { sink += baselineRead(path); });
-        std::cout << nlohmann::ordered_json{{"what", "slices_read"},
+        const double baselineSeconds = bestSeconds(3, [&] { sink += baselineRead(path); });
+        std::cout << nlohmann::ordered_json{{"bench", "slices-io"}, {"case", "read torus " + std::to_string(points) + " pts/contour"}, {"system", "dfrecon"},
                                             {"size", total},
                                             {"bytes", bytes},
                                             {"seconds", readSeconds},
@@ -64,7 +64,7 @@ int main() {
                                              load.contours.rois[0].contourCount()}}
                          .dump()
                   << "\n";
-        std::cout << nlohmann::ordered_json{{"what", "slices_write"},
+        std::cout << nlohmann::ordered_json{{"bench", "slices-io"}, {"case", "write torus " + std::to_string(points) + " pts/contour"}, {"system", "dfrecon"},
                                             {"size", total},
                                             {"bytes", bytes},
                                             {"seconds", writeSeconds},
@@ -74,4 +74,7 @@ int main() {
         if (sink == 12345.678) std::cout << "";  // keep the baseline's work observable
     }
     std::filesystem::remove_all(dir);
+    return 0;
 }
+
+}  // namespace dfrecon::bench

@@ -1,0 +1,30 @@
+// dfrecon-bench SUITE [--device SPEC]: runs one benchmark suite (or `all`)
+// and prints its JSON lines.
+#include <iostream>
+#include <string>
+
+#include "bench/Benchmarks.hpp"
+
+using namespace dfrecon::bench;
+
+int main(int argc, char** argv) {
+    const std::string usage =
+        "usage: dfrecon-bench fields|slices-io|winding|all [--device SPEC]\n"
+        "  fields     2D signed distance fields: kernel vs brute force vs OpenCV distanceTransform\n"
+        "  slices-io  .slices reading and writing vs a bare iostream read\n"
+        "  winding    winding-number grid kernel vs its C++ reference\n";
+    if (argc < 2) {
+        std::cerr << usage;
+        return 1;
+    }
+    const std::string suite = argv[1];
+    std::string device;
+    for (int a = 2; a + 1 < argc; ++a)
+        if (std::string(argv[a]) == "--device") device = argv[a + 1];
+    if (suite == "fields") return benchFields(device);
+    if (suite == "slices-io") return benchSlicesIO();
+    if (suite == "winding") return benchWinding(device);
+    if (suite == "all") return benchSlicesIO() | benchWinding(device) | benchFields(device);
+    std::cerr << usage;
+    return 1;
+}
