@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "app/Progress.hpp"
+#include "app/Inputs.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::app {
@@ -84,13 +84,7 @@ void printRoi(const Roi& roi) {
 }
 
 void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
-    SlicesLoad load;
-    {
-        Progress progress("reading " + path, !global.quiet);
-        load = readSlicesFile(path, {}, [&](double f) { progress.update(f); });
-    }
-    if (!global.quiet)
-        for (const InputWarning& w : load.warnings) std::cerr << w.toString() << "\n";
+    const SlicesLoad load = loadContours(path, global);
     if (json) {
         nlohmann::ordered_json rois = nlohmann::ordered_json::array();
         for (const Roi& roi : load.contours.rois) rois.push_back(roiJson(roi));

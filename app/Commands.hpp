@@ -15,5 +15,6 @@ struct GlobalOptions {
 void addSynthCommand(CLI::App& root, const GlobalOptions& global);
 void addDevicesCommand(CLI::App& root, const GlobalOptions& global);
 void addInfoCommand(CLI::App& root, const GlobalOptions& global);
+void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

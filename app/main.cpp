@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     addSynthCommand(root, global);
     addDevicesCommand(root, global);
     addInfoCommand(root, global);
+    addFieldsCommand(root, global);
 
     try {
         root.parse(argc, argv);

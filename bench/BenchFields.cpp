@@ -91,8 +91,8 @@ std::vector<float> opencvSignedField(const Slice& slice, const SliceGrid& grid) 
 
 void print(const std::string& caseName, const std::string& system, double seconds,
            const Errors& errors, const std::string& device = {}) {
-    nlohmann::ordered_json line = {{"bench", "fields"},   {"case", caseName},
-                                   {"system", system},    {"seconds", seconds},
+    nlohmann::ordered_json line = {{"bench", "fields"},          {"case", caseName},
+                                   {"system", system},           {"seconds", seconds},
                                    {"max_err_px", errors.maxPx}, {"mean_err_px", errors.meanPx}};
     if (!device.empty()) line["device"] = device;
     std::cout << line.dump() << std::endl;
@@ -127,8 +127,7 @@ int benchFields(const std::string& device) {
               compare(kernel.distanceMm, exact.distanceMm, grid.pixelMm),
               runtime.device().deviceName);
         print(caseName, "bruteforce", bruteSeconds, Errors{});
-        print(caseName, "opencv", opencvSeconds,
-              compare(opencv, exact.distanceMm, grid.pixelMm));
+        print(caseName, "opencv", opencvSeconds, compare(opencv, exact.distanceMm, grid.pixelMm));
     }
     return 0;
 }

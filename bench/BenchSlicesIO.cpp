@@ -51,7 +51,10 @@ int benchSlicesIO() {
         const double readSeconds = bestSeconds(3, [&] { load = readSlicesFile(path); });
         double sink = 0;
         const double baselineSeconds = bestSeconds(3, [&] { sink += baselineRead(path); });
-        std::cout << nlohmann::ordered_json{{"bench", "slices-io"}, {"case", "read torus " + std::to_string(points) + " pts/contour"}, {"system", "dfrecon"},
+        std::cout << nlohmann::ordered_json{{"bench", "slices-io"},
+                                            {"case", "read torus " + std::to_string(points) +
+                                                         " pts/contour"},
+                                            {"system", "dfrecon"},
                                             {"size", total},
                                             {"bytes", bytes},
                                             {"seconds", readSeconds},
@@ -64,7 +67,10 @@ int benchSlicesIO() {
                                              load.contours.rois[0].contourCount()}}
                          .dump()
                   << "\n";
-        std::cout << nlohmann::ordered_json{{"bench", "slices-io"}, {"case", "write torus " + std::to_string(points) + " pts/contour"}, {"system", "dfrecon"},
+        std::cout << nlohmann::ordered_json{{"bench", "slices-io"},
+                                            {"case", "write torus " + std::to_string(points) +
+                                                         " pts/contour"},
+                                            {"system", "dfrecon"},
                                             {"size", total},
                                             {"bytes", bytes},
                                             {"seconds", writeSeconds},

@@ -28,11 +28,15 @@ int benchWinding(const std::string& device) {
             windingGrid(runtime, slice.contours, grid);  // warm-up: program build
             const double kernelSeconds =
                 bestSeconds(5, [&] { kernel = windingGrid(runtime, slice.contours, grid); });
-            const double referenceSeconds = bestSeconds(
-                2, [&] { reference = windingGridReference(slice.contours, grid); });
+            const double referenceSeconds =
+                bestSeconds(2, [&] { reference = windingGridReference(slice.contours, grid); });
             std::size_t mismatches = 0;
             for (std::size_t k = 0; k < kernel.size(); ++k) mismatches += kernel[k] != reference[k];
-            std::cout << nlohmann::ordered_json{{"bench", "winding"}, {"case", std::to_string(pixels) + "px " + std::to_string(2 * points) + " segments"}, {"system", "dfrecon"},
+            std::cout << nlohmann::ordered_json{{"bench", "winding"},
+                                                {"case", std::to_string(pixels) + "px " +
+                                                             std::to_string(2 * points) +
+                                                             " segments"},
+                                                {"system", "dfrecon"},
                                                 {"size", grid.pixelCount()},
                                                 {"segments", 2 * points},
                                                 {"device", runtime.device().deviceName},

@@ -10,7 +10,8 @@ using namespace dfrecon::bench;
 int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench fields|slices-io|winding|all [--device SPEC]\n"
-        "  fields     2D signed distance fields: kernel vs brute force vs OpenCV distanceTransform\n"
+        "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
+        "distanceTransform\n"
         "  slices-io  .slices reading and writing vs a bare iostream read\n"
         "  winding    winding-number grid kernel vs its C++ reference\n";
     if (argc < 2) {

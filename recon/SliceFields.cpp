@@ -214,7 +214,7 @@ SliceFields emptyFields(const std::vector<Slice>& slices, const SliceGrid& grid)
 }  // namespace
 
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
-                               const SliceGrid& grid) {
+                               const SliceGrid& grid, const std::function<void(double)>& progress) {
     checkLimits(slices);
     SliceFields fields = emptyFields(slices, grid);
     const std::size_t listBytesPerSlice =
@@ -236,6 +236,7 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         else
             runBatch<cl_float, cl_float4>(runtime, slices, begin, end, grid, fields);
         begin = end;
+        if (progress) progress(double(begin) / double(slices.size()));
     }
     return fields;
 }

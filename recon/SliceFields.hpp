@@ -4,6 +4,7 @@
 // point of the slice's original double-precision contours, and which
 // primitive (recon/PrimitiveId.hpp) that point belongs to.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "cl/Runtime.hpp"
@@ -35,8 +36,10 @@ struct SliceFields {
 /// Work: O(tiles·segments + pixels·candidates) per slice. Throws
 /// std::invalid_argument beyond the PrimitiveId limits, ClError on device
 /// failure.
+/// `progress`, if set, receives the fraction of slices done after each batch.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
-                               const SliceGrid& grid);
+                               const SliceGrid& grid,
+                               const std::function<void(double)>& progress = {});
 
 /// The plain C++ brute-force reference: every segment at every pixel in
 /// double precision, sign from windingNumber(). O(pixels·segments).

@@ -151,3 +151,28 @@ TEST(Cli, DevicesListsPoclAndRejectsUnknownSpecs) {
     EXPECT_EQ(bad.exitCode, 3);
     EXPECT_NE(bad.err.find("no OpenCL device matches 'no-such-device'"), std::string::npos);
 }
+
+TEST(Cli, FieldsWritesVolumesPicturesAndLayout) {
+    const fs::path out = scratch() / "fields";
+    const Result run =
+        runDfrecon("fields " + std::string(DFRECON_EXAMPLES) +
+                   "/two-rois.slices --roi \"Left Kidney\" --png --json -o " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    const auto& roi = report["rois"][0];
+    const std::size_t w = roi["grid"]["width"], h = roi["grid"]["height"], s = roi["slices"];
+    EXPECT_EQ(s, 3u);
+    EXPECT_EQ(fs::file_size(out / "Left_Kidney-distance.raw"), w * h * s * 4);
+    EXPECT_EQ(fs::file_size(out / "Left_Kidney-ids.raw"), w * h * s * 4);
+    EXPECT_TRUE(fs::exists(out / "Left_Kidney-distance-002.png"));
+    EXPECT_TRUE(fs::exists(out / "Left_Kidney-ids-000.png"));
+    const auto meta = nlohmann::json::parse(slurp(out / "Left_Kidney-fields.json"));
+    EXPECT_EQ(meta["slices"][1]["contours"], 3);
+    EXPECT_NE(slurp(out / "Left_Kidney-distance.nhdr").find("data file: Left_Kidney-distance.raw"),
+              std::string::npos);
+    // Several ROIs and no --roi: a usage error naming them.
+    const Result ambiguous = runDfrecon("fields " + std::string(DFRECON_EXAMPLES) +
+                                        "/two-rois.slices -o " + out.string());
+    EXPECT_EQ(ambiguous.exitCode, 1);
+    EXPECT_NE(ambiguous.err.find("Left Kidney, PTV"), std::string::npos) << ambiguous.err;
+}

@@ -1,0 +1,175 @@
+// dfrecon fields IN.slices -o DIR: each slice's exact 2D signed distance
+// field and nearest-primitive ids (docs/fields.md), as NRRD volumes and,
+// with --png, pictures.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Inputs.hpp"
+#include "app/Progress.hpp"
+#include "io/AtomicWrite.hpp"
+#include "io/FieldImages.hpp"
+#include "io/RawVolume.hpp"
+#include "recon/SliceFields.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+struct FieldsArgs {
+    std::string input, outputDir, roi;
+    bool all = false, png = false, json = false;
+    double pixelMm = 0;
+    double isoStepMm = 5;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::ordered_json writeRoiFields(const Roi& roi, const SliceFields& fields,
+                                      const FieldsArgs& args, const GlobalOptions& global) {
+    namespace fs = std::filesystem;
+    const std::string stem = (fs::path(args.outputDir) / fileStem(roi.name)).string();
+    const SliceGrid& grid = fields.grid;
+    const SpacingStats spacing = spacingOf(roi);
+
+    RawVolumeInfo info;
+    info.width = grid.width;
+    info.height = grid.height;
+    info.slices = int(fields.sliceCount());
+    info.originMm[0] = grid.originMm.x + 0.5 * grid.pixelMm;
+    info.originMm[1] = grid.originMm.y + 0.5 * grid.pixelMm;
+    info.originMm[2] = roi.slices.front().zMm;
+    info.spacingMm[0] = info.spacingMm[1] = grid.pixelMm;
+    info.spacingMm[2] = spacing.meanMm > 0 ? spacing.meanMm : 1;
+    info.description = "dfrecon signed distance (mm, negative inside) of ROI " + roi.name;
+    writeRawVolume(stem + "-distance.nhdr", stem + "-distance.raw", fields.distanceMm, info);
+    info.description = "dfrecon nearest-primitive ids of ROI " + roi.name + " (docs/fields.md)";
+    writeRawVolume(stem + "-ids.nhdr", stem + "-ids.raw", fields.nearestId, info);
+
+    nlohmann::ordered_json files = {stem + "-distance.nhdr", stem + "-distance.raw",
+                                    stem + "-ids.nhdr", stem + "-ids.raw"};
+    if (args.png) {
+        Progress progress("pictures of " + roi.name, !global.quiet);
+        const ImageFrame frame{grid.originMm, grid.pixelMm, grid.width, grid.height};
+        for (std::size_t s = 0; s < fields.sliceCount(); ++s) {
+            char suffix[32];
+            std::snprintf(suffix, sizeof suffix, "-%03zu.png", s);
+            const std::size_t offset = s * grid.pixelCount();
+            writeSignedFieldPng(stem + "-distance" + suffix, fields.distanceMm.data() + offset,
+                                frame, roi.slices[s].contours, args.isoStepMm);
+            writeLabelPng(stem + "-ids" + suffix, fields.nearestId.data() + offset, frame,
+                          roi.slices[s].contours);
+            files.push_back(stem + "-distance" + suffix);
+            files.push_back(stem + "-ids" + suffix);
+            progress.update(double(s + 1) / double(fields.sliceCount()));
+        }
+    }
+
+    nlohmann::ordered_json slices = nlohmann::ordered_json::array();
+    for (std::size_t s = 0; s < fields.sliceCount(); ++s)
+        slices.push_back({{"index", s}, {"zMm", fields.zMm[s]},
+                          {"contours", roi.slices[s].contours.size()}});
+    const nlohmann::ordered_json meta = {
+        {"roi", roi.name},
+        {"grid",
+         {{"originMm", {grid.originMm.x, grid.originMm.y}},
+          {"pixelMm", grid.pixelMm},
+          {"width", grid.width},
+          {"height", grid.height},
+          {"pixelCentre", "originMm + (i + 0.5, j + 0.5) * pixelMm"}}},
+        {"layout", "slice-major, then rows (j), then columns (i); little-endian"},
+        {"distance", {{"file", fs::path(stem + "-distance.raw").filename().string()},
+                      {"type", "float32"}, {"units", "mm"}, {"sign", "negative inside"}}},
+        {"ids",
+         {{"file", fs::path(stem + "-ids.raw").filename().string()},
+          {"type", "uint32"},
+          {"encoding", "bit 0: vertex(1)/segment(0); bits 1-19: index in contour; bits 20-31: "
+                       "contour index in slice; 0xffffffff: none"}}},
+        {"slices", slices}};
+    writeStreamAtomically(stem + "-fields.json",
+                          [&](std::ostream& out) { out << meta.dump(2) << "\n"; });
+    files.push_back(stem + "-fields.json");
+    return files;
+}
+
+void runFields(const FieldsArgs& args, const GlobalOptions& global) {
+    const auto start = std::chrono::steady_clock::now();
+    const SlicesLoad load = loadContours(args.input, global);
+    const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
+    const double loadSeconds = secondsSince(start);
+    std::filesystem::create_directories(args.outputDir);
+
+    ocl::Runtime runtime(global.device);
+    nlohmann::ordered_json reports = nlohmann::ordered_json::array();
+    for (const Roi* roi : rois) {
+        if (roi->slices.empty()) throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
+        const SliceGrid grid = gridForSlices(roi->slices, args.pixelMm);
+        auto stage = std::chrono::steady_clock::now();
+        SliceFields fields;
+        {
+            Progress progress("fields of " + roi->name, !global.quiet);
+            fields = computeSliceFields(runtime, roi->slices, grid,
+                                        [&](double f) { progress.update(f); });
+        }
+        const double fieldSeconds = secondsSince(stage);
+        stage = std::chrono::steady_clock::now();
+        const nlohmann::ordered_json files = writeRoiFields(*roi, fields, args, global);
+        const double writeSeconds = secondsSince(stage);
+        reports.push_back({{"roi", roi->name},
+                           {"slices", fields.sliceCount()},
+                           {"grid", {{"width", grid.width}, {"height", grid.height},
+                                     {"pixelMm", grid.pixelMm}}},
+                           {"device", runtime.device().deviceName},
+                           {"seconds", {{"fields", fieldSeconds}, {"write", writeSeconds}}},
+                           {"files", files}});
+        if (!args.json)
+            std::cout << roi->name << ": " << fields.sliceCount() << " slices on a " << grid.width
+                      << " x " << grid.height << " grid of " << grid.pixelMm << " mm pixels, "
+                      << fieldSeconds << " s on " << runtime.device().deviceName << "; wrote "
+                      << files.size() << " files to " << args.outputDir << "\n";
+    }
+    if (args.json)
+        std::cout << nlohmann::ordered_json{{"command", "fields"},
+                                            {"input", args.input},
+                                            {"loadSeconds", loadSeconds},
+                                            {"rois", reports}}
+                         .dump(2)
+                  << "\n";
+}
+
+}  // namespace
+
+void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
+    auto args = std::make_shared<FieldsArgs>();
+    CLI::App* cmd = root.add_subcommand(
+        "fields", "Exact 2D signed distance fields and nearest-contour ids of every slice");
+    cmd->footer(
+        "Writes, per ROI, NAME-distance.nhdr/.raw (float32 mm, negative inside) and "
+        "NAME-ids.nhdr/.raw (uint32 nearest primitive), which 3D Slicer and ParaView open, and "
+        "NAME-fields.json describing the layout (docs/fields.md).");
+    cmd->add_option("file", args->input, "Input .slices file")->required();
+    cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
+        ->required();
+    cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
+    cmd->add_flag("--all", args->all, "Every ROI of the file");
+    cmd->add_option("--pixel-mm", args->pixelMm,
+                    "Pixel size in mm (default 0: the ROI's extent plus margin fits ~512 px)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--png", args->png,
+                  "Also write pictures: NAME-distance-NNN.png (blue inside, red outside, "
+                  "iso-lines) and NAME-ids-NNN.png (nearest primitive as hue)");
+    cmd->add_option("--iso-mm", args->isoStepMm, "Iso-line spacing in the pictures, mm")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    cmd->callback([args, &global] { runFields(*args, global); });
+}
+
+}  // namespace dfrecon::app

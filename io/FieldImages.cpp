@@ -1,0 +1,95 @@
+#include "io/FieldImages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/AtomicWrite.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+constexpr int kShift = 4;  // sub-pixel bits for cv::polylines
+
+// Flips rows so +y is up.
+int imageRow(const ImageFrame& frame, int j) { return frame.height - 1 - j; }
+
+void drawContours(cv::Mat& image, const ImageFrame& frame, const std::vector<Polygon>& contours) {
+    std::vector<std::vector<cv::Point>> lines;
+    for (const Polygon& contour : contours) {
+        std::vector<cv::Point> points;
+        for (Point2 p : contour) {
+            const double x = (p.x - frame.originMm.x) / frame.pixelMm - 0.5;
+            const double y = frame.height - 1 - ((p.y - frame.originMm.y) / frame.pixelMm - 0.5);
+            points.emplace_back(int(std::lround(x * (1 << kShift))),
+                                int(std::lround(y * (1 << kShift))));
+        }
+        lines.push_back(std::move(points));
+    }
+    cv::polylines(image, lines, true, cv::Scalar(255, 255, 255), 1, cv::LINE_AA, kShift);
+}
+
+void writePng(const std::string& path, const cv::Mat& image) {
+    writeAtomically(path, [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
+}
+
+}  // namespace
+
+void writeSignedFieldPng(const std::string& path, const float* distanceMm, const ImageFrame& frame,
+                         const std::vector<Polygon>& contours, double isoStepMm) {
+    if (frame.width <= 0 || frame.height <= 0) throw std::invalid_argument("empty image frame");
+    float maxAbs = 0;
+    for (std::size_t k = 0; k < std::size_t(frame.width) * std::size_t(frame.height); ++k)
+        if (std::isfinite(distanceMm[k])) maxAbs = std::max(maxAbs, std::abs(distanceMm[k]));
+    if (maxAbs == 0) maxAbs = 1;
+    cv::Mat image(frame.height, frame.width, CV_8UC3);
+    for (int j = 0; j < frame.height; ++j)
+        for (int i = 0; i < frame.width; ++i) {
+            const float d = distanceMm[std::size_t(j) * std::size_t(frame.width) + std::size_t(i)];
+            cv::Vec3b& bgr = image.at<cv::Vec3b>(imageRow(frame, j), i);
+            if (!std::isfinite(d)) {
+                bgr = {0, 0, 0};
+                continue;
+            }
+            // Brightness falls off with |d|; the hue says the side.
+            const double level = 1 - std::sqrt(std::abs(d) / maxAbs);
+            const auto strong = uchar(80 + 175 * level), weak = uchar(40 * level);
+            bgr = d < 0 ? cv::Vec3b(strong, weak, weak) : cv::Vec3b(weak, weak, strong);
+            if (isoStepMm > 0) {
+                const double phase = std::abs(d) / isoStepMm;
+                if (phase - std::floor(phase) < 0.5 * frame.pixelMm / isoStepMm)
+                    bgr = cv::Vec3b(uchar(bgr[0] / 2), uchar(bgr[1] / 2), uchar(bgr[2] / 2));
+            }
+        }
+    drawContours(image, frame, contours);
+    writePng(path, image);
+}
+
+void writeLabelPng(const std::string& path, const std::uint32_t* labels, const ImageFrame& frame,
+                   const std::vector<Polygon>& contours) {
+    if (frame.width <= 0 || frame.height <= 0) throw std::invalid_argument("empty image frame");
+    cv::Mat hsv(frame.height, frame.width, CV_8UC3);
+    for (int j = 0; j < frame.height; ++j)
+        for (int i = 0; i < frame.width; ++i) {
+            const std::uint32_t label =
+                labels[std::size_t(j) * std::size_t(frame.width) + std::size_t(i)];
+            cv::Vec3b& v = hsv.at<cv::Vec3b>(imageRow(frame, j), i);
+            if (label == 0xffffffffu) {
+                v = {0, 0, 0};
+                continue;
+            }
+            // Golden-ratio hue steps keep consecutive labels far apart.
+            const double hue = std::fmod(double(label) * 0.6180339887498949, 1.0);
+            v = cv::Vec3b(uchar(hue * 179), uchar(label & 1 ? 150 : 230), 230);
+        }
+    cv::Mat image;
+    cv::cvtColor(hsv, image, cv::COLOR_HSV2BGR);
+    drawContours(image, frame, contours);
+    writePng(path, image);
+}
+
+}  // namespace dfrecon
