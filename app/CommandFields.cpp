@@ -14,6 +14,7 @@
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
 #include "io/RawVolume.hpp"
+#include "recon/ContourSimplification.hpp"
 #include "recon/SliceFields.hpp"
 
 namespace dfrecon::app {
@@ -25,14 +26,40 @@ struct FieldsArgs {
     bool all = false, png = false, json = false;
     double pixelMm = 0;
     double isoStepMm = 5;
+    double contourErrorMm = 0;
 };
+
+// The ROI's slices with every contour simplified to within `epsilonMm`
+// (recon/ContourSimplification); the report gets point counts and the
+// largest edge deviation.
+std::vector<Slice> simplifiedSlices(const Roi& roi, double epsilonMm,
+                                    nlohmann::ordered_json& report) {
+    std::vector<Slice> slices = roi.slices;
+    std::size_t before = 0, after = 0;
+    double worst = 0;
+    for (Slice& slice : slices) {
+        const std::vector<SimplifiedContour> simplified = simplifySlice(slice.contours, epsilonMm);
+        for (std::size_t c = 0; c < slice.contours.size(); ++c) {
+            before += slice.contours[c].size();
+            after += simplified[c].points.size();
+            for (double d : simplified[c].edgeDeviationMm) worst = std::max(worst, d);
+            slice.contours[c] = simplified[c].points;
+        }
+    }
+    report = {{"contourErrorMm", epsilonMm},
+              {"pointsBefore", before},
+              {"pointsAfter", after},
+              {"maxDeviationMm", worst}};
+    return slices;
+}
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-nlohmann::ordered_json writeRoiFields(const Roi& roi, const SliceFields& fields,
-                                      const FieldsArgs& args, const GlobalOptions& global) {
+nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::vector<Slice>& slices,
+                                      const SliceFields& fields, const FieldsArgs& args,
+                                      const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const std::string stem = (fs::path(args.outputDir) / fileStem(roi.name)).string();
     const SliceGrid& grid = fields.grid;
@@ -62,19 +89,19 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const SliceFields& fields,
             std::snprintf(suffix, sizeof suffix, "-%03zu.png", s);
             const std::size_t offset = s * grid.pixelCount();
             writeSignedFieldPng(stem + "-distance" + suffix, fields.distanceMm.data() + offset,
-                                frame, roi.slices[s].contours, args.isoStepMm);
+                                frame, slices[s].contours, args.isoStepMm);
             writeLabelPng(stem + "-ids" + suffix, fields.nearestId.data() + offset, frame,
-                          roi.slices[s].contours);
+                          slices[s].contours);
             files.push_back(stem + "-distance" + suffix);
             files.push_back(stem + "-ids" + suffix);
             progress.update(double(s + 1) / double(fields.sliceCount()));
         }
     }
 
-    nlohmann::ordered_json slices = nlohmann::ordered_json::array();
+    nlohmann::ordered_json sliceList = nlohmann::ordered_json::array();
     for (std::size_t s = 0; s < fields.sliceCount(); ++s)
-        slices.push_back({{"index", s}, {"zMm", fields.zMm[s]},
-                          {"contours", roi.slices[s].contours.size()}});
+        sliceList.push_back(
+            {{"index", s}, {"zMm", fields.zMm[s]}, {"contours", slices[s].contours.size()}});
     const nlohmann::ordered_json meta = {
         {"roi", roi.name},
         {"grid",
@@ -84,14 +111,18 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const SliceFields& fields,
           {"height", grid.height},
           {"pixelCentre", "originMm + (i + 0.5, j + 0.5) * pixelMm"}}},
         {"layout", "slice-major, then rows (j), then columns (i); little-endian"},
-        {"distance", {{"file", fs::path(stem + "-distance.raw").filename().string()},
-                      {"type", "float32"}, {"units", "mm"}, {"sign", "negative inside"}}},
+        {"distance",
+         {{"file", fs::path(stem + "-distance.raw").filename().string()},
+          {"type", "float32"},
+          {"units", "mm"},
+          {"sign", "negative inside"}}},
         {"ids",
          {{"file", fs::path(stem + "-ids.raw").filename().string()},
           {"type", "uint32"},
-          {"encoding", "bit 0: vertex(1)/segment(0); bits 1-19: index in contour; bits 20-31: "
-                       "contour index in slice; 0xffffffff: none"}}},
-        {"slices", slices}};
+          {"encoding",
+           "bit 0: vertex(1)/segment(0); bits 1-19: index in contour; bits 20-31: "
+           "contour index in slice; 0xffffffff: none"}}},
+        {"slices", sliceList}};
     writeStreamAtomically(stem + "-fields.json",
                           [&](std::ostream& out) { out << meta.dump(2) << "\n"; });
     files.push_back(stem + "-fields.json");
@@ -108,26 +139,35 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
     ocl::Runtime runtime(global.device);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
     for (const Roi* roi : rois) {
-        if (roi->slices.empty()) throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
-        const SliceGrid grid = gridForSlices(roi->slices, args.pixelMm);
+        if (roi->slices.empty())
+            throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
         auto stage = std::chrono::steady_clock::now();
+        nlohmann::ordered_json simplification = nullptr;
+        const std::vector<Slice> slices =
+            args.contourErrorMm > 0 ? simplifiedSlices(*roi, args.contourErrorMm, simplification)
+                                    : roi->slices;
+        const double simplifySeconds = secondsSince(stage);
+        const SliceGrid grid = gridForSlices(slices, args.pixelMm);
+        stage = std::chrono::steady_clock::now();
         SliceFields fields;
         {
             Progress progress("fields of " + roi->name, !global.quiet);
-            fields = computeSliceFields(runtime, roi->slices, grid,
-                                        [&](double f) { progress.update(f); });
+            fields =
+                computeSliceFields(runtime, slices, grid, [&](double f) { progress.update(f); });
         }
         const double fieldSeconds = secondsSince(stage);
         stage = std::chrono::steady_clock::now();
-        const nlohmann::ordered_json files = writeRoiFields(*roi, fields, args, global);
+        const nlohmann::ordered_json files = writeRoiFields(*roi, slices, fields, args, global);
         const double writeSeconds = secondsSince(stage);
-        reports.push_back({{"roi", roi->name},
-                           {"slices", fields.sliceCount()},
-                           {"grid", {{"width", grid.width}, {"height", grid.height},
-                                     {"pixelMm", grid.pixelMm}}},
-                           {"device", runtime.device().deviceName},
-                           {"seconds", {{"fields", fieldSeconds}, {"write", writeSeconds}}},
-                           {"files", files}});
+        reports.push_back(
+            {{"roi", roi->name},
+             {"slices", fields.sliceCount()},
+             {"grid", {{"width", grid.width}, {"height", grid.height}, {"pixelMm", grid.pixelMm}}},
+             {"device", runtime.device().deviceName},
+             {"simplification", simplification},
+             {"seconds",
+              {{"simplify", simplifySeconds}, {"fields", fieldSeconds}, {"write", writeSeconds}}},
+             {"files", files}});
         if (!args.json)
             std::cout << roi->name << ": " << fields.sliceCount() << " slices on a " << grid.width
                       << " x " << grid.height << " grid of " << grid.pixelMm << " mm pixels, "
@@ -168,6 +208,11 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--iso-mm", args->isoStepMm, "Iso-line spacing in the pictures, mm")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--contour-error", args->contourErrorMm,
+                    "Simplify contours first so every original point stays within this many mm "
+                    "(0 = off); fields are then of the simplified contours")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runFields(*args, global); });
 }

@@ -35,11 +35,14 @@ std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string
     }
     if (!name.empty()) {
         if (const Roi* roi = contours.findRoi(name)) return {roi};
-        throw std::invalid_argument("no ROI named '" + name + "'; available: " + roiNames(contours));
+        throw std::invalid_argument("no ROI named '" + name +
+                                    "'; available: " + roiNames(contours));
     }
     if (contours.rois.size() == 1) return {&contours.rois.front()};
-    throw std::invalid_argument("the file holds several ROIs; choose one with --roi NAME or use "
-                                "--all (available: " + roiNames(contours) + ")");
+    throw std::invalid_argument(
+        "the file holds several ROIs; choose one with --roi NAME or use "
+        "--all (available: " +
+        roiNames(contours) + ")");
 }
 
 std::string fileStem(const std::string& name) {

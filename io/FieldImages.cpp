@@ -16,7 +16,9 @@ namespace {
 constexpr int kShift = 4;  // sub-pixel bits for cv::polylines
 
 // Flips rows so +y is up.
-int imageRow(const ImageFrame& frame, int j) { return frame.height - 1 - j; }
+int imageRow(const ImageFrame& frame, int j) {
+    return frame.height - 1 - j;
+}
 
 void drawContours(cv::Mat& image, const ImageFrame& frame, const std::vector<Polygon>& contours) {
     std::vector<std::vector<cv::Point>> lines;
@@ -34,7 +36,8 @@ void drawContours(cv::Mat& image, const ImageFrame& frame, const std::vector<Pol
 }
 
 void writePng(const std::string& path, const cv::Mat& image) {
-    writeAtomically(path, [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
+    writeAtomically(path,
+                    [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
 }
 
 }  // namespace

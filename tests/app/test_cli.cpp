@@ -176,3 +176,14 @@ TEST(Cli, FieldsWritesVolumesPicturesAndLayout) {
     EXPECT_EQ(ambiguous.exitCode, 1);
     EXPECT_NE(ambiguous.err.find("Left Kidney, PTV"), std::string::npos) << ambiguous.err;
 }
+
+TEST(Cli, FieldsCanSimplifyContoursFirst) {
+    const fs::path out = scratch() / "fields-simplified";
+    const Result run = runDfrecon("fields " + std::string(DFRECON_EXAMPLES) +
+                                  "/torus.slices --contour-error 0.5 --json -o " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto s = nlohmann::json::parse(run.out)["rois"][0]["simplification"];
+    EXPECT_LT(s["pointsAfter"].get<int>(), s["pointsBefore"].get<int>());
+    EXPECT_LE(s["maxDeviationMm"].get<double>(), 0.5);
+    EXPECT_GT(s["maxDeviationMm"].get<double>(), 0.0);
+}
