@@ -10,7 +10,6 @@ namespace dfrecon::bench {
 
 int benchFields(const std::string& device);
 int benchSlicesIO();
-int benchWinding(const std::string& device);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

@@ -9,11 +9,10 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|slices-io|winding|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|slices-io|all [--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
-        "  slices-io  .slices reading and writing vs a bare iostream read\n"
-        "  winding    winding-number grid kernel vs its C++ reference\n";
+        "  slices-io  .slices reading and writing vs a bare iostream read\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -24,8 +23,7 @@ int main(int argc, char** argv) {
         if (std::string(argv[a]) == "--device") device = argv[a + 1];
     if (suite == "fields") return benchFields(device);
     if (suite == "slices-io") return benchSlicesIO();
-    if (suite == "winding") return benchWinding(device);
-    if (suite == "all") return benchSlicesIO() | benchWinding(device) | benchFields(device);
+    if (suite == "all") return benchSlicesIO() | benchFields(device);
     std::cerr << usage;
     return 1;
 }

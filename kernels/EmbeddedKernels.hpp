@@ -8,7 +8,7 @@
 namespace dfrecon::kernels {
 
 struct KernelSource {
-    std::string_view fileName;  // e.g. "winding_number.cl"
+    std::string_view fileName;  // e.g. "closest_segment_2d.cl"
     std::string_view text;
 };
 

@@ -11,18 +11,18 @@ using namespace dfrecon::ocl;
 
 TEST(Runtime, KernelSourcesAreEmbedded) {
     EXPECT_FALSE(kernels::embeddedKernelSources().empty());
-    EXPECT_NE(kernels::kernelSource("winding_number.cl").find("winding_number_grid"),
+    EXPECT_NE(kernels::kernelSource("closest_segment_2d.cl").find("tile_candidates"),
               std::string_view::npos);
     EXPECT_THROW(kernels::kernelSource("nope.cl"), std::out_of_range);
 }
 
 TEST(Runtime, BuildsAndCachesPrograms) {
     Runtime runtime("cpu");
-    const cl::Program& first = runtime.program({"winding_number.cl"});
-    const cl::Program& second = runtime.program({"winding_number.cl"});
+    const cl::Program& first = runtime.program({"closest_segment_2d.cl"});
+    const cl::Program& second = runtime.program({"closest_segment_2d.cl"});
     EXPECT_EQ(first(), second());
-    EXPECT_NO_THROW(runtime.kernel({"winding_number.cl"}, "winding_number_grid"));
-    EXPECT_THROW(runtime.kernel({"winding_number.cl"}, "no_such_kernel"), ClError);
+    EXPECT_NO_THROW(runtime.kernel({"closest_segment_2d.cl"}, "signed_distance_2d"));
+    EXPECT_THROW(runtime.kernel({"closest_segment_2d.cl"}, "no_such_kernel"), ClError);
     EXPECT_THROW(runtime.program({"missing.cl"}), ClError);
 }
 

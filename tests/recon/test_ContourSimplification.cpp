@@ -29,7 +29,8 @@ std::vector<Polygon> starWithHole(std::mt19937& random, Point2 centre, int n, do
         const double t = 2 * M_PI * k / n;
         const double r = radius * (1 + 0.25 * std::sin(lobes * t + phase)) + 0.8 * u(random);
         outer.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
-        hole.push_back({centre.x + (r - gapMm) * std::cos(t), centre.y + (r - gapMm) * std::sin(t)});
+        hole.push_back(
+            {centre.x + (r - gapMm) * std::cos(t), centre.y + (r - gapMm) * std::sin(t)});
     }
     return {outer, hole};
 }
@@ -44,7 +45,8 @@ void expectBoundAndDeviations(const Polygon& original, const SimplifiedContour& 
         EXPECT_EQ(s.points[k], original[s.originalIndex[k]]);
         double worst = 0;  // brute force over the replaced chain
         for (std::size_t i = s.originalIndex[k]; i != s.originalIndex[(k + 1) % m]; i = (i + 1) % n)
-            worst = std::max(worst, distanceToSegment(original[i], s.points[k], s.points[(k + 1) % m]));
+            worst =
+                std::max(worst, distanceToSegment(original[i], s.points[k], s.points[(k + 1) % m]));
         EXPECT_NEAR(s.edgeDeviationMm[k], worst, 1e-12);
         EXPECT_LE(s.edgeDeviationMm[k], epsilon + 1e-12);
     }
@@ -63,7 +65,7 @@ TEST(ContourSimplification, BoundDeviationsAndValidityOnRandomContours) {
         Slice slice;
         slice.contours = starWithHole(random, {0, 0}, n, 30, 0.5 + 3 * (random() % 1000) / 1000.0);
         const std::vector<Polygon> neighbour = starWithHole(random, {50, 0}, n / 3 + 3, 9, 1);
-        slice.contours.push_back(neighbour[0]);  // an island that nearly touches the first
+        slice.contours.push_back(neighbour[0]);           // an island that nearly touches the first
         if (findContourDefect(slice.contours)) continue;  // rare: the random shape is invalid
         ++tested;
         normaliseOrientation(slice);
@@ -96,7 +98,8 @@ TEST(ContourSimplification, BoundDeviationsAndValidityOnRandomContours) {
 TEST(ContourSimplification, RefinesEdgesThatWouldCrossAnotherContour) {
     // A square with a deep, narrow notch, and a small square inside the
     // notch's mouth: simplifying the notch away would cross it.
-    const Polygon notched{{0, 0}, {10, 0}, {10, 4.9}, {5, 4.9}, {5, 5.1}, {10, 5.1}, {10, 10}, {0, 10}};
+    const Polygon notched{{0, 0},   {10, 0},   {10, 4.9}, {5, 4.9},
+                          {5, 5.1}, {10, 5.1}, {10, 10},  {0, 10}};
     const Polygon inside{{8, 4.95}, {9, 4.95}, {9, 5.05}, {8, 5.05}};
     ASSERT_FALSE(findContourDefect({notched, inside}).has_value());
     // Alone, the notch (0.1 mm wide) would vanish at epsilon 6.
