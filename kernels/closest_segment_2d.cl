@@ -26,6 +26,45 @@
 #ifndef TILE
 #define TILE 8
 #endif
+// Pixels per work-item in the field kernel, as vector lanes: 8 suits CPU
+// devices (explicit SIMD), 1 suits GPUs (many small work-items).
+#ifndef LANES
+#define LANES 1
+#endif
+#if defined(REAL_IS_DOUBLE)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+#if LANES == 1
+#define REALV REAL
+#define INTV int
+#define CONVERT_REALV(x) ((REAL)(x))
+#define VSTORE(v, offset, p) ((p)[offset] = (v))
+#define MASKV int  // scalar isless() gives int whatever the operand type
+#define MASK_SCALAR int
+#define LANE_OFFSETS 0
+#define PICK(a, b, mask) ((mask) ? (b) : (a))
+#else
+#define REALV CONCAT(REAL, LANES)
+#define INTV CONCAT(int, LANES)
+#define CONVERT_REALV CONCAT(convert_, REALV)
+#define VSTORE CONCAT(vstore, LANES)
+// Vector isless()/select() masks have the lane type's width.
+#if defined(REAL_IS_DOUBLE)
+#define MASKV CONCAT(long, LANES)
+#define MASK_SCALAR long
+#else
+#define MASKV CONCAT(int, LANES)
+#define MASK_SCALAR int
+#endif
+#if LANES == 4
+#define LANE_OFFSETS ((INTV)(0, 1, 2, 3))
+#elif LANES == 8
+#define LANE_OFFSETS ((INTV)(0, 1, 2, 3, 4, 5, 6, 7))
+#else
+#error "LANES must be 1, 4 or 8"
+#endif
+#define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
+#endif
 
 // Squared distance from p to segment s = (ax, ay, bx, by); t receives the
 // clamped parameter of the nearest point (0 = start vertex, 1 = end vertex).
@@ -99,57 +138,78 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
     candidateCount[at] = n;
 }
 
-// One work-item per pixel (i, j) of slice s of the batch. ids[k] = (segment
-// id, id of its end vertex); the start vertex id is segment id | 1.
+// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1, j) of slice
+// s of the batch, computed in vector lanes (explicit SIMD for CPU devices;
+// GPUs scalarise it); a work-group is one TILE x TILE tile, so every loop
+// bound is the same for all its work-items. ids[k] = (segment id, id of its
+// end vertex); the start vertex id is segment id | 1.
 // Crossings of row j: crossings[rowFirst[r] .. rowFirst[r + 1]) with
 // r = s * height + j, each (k, dir): the contour crosses the row between
 // pixel k - 1 and k going up (dir = +1) or down (-1). The winding number at
 // pixel i is the sum of dir over crossings with k > i (Sunday's rule with
 // the ray to +x), non-zero meaning inside.
-__kernel void signed_distance_2d(__global const REAL4* segments, __global const uint2* ids,
-                                 __global const uint* sliceFirst, __global const uint* sliceCount,
-                                 __global const uint* rowFirst, __global const int2* crossings,
-                                 const uint width, const uint height, const REAL pixelMm,
-                                 const uint capacity, __global const uint* candidates,
-                                 __global const uint* candidateCount, __global float* distance,
-                                 __global uint* nearestId) {
-    const uint i = get_global_id(0), j = get_global_id(1), s = get_global_id(2);
-    if (i >= width || j >= height) return;
+__kernel __attribute__((reqd_work_group_size(TILE / LANES, TILE, 1))) void signed_distance_2d(
+    __global const REAL4* segments, __global const uint2* ids, __global const uint* sliceFirst,
+    __global const uint* sliceCount, __global const uint* rowFirst, __global const int2* crossings,
+    const uint width, const uint height, const REAL pixelMm, const uint capacity,
+    __global const uint* candidates, __global const uint* candidateCount, __global float* distance,
+    __global uint* nearestId) {
+    const uint i0 = get_global_id(0) * LANES, j = get_global_id(1), s = get_global_id(2);
+    if (j >= height) return;  // padding rows of the last tile row (no barriers below)
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
-    const size_t tile = ((size_t)s * tilesY + j / TILE) * tilesX + i / TILE;
-    const REAL2 p = (REAL2)((i + (REAL)0.5) * pixelMm, (j + (REAL)0.5) * pixelMm);
+    const size_t tile = ((size_t)s * tilesY + j / TILE) * tilesX + i0 / TILE;
+    const INTV lane = (INTV)(i0) + LANE_OFFSETS;
+    const REALV px = (CONVERT_REALV(lane) + (REAL)0.5) * pixelMm;
+    const REAL py = (j + (REAL)0.5) * pixelMm;
 
     const uint listed = candidateCount[tile];
     const bool useList = listed <= capacity;
     const uint n = useList ? listed : sliceCount[s];
     __global const uint* list = candidates + tile * capacity;
-    // The search keeps the winning segment and its parameter; ids are looked
+    // Per lane: the nearest segment so far and its parameter; ids are looked
     // up once at the end.
-    REAL best2 = INFINITY, bestT = 0;
-    uint bestSeg = 0;
+    REALV best2 = (REALV)(INFINITY), bestT = (REALV)(0);
+    MASKV bestSeg = (MASKV)(0);
     for (uint k = 0; k < n; ++k) {
         const uint seg = useList ? list[k] : sliceFirst[s] + k;
-        REAL t;
-        const REAL d2 = segmentDistance2(p, segments[seg], &t);
-        const bool better = d2 < best2;
-        best2 = better ? d2 : best2;
-        bestT = better ? t : bestT;
-        bestSeg = better ? seg : bestSeg;
-    }
-    uint bestId = 0xffffffffu;
-    if (n > 0) {
-        const uint2 id = ids[bestSeg];
-        bestId = bestT <= 0 ? (id.x | 1u) : (bestT >= 1 ? id.y : id.x);
+        const REAL4 sg = segments[seg];
+        const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
+        const REAL len2 = abx * abx + aby * aby;
+        const REAL inverse = len2 > 0 ? 1 / len2 : 0;
+        const REALV apx = px - sg.x;
+        const REAL apy = py - sg.y;
+        const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+        const REALV qx = apx - t * abx, qy = apy - t * aby;
+        const REALV d2 = qx * qx + qy * qy;
+        const MASKV better = isless(d2, best2);
+        best2 = PICK(best2, d2, better);
+        bestT = PICK(bestT, t, better);
+        bestSeg = PICK(bestSeg, (MASKV)(seg), better);
     }
 
     const size_t row = (size_t)s * height + j;
-    int winding = 0;
+    INTV winding = (INTV)(0);
     for (uint c = rowFirst[row]; c < rowFirst[row + 1]; ++c) {
         const int2 crossing = crossings[c];
-        if (crossing.x > (int)i) winding += crossing.y;
+        winding += PICK((INTV)(0), (INTV)(crossing.y), (INTV)(crossing.x) > lane);
     }
-    const float d = (float)sqrt(best2);
-    const size_t pixel = row * width + i;
-    distance[pixel] = winding != 0 ? -d : d;
-    nearestId[pixel] = bestId;
+
+    REAL d[LANES], tl[LANES];
+    int w[LANES];
+    MASK_SCALAR segs[LANES];
+    VSTORE(sqrt(best2), 0, d);
+    VSTORE(bestT, 0, tl);
+    VSTORE(winding, 0, w);
+    VSTORE(bestSeg, 0, segs);
+    for (int l = 0; l < LANES; ++l) {
+        if (i0 + l >= width) break;
+        uint id = 0xffffffffu;
+        if (n > 0) {
+            const uint2 e = ids[(uint)segs[l]];
+            id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
+        }
+        const size_t pixel = row * width + i0 + l;
+        distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
+        nearestId[pixel] = id;
+    }
 }

@@ -111,7 +111,7 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
 
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
-              std::size_t end, const SliceGrid& grid, SliceFields& out) {
+              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, SliceFields& out) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid.originMm);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
@@ -134,8 +134,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
 
-    const std::string options = std::string("-DREAL=") + (sizeof(Real) == 8 ? "double" : "float") +
-                                " -DTILE=" + std::to_string(kTile);
+    const std::string options =
+        std::string(sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float") +
+        " -DTILE=" + std::to_string(kTile) + " -DLANES=" + std::to_string(lanes);
     const cl::Program& program = runtime.program({"closest_segment_2d.cl"}, options);
     try {
         auto cull = [&](std::uint32_t tile, std::uint32_t parentTile,
@@ -185,12 +186,13 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, fineCount.get());
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
-        // Work-groups of one fine tile, so a group walks one candidate list.
+        // Work-groups of one fine tile, so a group walks one candidate list;
+        // each work-item computes `lanes` pixels of a row.
         const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
         const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-        runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
-                                             cl::NDRange(tilesX * kTile, tilesY * kTile, batch),
-                                             cl::NDRange(kTile, kTile, 1));
+        runtime.queue().enqueueNDRangeKernel(
+            field, cl::NullRange, cl::NDRange(tilesX * kTile / lanes, tilesY * kTile, batch),
+            cl::NDRange(kTile / lanes, kTile, 1));
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
@@ -214,14 +216,19 @@ SliceFields emptyFields(const std::vector<Slice>& slices, const SliceGrid& grid)
 }  // namespace
 
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
-                               const SliceGrid& grid, const std::function<void(double)>& progress) {
+                               const SliceGrid& grid, const std::function<void(double)>& progress,
+                               const FieldKernelOptions& options) {
     checkLimits(slices);
+    std::uint32_t lanes = std::uint32_t(options.lanes);
+    if (lanes == 0) lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
+    if (lanes != 1 && lanes != 4 && lanes != 8)
+        throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
     SliceFields fields = emptyFields(slices, grid);
     const std::size_t listBytesPerSlice =
         (tilesOf(grid, kTile) * kFineCapacity + tilesOf(grid, kCoarseTile) * kCoarseCapacity) *
         sizeof(cl_uint);
     const std::size_t perBatch = std::max<std::size_t>(1, kCandidateBytes / listBytesPerSlice);
-    const bool fp64 = runtime.device().doublePrecision;
+    const bool fp64 = runtime.device().doublePrecision && !options.singlePrecision;
     for (std::size_t begin = 0; begin < slices.size();) {
         // Slices without contours keep +inf / kNoPrimitive; batches skip them.
         if (slices[begin].contours.empty()) {
@@ -232,9 +239,9 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty())
             ++end;
         if (fp64)
-            runBatch<cl_double, cl_double4>(runtime, slices, begin, end, grid, fields);
+            runBatch<cl_double, cl_double4>(runtime, slices, begin, end, grid, lanes, fields);
         else
-            runBatch<cl_float, cl_float4>(runtime, slices, begin, end, grid, fields);
+            runBatch<cl_float, cl_float4>(runtime, slices, begin, end, grid, lanes, fields);
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));
     }

@@ -36,10 +36,21 @@ struct SliceFields {
 /// Work: O(tiles·segments + pixels·candidates) per slice. Throws
 /// std::invalid_argument beyond the PrimitiveId limits, ClError on device
 /// failure.
+/// Pixels each work-item of the field kernel computes in vector lanes:
+/// 0 = by device (8 on CPUs, where it is explicit SIMD; 1 elsewhere), or
+/// 1, 4, 8. Results are the same; tests run every width.
+/// singlePrecision forces float arithmetic (what devices without fp64 get;
+/// about 1e-6 relative error instead of 1e-12).
+struct FieldKernelOptions {
+    int lanes = 0;
+    bool singlePrecision = false;
+};
+
 /// `progress`, if set, receives the fraction of slices done after each batch.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
                                const SliceGrid& grid,
-                               const std::function<void(double)>& progress = {});
+                               const std::function<void(double)>& progress = {},
+                               const FieldKernelOptions& options = {});
 
 /// The plain C++ brute-force reference: every segment at every pixel in
 /// double precision, sign from windingNumber(). O(pixels·segments).
