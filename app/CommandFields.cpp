@@ -15,6 +15,7 @@
 #include "io/FieldImages.hpp"
 #include "io/RawVolume.hpp"
 #include "recon/ContourSimplification.hpp"
+#include "recon/MedialAxis.hpp"
 #include "recon/SliceFields.hpp"
 
 namespace dfrecon::app {
@@ -57,9 +58,9 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::vector<Slice>& slices,
-                                      const SliceFields& fields, const FieldsArgs& args,
-                                      const GlobalOptions& global) {
+nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,
+                                      const std::vector<Slice>& slices, const SliceFields& fields,
+                                      const FieldsArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const std::string stem = (fs::path(args.outputDir) / fileStem(roi.name)).string();
     const SliceGrid& grid = fields.grid;
@@ -94,6 +95,20 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::vector<Slice>& 
                           slices[s].contours);
             files.push_back(stem + "-distance" + suffix);
             files.push_back(stem + "-ids" + suffix);
+            if (s + 1 < fields.sliceCount()) {
+                // The sum with the next slice and its sign border: the medial
+                // axes the reconstruction walks (paper Fig. 4).
+                const SliceSum sum = sumSlices(runtime, fields, s, s + 1);
+                std::vector<PixelMark> medial;
+                for (const MedialAxis& axis : traceMedialAxes(fields, s, s + 1, sum))
+                    for (const MedialPixel& p : axis.pixels) medial.push_back({p.i, p.j});
+                std::vector<Polygon> both = slices[s].contours;
+                both.insert(both.end(), slices[s + 1].contours.begin(),
+                            slices[s + 1].contours.end());
+                writeSignedFieldPng(stem + "-medial" + suffix, sum.sumMm.data(), frame, both,
+                                    args.isoStepMm, medial);
+                files.push_back(stem + "-medial" + suffix);
+            }
             progress.update(double(s + 1) / double(fields.sliceCount()));
         }
     }
@@ -157,7 +172,8 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
         }
         const double fieldSeconds = secondsSince(stage);
         stage = std::chrono::steady_clock::now();
-        const nlohmann::ordered_json files = writeRoiFields(*roi, slices, fields, args, global);
+        const nlohmann::ordered_json files =
+            writeRoiFields(runtime, *roi, slices, fields, args, global);
         const double writeSeconds = secondsSince(stage);
         reports.push_back(
             {{"roi", roi->name},
@@ -204,7 +220,8 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--png", args->png,
                   "Also write pictures: NAME-distance-NNN.png (blue inside, red outside, "
-                  "iso-lines) and NAME-ids-NNN.png (nearest primitive as hue)");
+                  "iso-lines), NAME-ids-NNN.png (nearest primitive as hue) and NAME-medial-NNN.png "
+                  "(sum with the next slice, medial axes in yellow)");
     cmd->add_option("--iso-mm", args->isoStepMm, "Iso-line spacing in the pictures, mm")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);

@@ -43,7 +43,8 @@ void writePng(const std::string& path, const cv::Mat& image) {
 }  // namespace
 
 void writeSignedFieldPng(const std::string& path, const float* distanceMm, const ImageFrame& frame,
-                         const std::vector<Polygon>& contours, double isoStepMm) {
+                         const std::vector<Polygon>& contours, double isoStepMm,
+                         const std::vector<PixelMark>& marked) {
     if (frame.width <= 0 || frame.height <= 0) throw std::invalid_argument("empty image frame");
     float maxAbs = 0;
     for (std::size_t k = 0; k < std::size_t(frame.width) * std::size_t(frame.height); ++k)
@@ -68,6 +69,9 @@ void writeSignedFieldPng(const std::string& path, const float* distanceMm, const
                     bgr = cv::Vec3b(uchar(bgr[0] / 2), uchar(bgr[1] / 2), uchar(bgr[2] / 2));
             }
         }
+    for (const PixelMark& m : marked)
+        if (m.i >= 0 && m.j >= 0 && m.i < frame.width && m.j < frame.height)
+            image.at<cv::Vec3b>(imageRow(frame, m.j), m.i) = cv::Vec3b(0, 255, 255);
     drawContours(image, frame, contours);
     writePng(path, image);
 }

@@ -18,11 +18,18 @@ struct ImageFrame {
     int width = 0, height = 0;
 };
 
+/// A grid pixel (i, j) to highlight.
+struct PixelMark {
+    int i = 0, j = 0;
+};
+
 /// A signed distance field (row-major, mm, negative inside) as a colour
 /// picture: blue inside, red outside, brighter near zero, thin iso-lines
-/// every `isoStepMm`, contours in white. Written atomically.
+/// every `isoStepMm`, `marked` pixels in yellow, contours in white. Written
+/// atomically.
 void writeSignedFieldPng(const std::string& path, const float* distanceMm, const ImageFrame& frame,
-                         const std::vector<Polygon>& contours, double isoStepMm);
+                         const std::vector<Polygon>& contours, double isoStepMm,
+                         const std::vector<PixelMark>& marked = {});
 
 /// Integer labels (row-major; 0xffffffff = none, black) as hues, with
 /// neighbouring labels spread apart, and the contours in white.

@@ -166,6 +166,8 @@ TEST(Cli, FieldsWritesVolumesPicturesAndLayout) {
     EXPECT_EQ(fs::file_size(out / "Left_Kidney-ids.raw"), w * h * s * 4);
     EXPECT_TRUE(fs::exists(out / "Left_Kidney-distance-002.png"));
     EXPECT_TRUE(fs::exists(out / "Left_Kidney-ids-000.png"));
+    EXPECT_TRUE(fs::exists(out / "Left_Kidney-medial-001.png"));   // slices 1 and 2
+    EXPECT_FALSE(fs::exists(out / "Left_Kidney-medial-002.png"));  // no slice above the last
     const auto meta = nlohmann::json::parse(slurp(out / "Left_Kidney-fields.json"));
     EXPECT_EQ(meta["slices"][1]["contours"], 3);
     EXPECT_NE(slurp(out / "Left_Kidney-distance.nhdr").find("data file: Left_Kidney-distance.raw"),
