@@ -16,5 +16,6 @@ void addSynthCommand(CLI::App& root, const GlobalOptions& global);
 void addDevicesCommand(CLI::App& root, const GlobalOptions& global);
 void addInfoCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
+void addCheckCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -7,12 +7,9 @@
 #include <vector>
 
 #include "io/ContourSet.hpp"
+#include "io/Vec3.hpp"
 
 namespace dfrecon {
-
-struct Vec3 {
-    double x = 0, y = 0, z = 0;
-};
 
 class AnalyticShape {
   public:

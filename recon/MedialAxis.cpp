@@ -62,7 +62,8 @@ SliceSum sumSlicesReference(const SliceFields& fields, std::size_t lower, std::s
     result.sumMm.resize(pixels);
     result.negative.resize(pixels);
     for (std::size_t k = 0; k < pixels; ++k) {
-        const float s = fields.distanceMm[lower * pixels + k] + fields.distanceMm[upper * pixels + k];
+        const float s =
+            fields.distanceMm[lower * pixels + k] + fields.distanceMm[upper * pixels + k];
         result.sumMm[k] = s;
         result.negative[k] = s < 0 ? 1 : 0;
     }
@@ -74,7 +75,8 @@ std::vector<MedialAxis> traceMedialAxes(const SliceFields& fields, std::size_t l
     checkSlices(fields, lower, upper);
     const SliceGrid& grid = fields.grid;
     const std::size_t pixels = grid.pixelCount();
-    if (sum.negative.size() != pixels) throw std::invalid_argument("traceMedialAxes: size mismatch");
+    if (sum.negative.size() != pixels)
+        throw std::invalid_argument("traceMedialAxes: size mismatch");
 
     // findContours wants a mutable 8-bit image; grid row j is image row j.
     cv::Mat mask(grid.height, grid.width, CV_8U);
@@ -99,7 +101,8 @@ std::vector<MedialAxis> traceMedialAxes(const SliceFields& fields, std::size_t l
                                    fields.nearestId[upper * pixels + at]});
         }
         // Like contours: outer borders counter-clockwise, hole borders clockwise.
-        if ((twiceArea > 0) == axis.bordersHole) std::reverse(axis.pixels.begin(), axis.pixels.end());
+        if ((twiceArea > 0) == axis.bordersHole)
+            std::reverse(axis.pixels.begin(), axis.pixels.end());
     }
     return axes;
 }

@@ -28,10 +28,10 @@ SliceSum sumSlices(ocl::Runtime& runtime, const SliceFields& fields, std::size_t
 SliceSum sumSlicesReference(const SliceFields& fields, std::size_t lower, std::size_t upper);
 
 struct MedialPixel {
-    int i = 0, j = 0;            // grid pixel
-    float sumMm = 0;             // S at the pixel (< 0: border pixels are on the negative side)
-    std::uint32_t lowerId = 0;   // nearest primitive on the lower slice (PrimitiveId)
-    std::uint32_t upperId = 0;   // ... and on the upper slice
+    int i = 0, j = 0;           // grid pixel
+    float sumMm = 0;            // S at the pixel (< 0: border pixels are on the negative side)
+    std::uint32_t lowerId = 0;  // nearest primitive on the lower slice (PrimitiveId)
+    std::uint32_t upperId = 0;  // ... and on the upper slice
 };
 
 /// One closed medial axis: consecutive pixels (and the last and first) are

@@ -189,3 +189,21 @@ TEST(Cli, FieldsCanSimplifyContoursFirst) {
     EXPECT_LE(s["maxDeviationMm"].get<double>(), 0.5);
     EXPECT_GT(s["maxDeviationMm"].get<double>(), 0.0);
 }
+
+TEST(Cli, CheckPassesSolidsAndFailsBrokenMeshesWithExitTwo) {
+    const fs::path good = scratch() / "tetra.off", open = scratch() / "open.off";
+    std::ofstream(good) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                        << "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+    std::ofstream(open) << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n";
+    const Result ok = runDfrecon("check --json " + good.string());
+    ASSERT_EQ(ok.exitCode, 0) << ok.err;
+    const auto report = nlohmann::json::parse(ok.out);
+    EXPECT_TRUE(report["validSolid"].get<bool>());
+    EXPECT_EQ(report["genus"], 0);
+    EXPECT_NEAR(report["volumeMm3"].get<double>(), 1.0 / 6.0, 1e-12);
+    const Result bad = runDfrecon("check " + open.string());
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.out.find("boundary edges 3"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.err.find(open.string() + ": not a watertight"), std::string::npos) << bad.err;
+    EXPECT_EQ(runDfrecon("check " + (scratch() / "missing.ply").string()).exitCode, 2);
+}

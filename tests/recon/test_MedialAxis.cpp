@@ -66,7 +66,8 @@ void expectWellFormed(const Pair& pair) {
             const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
             for (int n = 0; n < 4; ++n) {
                 const int i = p.i + di[n], j = p.j + dj[n];
-                outsideNeighbour |= i < 0 || j < 0 || i >= g.width || j >= g.height || sumAt(i, j) >= 0;
+                outsideNeighbour |=
+                    i < 0 || j < 0 || i >= g.width || j >= g.height || sumAt(i, j) >= 0;
             }
             EXPECT_TRUE(outsideNeighbour) << p.i << "," << p.j;
             const std::size_t at = pair.fields.index(0, p.i, p.j);
@@ -112,8 +113,8 @@ TEST(MedialAxis, ConcentricCirclesGiveTheCircleHalfway) {
 TEST(MedialAxis, OneContourToTwoGivesOneAxisAroundBoth) {
     // A wide ellipse-like blob below, two circles above: S < 0 wherever
     // the pair overlaps enough, one connected region reaching both circles.
-    const Pair pair =
-        medialAxesOf({circle({0, 0}, 12, 160)}, {circle({-7, 0}, 5, 80), circle({7, 0}, 5, 80)}, 0.15);
+    const Pair pair = medialAxesOf({circle({0, 0}, 12, 160)},
+                                   {circle({-7, 0}, 5, 80), circle({7, 0}, 5, 80)}, 0.15);
     expectWellFormed(pair);
     ASSERT_EQ(pair.axes.size(), 1u);
     bool seesLeft = false, seesRight = false;
@@ -140,7 +141,8 @@ TEST(MedialAxis, HoleGivesAHoleBorder) {
     EXPECT_GT(chainArea(outer, pair.fields.grid), 0);
     EXPECT_LT(chainArea(hole, pair.fields.grid), 0);
     for (const MedialPixel& p : hole.pixels)  // S = (6 - ρ) + (10 - ρ) = 0 at ρ = 8
-        EXPECT_NEAR(length(pair.fields.grid.pixelCentre(p.i, p.j)), 8, 1.5 * pair.fields.grid.pixelMm);
+        EXPECT_NEAR(length(pair.fields.grid.pixelCentre(p.i, p.j)), 8,
+                    1.5 * pair.fields.grid.pixelMm);
 }
 
 TEST(MedialAxis, DisjointContoursGiveNoAxis) {

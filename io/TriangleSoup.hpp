@@ -1,0 +1,29 @@
+#pragma once
+// Triangles as a plain indexed list, with no topological assumptions, so
+// that non-manifold or inconsistently oriented input can be inspected
+// (OpenMesh's half-edge mesh refuses such faces when reading).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/TriMesh.hpp"
+#include "io/Vec3.hpp"
+
+namespace dfrecon {
+
+struct TriangleSoup {
+    std::vector<Vec3> points;
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into points
+};
+
+/// Reads any mesh file OpenMesh reads (.ply .obj .off .stl) as a soup:
+/// polygons are split into triangle fans, nothing is dropped or merged
+/// (STL's corners are merged by position, as OpenMesh's STL reader does).
+/// Throws InputError naming the file when it cannot be read.
+TriangleSoup readTriangleSoup(const std::string& path);
+
+/// The triangles of a half-edge mesh.
+TriangleSoup toTriangleSoup(const TriMesh& mesh);
+
+}  // namespace dfrecon

@@ -1,0 +1,341 @@
+#include "recon/MeshCheck.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+namespace dfrecon {
+
+namespace {
+
+// Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc.
+double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) { return dot(cross(b - a, c - a), d - a); }
+
+// 2D orientation in the plane that drops `axis`.
+double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+}
+
+int sign(double x) { return (x > 0) - (x < 0); }
+
+// Closed 2D segment intersection in the plane dropping `axis`.
+bool segmentsMeet2(Vec3 p, Vec3 q, Vec3 a, Vec3 b, int axis) {
+    const int o1 = sign(orient2(p, q, a, axis)), o2 = sign(orient2(p, q, b, axis));
+    const int o3 = sign(orient2(a, b, p, axis)), o4 = sign(orient2(a, b, q, axis));
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    auto within = [axis](Vec3 s, Vec3 t, Vec3 r) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        return std::min(s[u], t[u]) <= r[u] && r[u] <= std::max(s[u], t[u]) &&
+               std::min(s[v], t[v]) <= r[v] && r[v] <= std::max(s[v], t[v]);
+    };
+    return (o1 == 0 && within(p, q, a)) || (o2 == 0 && within(p, q, b)) ||
+           (o3 == 0 && within(a, b, p)) || (o4 == 0 && within(a, b, q));
+}
+
+// Closed point-in-triangle in the plane dropping `axis`.
+bool insideTriangle2(Vec3 p, const Vec3 t[3], int axis) {
+    const double d0 = orient2(t[0], t[1], p, axis), d1 = orient2(t[1], t[2], p, axis),
+                 d2 = orient2(t[2], t[0], p, axis);
+    return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+}
+
+int dominantAxis(Vec3 n) {
+    const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
+    return x >= y && x >= z ? 0 : (y >= z ? 1 : 2);
+}
+
+bool coplanarTrianglesMeet(const Vec3 a[3], const Vec3 b[3], int axis) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (segmentsMeet2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], axis)) return true;
+    return insideTriangle2(a[0], b, axis) || insideTriangle2(b[0], a, axis);
+}
+
+// Does the closed segment pq meet the closed triangle t (non-degenerate)?
+bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
+    const double dp = orient(t[0], t[1], t[2], p), dq = orient(t[0], t[1], t[2], q);
+    if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0)) return false;
+    if (dp == 0 && dq == 0) {
+        const int axis = dominantAxis(cross(t[1] - t[0], t[2] - t[0]));
+        return insideTriangle2(p, t, axis) || insideTriangle2(q, t, axis) ||
+               segmentsMeet2(p, q, t[0], t[1], axis) || segmentsMeet2(p, q, t[1], t[2], axis) ||
+               segmentsMeet2(p, q, t[2], t[0], axis);
+    }
+    // The line pq passes inside iff it turns the same way around all edges.
+    const double s0 = orient(p, q, t[0], t[1]), s1 = orient(p, q, t[1], t[2]),
+                 s2 = orient(p, q, t[2], t[0]);
+    return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+}
+
+struct Box {
+    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    void add(Vec3 p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    void add(const Box& b) {
+        add(b.lo);
+        add(b.hi);
+    }
+    bool overlaps(const Box& b) const {
+        return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
+               lo.z <= b.hi.z && b.lo.z <= hi.z;
+    }
+};
+
+// A bounding volume hierarchy over triangles: median splits along the
+// longest axis, leaves of up to 4 triangles.
+struct Bvh {
+    struct Node {
+        Box box;
+        int left = -1, right = -1;    // children, or -1 for a leaf
+        std::size_t first = 0, count = 0;  // leaf range in `order`
+    };
+    std::vector<Node> nodes;
+    std::vector<std::size_t> order;
+
+    Bvh(const std::vector<Box>& boxes) : order(boxes.size()) {
+        std::iota(order.begin(), order.end(), 0);
+        if (!boxes.empty()) build(boxes, 0, boxes.size());
+    }
+
+    int build(const std::vector<Box>& boxes, std::size_t first, std::size_t last) {
+        const int index = int(nodes.size());
+        nodes.emplace_back();
+        Box box;
+        for (std::size_t k = first; k < last; ++k) box.add(boxes[order[k]]);
+        nodes[std::size_t(index)].box = box;
+        if (last - first <= 4) {
+            nodes[std::size_t(index)].first = first;
+            nodes[std::size_t(index)].count = last - first;
+            return index;
+        }
+        const Vec3 extent = box.hi - box.lo;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const std::size_t mid = (first + last) / 2;
+        std::nth_element(order.begin() + std::ptrdiff_t(first), order.begin() + std::ptrdiff_t(mid),
+                         order.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
+                             return boxes[a].lo[axis] + boxes[a].hi[axis] <
+                                    boxes[b].lo[axis] + boxes[b].hi[axis];
+                         });
+        const int left = build(boxes, first, mid);
+        const int right = build(boxes, mid, last);
+        nodes[std::size_t(index)].left = left;
+        nodes[std::size_t(index)].right = right;
+        return index;
+    }
+
+    // Calls visit(i, j), i != j, for every pair of triangles whose boxes overlap.
+    template <class Visit>
+    void selfPairs(const std::vector<Box>& boxes, Visit&& visit) const {
+        if (nodes.empty()) return;
+        std::vector<std::pair<int, int>> stack{{0, 0}};
+        while (!stack.empty()) {
+            const auto [a, b] = stack.back();
+            stack.pop_back();
+            const Node &na = nodes[std::size_t(a)], &nb = nodes[std::size_t(b)];
+            if (!na.box.overlaps(nb.box)) continue;
+            const bool leafA = na.left < 0, leafB = nb.left < 0;
+            if (leafA && leafB) {
+                for (std::size_t p = 0; p < na.count; ++p)
+                    for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
+                        const std::size_t i = order[na.first + p], j = order[nb.first + q];
+                        if (boxes[i].overlaps(boxes[j])) visit(i, j);
+                    }
+            } else if (a == b) {
+                stack.push_back({na.left, na.left});
+                stack.push_back({na.right, na.right});
+                stack.push_back({na.left, na.right});
+            } else if (!leafA && (leafB || na.count >= nb.count)) {
+                stack.push_back({na.left, b});
+                stack.push_back({na.right, b});
+            } else {
+                stack.push_back({a, nb.left});
+                stack.push_back({a, nb.right});
+            }
+        }
+    }
+};
+
+// Union–find over indices.
+struct Components {
+    std::vector<std::size_t> parent;
+    explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    std::size_t find(std::size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void join(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+// Do triangles s and t (of the soup, non-degenerate) meet anywhere they
+// should not? Shared vertices are allowed contact: sharing an edge, they
+// meet wrongly only when folded onto each other; sharing one vertex, only
+// when they overlap beyond it.
+bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangle& t) {
+    Vec3 a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = soup.points[s[std::size_t(k)]];
+        b[k] = soup.points[t[std::size_t(k)]];
+    }
+    int shared = 0, sa[3] = {-1, -1, -1};  // sa[k]: index in t of s[k], or -1
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (s[std::size_t(i)] == t[std::size_t(j)]) {
+                sa[i] = j;
+                ++shared;
+            }
+    if (shared == 0) return trianglesIntersect(a, b);
+    if (shared == 3) return true;  // the same triangle twice
+    const Vec3 normal = cross(a[1] - a[0], a[2] - a[0]);
+    if (shared == 2) {
+        int oa = 0, ob = 0;
+        while (sa[oa] >= 0) ++oa;  // s's vertex off the shared edge
+        while (ob == sa[0] || ob == sa[1] || ob == sa[2]) ++ob;
+        const Vec3 u = a[(oa + 1) % 3], v = a[(oa + 2) % 3];
+        if (orient(u, v, a[oa], b[ob]) != 0) return false;  // different planes: meet on the edge only
+        // Coplanar: folded onto each other when both lie on the same side.
+        const double sideA = dot(cross(v - u, a[oa] - u), normal);
+        const double sideB = dot(cross(v - u, b[ob] - u), normal);
+        return sideA * sideB > 0;
+    }
+    // One shared vertex: compare what lies opposite it.
+    int ka = 0;
+    while (sa[ka] < 0) ++ka;
+    const int kb = sa[ka];
+    const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3], b2 = b[(kb + 2) % 3];
+    const Vec3 v = a[ka];
+    if (orient(a[0], a[1], a[2], b1) == 0 && orient(a[0], a[1], a[2], b2) == 0) {
+        // Coplanar wedges at v overlap iff a direction of one lies strictly
+        // inside the other, or they coincide.
+        const int axis = dominantAxis(normal);
+        auto strictlyInside = [&](Vec3 x, Vec3 p, Vec3 q) {
+            const double w = orient2(v, p, q, axis);
+            return orient2(v, p, x, axis) * w > 0 && orient2(v, x, q, axis) * w > 0;
+        };
+        auto sameDirection = [&](Vec3 x, Vec3 y) {
+            return orient2(v, x, y, axis) == 0 && dot(x - v, y - v) > 0;
+        };
+        return strictlyInside(b1, a1, a2) || strictlyInside(b2, a1, a2) ||
+               strictlyInside(a1, b1, b2) || strictlyInside(a2, b1, b2) ||
+               (sameDirection(a1, b1) && sameDirection(a2, b2)) ||
+               (sameDirection(a1, b2) && sameDirection(a2, b1));
+    }
+    return segmentMeetsTriangle(a1, a2, b) || segmentMeetsTriangle(b1, b2, a);
+}
+
+}  // namespace
+
+bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
+    const double da[3] = {orient(b[0], b[1], b[2], a[0]), orient(b[0], b[1], b[2], a[1]),
+                          orient(b[0], b[1], b[2], a[2])};
+    if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
+    const double db[3] = {orient(a[0], a[1], a[2], b[0]), orient(a[0], a[1], a[2], b[1]),
+                          orient(a[0], a[1], a[2], b[2])};
+    if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
+    if (da[0] == 0 && da[1] == 0 && da[2] == 0)
+        return coplanarTrianglesMeet(a, b, dominantAxis(cross(b[1] - b[0], b[2] - b[0])));
+    // The intersection, if any, is a segment whose ends lie on edges.
+    for (int k = 0; k < 3; ++k)
+        if (segmentMeetsTriangle(a[k], a[(k + 1) % 3], b) ||
+            segmentMeetsTriangle(b[k], b[(k + 1) % 3], a))
+            return true;
+    return false;
+}
+
+MeshCheckReport checkMesh(const TriangleSoup& soup) {
+    MeshCheckReport report;
+    report.triangles = soup.triangles.size();
+    const std::size_t n = soup.points.size();
+
+    // Edges: (lo, hi, triangle, forward) sorted, so each edge's uses are adjacent.
+    struct EdgeUse {
+        std::uint32_t lo, hi;
+        std::uint32_t triangle;
+        bool forward;
+    };
+    std::vector<EdgeUse> uses;
+    std::vector<bool> used(n, false), degenerate(soup.triangles.size(), false);
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
+        const Triangle& tri = soup.triangles[t];
+        const Vec3 p0 = soup.points[tri[0]], p1 = soup.points[tri[1]], p2 = soup.points[tri[2]];
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
+            length(cross(p1 - p0, p2 - p0)) == 0) {
+            degenerate[t] = true;
+            ++report.degenerateTriangles;
+        }
+        report.areaMm2 += 0.5 * length(cross(p1 - p0, p2 - p0));
+        report.volumeMm3 += dot(p0, cross(p1, p2)) / 6;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
+            used[a] = true;
+            if (a != b) uses.push_back({std::min(a, b), std::max(a, b), t, a < b});
+        }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.triangle < y.triangle);
+    });
+
+    Components parts(n);
+    for (std::size_t begin = 0; begin < uses.size();) {
+        std::size_t end = begin;
+        while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi)
+            ++end;
+        ++report.edges;
+        const std::size_t count = end - begin;
+        if (count == 1) ++report.boundaryEdges;
+        if (count > 2) ++report.nonManifoldEdges;
+        if (count == 2) {
+            if (uses[begin].forward == uses[begin + 1].forward) ++report.misorientedEdges;
+        }
+        parts.join(uses[begin].lo, uses[begin].hi);
+        begin = end;
+    }
+    std::vector<std::vector<std::uint32_t>> around(n);
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
+        for (std::uint32_t v : soup.triangles[t]) around[v].push_back(t);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!used[v]) continue;
+        ++report.vertices;
+        // The triangles around v must form one fan: join those sharing an
+        // edge at v and count the groups.
+        Components local(around[v].size());
+        for (std::size_t p = 0; p < around[v].size(); ++p)
+            for (std::size_t q = p + 1; q < around[v].size(); ++q) {
+                const Triangle &s = soup.triangles[around[v][p]], &t = soup.triangles[around[v][q]];
+                int common = 0;
+                for (std::uint32_t x : s)
+                    for (std::uint32_t y : t) common += x == y && x != v;
+                if (common > 0) local.join(p, q);
+            }
+        std::size_t groups = 0;
+        for (std::size_t p = 0; p < around[v].size(); ++p) groups += local.find(p) == p;
+        if (groups > 1) ++report.nonManifoldVertices;
+    }
+    for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
+    report.eulerCharacteristic =
+        long(report.vertices) - long(report.edges) + long(report.triangles);
+    if (report.watertight())
+        report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
+
+    // Self-intersections over the BVH of triangle boxes.
+    std::vector<Box> boxes(soup.triangles.size());
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (std::uint32_t v : soup.triangles[t]) boxes[t].add(soup.points[v]);
+    const Bvh bvh(boxes);
+    bvh.selfPairs(boxes, [&](std::size_t i, std::size_t j) {
+        if (degenerate[i] || degenerate[j]) return;
+        if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
+        ++report.intersectingPairs;
+        if (report.intersectingExamples.size() < 10)
+            report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
+    });
+    return report;
+}
+
+}  // namespace dfrecon
