@@ -19,27 +19,27 @@ void runCheck(const std::string& path, bool json) {
     if (json) {
         nlohmann::ordered_json examples = nlohmann::ordered_json::array();
         for (const auto& [a, b] : r.intersectingExamples) examples.push_back({a, b});
-        std::cout << nlohmann::ordered_json{
-                         {"command", "check"},
-                         {"file", path},
-                         {"validSolid", r.validSolid()},
-                         {"watertight", r.watertight()},
-                         {"vertices", r.vertices},
-                         {"triangles", r.triangles},
-                         {"edges", r.edges},
-                         {"components", r.components},
-                         {"eulerCharacteristic", r.eulerCharacteristic},
-                         {"genus", r.genus >= 0 ? nlohmann::ordered_json(r.genus) : nullptr},
-                         {"volumeMm3", r.volumeMm3},
-                         {"volumeCc", r.volumeMm3 / 1000},
-                         {"areaMm2", r.areaMm2},
-                         {"boundaryEdges", r.boundaryEdges},
-                         {"nonManifoldEdges", r.nonManifoldEdges},
-                         {"nonManifoldVertices", r.nonManifoldVertices},
-                         {"misorientedEdges", r.misorientedEdges},
-                         {"degenerateTriangles", r.degenerateTriangles},
-                         {"intersectingPairs", r.intersectingPairs},
-                         {"intersectingExamples", examples}}
+        std::cout << nlohmann::ordered_json{{"command", "check"},
+                                            {"file", path},
+                                            {"validSolid", r.validSolid()},
+                                            {"watertight", r.watertight()},
+                                            {"vertices", r.vertices},
+                                            {"triangles", r.triangles},
+                                            {"edges", r.edges},
+                                            {"components", r.components},
+                                            {"eulerCharacteristic", r.eulerCharacteristic},
+                                            {"genus", r.genus >= 0 ? nlohmann::ordered_json(r.genus)
+                                                                   : nullptr},
+                                            {"volumeMm3", r.volumeMm3},
+                                            {"volumeCc", r.volumeMm3 / 1000},
+                                            {"areaMm2", r.areaMm2},
+                                            {"boundaryEdges", r.boundaryEdges},
+                                            {"nonManifoldEdges", r.nonManifoldEdges},
+                                            {"nonManifoldVertices", r.nonManifoldVertices},
+                                            {"misorientedEdges", r.misorientedEdges},
+                                            {"degenerateTriangles", r.degenerateTriangles},
+                                            {"intersectingPairs", r.intersectingPairs},
+                                            {"intersectingExamples", examples}}
                          .dump(2)
                   << "\n";
     } else {
@@ -56,8 +56,9 @@ void runCheck(const std::string& path, bool json) {
                   << (r.validSolid() ? "valid closed solid\n" : "NOT a valid closed solid\n");
     }
     if (!r.validSolid())
-        throw InputError(path, 0, r.watertight() ? "self-intersecting or inside-out surface"
-                                                 : "not a watertight, oriented 2-manifold");
+        throw InputError(path, 0,
+                         r.watertight() ? "self-intersecting or inside-out surface"
+                                        : "not a watertight, oriented 2-manifold");
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ using namespace OpenMesh;
 // Receives what OpenMesh's readers parse and keeps vertices and faces as
 // they come; everything else (colours, normals, texture data) is ignored.
 class SoupImporter : public IO::BaseImporter {
-public:
+  public:
     explicit SoupImporter(TriangleSoup& soup) : soup_(soup) {}
 
     VertexHandle add_vertex(const Vec3f& p) override { return add_vertex(Vec3d(p)); }
@@ -77,7 +77,7 @@ public:
     void set_status(FaceHandle, const Attributes::StatusInfo&) override {}
     void add_texture_information(int, std::string) override {}
 
-private:
+  private:
     TriangleSoup& soup_;
 };
 
@@ -95,8 +95,9 @@ TriangleSoup readTriangleSoup(const std::string& path) {
     for (const auto& t : soup.triangles)
         for (std::uint32_t v : t)
             if (v >= soup.points.size())
-                throw InputError(path, 0, "a face refers to vertex " + std::to_string(v) +
-                                              " of " + std::to_string(soup.points.size()));
+                throw InputError(path, 0,
+                                 "a face refers to vertex " + std::to_string(v) + " of " +
+                                     std::to_string(soup.points.size()));
     if (soup.triangles.empty()) throw InputError(path, 0, "mesh has no triangles");
     return soup;
 }

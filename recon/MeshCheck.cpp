@@ -1,5 +1,7 @@
 #include "recon/MeshCheck.hpp"
 
+#include "recon/TriangleBvh.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,7 +13,9 @@ namespace dfrecon {
 namespace {
 
 // Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc.
-double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) { return dot(cross(b - a, c - a), d - a); }
+double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    return dot(cross(b - a, c - a), d - a);
+}
 
 // 2D orientation in the plane that drops `axis`.
 double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
@@ -19,7 +23,9 @@ double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
     return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
 }
 
-int sign(double x) { return (x > 0) - (x < 0); }
+int sign(double x) {
+    return (x > 0) - (x < 0);
+}
 
 // Closed 2D segment intersection in the plane dropping `axis`.
 bool segmentsMeet2(Vec3 p, Vec3 q, Vec3 a, Vec3 b, int axis) {
@@ -70,96 +76,6 @@ bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
     return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
 
-struct Box {
-    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-    void add(Vec3 p) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    void add(const Box& b) {
-        add(b.lo);
-        add(b.hi);
-    }
-    bool overlaps(const Box& b) const {
-        return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
-               lo.z <= b.hi.z && b.lo.z <= hi.z;
-    }
-};
-
-// A bounding volume hierarchy over triangles: median splits along the
-// longest axis, leaves of up to 4 triangles.
-struct Bvh {
-    struct Node {
-        Box box;
-        int left = -1, right = -1;    // children, or -1 for a leaf
-        std::size_t first = 0, count = 0;  // leaf range in `order`
-    };
-    std::vector<Node> nodes;
-    std::vector<std::size_t> order;
-
-    Bvh(const std::vector<Box>& boxes) : order(boxes.size()) {
-        std::iota(order.begin(), order.end(), 0);
-        if (!boxes.empty()) build(boxes, 0, boxes.size());
-    }
-
-    int build(const std::vector<Box>& boxes, std::size_t first, std::size_t last) {
-        const int index = int(nodes.size());
-        nodes.emplace_back();
-        Box box;
-        for (std::size_t k = first; k < last; ++k) box.add(boxes[order[k]]);
-        nodes[std::size_t(index)].box = box;
-        if (last - first <= 4) {
-            nodes[std::size_t(index)].first = first;
-            nodes[std::size_t(index)].count = last - first;
-            return index;
-        }
-        const Vec3 extent = box.hi - box.lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-        const std::size_t mid = (first + last) / 2;
-        std::nth_element(order.begin() + std::ptrdiff_t(first), order.begin() + std::ptrdiff_t(mid),
-                         order.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
-                             return boxes[a].lo[axis] + boxes[a].hi[axis] <
-                                    boxes[b].lo[axis] + boxes[b].hi[axis];
-                         });
-        const int left = build(boxes, first, mid);
-        const int right = build(boxes, mid, last);
-        nodes[std::size_t(index)].left = left;
-        nodes[std::size_t(index)].right = right;
-        return index;
-    }
-
-    // Calls visit(i, j), i != j, for every pair of triangles whose boxes overlap.
-    template <class Visit>
-    void selfPairs(const std::vector<Box>& boxes, Visit&& visit) const {
-        if (nodes.empty()) return;
-        std::vector<std::pair<int, int>> stack{{0, 0}};
-        while (!stack.empty()) {
-            const auto [a, b] = stack.back();
-            stack.pop_back();
-            const Node &na = nodes[std::size_t(a)], &nb = nodes[std::size_t(b)];
-            if (!na.box.overlaps(nb.box)) continue;
-            const bool leafA = na.left < 0, leafB = nb.left < 0;
-            if (leafA && leafB) {
-                for (std::size_t p = 0; p < na.count; ++p)
-                    for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
-                        const std::size_t i = order[na.first + p], j = order[nb.first + q];
-                        if (boxes[i].overlaps(boxes[j])) visit(i, j);
-                    }
-            } else if (a == b) {
-                stack.push_back({na.left, na.left});
-                stack.push_back({na.right, na.right});
-                stack.push_back({na.left, na.right});
-            } else if (!leafA && (leafB || na.count >= nb.count)) {
-                stack.push_back({na.left, b});
-                stack.push_back({na.right, b});
-            } else {
-                stack.push_back({a, nb.left});
-                stack.push_back({a, nb.right});
-            }
-        }
-    }
-};
-
 // Union–find over indices.
 struct Components {
     std::vector<std::size_t> parent;
@@ -198,7 +114,8 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
         while (sa[oa] >= 0) ++oa;  // s's vertex off the shared edge
         while (ob == sa[0] || ob == sa[1] || ob == sa[2]) ++ob;
         const Vec3 u = a[(oa + 1) % 3], v = a[(oa + 2) % 3];
-        if (orient(u, v, a[oa], b[ob]) != 0) return false;  // different planes: meet on the edge only
+        if (orient(u, v, a[oa], b[ob]) != 0)
+            return false;  // different planes: meet on the edge only
         // Coplanar: folded onto each other when both lie on the same side.
         const double sideA = dot(cross(v - u, a[oa] - u), normal);
         const double sideB = dot(cross(v - u, b[ob] - u), normal);
@@ -208,7 +125,8 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     int ka = 0;
     while (sa[ka] < 0) ++ka;
     const int kb = sa[ka];
-    const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3], b2 = b[(kb + 2) % 3];
+    const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3],
+               b2 = b[(kb + 2) % 3];
     const Vec3 v = a[ka];
     if (orient(a[0], a[1], a[2], b1) == 0 && orient(a[0], a[1], a[2], b2) == 0) {
         // Coplanar wedges at v overlap iff a direction of one lies strictly
@@ -234,10 +152,12 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
     const double da[3] = {orient(b[0], b[1], b[2], a[0]), orient(b[0], b[1], b[2], a[1]),
                           orient(b[0], b[1], b[2], a[2])};
-    if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0)) return false;
+    if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0))
+        return false;
     const double db[3] = {orient(a[0], a[1], a[2], b[0]), orient(a[0], a[1], a[2], b[1]),
                           orient(a[0], a[1], a[2], b[2])};
-    if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0)) return false;
+    if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0))
+        return false;
     if (da[0] == 0 && da[1] == 0 && da[2] == 0)
         return coplanarTrianglesMeet(a, b, dominantAxis(cross(b[1] - b[0], b[2] - b[0])));
     // The intersection, if any, is a segment whose ends lie on edges.
@@ -284,7 +204,8 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     Components parts(n);
     for (std::size_t begin = 0; begin < uses.size();) {
         std::size_t end = begin;
-        while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi)
+        while (end < uses.size() && uses[end].lo == uses[begin].lo &&
+               uses[end].hi == uses[begin].hi)
             ++end;
         ++report.edges;
         const std::size_t count = end - begin;
@@ -324,11 +245,8 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
 
     // Self-intersections over the BVH of triangle boxes.
-    std::vector<Box> boxes(soup.triangles.size());
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
-        for (std::uint32_t v : soup.triangles[t]) boxes[t].add(soup.points[v]);
-    const Bvh bvh(boxes);
-    bvh.selfPairs(boxes, [&](std::size_t i, std::size_t j) {
+    const TriangleBvh bvh(soup);
+    bvh.selfPairs([&](std::size_t i, std::size_t j) {
         if (degenerate[i] || degenerate[j]) return;
         if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
         ++report.intersectingPairs;

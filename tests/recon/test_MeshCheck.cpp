@@ -29,8 +29,8 @@ TriangleSoup torus(double R, double r, int n, int m) {
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < m; ++j) {
             const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-            s.points.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
-                                r * std::sin(v)});
+            s.points.push_back({(R + r * std::cos(v)) * std::cos(u),
+                                (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
         }
     auto at = [&](int i, int j) { return std::uint32_t(((i + n) % n) * m + (j + m) % m); };
     for (int i = 0; i < n; ++i)
@@ -179,7 +179,8 @@ TEST(MeshCheck, BvhFindsEveryIntersectingPairOfARandomSoup) {
     TriangleSoup s;
     for (std::uint32_t t = 0; t < 400; ++t) {
         const Vec3 c{at(random), at(random), at(random)};
-        for (int k = 0; k < 3; ++k) s.points.push_back(c + Vec3{offset(random), offset(random), offset(random)});
+        for (int k = 0; k < 3; ++k)
+            s.points.push_back(c + Vec3{offset(random), offset(random), offset(random)});
         s.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
     }
     std::size_t expected = 0;

@@ -1,0 +1,114 @@
+#include "recon/TriangleBvh.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace dfrecon {
+
+void Box3::add(Vec3 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+}
+
+double Box3::distance2(Vec3 p) const {
+    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
+    const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+    const double dz = std::max({lo.z - p.z, 0.0, p.z - hi.z});
+    return dx * dx + dy * dy + dz * dz;
+}
+
+Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+    // Which feature's Voronoi region holds p: a vertex, an edge, or the face.
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+    const Vec3 cp = p - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const double denominator = 1 / (va + vb + vc);
+    return a + (vb * denominator) * ab + (vc * denominator) * ac;
+}
+
+TriangleBvh::TriangleBvh(const TriangleSoup& soup)
+    : soup_(soup), boxes_(soup.triangles.size()), order_(soup.triangles.size()) {
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (std::uint32_t v : soup.triangles[t]) boxes_[t].add(soup.points[v]);
+    std::iota(order_.begin(), order_.end(), 0);
+    if (!boxes_.empty()) build(0, boxes_.size());
+}
+
+int TriangleBvh::build(std::size_t first, std::size_t last) {
+    const int index = int(nodes_.size());
+    nodes_.emplace_back();
+    Box3 box;
+    for (std::size_t k = first; k < last; ++k) box.add(boxes_[order_[k]]);
+    nodes_[std::size_t(index)].box = box;
+    if (last - first <= 4) {
+        nodes_[std::size_t(index)].first = first;
+        nodes_[std::size_t(index)].count = last - first;
+        return index;
+    }
+    const Vec3 extent = box.hi - box.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const std::size_t mid = (first + last) / 2;
+    std::nth_element(order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(mid),
+                     order_.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
+                         return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
+                                boxes_[b].lo[axis] + boxes_[b].hi[axis];
+                     });
+    const int left = build(first, mid);
+    const int right = build(mid, last);
+    nodes_[std::size_t(index)].left = left;
+    nodes_[std::size_t(index)].right = right;
+    nodes_[std::size_t(index)].count = last - first;
+    return index;
+}
+
+TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p) const {
+    Nearest best;
+    if (nodes_.empty()) return best;
+    double best2 = INFINITY;
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+        const Node& node = nodes_[std::size_t(stack.back())];
+        stack.pop_back();
+        if (node.box.distance2(p) >= best2) continue;
+        if (node.left < 0) {
+            for (std::size_t k = 0; k < node.count; ++k) {
+                const std::size_t t = order_[node.first + k];
+                const auto& tri = soup_.triangles[t];
+                const Vec3 q = closestPointOnTriangle(p, soup_.points[tri[0]], soup_.points[tri[1]],
+                                                      soup_.points[tri[2]]);
+                const double d2 = dot(p - q, p - q);
+                if (d2 < best2) {
+                    best2 = d2;
+                    best = {t, 0, q};
+                }
+            }
+            continue;
+        }
+        // Nearer child last, so it is searched first.
+        const Node &l = nodes_[std::size_t(node.left)], &r = nodes_[std::size_t(node.right)];
+        if (l.box.distance2(p) < r.box.distance2(p)) {
+            stack.push_back(node.right);
+            stack.push_back(node.left);
+        } else {
+            stack.push_back(node.left);
+            stack.push_back(node.right);
+        }
+    }
+    best.distance = std::sqrt(best2);
+    return best;
+}
+
+}  // namespace dfrecon

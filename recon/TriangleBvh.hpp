@@ -1,0 +1,96 @@
+#pragma once
+// A bounding volume hierarchy over the triangles of a soup: median splits
+// along the longest axis, leaves of up to 4 triangles. Answers the two
+// queries dfrecon needs: pairs of triangles whose boxes overlap (self-
+// intersection checks) and the nearest triangle to a point (exact distances
+// for verifiers and benchmarks).
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "io/TriangleSoup.hpp"
+
+namespace dfrecon {
+
+struct Box3 {
+    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    void add(Vec3 p);
+    void add(const Box3& b) {
+        add(b.lo);
+        add(b.hi);
+    }
+    bool overlaps(const Box3& b) const {
+        return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
+               lo.z <= b.hi.z && b.lo.z <= hi.z;
+    }
+    /// Squared distance from p to the box (0 inside).
+    double distance2(Vec3 p) const;
+};
+
+/// The point of triangle abc nearest to p (Voronoi-region walk, exact up to
+/// rounding).
+Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
+
+class TriangleBvh {
+public:
+    /// Builds over `soup`, which must outlive the hierarchy. O(T log T).
+    explicit TriangleBvh(const TriangleSoup& soup);
+
+    /// Calls visit(i, j) once for every pair of distinct triangles whose
+    /// bounding boxes overlap.
+    template <class Visit>
+    void selfPairs(Visit&& visit) const;
+
+    struct Nearest {
+        std::size_t triangle = 0;
+        double distance = INFINITY;
+        Vec3 point;  // on the triangle
+    };
+    /// The triangle nearest to p and the distance; O(log T) typically.
+    Nearest nearest(Vec3 p) const;
+
+private:
+    struct Node {
+        Box3 box;
+        int left = -1, right = -1;         // children, or -1 for a leaf
+        std::size_t first = 0, count = 0;  // leaf range in order_
+    };
+    int build(std::size_t first, std::size_t last);
+
+    const TriangleSoup& soup_;
+    std::vector<Box3> boxes_;
+    std::vector<Node> nodes_;
+    std::vector<std::size_t> order_;
+};
+
+template <class Visit>
+void TriangleBvh::selfPairs(Visit&& visit) const {
+    if (nodes_.empty()) return;
+    std::vector<std::pair<int, int>> stack{{0, 0}};
+    while (!stack.empty()) {
+        const auto [a, b] = stack.back();
+        stack.pop_back();
+        const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
+        if (!na.box.overlaps(nb.box)) continue;
+        const bool leafA = na.left < 0, leafB = nb.left < 0;
+        if (leafA && leafB) {
+            for (std::size_t p = 0; p < na.count; ++p)
+                for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
+                    const std::size_t i = order_[na.first + p], j = order_[nb.first + q];
+                    if (boxes_[i].overlaps(boxes_[j])) visit(i, j);
+                }
+        } else if (a == b) {
+            stack.push_back({na.left, na.left});
+            stack.push_back({na.right, na.right});
+            stack.push_back({na.left, na.right});
+        } else if (!leafA && (leafB || na.count >= nb.count)) {
+            stack.push_back({na.left, b});
+            stack.push_back({na.right, b});
+        } else {
+            stack.push_back({a, nb.left});
+            stack.push_back({a, nb.right});
+        }
+    }
+}
+
+}  // namespace dfrecon
