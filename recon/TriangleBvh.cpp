@@ -59,7 +59,8 @@ int TriangleBvh::build(std::size_t first, std::size_t last) {
         return index;
     }
     const Vec3 extent = box.hi - box.lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const int axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::size_t mid = (first + last) / 2;
     std::nth_element(order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(mid),
                      order_.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {

@@ -32,7 +32,7 @@ struct Box3 {
 Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 
 class TriangleBvh {
-public:
+  public:
     /// Builds over `soup`, which must outlive the hierarchy. O(T log T).
     explicit TriangleBvh(const TriangleSoup& soup);
 
@@ -49,7 +49,7 @@ public:
     /// The triangle nearest to p and the distance; O(log T) typically.
     Nearest nearest(Vec3 p) const;
 
-private:
+  private:
     struct Node {
         Box3 box;
         int left = -1, right = -1;         // children, or -1 for a leaf

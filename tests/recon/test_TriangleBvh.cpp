@@ -23,10 +23,10 @@ TEST(TriangleBvh, ClosestPointOnTriangleBeatsDenseSamples) {
                 const Vec3 s = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
                 sampled = std::min(sampled, length(p - s));
             }
-        EXPECT_LE(length(p - q), sampled + 1e-12);              // nothing on it is nearer
-        EXPECT_GE(length(p - q), sampled - 0.2);                // and it is on the triangle
+        EXPECT_LE(length(p - q), sampled + 1e-12);  // nothing on it is nearer
+        EXPECT_GE(length(p - q), sampled - 0.2);    // and it is on the triangle
         const Vec3 n3 = cross(b - a, c - a);
-        EXPECT_NEAR(dot(q - a, n3) / length(n3), 0, 1e-9);      // in the plane
+        EXPECT_NEAR(dot(q - a, n3) / length(n3), 0, 1e-9);  // in the plane
     }
 }
 
@@ -46,9 +46,9 @@ TEST(TriangleBvh, NearestMatchesBruteForce) {
         const Vec3 p{query(random), query(random), query(random)};
         double brute = INFINITY;
         for (const auto& t : soup.triangles)
-            brute = std::min(brute, length(p - closestPointOnTriangle(p, soup.points[t[0]],
-                                                                        soup.points[t[1]],
-                                                                        soup.points[t[2]])));
+            brute = std::min(
+                brute, length(p - closestPointOnTriangle(p, soup.points[t[0]], soup.points[t[1]],
+                                                         soup.points[t[2]])));
         EXPECT_DOUBLE_EQ(bvh.nearest(p).distance, brute);
     }
 }
