@@ -9,9 +9,10 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|slices-io|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|recon|slices-io|all [--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
+        "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"
         "  slices-io  .slices reading and writing vs a bare iostream read\n";
     if (argc < 2) {
         std::cerr << usage;
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
         if (std::string(argv[a]) == "--device") device = argv[a + 1];
     if (suite == "fields") return benchFields(device);
     if (suite == "slices-io") return benchSlicesIO();
-    if (suite == "all") return benchSlicesIO() | benchFields(device);
+    if (suite == "recon") return benchRecon(device);
+    if (suite == "all") return benchSlicesIO() | benchFields(device) | benchRecon(device);
     std::cerr << usage;
     return 1;
 }

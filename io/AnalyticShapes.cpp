@@ -360,6 +360,40 @@ class HollowSphere : public AnalyticShape {
 
 }  // namespace
 
+std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, unsigned seed) {
+    // The x/y extent from a few sections; z from the shape.
+    Box2 box;
+    const double z0 = shape.zMinMm(), z1 = shape.zMaxMm();
+    for (int k = 1; k < 64; ++k)
+        for (const Polygon& c : shape.section(z0 + (z1 - z0) * k / 64, 64))
+            for (Point2 p : c) box.add(p);
+    const double grow = 0.1 * std::max({box.max.x - box.min.x, box.max.y - box.min.y, z1 - z0});
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> ux(box.min.x - grow, box.max.x + grow),
+        uy(box.min.y - grow, box.max.y + grow), uz(z0 - grow, z1 + grow);
+    std::vector<Vec3> samples;
+    const double step = 1e-5 * (1 + grow);
+    for (std::size_t attempt = 0; samples.size() < count && attempt < 20 * count; ++attempt) {
+        Vec3 p{ux(random), uy(random), uz(random)};
+        // Newton steps on d(p) = 0 along the (unit) gradient of the distance.
+        for (int iteration = 0; iteration < 8; ++iteration) {
+            const double d = shape.signedDistance(p);
+            if (std::abs(d) < 1e-9) break;
+            const Vec3 g{shape.signedDistance({p.x + step, p.y, p.z}) -
+                             shape.signedDistance({p.x - step, p.y, p.z}),
+                         shape.signedDistance({p.x, p.y + step, p.z}) -
+                             shape.signedDistance({p.x, p.y - step, p.z}),
+                         shape.signedDistance({p.x, p.y, p.z + step}) -
+                             shape.signedDistance({p.x, p.y, p.z - step})};
+            const double norm = length(g);
+            if (norm == 0) break;  // on a medial point: no direction
+            p = p - (d / norm) * g;
+        }
+        if (std::abs(shape.signedDistance(p)) < 1e-9) samples.push_back(p);
+    }
+    return samples;
+}
+
 const std::vector<std::string>& shapeNames() {
     static const std::vector<std::string> names = {"sphere", "ellipsoid", "torus",        "capsule",
                                                    "y",      "two-blobs", "hollow-sphere"};

@@ -28,6 +28,12 @@ class AnalyticShape {
     virtual std::vector<Polygon> section(double zMm, int pointsPerContour) const = 0;
 };
 
+/// About `count` points on the shape's surface (|signedDistance| < 1e-9 mm),
+/// spread over all of it: uniform random points of the bounding box, grown
+/// by 10 %, projected along the numerical gradient of the distance. For
+/// measuring distances from the surface to a reconstruction.
+std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, unsigned seed = 1);
+
 /// Names accepted by makeShape, for help texts: sphere, ellipsoid, torus,
 /// capsule, y, two-blobs, hollow-sphere.
 const std::vector<std::string>& shapeNames();

@@ -34,7 +34,8 @@ TriMesh levinBaseline(const SliceFields& fields) {
     volume->setGridClass(openvdb::GRID_LEVEL_SET);
     // Voxel (i, j, k) centred at the pixel centre of (i, j) and z = zStart + k·h.
     auto transform = openvdb::math::Transform::createLinearTransform(h);
-    transform->postTranslate(openvdb::Vec3d(grid.originMm.x + 0.5 * h, grid.originMm.y + 0.5 * h, zStart));
+    transform->postTranslate(
+        openvdb::Vec3d(grid.originMm.x + 0.5 * h, grid.originMm.y + 0.5 * h, zStart));
     volume->setTransform(transform);
     // The field on plane k: linear between the bracketing slices, towards the
     // virtual slices beyond the ends.
@@ -53,7 +54,8 @@ TriMesh levinBaseline(const SliceFields& fields) {
                 out[at] = float((1 - t) * fields.distanceMm[(slices - 1) * pixels + at] +
                                 t * virtualValue(slices - 1, at));
             } else {
-                const double t = (z - fields.zMm[below]) / (fields.zMm[below + 1] - fields.zMm[below]);
+                const double t =
+                    (z - fields.zMm[below]) / (fields.zMm[below + 1] - fields.zMm[below]);
                 out[at] = float((1 - t) * fields.distanceMm[below * pixels + at] +
                                 t * fields.distanceMm[(below + 1) * pixels + at]);
             }
@@ -98,7 +100,8 @@ TriMesh levinBaseline(const SliceFields& fields) {
     handles.reserve(points.size());
     for (const openvdb::Vec3s& p : points) handles.push_back(mesh.add_vertex({p[0], p[1], p[2]}));
     // OpenVDB winds its faces clockwise seen from outside; flip to outward.
-    for (const openvdb::Vec3I& t : triangles) mesh.add_face(handles[t[2]], handles[t[1]], handles[t[0]]);
+    for (const openvdb::Vec3I& t : triangles)
+        mesh.add_face(handles[t[2]], handles[t[1]], handles[t[0]]);
     for (const openvdb::Vec4I& q : quads) {
         mesh.add_face(handles[q[3]], handles[q[2]], handles[q[1]]);
         mesh.add_face(handles[q[3]], handles[q[1]], handles[q[0]]);

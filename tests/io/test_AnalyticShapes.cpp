@@ -179,3 +179,19 @@ TEST(AnalyticShapes, RejectsUnknownNamesAndBadOptions) {
     options.spacingMm = 0;
     EXPECT_THROW(sliceShape(*makeShape("sphere"), options), std::invalid_argument);
 }
+
+TEST_P(ShapeTest, SurfaceSamplesLieOnTheSurfaceAndCoverIt) {
+    const auto shape = makeShape(GetParam());
+    const std::vector<Vec3> samples = sampleSurface(*shape, 4000);
+    ASSERT_GE(samples.size(), 4000u);
+    for (const Vec3& p : samples) EXPECT_LT(std::abs(shape->signedDistance(p)), 1e-9);
+    // Coverage: every vertex of a coarse set of sections has a sample nearby.
+    for (double z = shape->zMinMm() + 0.5; z < shape->zMaxMm(); z += 1.5)
+        for (const Polygon& c : shape->section(z, 24))
+            for (Point2 q : c) {
+                double nearest = INFINITY;
+                for (const Vec3& p : samples)
+                    nearest = std::min(nearest, length(p - Vec3{q.x, q.y, z}));
+                EXPECT_LT(nearest, 3.0) << GetParam() << " at " << q.x << "," << q.y << "," << z;
+            }
+}
