@@ -36,9 +36,9 @@ std::vector<Vec3> sampleMesh(const TriangleSoup& soup, std::size_t count, unsign
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<Vec3> samples;
     for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t t = std::size_t(
-            std::lower_bound(cumulative.begin(), cumulative.end(), u(random) * total) -
-            cumulative.begin());
+        const std::size_t t =
+            std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), u(random) * total) -
+                        cumulative.begin());
         const auto& tri = soup.triangles[std::min(t, soup.triangles.size() - 1)];
         double a = u(random), b = u(random);
         if (a + b > 1) a = 1 - a, b = 1 - b;
@@ -93,17 +93,17 @@ int benchRecon(const std::string& device) {
             const TriangleSoup soup = toTriangleSoup(mesh);
             const MeshCheckReport check = checkMesh(soup);
             const SurfaceDistance distance = measure(*shape, soup);
-            std::cout << nlohmann::ordered_json{
-                             {"bench", "recon"},
-                             {"case", name + " " + std::to_string(int(spacing)) + " mm"},
-                             {"system", "levin-mc"},
-                             {"seconds", seconds},
-                             {"triangles", check.triangles},
-                             {"watertight", check.validSolid()},
-                             {"hausdorff_mm", distance.hausdorffMm},
-                             {"mean_dist_mm", distance.meanMm},
-                             {"volume_err_pct",
-                              100 * (check.volumeMm3 / shape->volumeMm3() - 1)}}
+            std::cout << nlohmann::ordered_json{{"bench", "recon"},
+                                                {"case",
+                                                 name + " " + std::to_string(int(spacing)) + " mm"},
+                                                {"system", "levin-mc"},
+                                                {"seconds", seconds},
+                                                {"triangles", check.triangles},
+                                                {"watertight", check.validSolid()},
+                                                {"hausdorff_mm", distance.hausdorffMm},
+                                                {"mean_dist_mm", distance.meanMm},
+                                                {"volume_err_pct",
+                                                 100 * (check.volumeMm3 / shape->volumeMm3() - 1)}}
                              .dump()
                       << std::endl;
         }

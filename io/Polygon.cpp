@@ -32,12 +32,14 @@ int windingNumber(Point2 p, const Polygon& polygon) {
     return winding;
 }
 
-double distanceToSegment(Point2 p, Point2 a, Point2 b) {
+double nearestSegmentParameter(Point2 p, Point2 a, Point2 b) {
     const Point2 ab = b - a;
     const double len2 = dot(ab, ab);
-    double t = len2 > 0 ? dot(p - a, ab) / len2 : 0;
-    t = std::clamp(t, 0.0, 1.0);
-    return length(p - (a + t * ab));
+    return std::clamp(len2 > 0 ? dot(p - a, ab) / len2 : 0.0, 0.0, 1.0);
+}
+
+double distanceToSegment(Point2 p, Point2 a, Point2 b) {
+    return length(p - (a + nearestSegmentParameter(p, a, b) * (b - a)));
 }
 
 double distanceToBoundary(Point2 p, const Polygon& polygon) {

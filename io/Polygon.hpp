@@ -45,6 +45,10 @@ double signedArea(const Polygon& polygon);
 /// undefined for p exactly on the boundary. O(n).
 int windingNumber(Point2 p, const Polygon& polygon);
 
+/// Parameter t in [0, 1] of the point a + t·(b − a) of segment ab nearest
+/// to p (0 for a degenerate segment).
+double nearestSegmentParameter(Point2 p, Point2 a, Point2 b);
+
 /// Distance from p to the closed segment ab.
 double distanceToSegment(Point2 p, Point2 a, Point2 b);
 

@@ -264,10 +264,9 @@ SliceFields computeSliceFieldsReference(const std::vector<Slice>& slices, const 
                     const Polygon& poly = contours[c];
                     const std::uint32_t n = std::uint32_t(poly.size());
                     for (std::uint32_t k = 0; k < n; ++k) {
-                        const Point2 a = poly[k], ab = poly[(k + 1) % n] - a, ap = p - a;
-                        const double len2 = dot(ab, ab);
-                        const double t = std::clamp(len2 > 0 ? dot(ap, ab) / len2 : 0.0, 0.0, 1.0);
-                        const Point2 q = ap - t * ab;
+                        const Point2 a = poly[k], b = poly[(k + 1) % n];
+                        const double t = nearestSegmentParameter(p, a, b);
+                        const Point2 q = p - (a + t * (b - a));
                         const double d2 = dot(q, q);
                         if (d2 < best2) {
                             best2 = d2;
