@@ -52,10 +52,10 @@ fuzz: setup
 	  -timeout=10 -artifact_prefix=$(FUZZ_DIR)/crashes/ $(FUZZ_DIR)/corpus
 
 format:
-	@clang-format -i $$(git ls-files '*.cpp' '*.hpp' '*.cl')
+	@clang-format -i $$(git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp' '*.cl')
 
 format-check:
-	@clang-format --dry-run --Werror $$(git ls-files '*.cpp' '*.hpp' '*.cl')
+	@clang-format --dry-run --Werror $$(git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp' '*.cl')
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR)
