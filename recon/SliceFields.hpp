@@ -29,24 +29,25 @@ struct SliceFields {
     }
 };
 
-/// Fields of all `slices` on `grid` with the OpenCL kernels of
-/// kernels/closest_segment_2d.cl (culled per 8×8 tile; batches of slices per
-/// launch; fp64 on devices that have it). Sign from the winding number of
-/// all contours, so holes, islands and touching contours come out right.
-/// Work: O(tiles·segments + pixels·candidates) per slice. Throws
-/// std::invalid_argument beyond the PrimitiveId limits, ClError on device
-/// failure.
-/// Pixels each work-item of the field kernel computes in vector lanes:
-/// 0 = by device (8 on CPUs, where it is explicit SIMD; 1 elsewhere), or
-/// 1, 4, 8. Results are the same; tests run every width.
-/// singlePrecision forces float arithmetic (what devices without fp64 get;
-/// about 1e-6 relative error instead of 1e-12).
+/// How the field kernel runs; the defaults are right for every device.
 struct FieldKernelOptions {
+    /// Pixels each work-item computes in vector lanes: 0 = by device (8 on
+    /// CPUs, where it is explicit SIMD; 1 elsewhere), or 1, 4, 8. Results are
+    /// the same; tests run every width.
     int lanes = 0;
+    /// Float arithmetic, what devices without fp64 get (about 1e-6 relative
+    /// error instead of 1e-12).
     bool singlePrecision = false;
 };
 
-/// `progress`, if set, receives the fraction of slices done after each batch.
+/// Fields of all `slices` on `grid` with the OpenCL kernels of
+/// kernels/closest_segment_2d.cl (two-level tile culling, 32×32 then 8×8;
+/// batches of slices per launch; fp64 on devices that have it). Sign from
+/// the winding number of all contours, so holes, islands and touching
+/// contours come out right. Work: O(tiles·segments + pixels·candidates) per
+/// slice. `progress`, if set, receives the fraction of slices done after
+/// each batch. Throws std::invalid_argument beyond the PrimitiveId limits,
+/// ClError on device failure.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
                                const SliceGrid& grid,
                                const std::function<void(double)>& progress = {},
