@@ -3,15 +3,15 @@
 // primitive's id (recon/PrimitiveId.hpp). One launch covers a batch of slices
 // (the third global dimension).
 //
-// REAL is double when the device has fp64 (the host passes -DREAL=double),
-// else float. Coordinates are millimetres relative to the grid origin, so
-// magnitudes stay small. Pixel (i, j) has its centre at
-// ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm).
+// REAL is double when the device has fp64 (the host passes -DREAL=double
+// -DREAL_IS_DOUBLE), else float. Coordinates are millimetres relative to the
+// grid origin, so magnitudes stay small. Pixel (i, j) has its centre at
+// ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the fine tile and
+// work-group side) and LANES come from the host too.
 //
 // Culling (tile_candidates, run coarse then fine): pixels are grouped in
-// square tiles. For a
-// tile with centre c and half-diagonal h (over its pixel centres), every
-// pixel p in it has |p - c| <= h, so
+// square tiles. For a tile with centre c and half-diagonal h (over its pixel
+// centres), every pixel p in it has |p - c| <= h, so
 //   d(p, s) >= d(c, s) - h   and   min_s d(p, s) <= min_s d(c, s) + h.
 // Only segments with d(c, s) <= min_s d(c, s) + 2h can be nearest to any
 // pixel of the tile. The candidate list keeps segment order, so ties resolve
