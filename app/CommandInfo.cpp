@@ -31,7 +31,8 @@ nlohmann::ordered_json roiJson(const Roi& roi) {
     std::size_t holes = 0;
     for (const Slice& slice : roi.slices) {
         slices.push_back(sliceJson(slice));
-        for (int depth : nestingDepths(slice)) holes += depth % 2;
+        for (const auto& contour : slices.back()["contours"])
+            holes += contour["depth"].get<int>() % 2;
     }
     nlohmann::ordered_json j = {{"name", roi.name},
                                 {"slices", roi.slices.size()},
