@@ -1,5 +1,6 @@
 #include "recon/MeshCheck.hpp"
 
+#include "io/Polygon.hpp"
 #include "recon/TriangleBvh.hpp"
 
 #include <algorithm>
@@ -23,22 +24,15 @@ double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
     return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
 }
 
-int sign(double x) {
-    return (x > 0) - (x < 0);
+// p in the plane that drops `axis`.
+Point2 project(Vec3 p, int axis) {
+    return {p[(axis + 1) % 3], p[(axis + 2) % 3]};
 }
 
 // Closed 2D segment intersection in the plane dropping `axis`.
 bool segmentsMeet2(Vec3 p, Vec3 q, Vec3 a, Vec3 b, int axis) {
-    const int o1 = sign(orient2(p, q, a, axis)), o2 = sign(orient2(p, q, b, axis));
-    const int o3 = sign(orient2(a, b, p, axis)), o4 = sign(orient2(a, b, q, axis));
-    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-    auto within = [axis](Vec3 s, Vec3 t, Vec3 r) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        return std::min(s[u], t[u]) <= r[u] && r[u] <= std::max(s[u], t[u]) &&
-               std::min(s[v], t[v]) <= r[v] && r[v] <= std::max(s[v], t[v]);
-    };
-    return (o1 == 0 && within(p, q, a)) || (o2 == 0 && within(p, q, b)) ||
-           (o3 == 0 && within(a, b, p)) || (o4 == 0 && within(a, b, q));
+    return segmentContact(project(p, axis), project(q, axis), project(a, axis), project(b, axis)) !=
+           SegmentContact::None;
 }
 
 // Closed point-in-triangle in the plane dropping `axis`.

@@ -90,10 +90,6 @@ Polygon star(std::mt19937& random, Point2 centre, int n, double rMin, double rMa
     return p;
 }
 
-SliceGrid gridFor(const std::vector<Slice>& slices, double pixelMm) {
-    return gridForSlices(slices, pixelMm);
-}
-
 }  // namespace
 
 TEST(SliceFields, RandomPolygonsWithHolesAndIslands) {
@@ -109,7 +105,7 @@ TEST(SliceFields, RandomPolygonsWithHolesAndIslands) {
         ASSERT_FALSE(findContourDefect(slice.contours).has_value());
         slices.push_back(slice);
     }
-    expectAgreement(slices, gridFor(slices, 0.7));
+    expectAgreement(slices, gridForSlices(slices, 0.7));
 }
 
 TEST(SliceFields, TouchingContoursKeepTheirSigns) {
@@ -121,8 +117,8 @@ TEST(SliceFields, TouchingContoursKeepTheirSigns) {
                       {{30, 0}, {35, 10}, {40, 5}}};
     normaliseOrientation(slice);
     const std::vector<Slice> slices{slice};
-    expectAgreement(slices, gridFor(slices, 0.25));
-    const SliceFields f = computeSliceFields(runtime(), slices, gridFor(slices, 0.25));
+    expectAgreement(slices, gridForSlices(slices, 0.25));
+    const SliceFields f = computeSliceFields(runtime(), slices, gridForSlices(slices, 0.25));
     // Just inside square 2 near the shared corner, and inside the hole.
     const SliceGrid& g = f.grid;
     const int i = int((10.3 - g.originMm.x) / g.pixelMm),
@@ -140,7 +136,7 @@ TEST(SliceFields, SpikesAndCollinearRuns) {
     slice.contours = {spiky};
     normaliseOrientation(slice);
     const std::vector<Slice> slices{slice};
-    expectAgreement(slices, gridFor(slices, 0.13));
+    expectAgreement(slices, gridForSlices(slices, 0.13));
 }
 
 TEST(SliceFields, ContoursFarOutsideTheGrid) {
@@ -162,14 +158,14 @@ TEST(SliceFields, OneContourOfThreePointsAndEmptySlices) {
     triangle.zMm = 1;
     triangle.contours = {{{0, 0}, {4, 0}, {1, 3}}};
     const std::vector<Slice> slices{empty, triangle, empty};
-    const SliceGrid grid = gridFor(slices, 0.05);
+    const SliceGrid grid = gridForSlices(slices, 0.05);
     expectAgreement(slices, grid);
 }
 
 TEST(SliceFields, CircleDistancesAreExactToThePolygon) {
     const ContourSet set = sliceShape(*makeShape("torus"), {});
     const std::vector<Slice>& slices = set.rois[0].slices;
-    const SliceGrid grid = gridFor(slices, 0);
+    const SliceGrid grid = gridForSlices(slices, 0);
     EXPECT_LE(std::max(grid.width, grid.height), kDefaultGridPixels);
     EXPECT_GE(std::max(grid.width, grid.height), kDefaultGridPixels - 2);
     expectAgreement(slices, grid);
