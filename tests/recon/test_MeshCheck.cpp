@@ -5,10 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include "io/MeshIO.hpp"
 #include "recon/MeshCheck.hpp"
+#include "tests/recon/RandomSoup.hpp"
 
 using namespace dfrecon;
 
@@ -174,15 +174,7 @@ TEST(MeshCheck, WrittenMeshesReadBackValid) {
 TEST(MeshCheck, BvhFindsEveryIntersectingPairOfARandomSoup) {
     // Independent triangles (no shared vertices): the checker's count must
     // equal the all-pairs count.
-    std::mt19937 random(9);
-    std::uniform_real_distribution<double> at(0, 20), offset(-1.5, 1.5);
-    TriangleSoup s;
-    for (std::uint32_t t = 0; t < 400; ++t) {
-        const Vec3 c{at(random), at(random), at(random)};
-        for (int k = 0; k < 3; ++k)
-            s.points.push_back(c + Vec3{offset(random), offset(random), offset(random)});
-        s.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-    }
+    const TriangleSoup s = dfrecon::testing::randomTriangles(9, 400, 20, 1.5);
     std::size_t expected = 0;
     for (std::size_t i = 0; i < s.triangles.size(); ++i)
         for (std::size_t j = i + 1; j < s.triangles.size(); ++j) {

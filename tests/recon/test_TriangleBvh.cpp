@@ -6,6 +6,7 @@
 #include <random>
 
 #include "recon/TriangleBvh.hpp"
+#include "tests/recon/RandomSoup.hpp"
 
 using namespace dfrecon;
 
@@ -32,14 +33,7 @@ TEST(TriangleBvh, ClosestPointOnTriangleBeatsDenseSamples) {
 
 TEST(TriangleBvh, NearestMatchesBruteForce) {
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> at(0, 30), offset(-2, 2);
-    TriangleSoup soup;
-    for (std::uint32_t t = 0; t < 500; ++t) {
-        const Vec3 c{at(random), at(random), at(random)};
-        for (int k = 0; k < 3; ++k)
-            soup.points.push_back(c + Vec3{offset(random), offset(random), offset(random)});
-        soup.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-    }
+    const TriangleSoup soup = dfrecon::testing::randomTriangles(5, 500, 30, 2);
     const TriangleBvh bvh(soup);
     std::uniform_real_distribution<double> query(-10, 40);
     for (int trial = 0; trial < 300; ++trial) {
