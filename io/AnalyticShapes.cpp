@@ -14,10 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double norm(Vec3 p) {
-    return std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-}
-
 Polygon circle(Point2 centre, double radius, int points) {
     Polygon polygon;
     for (int i = 0; i < points; ++i) {
@@ -40,7 +36,7 @@ class Sphere : public AnalyticShape {
     std::string name() const override { return name_; }
     double volumeMm3() const override { return 4.0 / 3.0 * kPi * r_ * r_ * r_; }
     double signedDistance(Vec3 p) const override {
-        return norm({p.x - c_.x, p.y - c_.y, p.z - c_.z}) - r_;
+        return length(Vec3{p.x - c_.x, p.y - c_.y, p.z - c_.z}) - r_;
     }
     double zMinMm() const override { return c_.z - r_; }
     double zMaxMm() const override { return c_.z + r_; }
@@ -121,7 +117,7 @@ double distanceToEllipsoid(double e0, double e1, double e2, double y0, double y1
                 const double r0 = (e0 / e2) * (e0 / e2), r1 = (e1 / e2) * (e1 / e2);
                 const double s = ellipseRoot({r0, r1, 1}, {z0, z1, z2}, g);
                 const double x0 = r0 * y0 / (s + r0), x1 = r1 * y1 / (s + r1), x2 = y2 / (s + 1);
-                return norm({x0 - y0, x1 - y1, x2 - y2});
+                return length(Vec3{x0 - y0, x1 - y1, x2 - y2});
             }
             return distanceToEllipse(e1, e2, y1, y2);
         }
@@ -135,7 +131,7 @@ double distanceToEllipsoid(double e0, double e1, double e2, double y0, double y1
         const double discr = 1 - xde0 * xde0 - xde1 * xde1;
         if (discr > 0) {
             const double x0 = e0 * xde0, x1 = e1 * xde1, x2 = e2 * std::sqrt(discr);
-            return norm({x0 - y0, x1 - y1, x2});
+            return length(Vec3{x0 - y0, x1 - y1, x2});
         }
     }
     return distanceToEllipse(e0, e1, y0, y1);
@@ -209,7 +205,7 @@ class Capsule : public AnalyticShape {
         return kPi * r_ * r_ * 2 * h_ + 4.0 / 3.0 * kPi * r_ * r_ * r_;
     }
     double signedDistance(Vec3 p) const override {
-        return norm({p.x - std::clamp(p.x, -h_, h_), p.y, p.z}) - r_;
+        return length(Vec3{p.x - std::clamp(p.x, -h_, h_), p.y, p.z}) - r_;
     }
     double zMinMm() const override { return -r_; }
     double zMaxMm() const override { return r_; }
@@ -341,7 +337,7 @@ class HollowSphere : public AnalyticShape {
     std::string name() const override { return "hollow-sphere"; }
     double volumeMm3() const override { return 4.0 / 3.0 * kPi * (R_ * R_ * R_ - r_ * r_ * r_); }
     double signedDistance(Vec3 p) const override {
-        const double rho = norm(p);
+        const double rho = length(p);
         return std::max(rho - R_, r_ - rho);
     }
     double zMinMm() const override { return -R_; }
