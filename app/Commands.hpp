@@ -17,5 +17,6 @@ void addDevicesCommand(CLI::App& root, const GlobalOptions& global);
 void addInfoCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 void addCheckCommand(CLI::App& root, const GlobalOptions& global);
+void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     addDevicesCommand(root, global);
     addInfoCommand(root, global);
     addFieldsCommand(root, global);
+    addReconstructCommand(root, global);
     addCheckCommand(root, global);
 
     try {

@@ -118,4 +118,16 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh) {
     return soup;
 }
 
+TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
+    TriMesh mesh;
+    std::vector<TriMesh::VertexHandle> vertices;
+    vertices.reserve(soup.points.size());
+    for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
+    std::size_t refused = 0;
+    for (const auto& t : soup.triangles)
+        if (!mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid()) ++refused;
+    if (refusedFaces) *refusedFaces = refused;
+    return mesh;
+}
+
 }  // namespace dfrecon

@@ -26,4 +26,9 @@ TriangleSoup readTriangleSoup(const std::string& path);
 /// The triangles of a half-edge mesh.
 TriangleSoup toTriangleSoup(const TriMesh& mesh);
 
+/// The half-edge mesh of a soup (writeMesh adds normals). OpenMesh refuses
+/// faces that would make an edge non-manifold; how many it refused is
+/// returned in `refusedFaces` (0 for any valid surface).
+TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces = nullptr);
+
 }  // namespace dfrecon

@@ -10,6 +10,7 @@ packages=(
   libopenmesh-dev
   libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libdcmtk-dev
+  libcgal-dev
   libgtest-dev
   libcli11-dev nlohmann-json3-dev
   clang libclang-rt-14-dev clang-format

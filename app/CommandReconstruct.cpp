@@ -1,0 +1,177 @@
+// dfrecon reconstruct IN.slices -o OUT: contours to a closed surface
+// (docs/reconstruction.md), with a report of its size, volume and topology.
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Inputs.hpp"
+#include "app/Progress.hpp"
+#include "io/MeshIO.hpp"
+#include "recon/MeshCheck.hpp"
+#include "recon/Reconstruction.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+struct ReconstructArgs {
+    std::string input, output, roi;
+    bool all = false, json = false, ascii = false;
+    ReconstructionOptions options;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Where ROI `roi` goes: the output path itself for one ROI, else
+// OUTPUT/NAME.EXT with the extension the output folder's name cannot give,
+// so .ply.
+std::string outputPathFor(const ReconstructArgs& args, const Roi& roi, bool several) {
+    namespace fs = std::filesystem;
+    if (!several) return args.output;
+    return (fs::path(args.output) / (fileStem(roi.name) + ".ply")).string();
+}
+
+nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
+                                      const std::string& path, const ReconstructArgs& args,
+                                      const GlobalOptions& global) {
+    Reconstruction result;
+    {
+        Progress progress("reconstructing " + roi.name, !global.quiet);
+        result = reconstructSurface(runtime, roi, args.options,
+                                    [&](double f) { progress.update(f); });
+    }
+    auto stage = std::chrono::steady_clock::now();
+    const MeshCheckReport check = checkMesh(result.surface);
+    const double checkSeconds = secondsSince(stage);
+    stage = std::chrono::steady_clock::now();
+    std::size_t refused = 0;
+    const TriMesh mesh = toTriMesh(result.surface, &refused);
+    MeshWriteOptions write;
+    write.binary = !args.ascii;
+    writeMesh(mesh, path, write);
+    const double writeSeconds = secondsSince(stage);
+
+    const ReconstructionStats& s = result.stats;
+    if (!args.json) {
+        std::cout << roi.name << ": " << check.vertices << " vertices, " << check.triangles
+                  << " triangles, volume " << check.volumeMm3 / 1000 << " cc, "
+                  << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
+        if (check.genus >= 0) std::cout << ", genus " << check.genus;
+        std::cout << " -> " << path << "\n";
+    }
+    if (!global.quiet && !check.validSolid() && args.options.cap != CapMode::None)
+        std::cerr << "warning: " << roi.name
+                  << ": the surface is not a valid closed solid (run dfrecon check " << path
+                  << ")\n";
+    return {{"roi", roi.name},
+            {"output", path},
+            {"vertices", check.vertices},
+            {"triangles", check.triangles},
+            {"volumeMm3", check.volumeMm3},
+            {"volumeCc", check.volumeMm3 / 1000},
+            {"areaMm2", check.areaMm2},
+            {"watertight", check.watertight()},
+            {"selfIntersectingPairs", check.intersectingPairs},
+            {"validSolid", check.validSolid()},
+            {"components", check.components},
+            {"eulerCharacteristic", check.eulerCharacteristic},
+            {"genus", check.genus >= 0 ? nlohmann::ordered_json(check.genus) : nullptr},
+            {"boundaryEdges", check.boundaryEdges},
+            {"facesRefusedByOpenMesh", refused},
+            {"slices", s.slices},
+            {"contourPoints", s.contourPoints},
+            {"pixelMm", s.pixelMm},
+            {"cap", capModeName(args.options.cap)},
+            {"strips", s.strips},
+            {"intermediateLayers", s.recursions},
+            {"deepestLevel", s.deepestLevel},
+            {"closedAtDepthLimit", s.limitClosings},
+            {"endContours", s.caps},
+            {"seconds",
+             {{"simplify", s.simplifySeconds},
+              {"fields", s.fieldsSeconds},
+              {"medialAxes", s.medialSeconds},
+              {"triangulation", s.triangulationSeconds},
+              {"check", checkSeconds},
+              {"write", writeSeconds}}}};
+}
+
+void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
+    namespace fs = std::filesystem;
+    const auto start = std::chrono::steady_clock::now();
+    const SlicesLoad load = loadContours(args.input, global);
+    const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
+    const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output));
+    if (several)
+        fs::create_directories(args.output);
+    else if (!isMeshExtension(args.output))
+        throw std::invalid_argument("output '" + args.output +
+                                    "' needs a mesh extension (.ply .stl .obj .off)");
+    ocl::Runtime runtime(global.device);
+    nlohmann::ordered_json reports = nlohmann::ordered_json::array();
+    for (const Roi* roi : rois)
+        reports.push_back(
+            reconstructRoi(runtime, *roi, outputPathFor(args, *roi, several), args, global));
+    if (args.json)
+        std::cout << nlohmann::ordered_json{{"command", "reconstruct"},
+                                            {"input", args.input},
+                                            {"device", runtime.device().deviceName},
+                                            {"maxDepth", args.options.maxDepth},
+                                            {"contourErrorMm", args.options.contourErrorMm},
+                                            {"seconds", secondsSince(start)},
+                                            {"rois", reports}}
+                         .dump(2)
+                  << "\n";
+}
+
+}  // namespace
+
+void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
+    auto args = std::make_shared<ReconstructArgs>();
+    CLI::App* cmd = root.add_subcommand(
+        "reconstruct", "Reconstruct a closed triangle surface from the contours of an ROI");
+    cmd->footer(
+        "One ROI: OUT is a mesh file (.ply .stl .obj .off). Several ROIs (--all): OUT is a "
+        "folder that gets NAME.ply per ROI. Contour points are mesh vertices; normals point "
+        "outward. Caps: 'flat' extrudes each end contour by the cap offset and closes it with a "
+        "flat lid, so the volume is what planning systems count (area x spacing per slice); "
+        "'dome' rises from the contour to the cap offset (less volume, rounder ends); 'none' "
+        "leaves the ends open. See docs/reconstruction.md.");
+    cmd->add_option("file", args->input, "Input .slices file")->required();
+    cmd->add_option("-o,--output", args->output, "Output mesh file, or folder with --all")
+        ->required();
+    cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
+    cmd->add_flag("--all", args->all, "Every ROI of the file");
+    cmd->add_option("--pixel-mm", args->options.pixelMm,
+                    "Field pixel size in mm (default 0: the ROI's extent plus margin fits ~512 px)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--contour-error", args->options.contourErrorMm,
+                    "Simplify contours first so every original point stays within this many mm "
+                    "(0 = keep every point)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--max-depth", args->options.maxDepth,
+                    "Recursion levels for branching regions; at the limit what is left is closed "
+                    "by a step of spacing / 2^(depth+1)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 12));
+    const std::map<std::string, CapMode> caps{
+        {"flat", CapMode::Flat}, {"dome", CapMode::Dome}, {"none", CapMode::None}};
+    cmd->add_option("--cap", args->options.cap, "End caps: flat, dome or none (default flat)")
+        ->transform(CLI::CheckedTransformer(caps, CLI::ignore_case));
+    cmd->add_option("--cap-offset", args->options.capOffsetMm,
+                    "How far beyond an end contour its cap reaches, mm (default: half the slice "
+                    "spacing; at most half the gap to the next slice)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    cmd->callback([args, &global] { runReconstruct(*args, global); });
+}
+
+}  // namespace dfrecon::app

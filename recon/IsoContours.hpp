@@ -1,0 +1,21 @@
+#pragma once
+// Zero isolines of a field sampled at pixel centres (marching squares), as
+// closed polygons in millimetres. Used for the intermediate contours of the
+// recursion: the zero set of D_lower + D_upper is the contour half-way between
+// two slices (reconstruction paper Fig. 7).
+#include <vector>
+
+#include "io/Polygon.hpp"
+#include "recon/SliceGrid.hpp"
+
+namespace dfrecon {
+
+/// The borders of the region where `values` < 0 (row-major on `grid`;
+/// values outside the grid count as positive), with crossings placed by
+/// linear interpolation along pixel-centre edges. Every polygon is closed
+/// and simple, no two cross; outer borders run counter-clockwise and hole
+/// borders clockwise (the orientation convention of Slice). Saddle cells
+/// connect their negative corners when the cell's mean is negative. O(pixels).
+std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceGrid& grid);
+
+}  // namespace dfrecon

@@ -1,0 +1,111 @@
+#include "recon/PrismClosing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "recon/PlanarRegion.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+std::vector<WeightedContour> weighted(const LayerPart& part, int weight) {
+    std::vector<WeightedContour> out;
+    if (part.layer)
+        for (std::uint32_t c : part.contours) out.push_back({&part.layer->contours[c], weight});
+    return out;
+}
+
+std::size_t contourCount(const LayerPart& part) {
+    return part.layer ? part.contours.size() : 0;
+}
+
+}  // namespace
+
+void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
+                   double middleZMm) {
+    std::vector<WeightedContour> contours = weighted(lower, +1);
+    const std::size_t lowerCount = contours.size();
+    for (const WeightedContour& c : weighted(upper, -1)) contours.push_back(c);
+    if (contours.empty()) return;
+    const PlanarRegion region = triangulateRegion(contours);
+    std::vector<std::uint32_t> lid;
+    lid.reserve(region.points.size());
+    for (Point2 p : region.points) lid.push_back(builder.addVertex(p, middleZMm));
+
+    for (std::size_t q = 0; q < contourCount(lower); ++q) {
+        const std::vector<std::uint32_t>& ids = lower.layer->vertexIds[lower.contours[q]];
+        const std::size_t n = ids.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::vector<std::uint32_t>& top = region.edgeChains[q][k];
+            const std::uint32_t a = ids[k], b = ids[(k + 1) % n];
+            for (std::size_t j = 0; j + 1 < top.size(); ++j)
+                builder.addTriangle(a, lid[top[j + 1]], lid[top[j]]);
+            builder.addTriangle(a, b, lid[top.back()]);
+        }
+    }
+    for (std::size_t q = 0; q < contourCount(upper); ++q) {
+        const std::vector<std::uint32_t>& ids = upper.layer->vertexIds[upper.contours[q]];
+        const std::size_t n = ids.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::vector<std::uint32_t>& bottom = region.edgeChains[lowerCount + q][k];
+            const std::uint32_t a = ids[k], b = ids[(k + 1) % n];
+            for (std::size_t j = 0; j + 1 < bottom.size(); ++j)
+                builder.addTriangle(lid[bottom[j]], lid[bottom[j + 1]], b);
+            builder.addTriangle(lid[bottom.front()], b, a);
+        }
+    }
+    // Solid below the lid where only X is (sign +1): it faces up.
+    for (std::size_t t = 0; t < region.triangles.size(); ++t) {
+        const auto& tri = region.triangles[t];
+        if (region.sign[t] > 0)
+            builder.addTriangle(lid[tri[0]], lid[tri[1]], lid[tri[2]]);
+        else
+            builder.addTriangle(lid[tri[0]], lid[tri[2]], lid[tri[1]]);
+    }
+}
+
+void domeCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
+             const std::vector<Point2>& interiorPoints,
+             const std::function<double(Point2)>& depthMm) {
+    const std::vector<WeightedContour> contours = weighted(part, +1);
+    if (contours.empty()) return;
+    const PlanarRegion region = triangulateRegion(contours, interiorPoints);
+    const double z0 = part.layer->zMm;
+
+    // Contour corners keep their layer vertices; everything else is lifted.
+    constexpr std::uint32_t kUnset = 0xffffffffu;
+    std::vector<std::uint32_t> vertex(region.points.size(), kUnset);
+    std::vector<bool> onContour(region.points.size(), false);
+    for (std::size_t q = 0; q < part.contours.size(); ++q) {
+        const std::vector<std::uint32_t>& ids = part.layer->vertexIds[part.contours[q]];
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            vertex[region.edgeChains[q][k].front()] = ids[k];
+            for (std::uint32_t p : region.edgeChains[q][k]) onContour[p] = true;
+        }
+    }
+    double deepest = 0;
+    std::vector<double> depth(region.points.size(), 0.0);
+    for (std::size_t p = 0; p < region.points.size(); ++p) {
+        if (onContour[p]) continue;
+        depth[p] = std::max(0.0, depthMm(region.points[p]));
+        deepest = std::max(deepest, depth[p]);
+    }
+    const double direction = up ? 1.0 : -1.0;
+    for (std::size_t p = 0; p < region.points.size(); ++p) {
+        if (vertex[p] != kUnset) continue;
+        // Quarter circle: vertical at the rim, flat at the deepest point.
+        const double r = deepest > 0 ? std::min(1.0, depth[p] / deepest) : 0.0;
+        const double rise = heightMm * std::sqrt(std::max(0.0, 1 - (1 - r) * (1 - r)));
+        vertex[p] = builder.addVertex(region.points[p], z0 + direction * rise);
+    }
+    for (std::size_t t = 0; t < region.triangles.size(); ++t) {
+        const auto& tri = region.triangles[t];
+        if ((region.sign[t] > 0) == up)
+            builder.addTriangle(vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
+        else
+            builder.addTriangle(vertex[tri[0]], vertex[tri[2]], vertex[tri[1]]);
+    }
+}
+
+}  // namespace dfrecon

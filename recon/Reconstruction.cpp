@@ -1,0 +1,342 @@
+#include "recon/Reconstruction.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <numeric>
+#include <stdexcept>
+
+#include "recon/ContourSimplification.hpp"
+#include "recon/IsoContours.hpp"
+#include "recon/MedialAxis.hpp"
+#include "recon/PrismClosing.hpp"
+#include "recon/StripStitching.hpp"
+#include "recon/SurfaceBuilder.hpp"
+
+namespace dfrecon {
+
+const char* capModeName(CapMode mode) {
+    switch (mode) {
+        case CapMode::Flat: return "flat";
+        case CapMode::Dome: return "dome";
+        case CapMode::None: return "none";
+    }
+    return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+class UnionFind {
+public:
+    explicit UnionFind(std::size_t n) : parent_(n) {
+        std::iota(parent_.begin(), parent_.end(), std::size_t(0));
+    }
+    std::size_t find(std::size_t x) {
+        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+        return x;
+    }
+    void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
+
+private:
+    std::vector<std::size_t> parent_;
+};
+
+/// What one slab's medial axes connect: contours of both sides (indices into
+/// the slab's field slices) and the axes between them.
+struct Component {
+    std::vector<std::uint32_t> lower, upper;
+    std::vector<std::size_t> axes;
+};
+
+std::vector<Component> connectByAxes(const std::vector<MedialAxis>& axes, std::size_t lowerCount,
+                                     std::size_t upperCount) {
+    const std::size_t contours = lowerCount + upperCount;
+    UnionFind sets(contours + axes.size());
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+        for (const MedialPixel& p : axes[a].pixels) {
+            if (p.lowerId != kNoPrimitive) {
+                const std::uint32_t c = PrimitiveId::decode(p.lowerId).contour;
+                if (c < lowerCount) sets.join(contours + a, c);
+            }
+            if (p.upperId != kNoPrimitive) {
+                const std::uint32_t c = PrimitiveId::decode(p.upperId).contour;
+                if (c < upperCount) sets.join(contours + a, lowerCount + c);
+            }
+        }
+    }
+    std::vector<Component> components;
+    std::vector<std::size_t> slot(contours + axes.size(), SIZE_MAX);
+    auto componentOf = [&](std::size_t node) -> Component& {
+        const std::size_t root = sets.find(node);
+        if (slot[root] == SIZE_MAX) {
+            slot[root] = components.size();
+            components.emplace_back();
+        }
+        return components[slot[root]];
+    };
+    for (std::size_t c = 0; c < lowerCount; ++c) componentOf(c).lower.push_back(std::uint32_t(c));
+    for (std::size_t c = 0; c < upperCount; ++c)
+        componentOf(lowerCount + c).upper.push_back(std::uint32_t(c));
+    for (std::size_t a = 0; a < axes.size(); ++a) componentOf(contours + a).axes.push_back(a);
+    return components;
+}
+
+class SurfaceReconstructor {
+public:
+    SurfaceReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
+                         const SliceGrid& grid, ReconstructionStats& stats)
+        : runtime_(runtime), options_(options), grid_(grid), stats_(stats) {}
+
+    SurfaceBuilder& builder() { return builder_; }
+
+    /// The slab between two original slices, whose fields are slices
+    /// `lowerSlice` and `upperSlice` of `fields`.
+    void originalSlab(const Layer& lower, const Layer& upper, const SliceFields& fields,
+                      std::size_t lowerSlice, std::size_t upperSlice) {
+        slab(part(lower, all(lower)), part(upper, all(upper)), fields, lowerSlice, upperSlice, 0);
+    }
+
+    /// Caps the contours of `part` that end, up or down from its plane.
+    void cap(const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
+             std::size_t slice) {
+        if (end.contours.empty()) return;
+        stats_.caps += end.contours.size();
+        const double z = end.layer->zMm;
+        switch (options_.cap) {
+            case CapMode::None: return;
+            case CapMode::Flat:
+                if (up)
+                    closeByPrisms(builder_, end, {}, z + offsetMm);
+                else
+                    closeByPrisms(builder_, {}, end, z - offsetMm);
+                return;
+            case CapMode::Dome: dome(end, up, offsetMm, fields, slice); return;
+        }
+    }
+
+private:
+    static std::vector<std::uint32_t> all(const Layer& layer) {
+        std::vector<std::uint32_t> ids(layer.contours.size());
+        std::iota(ids.begin(), ids.end(), 0u);
+        return ids;
+    }
+    static LayerPart part(const Layer& layer, std::vector<std::uint32_t> contours) {
+        return {&layer, std::move(contours)};
+    }
+    static LayerPart subset(const LayerPart& of, const std::vector<std::uint32_t>& local) {
+        LayerPart out{of.layer, {}};
+        for (std::uint32_t c : local) out.contours.push_back(of.contours[c]);
+        return out;
+    }
+
+    SliceFields fieldsOf(const LayerPart& lower, const LayerPart& upper) {
+        std::vector<Slice> slices(2);
+        for (int s = 0; s < 2; ++s) {
+            const LayerPart& p = s == 0 ? lower : upper;
+            slices[std::size_t(s)].zMm = p.layer->zMm;
+            for (std::uint32_t c : p.contours)
+                slices[std::size_t(s)].contours.push_back(p.layer->contours[c]);
+        }
+        const auto start = Clock::now();
+        SliceFields fields = computeSliceFields(runtime_, slices, grid_, {}, options_.kernel);
+        stats_.fieldsSeconds += secondsSince(start);
+        return fields;
+    }
+
+    /// Joins `lower` to `upper`; `fields` holds their fields (slice
+    /// `a` = lower's contours in order, `b` = upper's).
+    void slab(const LayerPart& lower, const LayerPart& upper, const SliceFields& fields,
+              std::size_t a, std::size_t b, int depth) {
+        stats_.deepestLevel = std::max(stats_.deepestLevel, depth);
+        const double middle = 0.5 * (lower.layer->zMm + upper.layer->zMm);
+        std::vector<MedialAxis> axes;
+        if (!lower.contours.empty() && !upper.contours.empty()) {
+            const auto start = Clock::now();
+            const SliceSum sum = sumSlices(runtime_, fields, a, b);
+            axes = traceMedialAxes(fields, a, b, sum);
+            stats_.medialSeconds += secondsSince(start);
+        }
+        LayerPart endingLower{lower.layer, {}}, endingUpper{upper.layer, {}};
+        for (const Component& c : connectByAxes(axes, lower.contours.size(), upper.contours.size())) {
+            const LayerPart x = subset(lower, c.lower), y = subset(upper, c.upper);
+            if (c.axes.empty()) {
+                for (std::uint32_t k : x.contours) endingLower.contours.push_back(k);
+                for (std::uint32_t k : y.contours) endingUpper.contours.push_back(k);
+            } else if (!(c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
+                         strip(x, y, axes[c.axes[0]], c.lower[0], c.upper[0]))) {
+                if (depth >= options_.maxDepth) {
+                    closeByPrisms(builder_, x, y, middle);
+                    ++stats_.limitClosings;
+                } else {
+                    recurse(x, y, depth);
+                }
+            }
+        }
+        if (depth == 0) {
+            // Ends of the stack proper: capped as the user chose.
+            cap(endingLower, true, capOffset(upper.layer->zMm - lower.layer->zMm), fields, a);
+            cap(endingUpper, false, capOffset(upper.layer->zMm - lower.layer->zMm), fields, b);
+        } else {
+            closeByPrisms(builder_, endingLower, {}, middle);
+            closeByPrisms(builder_, {}, endingUpper, middle);
+        }
+    }
+
+    double capOffset(double spacingMm) const {
+        // Never past the middle of the slab, where the other side's caps end.
+        const double half = 0.5 * spacingMm;
+        return options_.capOffsetMm < 0 ? half : std::min(options_.capOffsetMm, half);
+    }
+
+    bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,
+               std::uint32_t lowerLocal, std::uint32_t upperLocal) {
+        const Layer& lower = *x.layer;
+        const Layer& upper = *y.layer;
+        const std::uint32_t p = x.contours[0], q = y.contours[0];
+        const auto lowerAt = positionsAlongAxis(axis, grid_, lower.contours[p], lowerLocal, true);
+        if (!lowerAt) return false;
+        const auto upperAt = positionsAlongAxis(axis, grid_, upper.contours[q], upperLocal, false);
+        if (!upperAt) return false;
+        stitchStrip(builder_, lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt);
+        ++stats_.strips;
+        return true;
+    }
+
+    /// The paper's Fig. 7: the medial axis becomes a contour half-way, and
+    /// both halves are solved again.
+    void recurse(const LayerPart& x, const LayerPart& y, int depth) {
+        const SliceFields fields = fieldsOf(x, y);
+        const auto start = Clock::now();
+        const SliceSum sum = sumSlicesReference(fields, 0, 1);
+        std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, grid_);
+        // Pixel-step isolines carry far more points than the surface needs.
+        Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};
+        for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
+            if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));
+        normaliseOrientation(middle);
+        stats_.medialSeconds += secondsSince(start);
+        if (middle.contours.empty()) {
+            closeByPrisms(builder_, x, y, middle.zMm);
+            ++stats_.limitClosings;
+            return;
+        }
+        ++stats_.recursions;
+        layers_.push_back(makeLayer(builder_, middle.zMm, std::move(middle.contours)));
+        const Layer& mid = layers_.back();
+        const LayerPart m = part(mid, all(mid));
+        const SliceFields below = fieldsOf(x, m);
+        slab(x, m, below, 0, 1, depth + 1);
+        const SliceFields above = fieldsOf(m, y);
+        slab(m, y, above, 0, 1, depth + 1);
+    }
+
+    void dome(const LayerPart& end, bool up, double heightMm, const SliceFields& fields,
+              std::size_t slice) {
+        // Inner vertices on a lattice about half the dome height apart, at
+        // least a pixel and a half inside, where the slice's field is exact.
+        const double pixel = grid_.pixelMm;
+        const int step = std::max(2, int(std::lround(0.5 * heightMm / pixel)));
+        auto depthAt = [&](int i, int j) { return -fields.distanceMm[fields.index(slice, i, j)]; };
+        std::vector<Point2> inner;
+        for (int j = step / 2; j < grid_.height; j += step) {
+            for (int i = step / 2; i < grid_.width; i += step) {
+                if (depthAt(i, j) < 1.5 * pixel) continue;
+                const Point2 p = grid_.pixelCentre(i, j);
+                int winding = 0;
+                for (std::uint32_t c : end.contours)
+                    winding += windingNumber(p, end.layer->contours[c]);
+                if (winding != 0) inner.push_back(p);
+            }
+        }
+        auto depthMm = [&](Point2 p) {
+            const int i = int(std::floor((p.x - grid_.originMm.x) / pixel));
+            const int j = int(std::floor((p.y - grid_.originMm.y) / pixel));
+            if (i < 0 || j < 0 || i >= grid_.width || j >= grid_.height) return 0.0;
+            return double(depthAt(i, j));
+        };
+        domeCap(builder_, end, up, heightMm, inner, depthMm);
+    }
+
+    ocl::Runtime& runtime_;
+    const ReconstructionOptions& options_;
+    const SliceGrid& grid_;
+    ReconstructionStats& stats_;
+    SurfaceBuilder builder_;
+    std::deque<Layer> layers_;  // intermediate contours; LayerParts point into it
+};
+
+}  // namespace
+
+Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
+                                  const ReconstructionOptions& options,
+                                  const std::function<void(double)>& progress) {
+    if (options.maxDepth < 0) throw std::invalid_argument("reconstruct: max depth must be >= 0");
+    Reconstruction result;
+    ReconstructionStats& stats = result.stats;
+
+    auto start = Clock::now();
+    std::vector<Slice> slices;
+    for (const Slice& s : roi.slices) {
+        if (s.contours.empty()) continue;
+        Slice slice{s.zMm, {}};
+        if (options.contourErrorMm > 0) {
+            for (SimplifiedContour& c : simplifySlice(s.contours, options.contourErrorMm))
+                slice.contours.push_back(std::move(c.points));
+        } else {
+            slice.contours = s.contours;
+        }
+        for (const Polygon& c : slice.contours) stats.contourPoints += c.size();
+        slices.push_back(std::move(slice));
+    }
+    stats.simplifySeconds = secondsSince(start);
+    if (slices.empty()) throw std::invalid_argument("ROI '" + roi.name + "' has no contours");
+    stats.slices = slices.size();
+    stats.slabs = slices.size() - 1;
+
+    const SliceGrid grid = gridForSlices(slices, options.pixelMm);
+    stats.pixelMm = grid.pixelMm;
+    start = Clock::now();
+    auto fieldProgress = [&](double f) {
+        if (progress) progress(0.5 * f);
+    };
+    const SliceFields fields =
+        computeSliceFields(runtime, slices, grid, fieldProgress, options.kernel);
+    stats.fieldsSeconds = secondsSince(start);
+
+    start = Clock::now();
+    const double fieldsAndMedialBefore = stats.fieldsSeconds;
+    SurfaceReconstructor reconstructor(runtime, options, grid, stats);
+    std::deque<Layer> layers;
+    for (const Slice& s : slices) layers.push_back(makeLayer(reconstructor.builder(), s.zMm, s.contours));
+    const SpacingStats spacing = spacingOf(roi);
+    const double endSpacing = spacing.meanMm > 0 ? spacing.meanMm : 1.0;
+    auto capEnd = [&](std::size_t s, bool up) {
+        const std::size_t neighbour = up ? s - 1 : s + 1;
+        const double gap = slices.size() > 1 ? std::fabs(slices[s].zMm - slices[neighbour].zMm)
+                                             : endSpacing;
+        const Layer& layer = layers[s];
+        std::vector<std::uint32_t> ids(layer.contours.size());
+        std::iota(ids.begin(), ids.end(), 0u);
+        const double offset = options.capOffsetMm < 0 ? 0.5 * gap : options.capOffsetMm;
+        reconstructor.cap({&layer, ids}, up, offset, fields, s);
+    };
+    capEnd(0, false);
+    for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
+        reconstructor.originalSlab(layers[s], layers[s + 1], fields, s, s + 1);
+        if (progress) progress(0.5 + 0.5 * double(s + 1) / double(slices.size()));
+    }
+    capEnd(slices.size() - 1, true);
+    // Time spent on fields and axes inside the recursion is counted there.
+    stats.triangulationSeconds =
+        secondsSince(start) - (stats.fieldsSeconds - fieldsAndMedialBefore) - stats.medialSeconds;
+    result.surface = reconstructor.builder().release();
+    return result;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,65 @@
+#pragma once
+// Contours in, a closed surface out (reconstruction paper §2.1, §4): exact 2D
+// fields of every slice, medial axes between neighbours, strips traced along
+// each axis that joins one contour to one contour, recursion with the axis as
+// an intermediate contour wherever contours branch, merge or do not match,
+// prism closings at the recursion limit, and caps at the ends.
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "cl/Runtime.hpp"
+#include "io/ContourSet.hpp"
+#include "io/TriangleSoup.hpp"
+#include "recon/SliceFields.hpp"
+
+namespace dfrecon {
+
+/// How ends are closed: contours with no partner beyond them (first and last
+/// slice, a branch that stops).
+enum class CapMode {
+    Flat,  // the contour extruded by the cap offset, closed by a flat lid
+    Dome,  // a dome from the contour rising to the cap offset
+    None,  // left open (the surface has boundary loops there)
+};
+
+/// "flat", "dome", "none".
+const char* capModeName(CapMode mode);
+
+struct ReconstructionOptions {
+    double pixelMm = 0;         // field pixel size; <= 0: about 512 pixels a side
+    double contourErrorMm = 0;  // simplify contours within this bound first (0: keep all points)
+    int maxDepth = 4;           // recursion levels for branching regions
+    CapMode cap = CapMode::Flat;
+    double capOffsetMm = -1;  // how far beyond an end contour its cap reaches; < 0: half the spacing
+    FieldKernelOptions kernel;
+};
+
+struct ReconstructionStats {
+    double pixelMm = 0;
+    std::size_t slices = 0, contourPoints = 0;  // after contour simplification
+    std::size_t slabs = 0;        // pairs of neighbouring slices
+    std::size_t strips = 0;       // contour pairs joined by tracing an axis
+    std::size_t recursions = 0;   // intermediate contour layers made
+    int deepestLevel = 0;         // deepest recursion level used
+    std::size_t limitClosings = 0;  // regions closed by prisms at the recursion limit
+    std::size_t caps = 0;           // end contours capped (or left open with CapMode::None)
+    double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0;
+};
+
+struct Reconstruction {
+    TriangleSoup surface;  // outward-oriented triangles
+    ReconstructionStats stats;
+};
+
+/// Reconstructs one ROI. With CapMode::Flat or Dome the result is closed and
+/// consistently oriented; contour points are mesh vertices (exactly, unless
+/// simplified away). `progress` receives the fraction done. Throws
+/// std::invalid_argument for an ROI without contours, ClError on device
+/// failure. Work: the fields, O(pixels) per slab for the axes, O(points)
+/// for the strips.
+Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
+                                  const ReconstructionOptions& options = {},
+                                  const std::function<void(double)>& progress = {});
+
+}  // namespace dfrecon
