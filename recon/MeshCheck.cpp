@@ -122,7 +122,15 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3],
                b2 = b[(kb + 2) % 3];
     const Vec3 v = a[ka];
-    if (orient(a[0], a[1], a[2], b1) == 0 && orient(a[0], a[1], a[2], b2) == 0) {
+    const Vec3 nA = cross(a1 - v, a2 - v), nB = cross(b1 - v, b2 - v);
+    // Within a billionth of a radian counts as coplanar: the line where two
+    // nearly parallel planes meet is numerical noise, and flat pieces of a
+    // surface (strips between straight contour runs) are coplanar in exact
+    // arithmetic but not in doubles.
+    auto offPlane = [&](Vec3 p) {
+        return std::abs(dot(nA, p - v)) > 1e-9 * length(nA) * length(p - v);
+    };
+    if (!offPlane(b1) && !offPlane(b2)) {
         // Coplanar wedges at v overlap iff a direction of one lies strictly
         // inside the other, or they coincide.
         const int axis = dominantAxis(normal);
@@ -138,7 +146,16 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
                (sameDirection(a1, b1) && sameDirection(a2, b2)) ||
                (sameDirection(a1, b2) && sameDirection(a2, b1));
     }
-    return segmentMeetsTriangle(a1, a2, b) || segmentMeetsTriangle(b1, b2, a);
+    // Different planes: both triangles meet their planes' common line in a
+    // segment starting at v; they overlap beyond v iff one direction of that
+    // line points into both wedges.
+    const Vec3 line = cross(nA, nB);
+    auto intoWedge = [&](Vec3 d, Vec3 p, Vec3 q, Vec3 n) {
+        return dot(cross(p - v, d), n) > 0 && dot(cross(d, q - v), n) > 0;
+    };
+    for (const Vec3 d : {line, -1.0 * line})
+        if (intoWedge(d, a1, a2, nA) && intoWedge(d, b1, b2, nB)) return true;
+    return false;
 }
 
 }  // namespace
