@@ -3,7 +3,12 @@
 // reconstruction → surface with the exact signed distance, surface →
 // reconstruction with exact point–triangle distances over a BVH.
 // Systems: levin-mc (the baseline: fields interpolated in z, marching cubes
-// at 0.5 mm voxels). The dfrecon triangulation joins when it lands.
+// at 0.5 mm voxels), dfrecon at default settings and dfrecon with
+// --contour-error 0.1, all with fields at 0.5 mm pixels. Then the end-to-end
+// time of 100 slices x 500 points per contour (fields, axes, triangulation,
+// writing a PLY).
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <random>
 
@@ -11,8 +16,10 @@
 
 #include "bench/Benchmarks.hpp"
 #include "io/AnalyticShapes.hpp"
+#include "io/MeshIO.hpp"
 #include "recon/LevinBaseline.hpp"
 #include "recon/MeshCheck.hpp"
+#include "recon/Reconstruction.hpp"
 #include "recon/TriangleBvh.hpp"
 
 namespace dfrecon::bench {
@@ -68,13 +75,68 @@ SurfaceDistance measure(const AnalyticShape& shape, const TriangleSoup& soup) {
     return d;
 }
 
+void printRow(const std::string& caseName, const std::string& system, double seconds,
+              const AnalyticShape& shape, const TriangleSoup& soup) {
+    const MeshCheckReport check = checkMesh(soup);
+    const SurfaceDistance distance = measure(shape, soup);
+    std::cout << nlohmann::ordered_json{{"bench", "recon"},
+                                        {"case", caseName},
+                                        {"system", system},
+                                        {"seconds", seconds},
+                                        {"triangles", check.triangles},
+                                        {"watertight", check.validSolid()},
+                                        {"genus", check.genus},
+                                        {"components", check.components},
+                                        {"hausdorff_mm", distance.hausdorffMm},
+                                        {"mean_dist_mm", distance.meanMm},
+                                        {"volume_err_pct",
+                                         100 * (check.volumeMm3 / shape.volumeMm3() - 1)}}
+                     .dump()
+              << std::endl;
+}
+
+// 100 slices of 500 points through the whole command path, the speed target
+// of the reconstruction issue.
+void benchEndToEnd(ocl::Runtime& runtime) {
+    const auto shape = makeShape("ellipsoid");
+    const ContourSet probe = sliceShape(*shape, {});
+    const Extent3 extent = extentOf(probe.rois[0]);
+    SynthOptions options;
+    options.pointsPerContour = 500;
+    // Slices at the ellipsoid's z range split into 100 (the synth slicer keeps
+    // inside the shape).
+    options.spacingMm = (extent.max[2] - extent.min[2]) / 99.0;
+    const ContourSet set = sliceShape(*shape, options);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "dfrecon-bench-recon.ply").string();
+    Reconstruction result;
+    const double seconds = bestSeconds(3, [&] {
+        result = reconstructSurface(runtime, set.rois[0]);
+        writeMesh(toTriMesh(result.surface), path);
+    });
+    std::remove(path.c_str());
+    const ReconstructionStats& s = result.stats;
+    std::cout << nlohmann::ordered_json{{"bench", "recon-speed"},
+                                        {"case", "ellipsoid " + std::to_string(s.slices) +
+                                                     " slices x 500 points"},
+                                        {"system", "dfrecon"},
+                                        {"seconds", seconds},
+                                        {"pixel_mm", s.pixelMm},
+                                        {"fields_s", s.fieldsSeconds},
+                                        {"medial_s", s.medialSeconds},
+                                        {"triangulation_s", s.triangulationSeconds},
+                                        {"triangles", result.surface.triangles.size()}}
+                     .dump()
+              << std::endl;
+}
+
 }  // namespace
 
 int benchRecon(const std::string& device) {
     ocl::Runtime runtime(device);
     {  // Warm-up: build the kernels outside the timed runs.
         const ContourSet warm = sliceShape(*makeShape("sphere"), {});
-        computeSliceFields(runtime, warm.rois[0].slices, gridForSlices(warm.rois[0].slices, 0.5));
+        reconstructSurface(runtime, warm.rois[0]);
     }
     for (const std::string& name : shapeNames())
         for (double spacing : {2.0, 5.0}) {
@@ -83,30 +145,26 @@ int benchRecon(const std::string& device) {
             options.spacingMm = spacing;
             options.pointsPerContour = 128;
             const ContourSet set = sliceShape(*shape, options);
-            const std::vector<Slice>& slices = set.rois[0].slices;
+            const Roi& roi = set.rois[0];
+            const std::string caseName = name + " " + std::to_string(int(spacing)) + " mm";
             TriMesh mesh;
-            const double seconds = bestSeconds(1, [&] {
+            double seconds = bestSeconds(1, [&] {
                 const SliceFields fields =
-                    computeSliceFields(runtime, slices, gridForSlices(slices, 0.5));
+                    computeSliceFields(runtime, roi.slices, gridForSlices(roi.slices, 0.5));
                 mesh = levinBaseline(fields);
             });
-            const TriangleSoup soup = toTriangleSoup(mesh);
-            const MeshCheckReport check = checkMesh(soup);
-            const SurfaceDistance distance = measure(*shape, soup);
-            std::cout << nlohmann::ordered_json{{"bench", "recon"},
-                                                {"case",
-                                                 name + " " + std::to_string(int(spacing)) + " mm"},
-                                                {"system", "levin-mc"},
-                                                {"seconds", seconds},
-                                                {"triangles", check.triangles},
-                                                {"watertight", check.validSolid()},
-                                                {"hausdorff_mm", distance.hausdorffMm},
-                                                {"mean_dist_mm", distance.meanMm},
-                                                {"volume_err_pct",
-                                                 100 * (check.volumeMm3 / shape->volumeMm3() - 1)}}
-                             .dump()
-                      << std::endl;
+            printRow(caseName, "levin-mc", seconds, *shape, toTriangleSoup(mesh));
+            for (double contourError : {0.0, 0.1}) {
+                ReconstructionOptions recon;
+                recon.pixelMm = 0.5;
+                recon.contourErrorMm = contourError;
+                Reconstruction result;
+                seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, recon); });
+                printRow(caseName, contourError > 0 ? "dfrecon-ce0.1" : "dfrecon", seconds, *shape,
+                         result.surface);
+            }
         }
+    benchEndToEnd(runtime);
     return 0;
 }
 

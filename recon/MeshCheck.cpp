@@ -13,15 +13,27 @@ namespace dfrecon {
 
 namespace {
 
+// Orientations within this fraction of the product of the edge lengths
+// (angles below about 1e-10 rad) count as zero. Reconstructed surfaces are
+// full of configurations that are exactly coplanar or collinear in exact
+// arithmetic (strips between straight contour runs, vertical walls, slices
+// repeating the same outline) but only nearly so in doubles, where the plain
+// determinant's sign is noise.
+constexpr double kDegenerate = 1e-10;
+
 // Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc.
 double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    return dot(cross(b - a, c - a), d - a);
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const double det = dot(cross(u, v), w);
+    return std::abs(det) <= kDegenerate * length(u) * length(v) * length(w) ? 0.0 : det;
 }
 
 // 2D orientation in the plane that drops `axis`.
 double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+    const double bu = b[u] - a[u], bv = b[v] - a[v], cu = c[u] - a[u], cv = c[v] - a[v];
+    const double det = bu * cv - bv * cu;
+    return std::abs(det) <= kDegenerate * std::hypot(bu, bv) * std::hypot(cu, cv) ? 0.0 : det;
 }
 
 // p in the plane that drops `axis`.
@@ -123,14 +135,7 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
                b2 = b[(kb + 2) % 3];
     const Vec3 v = a[ka];
     const Vec3 nA = cross(a1 - v, a2 - v), nB = cross(b1 - v, b2 - v);
-    // Within a billionth of a radian counts as coplanar: the line where two
-    // nearly parallel planes meet is numerical noise, and flat pieces of a
-    // surface (strips between straight contour runs) are coplanar in exact
-    // arithmetic but not in doubles.
-    auto offPlane = [&](Vec3 p) {
-        return std::abs(dot(nA, p - v)) > 1e-9 * length(nA) * length(p - v);
-    };
-    if (!offPlane(b1) && !offPlane(b2)) {
+    if (orient(v, a1, a2, b1) == 0 && orient(v, a1, a2, b2) == 0) {
         // Coplanar wedges at v overlap iff a direction of one lies strictly
         // inside the other, or they coincide.
         const int axis = dominantAxis(normal);
