@@ -157,6 +157,7 @@ int benchRecon(const std::string& device) {
             for (double contourError : {0.0, 0.1}) {
                 ReconstructionOptions recon;
                 recon.pixelMm = 0.5;
+                if (getenv("BENCH_DOME")) recon.cap = CapMode::Dome;
                 recon.contourErrorMm = contourError;
                 Reconstruction result;
                 seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, recon); });

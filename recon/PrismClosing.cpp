@@ -65,9 +65,9 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
     }
 }
 
-void domeCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
-             const std::vector<Point2>& interiorPoints,
-             const std::function<double(Point2)>& depthMm) {
+void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
+                double roundingMm, const std::vector<Point2>& interiorPoints,
+                const std::function<double(Point2)>& depthMm) {
     const std::vector<WeightedContour> contours = weighted(part, +1);
     if (contours.empty()) return;
     const PlanarRegion region = triangulateRegion(contours, interiorPoints);
@@ -92,10 +92,10 @@ void domeCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double hei
         deepest = std::max(deepest, depth[p]);
     }
     const double direction = up ? 1.0 : -1.0;
+    const double radius = std::min(roundingMm, deepest);
     for (std::size_t p = 0; p < region.points.size(); ++p) {
         if (vertex[p] != kUnset) continue;
-        // Quarter circle: vertical at the rim, flat at the deepest point.
-        const double r = deepest > 0 ? std::min(1.0, depth[p] / deepest) : 0.0;
+        const double r = radius > 0 ? std::min(1.0, depth[p] / radius) : 0.0;
         const double rise = heightMm * std::sqrt(std::max(0.0, 1 - (1 - r) * (1 - r)));
         vertex[p] = builder.addVertex(region.points[p], z0 + direction * rise);
     }

@@ -28,13 +28,16 @@ struct LayerPart {
 void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
                    double middleZMm);
 
-/// A dome over the region of `part`'s contours: starts at the contours in
-/// their plane and rises (upward when `up`, else downward) to `heightMm` at
-/// the point deepest inside, along a quarter circle of depth. `depthMm(p)`
-/// is the distance from p to the contours; the dome's inner vertices sit at
-/// `interiorPoints`, which must lie inside the region and off the contours.
-void domeCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
-             const std::vector<Point2>& interiorPoints,
-             const std::function<double(Point2)>& depthMm);
+/// A rounded cap over the region of `part`'s contours: it starts at the
+/// contours in their plane and rises (upward when `up`, else downward) to
+/// `heightMm`, along a quarter circle that is vertical at the rim and flat
+/// once `roundingMm` inside (a plateau; with roundingMm at least the region's
+/// depth, a dome). `depthMm(p)` is the distance from p to the contours; the
+/// cap's inner vertices sit at `interiorPoints`, which must lie inside the
+/// region and off the contours. A height field over a planar triangulation,
+/// so it cannot fold onto itself.
+void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
+                double roundingMm, const std::vector<Point2>& interiorPoints,
+                const std::function<double(Point2)>& depthMm);
 
 }  // namespace dfrecon

@@ -1,5 +1,6 @@
 #include "recon/Reconstruction.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -107,16 +108,10 @@ public:
              std::size_t slice) {
         if (end.contours.empty()) return;
         stats_.caps += end.contours.size();
-        const double z = end.layer->zMm;
         switch (options_.cap) {
             case CapMode::None: return;
-            case CapMode::Flat:
-                if (up)
-                    closeByPrisms(builder_, end, {}, z + offsetMm);
-                else
-                    closeByPrisms(builder_, {}, end, z - offsetMm);
-                return;
-            case CapMode::Dome: dome(end, up, offsetMm, fields, slice); return;
+            case CapMode::Flat: flat(end, up, offsetMm, fields, slice); return;
+            case CapMode::Dome: rounded(end, up, offsetMm, INFINITY, fields, slice); return;
         }
     }
 
@@ -236,12 +231,80 @@ private:
         slab(m, y, above, 0, 1, depth + 1);
     }
 
-    void dome(const LayerPart& end, bool up, double heightMm, const SliceFields& fields,
+    /// How fast the contours of `end` (slice `slice` of `fields`) move inward
+    /// per mm of z, judged from the slice on the other side: the mean of its
+    /// field at their vertices over the gap. 0 when there is no such slice or
+    /// the contours grow.
+    double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields,
+                       std::size_t slice) const {
+        if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return 0;
+        const std::size_t other = up ? slice - 1 : slice + 1;
+        double sum = 0;
+        std::size_t count = 0;
+        for (std::uint32_t c : end.contours)
+            for (Point2 p : end.layer->contours[c]) {
+                const int i = std::clamp(int((p.x - grid_.originMm.x) / grid_.pixelMm), 0,
+                                         grid_.width - 1);
+                const int j = std::clamp(int((p.y - grid_.originMm.y) / grid_.pixelMm), 0,
+                                         grid_.height - 1);
+                const double d = fields.distanceMm[fields.index(other, i, j)];
+                if (!std::isfinite(d)) return 0;
+                sum += d;
+                ++count;
+            }
+        const double gap = std::fabs(fields.zMm[slice] - fields.zMm[other]);
+        return count > 0 && gap > 0 ? std::max(0.0, -(sum / double(count)) / gap) : 0.0;
+    }
+
+    /// The flat cap: a lid at the offset. Its rim continues the side's slope
+    /// from the last slab (a vertical wall where the side is vertical or
+    /// widening), so ends that were narrowing keep narrowing to the lid
+    /// instead of stepping; the lid is the end contours inset by that much
+    /// (an isoline of their field), joined to them like any slab.
+    void flat(const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
               std::size_t slice) {
-        // Inner vertices on a lattice about half the dome height apart, at
-        // least a pixel and a half inside, where the slice's field is exact.
+        const double z = end.layer->zMm + (up ? offsetMm : -offsetMm);
+        const double insetMm = inwardSlope(end, up, fields, slice) * offsetMm;
+        if (insetMm < grid_.pixelMm) {
+            if (up)
+                closeByPrisms(builder_, end, {}, z);
+            else
+                closeByPrisms(builder_, {}, end, z);
+            return;
+        }
+        const SliceFields own = fieldsOf(end, {end.layer, {}});
+        std::vector<float> shifted(own.distanceMm.begin(),
+                                   own.distanceMm.begin() + std::ptrdiff_t(grid_.pixelCount()));
+        for (float& d : shifted) d += float(insetMm);
+        Slice lid{z, {}};
+        for (SimplifiedContour& c : simplifySlice(zeroIsolines(shifted, grid_), 0.25 * grid_.pixelMm))
+            if (c.points.size() >= 3) lid.contours.push_back(std::move(c.points));
+        if (lid.contours.empty()) {
+            // The end would narrow to nothing before the lid: round it off.
+            rounded(end, up, offsetMm, INFINITY, fields, slice);
+            return;
+        }
+        normaliseOrientation(lid);
+        layers_.push_back(makeLayer(builder_, lid.zMm, std::move(lid.contours)));
+        const Layer& top = layers_.back();
+        const LayerPart lidPart = part(top, all(top));
+        if (up) {
+            const SliceFields between = fieldsOf(end, lidPart);
+            slab(end, lidPart, between, 0, 1, 1);
+        } else {
+            const SliceFields between = fieldsOf(lidPart, end);
+            slab(lidPart, end, between, 0, 1, 1);
+        }
+        roundedCap(builder_, lidPart, up, 0.0, 0.0, {}, [](Point2) { return 0.0; });
+    }
+
+    void rounded(const LayerPart& end, bool up, double heightMm, double roundingMm,
+                 const SliceFields& fields, std::size_t slice) {
+        // Inner vertices on a lattice a third of the cap height apart (so the
+        // rounding gets a few steps), at least a pixel and a half inside,
+        // where the slice's field is exact.
         const double pixel = grid_.pixelMm;
-        const int step = std::max(2, int(std::lround(0.5 * heightMm / pixel)));
+        const int step = std::max(2, int(std::lround(heightMm / 3 / pixel)));
         auto depthAt = [&](int i, int j) { return -fields.distanceMm[fields.index(slice, i, j)]; };
         std::vector<Point2> inner;
         for (int j = step / 2; j < grid_.height; j += step) {
@@ -260,7 +323,7 @@ private:
             if (i < 0 || j < 0 || i >= grid_.width || j >= grid_.height) return 0.0;
             return double(depthAt(i, j));
         };
-        domeCap(builder_, end, up, heightMm, inner, depthMm);
+        roundedCap(builder_, end, up, heightMm, roundingMm, inner, depthMm);
     }
 
     ocl::Runtime& runtime_;

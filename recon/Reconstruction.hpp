@@ -18,8 +18,8 @@ namespace dfrecon {
 /// How ends are closed: contours with no partner beyond them (first and last
 /// slice, a branch that stops).
 enum class CapMode {
-    Flat,  // the contour extruded by the cap offset, closed by a flat lid
-    Dome,  // a dome from the contour rising to the cap offset
+    Flat,  // a flat lid at the cap offset, its rim rounded with the offset as radius
+    Dome,  // a dome from the contour rising to the cap offset at its deepest point
     None,  // left open (the surface has boundary loops there)
 };
 
