@@ -4,7 +4,7 @@
 // reconstruction with exact point–triangle distances over a BVH.
 // Systems: levin-mc (the baseline: fields interpolated in z, marching cubes
 // at 0.5 mm voxels), dfrecon at default settings and dfrecon with
-// --contour-error 0.1, all with fields at 0.5 mm pixels. Then the end-to-end
+// --contour-error 0.1 (fields at their default pixel size). Then the end-to-end
 // time of 100 slices x 500 points per contour (fields, axes, triangulation,
 // writing a PLY).
 #include <cstdio>
@@ -99,13 +99,10 @@ void printRow(const std::string& caseName, const std::string& system, double sec
 // of the reconstruction issue.
 void benchEndToEnd(ocl::Runtime& runtime) {
     const auto shape = makeShape("ellipsoid");
-    const ContourSet probe = sliceShape(*shape, {});
-    const Extent3 extent = extentOf(probe.rois[0]);
     SynthOptions options;
     options.pointsPerContour = 500;
-    // Slices at the ellipsoid's z range split into 100 (the synth slicer keeps
-    // inside the shape).
-    options.spacingMm = (extent.max[2] - extent.min[2]) / 99.0;
+    // The synth slicer puts slices half a spacing in from each end.
+    options.spacingMm = (shape->zMaxMm() - shape->zMinMm()) / 100.0;
     const ContourSet set = sliceShape(*shape, options);
     const std::string path =
         (std::filesystem::temp_directory_path() / "dfrecon-bench-recon.ply").string();
@@ -156,8 +153,6 @@ int benchRecon(const std::string& device) {
             printRow(caseName, "levin-mc", seconds, *shape, toTriangleSoup(mesh));
             for (double contourError : {0.0, 0.1}) {
                 ReconstructionOptions recon;
-                recon.pixelMm = 0.5;
-                if (getenv("BENCH_DOME")) recon.cap = CapMode::Dome;
                 recon.contourErrorMm = contourError;
                 Reconstruction result;
                 seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, recon); });

@@ -362,7 +362,7 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     stats.slices = slices.size();
     stats.slabs = slices.size() - 1;
 
-    const SliceGrid grid = gridForSlices(slices, options.pixelMm);
+    const SliceGrid grid = gridForSlices(slices, options.pixelMm, kReconstructionGridPixels);
     stats.pixelMm = grid.pixelMm;
     start = Clock::now();
     auto fieldProgress = [&](double f) {

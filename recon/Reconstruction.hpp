@@ -26,8 +26,14 @@ enum class CapMode {
 /// "flat", "dome", "none".
 const char* capModeName(CapMode mode);
 
+/// Default grid side of the reconstruction's fields. Mesh vertices are the
+/// contour points whatever the pixel size; pixels only guide which points
+/// correspond and where contours branch, so half the resolution of the
+/// field export suffices (docs/reconstruction.md).
+inline constexpr int kReconstructionGridPixels = 256;
+
 struct ReconstructionOptions {
-    double pixelMm = 0;         // field pixel size; <= 0: about 512 pixels a side
+    double pixelMm = 0;  // field pixel size; <= 0: kReconstructionGridPixels a side
     double contourErrorMm = 0;  // simplify contours within this bound first (0: keep all points)
     int maxDepth = 4;           // recursion levels for branching regions
     CapMode cap = CapMode::Flat;

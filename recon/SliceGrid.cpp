@@ -18,7 +18,7 @@ SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
     return grid;
 }
 
-SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm) {
+SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gridPixels) {
     Box2 box;
     for (const Slice& slice : slices)
         for (const Polygon& contour : slice.contours)
@@ -26,8 +26,8 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm) {
     if (box.empty()) throw std::invalid_argument("no contours to place a grid around");
     const double extent = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
     if (!(pixelMm > 0)) {
-        // Longest side: extent/pixel + 1 + 2·margin pixels = kDefaultGridPixels.
-        pixelMm = extent > 0 ? extent / (kDefaultGridPixels - 1 - 2 * kGridMarginPx) : 1.0;
+        // Longest side: extent/pixel + 1 + 2·margin pixels = gridPixels.
+        pixelMm = extent > 0 ? extent / std::max(1, gridPixels - 1 - 2 * kGridMarginPx) : 1.0;
     }
     if (extent / pixelMm > 16384)
         throw std::invalid_argument("pixel size " + std::to_string(pixelMm) +

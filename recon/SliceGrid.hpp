@@ -31,8 +31,9 @@ inline constexpr int kGridMarginPx = 8;
 /// The one grid shared by all slices of an ROI: covers the union of its
 /// contours' bounding boxes plus kGridMarginPx pixels on each side. With
 /// pixelMm <= 0 the pixel size is chosen so the longer side is about
-/// kDefaultGridPixels. Throws std::invalid_argument for an ROI without
+/// `gridPixels`. Throws std::invalid_argument for an ROI without
 /// contours or a grid over 16384 pixels a side.
-SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm = 0);
+SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm = 0,
+                        int gridPixels = kDefaultGridPixels);
 
 }  // namespace dfrecon
