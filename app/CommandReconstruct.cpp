@@ -42,8 +42,8 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
     Reconstruction result;
     {
         Progress progress("reconstructing " + roi.name, !global.quiet);
-        result = reconstructSurface(runtime, roi, args.options,
-                                    [&](double f) { progress.update(f); });
+        result =
+            reconstructSurface(runtime, roi, args.options, [&](double f) { progress.update(f); });
     }
     auto stage = std::chrono::steady_clock::now();
     const MeshCheckReport check = checkMesh(result.surface);
@@ -53,7 +53,8 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             for (auto t : {a, b}) {
                 for (int k = 0; k < 3; ++k) {
                     auto p = result.surface.points[result.surface.triangles[t][std::size_t(k)]];
-                    std::cerr << result.surface.triangles[t][std::size_t(k)] << ":(" << p.x << "," << p.y << "," << p.z << ") ";
+                    std::cerr << result.surface.triangles[t][std::size_t(k)] << ":(" << p.x << ","
+                              << p.y << "," << p.z << ") ";
                 }
                 std::cerr << " | ";
             }

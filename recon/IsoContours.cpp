@@ -11,7 +11,7 @@ namespace {
 // pixel centres (i, j), (i+1, j), (i+1, j+1), (i, j+1); pixels outside the
 // grid are positive, so every isoline closes.
 class Lattice {
-public:
+  public:
     Lattice(const std::vector<float>& values, const SliceGrid& grid)
         : values_(values), grid_(grid), minPositive_(float(1e-6 * grid.pixelMm)) {}
 
@@ -40,7 +40,7 @@ public:
         return p + t * (q - p);
     }
 
-private:
+  private:
     const std::vector<float>& values_;
     const SliceGrid& grid_;
     float minPositive_;
@@ -79,8 +79,8 @@ std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceG
             for (int e = 0; e < nExit; ++e) {
                 int best = -1;
                 for (int step = 1; step < 4 && best < 0; ++step) {
-                    const int k = joined || nExit == 1 ? (exits[e] + step) % 4
-                                                       : (exits[e] - step + 4) % 4;
+                    const int k =
+                        joined || nExit == 1 ? (exits[e] + step) % 4 : (exits[e] - step + 4) % 4;
                     for (int f = 0; f < nEntry; ++f)
                         if (entries[f] == k) best = k;
                 }

@@ -15,8 +15,8 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Exact predicates with intersection points constructed in doubles: edges of
 // different contours may cross (an intermediate contour against an original
 // one), and each crossing becomes a vertex of both.
-using Cdt = CGAL::Constrained_triangulation_plus_2<CGAL::Constrained_Delaunay_triangulation_2<
-    Kernel, CGAL::Default, CGAL::Exact_predicates_tag>>;
+using Cdt = CGAL::Constrained_triangulation_plus_2<
+    CGAL::Constrained_Delaunay_triangulation_2<Kernel, CGAL::Default, CGAL::Exact_predicates_tag>>;
 
 int weightedWinding(Point2 p, const std::vector<WeightedContour>& contours) {
     int sum = 0;

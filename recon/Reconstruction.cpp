@@ -18,9 +18,12 @@ namespace dfrecon {
 
 const char* capModeName(CapMode mode) {
     switch (mode) {
-        case CapMode::Flat: return "flat";
-        case CapMode::Dome: return "dome";
-        case CapMode::None: return "none";
+        case CapMode::Flat:
+            return "flat";
+        case CapMode::Dome:
+            return "dome";
+        case CapMode::None:
+            return "none";
     }
     return "?";
 }
@@ -34,7 +37,7 @@ double secondsSince(Clock::time_point start) {
 }
 
 class UnionFind {
-public:
+  public:
     explicit UnionFind(std::size_t n) : parent_(n) {
         std::iota(parent_.begin(), parent_.end(), std::size_t(0));
     }
@@ -44,7 +47,7 @@ public:
     }
     void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
 
-private:
+  private:
     std::vector<std::size_t> parent_;
 };
 
@@ -89,7 +92,7 @@ std::vector<Component> connectByAxes(const std::vector<MedialAxis>& axes, std::s
 }
 
 class SurfaceReconstructor {
-public:
+  public:
     SurfaceReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                          const SliceGrid& grid, ReconstructionStats& stats)
         : runtime_(runtime), options_(options), grid_(grid), stats_(stats) {}
@@ -109,13 +112,18 @@ public:
         if (end.contours.empty()) return;
         stats_.caps += end.contours.size();
         switch (options_.cap) {
-            case CapMode::None: return;
-            case CapMode::Flat: flat(end, up, offsetMm, fields, slice); return;
-            case CapMode::Dome: rounded(end, up, offsetMm, INFINITY, fields, slice); return;
+            case CapMode::None:
+                return;
+            case CapMode::Flat:
+                flat(end, up, offsetMm, fields, slice);
+                return;
+            case CapMode::Dome:
+                rounded(end, up, offsetMm, INFINITY, fields, slice);
+                return;
         }
     }
 
-private:
+  private:
     static std::vector<std::uint32_t> all(const Layer& layer) {
         std::vector<std::uint32_t> ids(layer.contours.size());
         std::iota(ids.begin(), ids.end(), 0u);
@@ -158,7 +166,8 @@ private:
             stats_.medialSeconds += secondsSince(start);
         }
         LayerPart endingLower{lower.layer, {}}, endingUpper{upper.layer, {}};
-        for (const Component& c : connectByAxes(axes, lower.contours.size(), upper.contours.size())) {
+        for (const Component& c :
+             connectByAxes(axes, lower.contours.size(), upper.contours.size())) {
             const LayerPart x = subset(lower, c.lower), y = subset(upper, c.upper);
             if (c.axes.empty()) {
                 for (std::uint32_t k : x.contours) endingLower.contours.push_back(k);
@@ -243,10 +252,10 @@ private:
         std::size_t count = 0;
         for (std::uint32_t c : end.contours)
             for (Point2 p : end.layer->contours[c]) {
-                const int i = std::clamp(int((p.x - grid_.originMm.x) / grid_.pixelMm), 0,
-                                         grid_.width - 1);
-                const int j = std::clamp(int((p.y - grid_.originMm.y) / grid_.pixelMm), 0,
-                                         grid_.height - 1);
+                const int i =
+                    std::clamp(int((p.x - grid_.originMm.x) / grid_.pixelMm), 0, grid_.width - 1);
+                const int j =
+                    std::clamp(int((p.y - grid_.originMm.y) / grid_.pixelMm), 0, grid_.height - 1);
                 const double d = fields.distanceMm[fields.index(other, i, j)];
                 if (!std::isfinite(d)) return 0;
                 sum += d;
@@ -277,7 +286,8 @@ private:
                                    own.distanceMm.begin() + std::ptrdiff_t(grid_.pixelCount()));
         for (float& d : shifted) d += float(insetMm);
         Slice lid{z, {}};
-        for (SimplifiedContour& c : simplifySlice(zeroIsolines(shifted, grid_), 0.25 * grid_.pixelMm))
+        for (SimplifiedContour& c :
+             simplifySlice(zeroIsolines(shifted, grid_), 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) lid.contours.push_back(std::move(c.points));
         if (lid.contours.empty()) {
             // The end would narrow to nothing before the lid: round it off.
@@ -376,13 +386,14 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     const double fieldsAndMedialBefore = stats.fieldsSeconds;
     SurfaceReconstructor reconstructor(runtime, options, grid, stats);
     std::deque<Layer> layers;
-    for (const Slice& s : slices) layers.push_back(makeLayer(reconstructor.builder(), s.zMm, s.contours));
+    for (const Slice& s : slices)
+        layers.push_back(makeLayer(reconstructor.builder(), s.zMm, s.contours));
     const SpacingStats spacing = spacingOf(roi);
     const double endSpacing = spacing.meanMm > 0 ? spacing.meanMm : 1.0;
     auto capEnd = [&](std::size_t s, bool up) {
         const std::size_t neighbour = up ? s - 1 : s + 1;
-        const double gap = slices.size() > 1 ? std::fabs(slices[s].zMm - slices[neighbour].zMm)
-                                             : endSpacing;
+        const double gap =
+            slices.size() > 1 ? std::fabs(slices[s].zMm - slices[neighbour].zMm) : endSpacing;
         const Layer& layer = layers[s];
         std::vector<std::uint32_t> ids(layer.contours.size());
         std::iota(ids.begin(), ids.end(), 0u);

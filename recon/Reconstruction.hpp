@@ -33,23 +33,24 @@ const char* capModeName(CapMode mode);
 inline constexpr int kReconstructionGridPixels = 256;
 
 struct ReconstructionOptions {
-    double pixelMm = 0;  // field pixel size; <= 0: kReconstructionGridPixels a side
+    double pixelMm = 0;         // field pixel size; <= 0: kReconstructionGridPixels a side
     double contourErrorMm = 0;  // simplify contours within this bound first (0: keep all points)
     int maxDepth = 4;           // recursion levels for branching regions
     CapMode cap = CapMode::Flat;
-    double capOffsetMm = -1;  // how far beyond an end contour its cap reaches; < 0: half the spacing
+    double capOffsetMm =
+        -1;  // how far beyond an end contour its cap reaches; < 0: half the spacing
     FieldKernelOptions kernel;
 };
 
 struct ReconstructionStats {
     double pixelMm = 0;
     std::size_t slices = 0, contourPoints = 0;  // after contour simplification
-    std::size_t slabs = 0;        // pairs of neighbouring slices
-    std::size_t strips = 0;       // contour pairs joined by tracing an axis
-    std::size_t recursions = 0;   // intermediate contour layers made
-    int deepestLevel = 0;         // deepest recursion level used
-    std::size_t limitClosings = 0;  // regions closed by prisms at the recursion limit
-    std::size_t caps = 0;           // end contours capped (or left open with CapMode::None)
+    std::size_t slabs = 0;                      // pairs of neighbouring slices
+    std::size_t strips = 0;                     // contour pairs joined by tracing an axis
+    std::size_t recursions = 0;                 // intermediate contour layers made
+    int deepestLevel = 0;                       // deepest recursion level used
+    std::size_t limitClosings = 0;              // regions closed by prisms at the recursion limit
+    std::size_t caps = 0;  // end contours capped (or left open with CapMode::None)
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0;
 };
 

@@ -27,8 +27,8 @@ double cyclicStep(double a, double b, double n) {
 }  // namespace
 
 std::optional<AxisPositions> positionsAlongAxis(const MedialAxis& axis, const SliceGrid& grid,
-                                                const Polygon& contour,
-                                                std::uint32_t contourIndex, bool lower) {
+                                                const Polygon& contour, std::uint32_t contourIndex,
+                                                bool lower) {
     const std::size_t n = contour.size(), m = axis.pixels.size();
     if (n < 3 || m < 3) return std::nullopt;
     const double period = double(n);
@@ -66,7 +66,8 @@ std::optional<AxisPositions> positionsAlongAxis(const MedialAxis& axis, const Sl
     AxisPositions result;
     result.axisLength = length;
     const double firstVertex = std::ceil(param[0]);
-    result.first = std::size_t(((long long)firstVertex % (long long)n + (long long)n) % (long long)n);
+    result.first =
+        std::size_t(((long long)firstVertex % (long long)n + (long long)n) % (long long)n);
     result.positions.reserve(n);
     std::size_t k = 0;
     for (std::size_t v = 0; v < n; ++v) {

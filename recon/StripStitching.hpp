@@ -30,8 +30,8 @@ struct AxisPositions {
 /// the contour exactly once in the contour's direction, which is what a
 /// strip needs. O(axis pixels + contour points).
 std::optional<AxisPositions> positionsAlongAxis(const MedialAxis& axis, const SliceGrid& grid,
-                                                const Polygon& contour,
-                                                std::uint32_t contourIndex, bool lower);
+                                                const Polygon& contour, std::uint32_t contourIndex,
+                                                bool lower);
 
 /// Closes the band between a lower contour (vertices `lowerIds`, one plane)
 /// and an upper one (`upperIds`, the plane above), both in the slice

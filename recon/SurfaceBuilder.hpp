@@ -13,7 +13,7 @@
 namespace dfrecon {
 
 class SurfaceBuilder {
-public:
+  public:
     std::uint32_t addVertex(Point2 p, double zMm) {
         soup_.points.push_back({p.x, p.y, zMm});
         return std::uint32_t(soup_.points.size() - 1);
@@ -26,7 +26,7 @@ public:
     const TriangleSoup& soup() const { return soup_; }
     TriangleSoup release() { return std::move(soup_); }
 
-private:
+  private:
     TriangleSoup soup_;
 };
 

@@ -1,0 +1,213 @@
+// The reconstruction end to end: every result is checked by the mesh checker
+// (closed, manifold, oriented, no self-intersections), against the expected
+// topology, and against exact volumes or analytic surfaces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "io/AnalyticShapes.hpp"
+#include "recon/MeshCheck.hpp"
+#include "recon/Reconstruction.hpp"
+
+namespace dfrecon {
+namespace {
+
+ocl::Runtime& runtime() {
+    static ocl::Runtime instance("cpu");
+    return instance;
+}
+
+Polygon circle(Point2 centre, double radius, int points = 48, bool clockwise = false) {
+    Polygon p;
+    for (int k = 0; k < points; ++k) {
+        const double a = 2 * M_PI * k / points * (clockwise ? -1 : 1);
+        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
+    }
+    return p;
+}
+
+Polygon square(double x0, double y0, double side) {
+    return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
+}
+
+Roi stack(const std::vector<std::vector<Polygon>>& slices, double spacingMm = 2) {
+    Roi roi;
+    roi.name = "test";
+    for (std::size_t s = 0; s < slices.size(); ++s) {
+        Slice slice{spacingMm * double(s), slices[s]};
+        normaliseOrientation(slice);
+        roi.slices.push_back(slice);
+    }
+    return roi;
+}
+
+struct Checked {
+    Reconstruction result;
+    MeshCheckReport check;
+};
+
+Checked reconstruct(const Roi& roi, const ReconstructionOptions& options = {}) {
+    Checked c;
+    c.result = reconstructSurface(runtime(), roi, options);
+    c.check = checkMesh(c.result.surface);
+    return c;
+}
+
+void expectSolid(const Checked& c, long genus, std::size_t components) {
+    EXPECT_TRUE(c.check.watertight())
+        << "boundary " << c.check.boundaryEdges << " non-manifold " << c.check.nonManifoldEdges
+        << "/" << c.check.nonManifoldVertices << " misoriented " << c.check.misorientedEdges
+        << " degenerate " << c.check.degenerateTriangles;
+    EXPECT_EQ(c.check.intersectingPairs, 0u);
+    EXPECT_GT(c.check.volumeMm3, 0) << "normals point outward";
+    EXPECT_EQ(c.check.genus, genus);
+    EXPECT_EQ(c.check.components, components);
+}
+
+// Every contour point is a vertex of the surface, exactly.
+void expectContoursAreVertices(const Roi& roi, const TriangleSoup& surface) {
+    std::set<std::tuple<double, double, double>> vertices;
+    for (const Vec3& p : surface.points) vertices.insert({p.x, p.y, p.z});
+    for (const Slice& slice : roi.slices)
+        for (const Polygon& contour : slice.contours)
+            for (Point2 p : contour)
+                ASSERT_TRUE(vertices.count({p.x, p.y, slice.zMm}))
+                    << p.x << " " << p.y << " " << slice.zMm;
+}
+
+TEST(Reconstruction, EverySynthShapeIsAValidSolidOfTheRightTopology) {
+    for (const std::string& name : shapeNames())
+        for (double spacing : {2.0, 5.0}) {
+            SCOPED_TRACE(name + " at " + std::to_string(spacing) + " mm");
+            const auto shape = makeShape(name);
+            SynthOptions options;
+            options.spacingMm = spacing;
+            const ContourSet set = sliceShape(*shape, options);
+            const Roi& roi = set.rois[0];
+            const Checked c = reconstruct(roi);
+            const std::size_t components = name == "two-blobs" || name == "hollow-sphere" ? 2 : 1;
+            expectSolid(c, name == "torus" ? 1 : 0, components);
+            expectContoursAreVertices(roi, c.result.surface);
+            EXPECT_NEAR(c.check.volumeMm3 / shape->volumeMm3(), 1.0, spacing < 3 ? 0.02 : 0.05);
+            // Nothing strays further from the true surface than the slices
+            // leave undetermined.
+            for (const Vec3& p : c.result.surface.points)
+                ASSERT_LT(std::abs(shape->signedDistance(p)), 0.6 * spacing);
+        }
+}
+
+TEST(Reconstruction, OneContourToTwoRecursesAndStaysValid) {
+    const Roi roi = stack({{circle({0, 0}, 8)}, {circle({-5, 0}, 4), circle({5, 0}, 4)}});
+    const Checked c = reconstruct(roi);
+    expectSolid(c, 0, 1);
+    expectContoursAreVertices(roi, c.result.surface);
+    EXPECT_GT(c.result.stats.recursions, 0u);
+}
+
+TEST(Reconstruction, TwoContoursToOneIsTheMirrorCase) {
+    const Roi roi = stack({{circle({-5, 0}, 4), circle({5, 0}, 4)}, {circle({0, 0}, 8)}});
+    const Checked c = reconstruct(roi);
+    expectSolid(c, 0, 1);
+    EXPECT_GT(c.result.stats.recursions, 0u);
+}
+
+TEST(Reconstruction, TwoToTwoCrossingBranches) {
+    // Each lower circle overlaps both upper ones: one connected piece.
+    const Roi roi = stack({{circle({-5, 0}, 4.5), circle({5, 0}, 4.5)},
+                           {circle({0, -5}, 4.5), circle({0, 5}, 4.5)},
+                           {circle({-5, 0}, 4.5), circle({5, 0}, 4.5)}});
+    const Checked c = reconstruct(roi);
+    EXPECT_TRUE(c.check.validSolid());
+    EXPECT_EQ(c.check.components, 1u);
+    expectContoursAreVertices(roi, c.result.surface);
+}
+
+TEST(Reconstruction, AtDepthZeroBranchesAreClosedByPrismsAndStillValid) {
+    ReconstructionOptions options;
+    options.maxDepth = 0;
+    const Roi roi = stack({{circle({0, 0}, 8)}, {circle({-5, 0}, 4), circle({5, 0}, 4)}});
+    const Checked c = reconstruct(roi, options);
+    expectSolid(c, 0, 1);
+    EXPECT_EQ(c.result.stats.recursions, 0u);
+    EXPECT_GT(c.result.stats.limitClosings, 0u);
+}
+
+TEST(Reconstruction, ContourAppearingMidStackIsCappedBothWays) {
+    std::vector<std::vector<Polygon>> slices(5, {circle({0, 0}, 6)});
+    slices[2].push_back(circle({20, 0}, 3));
+    const Checked c = reconstruct(stack(slices));
+    expectSolid(c, 0, 2);
+    EXPECT_EQ(c.result.stats.caps, 4u);  // the long stack's two ends, the blob's two
+}
+
+TEST(Reconstruction, TubeWithHolesIsGenusOne) {
+    std::vector<std::vector<Polygon>> slices(4, {circle({0, 0}, 10), circle({0, 0}, 4)});
+    const Checked c = reconstruct(stack(slices));
+    expectSolid(c, 1, 1);
+}
+
+TEST(Reconstruction, CavityAndIslandInsideItGiveThreeSurfaces) {
+    // A disc stack with a hole in the middle slices, and an island in the
+    // hole on the middle slice: outer surface, cavity, and the island's solid.
+    std::vector<std::vector<Polygon>> slices(5, {circle({0, 0}, 12)});
+    for (int s = 1; s <= 3; ++s) slices[std::size_t(s)].push_back(circle({0, 0}, 7));
+    slices[2].push_back(circle({0, 0}, 3));
+    const Checked c = reconstruct(stack(slices));
+    expectSolid(c, 0, 3);
+}
+
+TEST(Reconstruction, FlatCapsOnStraightSidesGiveThePlanningVolume) {
+    // Identical squares: vertical sides, so each end extends exactly half a
+    // spacing and the volume is area x slices x spacing.
+    const Roi roi = stack({{square(0, 0, 10)}, {square(0, 0, 10)}, {square(0, 0, 10)}});
+    const Checked c = reconstruct(roi);
+    expectSolid(c, 0, 1);
+    EXPECT_NEAR(c.check.volumeMm3, 100 * 3 * 2, 1e-9);
+    ReconstructionOptions options;
+    options.capOffsetMm = 0.25;
+    EXPECT_NEAR(reconstruct(roi, options).check.volumeMm3, 100 * (2 * 2 + 2 * 0.25), 1e-9);
+}
+
+TEST(Reconstruction, CapModesOrderTheVolumesOfANarrowingEnd) {
+    // A cone-like stack: flat caps continue the narrowing to the lid, domes
+    // round off inside that, and with no cap the ends stay open.
+    const Roi roi = stack({{circle({0, 0}, 6)}, {circle({0, 0}, 10)}, {circle({0, 0}, 6)}});
+    ReconstructionOptions options;
+    const Checked flat = reconstruct(roi, options);
+    expectSolid(flat, 0, 1);
+    options.cap = CapMode::Dome;
+    const Checked dome = reconstruct(roi, options);
+    expectSolid(dome, 0, 1);
+    options.cap = CapMode::None;
+    const Checked none = reconstruct(roi, options);
+    EXPECT_EQ(none.check.boundaryEdges, 2u * 48u);
+    EXPECT_EQ(none.check.nonManifoldEdges + none.check.misorientedEdges, 0u);
+    // Planning volume: every slice's area times the spacing.
+    const double planning = 2 * (std::pow(6.0, 2) + std::pow(10.0, 2) + std::pow(6.0, 2)) * M_PI;
+    EXPECT_LT(flat.check.volumeMm3, planning);
+    EXPECT_LT(dome.check.volumeMm3, flat.check.volumeMm3);
+    EXPECT_LT(std::abs(none.check.volumeMm3), dome.check.volumeMm3);
+}
+
+TEST(Reconstruction, SingleSliceBecomesAFlatSlab) {
+    const Checked c = reconstruct(stack({{square(0, 0, 10)}}));
+    expectSolid(c, 0, 1);
+    EXPECT_NEAR(c.check.volumeMm3, 100 * 1.0, 1e-9);  // 1 mm thick without a spacing
+}
+
+TEST(Reconstruction, ContourSimplificationKeepsItValidWithFewerPoints) {
+    SynthOptions synth;
+    synth.pointsPerContour = 256;
+    const ContourSet set = sliceShape(*makeShape("torus"), synth);
+    ReconstructionOptions options;
+    options.contourErrorMm = 0.1;
+    const Checked coarse = reconstruct(set.rois[0], options);
+    const Checked full = reconstruct(set.rois[0]);
+    expectSolid(coarse, 1, 1);
+    EXPECT_LT(coarse.check.triangles * 2, full.check.triangles);
+}
+
+}  // namespace
+}  // namespace dfrecon
