@@ -124,8 +124,11 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     vertices.reserve(soup.points.size());
     for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
     std::size_t refused = 0;
+    // OpenMesh reports each refused face on stderr; the count says it once.
+    omerr().disable();
     for (const auto& t : soup.triangles)
         if (!mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid()) ++refused;
+    omerr().enable();
     if (refusedFaces) *refusedFaces = refused;
     return mesh;
 }

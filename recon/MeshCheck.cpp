@@ -95,6 +95,11 @@ struct Components {
 
 using Triangle = std::array<std::uint32_t, 3>;
 
+bool isDegenerate(const TriangleSoup& soup, const Triangle& t) {
+    const Vec3 p0 = soup.points[t[0]], p1 = soup.points[t[1]], p2 = soup.points[t[2]];
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || length(cross(p1 - p0, p2 - p0)) == 0;
+}
+
 // Do triangles s and t (of the soup, non-degenerate) meet anywhere they
 // should not? Shared vertices are allowed contact: sharing an edge, they
 // meet wrongly only when folded onto each other; sharing one vertex, only
@@ -163,7 +168,26 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     return false;
 }
 
+// Visits the pairs of non-degenerate triangles that collide.
+template <class Visit>
+void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenerate, Visit&& visit) {
+    const TriangleBvh bvh(soup);
+    bvh.selfPairs([&](std::size_t i, std::size_t j) {
+        if (degenerate[i] || degenerate[j]) return;
+        if (trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) visit(i, j);
+    });
+}
+
 }  // namespace
+
+std::size_t countSelfIntersections(const TriangleSoup& soup) {
+    std::vector<bool> degenerate(soup.triangles.size());
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        degenerate[t] = isDegenerate(soup, soup.triangles[t]);
+    std::size_t pairs = 0;
+    visitCollisions(soup, degenerate, [&](std::size_t, std::size_t) { ++pairs; });
+    return pairs;
+}
 
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
     const double da[3] = {orient(b[0], b[1], b[2], a[0]), orient(b[0], b[1], b[2], a[1]),
@@ -200,8 +224,7 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
         const Triangle& tri = soup.triangles[t];
         const Vec3 p0 = soup.points[tri[0]], p1 = soup.points[tri[1]], p2 = soup.points[tri[2]];
-        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
-            length(cross(p1 - p0, p2 - p0)) == 0) {
+        if (isDegenerate(soup, tri)) {
             degenerate[t] = true;
             ++report.degenerateTriangles;
         }
@@ -260,11 +283,7 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     if (report.watertight())
         report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
 
-    // Self-intersections over the BVH of triangle boxes.
-    const TriangleBvh bvh(soup);
-    bvh.selfPairs([&](std::size_t i, std::size_t j) {
-        if (degenerate[i] || degenerate[j]) return;
-        if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
+    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
         ++report.intersectingPairs;
         if (report.intersectingExamples.size() < 10)
             report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});

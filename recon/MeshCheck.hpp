@@ -43,6 +43,10 @@ struct MeshCheckReport {
 /// visits only triangle pairs whose bounding boxes overlap.
 MeshCheckReport checkMesh(const TriangleSoup& soup);
 
+/// The self-intersecting pairs checkMesh would count, without the topology
+/// checks (e.g. for a piece of surface, which has a boundary).
+std::size_t countSelfIntersections(const TriangleSoup& soup);
+
 /// Do two triangles share a point? Exposed for tests. Triangles sharing
 /// vertices (by index) are handled by checkMesh; this is the plain test.
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]);

@@ -10,6 +10,7 @@
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/MedialAxis.hpp"
+#include "recon/MeshCheck.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
@@ -138,6 +139,21 @@ class SurfaceReconstructor {
         return out;
     }
 
+    /// Is the outermost contour of these parts a hole? The fields of such
+    /// parts alone are negative in the empty space inside the holes (the
+    /// sign comes from the winding number), so axes and isolines, which
+    /// follow the negative region, run against the contours' orientation and
+    /// are turned around. Parts of whole slices never are.
+    static bool emptyIsNegative(const LayerPart& a, const LayerPart& b) {
+        double largest = 0, sign = 1;
+        for (const LayerPart* p : {&a, &b})
+            for (std::uint32_t c : p->contours) {
+                const double area = signedArea(p->layer->contours[c]);
+                if (std::abs(area) > largest) largest = std::abs(area), sign = area;
+            }
+        return sign < 0;
+    }
+
     SliceFields fieldsOf(const LayerPart& lower, const LayerPart& upper) {
         std::vector<Slice> slices(2);
         for (int s = 0; s < 2; ++s) {
@@ -163,6 +179,8 @@ class SurfaceReconstructor {
             const auto start = Clock::now();
             const SliceSum sum = sumSlices(runtime_, fields, a, b);
             axes = traceMedialAxes(fields, a, b, sum);
+            if (depth > 0 && emptyIsNegative(lower, upper))
+                for (MedialAxis& axis : axes) std::reverse(axis.pixels.begin(), axis.pixels.end());
             stats_.medialSeconds += secondsSince(start);
         }
         LayerPart endingLower{lower.layer, {}}, endingUpper{upper.layer, {}};
@@ -207,7 +225,16 @@ class SurfaceReconstructor {
         if (!lowerAt) return false;
         const auto upperAt = positionsAlongAxis(axis, grid_, upper.contours[q], upperLocal, false);
         if (!upperAt) return false;
+        const std::size_t before = builder_.triangleCount();
         stitchStrip(builder_, lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt);
+        // Contours that zigzag or lean far can make a strip fold through
+        // itself; such a band is solved again with an intermediate contour
+        // instead (and at the limit closed by prisms, which cannot fold).
+        if (countSelfIntersections(builder_.trianglesSince(before)) > 0) {
+            builder_.truncateTriangles(before);
+            ++stats_.rejectedStrips;
+            return false;
+        }
         ++stats_.strips;
         return true;
     }
@@ -223,7 +250,9 @@ class SurfaceReconstructor {
         Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));
-        normaliseOrientation(middle);
+        // Isolines keep the negative side on their left; contours keep the solid.
+        if (emptyIsNegative(x, y))
+            for (Polygon& p : middle.contours) std::reverse(p.begin(), p.end());
         stats_.medialSeconds += secondsSince(start);
         if (middle.contours.empty()) {
             closeByPrisms(builder_, x, y, middle.zMm);
@@ -294,7 +323,8 @@ class SurfaceReconstructor {
             rounded(end, up, offsetMm, INFINITY, fields, slice);
             return;
         }
-        normaliseOrientation(lid);
+        if (emptyIsNegative(end, {end.layer, {}}))
+            for (Polygon& p : lid.contours) std::reverse(p.begin(), p.end());
         layers_.push_back(makeLayer(builder_, lid.zMm, std::move(lid.contours)));
         const Layer& top = layers_.back();
         const LayerPart lidPart = part(top, all(top));

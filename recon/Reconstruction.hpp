@@ -47,10 +47,11 @@ struct ReconstructionStats {
     std::size_t slices = 0, contourPoints = 0;  // after contour simplification
     std::size_t slabs = 0;                      // pairs of neighbouring slices
     std::size_t strips = 0;                     // contour pairs joined by tracing an axis
-    std::size_t recursions = 0;                 // intermediate contour layers made
-    int deepestLevel = 0;                       // deepest recursion level used
-    std::size_t limitClosings = 0;              // regions closed by prisms at the recursion limit
-    std::size_t caps = 0;  // end contours capped (or left open with CapMode::None)
+    std::size_t rejectedStrips = 0;  // strips that folded through themselves, solved again
+    std::size_t recursions = 0;      // intermediate contour layers made
+    int deepestLevel = 0;            // deepest recursion level used
+    std::size_t limitClosings = 0;   // regions closed by prisms at the recursion limit
+    std::size_t caps = 0;            // end contours capped (or left open with CapMode::None)
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0;
 };
 

@@ -23,6 +23,11 @@ class SurfaceBuilder {
         soup_.triangles.push_back({a, b, c});
     }
     const Vec3& point(std::uint32_t v) const { return soup_.points[v]; }
+    std::size_t triangleCount() const { return soup_.triangles.size(); }
+    /// Drops the triangles added after the first `count`.
+    void truncateTriangles(std::size_t count) { soup_.triangles.resize(count); }
+    /// The triangles from `first` on, as a soup of just their vertices.
+    TriangleSoup trianglesSince(std::size_t first) const;
     const TriangleSoup& soup() const { return soup_; }
     TriangleSoup release() { return std::move(soup_); }
 
