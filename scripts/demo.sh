@@ -1,16 +1,22 @@
 #!/usr/bin/env bash
-# make demo: the main job on an example, with its report.
-# Until reconstruction lands (issue 4) the main job is the 2D distance fields
-# with their medial axes; pictures go to out/demo/.
+# make demo: the main job on examples, with its report: contours in, closed
+# surfaces out (out/demo/), checked.
 set -euo pipefail
 dfrecon=${1:-build/bin/dfrecon}
+mkdir -p out/demo
 echo "\$ dfrecon devices"
 "$dfrecon" devices
 echo
-echo "\$ dfrecon info examples/torus.slices"
-"$dfrecon" info examples/torus.slices
+echo "\$ dfrecon info examples/y.slices"
+"$dfrecon" info examples/y.slices
 echo
-echo "\$ dfrecon fields examples/torus.slices -o out/demo --png --json"
-"$dfrecon" fields examples/torus.slices -o out/demo --png --json
+echo "\$ dfrecon reconstruct examples/y.slices -o out/demo/y.ply --json"
+"$dfrecon" reconstruct examples/y.slices -o out/demo/y.ply --json
 echo
-echo "Pictures of each slice's field, nearest contour and medial axes: out/demo/*.png"
+echo "\$ dfrecon reconstruct examples/two-rois.slices --all -o out/demo/two-rois"
+"$dfrecon" reconstruct examples/two-rois.slices --all -o out/demo/two-rois
+echo
+echo "\$ dfrecon check out/demo/y.ply"
+"$dfrecon" check out/demo/y.ply
+echo
+echo "Meshes in out/demo/ open in MeshLab, ParaView, 3D Slicer and Blender."

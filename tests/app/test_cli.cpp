@@ -78,7 +78,8 @@ TEST(Cli, UsageErrorsExitOne) {
 }
 
 TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
-    for (const std::string sub : {"", "synth ", "devices ", "info "}) {
+    for (const std::string sub :
+         {"", "synth ", "devices ", "info ", "fields ", "check ", "reconstruct "}) {
         const Result run = runDfrecon(sub + "--help");
         EXPECT_EQ(run.exitCode, 0) << sub;
         EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
@@ -206,4 +207,43 @@ TEST(Cli, CheckPassesSolidsAndFailsBrokenMeshesWithExitTwo) {
     EXPECT_NE(bad.out.find("boundary edges 3"), std::string::npos) << bad.out;
     EXPECT_NE(bad.err.find(open.string() + ": not a watertight"), std::string::npos) << bad.err;
     EXPECT_EQ(runDfrecon("check " + (scratch() / "missing.ply").string()).exitCode, 2);
+}
+
+TEST(Cli, ReconstructWritesACheckedSolidAndReportsIt) {
+    const fs::path mesh = scratch() / "torus.stl";
+    const Result run = runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                                  "/torus.slices --json -o " + mesh.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out)["rois"][0];
+    EXPECT_TRUE(report["validSolid"].get<bool>());
+    EXPECT_EQ(report["genus"], 1);
+    EXPECT_EQ(report["cap"], "flat");
+    EXPECT_NEAR(report["volumeCc"].get<double>(), report["volumeMm3"].get<double>() / 1000, 1e-12);
+    for (const char* stage : {"fields", "medialAxes", "triangulation", "write"})
+        EXPECT_GE(report["seconds"][stage].get<double>(), 0.0) << stage;
+    // What was written is what was reported.
+    const Result check = runDfrecon("check --json " + mesh.string());
+    ASSERT_EQ(check.exitCode, 0) << check.out;
+    EXPECT_EQ(nlohmann::json::parse(check.out)["triangles"], report["triangles"]);
+}
+
+TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {
+    const fs::path dir = scratch() / "all-rois";
+    const Result run = runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                                  "/two-rois.slices --all --cap dome -o " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_TRUE(fs::exists(dir / "Left_Kidney.ply")) << run.out;
+    EXPECT_TRUE(fs::exists(dir / "PTV.ply"));
+}
+
+TEST(Cli, ReconstructRejectsBadOptionsAndLeavesNothing) {
+    const std::string in = std::string(DFRECON_EXAMPLES) + "/y.slices";
+    const fs::path mesh = scratch() / "never.ply";
+    EXPECT_EQ(runDfrecon("reconstruct " + in + " --cap round -o " + mesh.string()).exitCode, 1);
+    EXPECT_EQ(runDfrecon("reconstruct " + in + " --max-depth -1 -o " + mesh.string()).exitCode, 1);
+    const Result noExtension =
+        runDfrecon("reconstruct " + in + " -o " + (scratch() / "mesh").string());
+    EXPECT_EQ(noExtension.exitCode, 1) << noExtension.err;
+    EXPECT_NE(noExtension.err.find("mesh extension"), std::string::npos) << noExtension.err;
+    EXPECT_FALSE(fs::exists(mesh));
 }
