@@ -244,7 +244,7 @@ class SurfaceReconstructor {
     void recurse(const LayerPart& x, const LayerPart& y, int depth) {
         const SliceFields fields = fieldsOf(x, y);
         const auto start = Clock::now();
-        const SliceSum sum = sumSlicesReference(fields, 0, 1);
+        const SliceSum sum = sumSlices(runtime_, fields, 0, 1);
         std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, grid_);
         // Pixel-step isolines carry far more points than the surface needs.
         Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};
