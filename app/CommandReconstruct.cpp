@@ -18,7 +18,7 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi;
+    std::string input, output, roi, capName = "flat";
     bool all = false, json = false, ascii = false;
     ReconstructionOptions options;
 };
@@ -155,17 +155,18 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->footer(
         "One ROI: OUT is a mesh file (.ply .stl .obj .off). Several ROIs (--all): OUT is a "
         "folder that gets NAME.ply per ROI. Contour points are mesh vertices; normals point "
-        "outward. Caps: 'flat' extrudes each end contour by the cap offset and closes it with a "
-        "flat lid, so the volume is what planning systems count (area x spacing per slice); "
-        "'dome' rises from the contour to the cap offset (less volume, rounder ends); 'none' "
-        "leaves the ends open. See docs/reconstruction.md.");
+        "outward. Caps: 'flat' closes each end contour with a flat lid at the cap offset whose "
+        "rim continues the side's slope from the last slab, so straight sides give exactly the "
+        "volume planning systems count (area x spacing per slice); 'dome' rises from the contour "
+        "to the cap offset (less volume, rounder ends); 'none' leaves the ends open. Exit codes: "
+        "0 done, 1 usage, 2 bad input, 3 runtime failure. See docs/reconstruction.md.");
     cmd->add_option("file", args->input, "Input .slices file")->required();
     cmd->add_option("-o,--output", args->output, "Output mesh file, or folder with --all")
         ->required();
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file");
     cmd->add_option("--pixel-mm", args->options.pixelMm,
-                    "Field pixel size in mm (default 0: the ROI's extent plus margin fits ~512 px)")
+                    "Field pixel size in mm (default 0: the ROI's extent plus margin fits 256 px)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--contour-error", args->options.contourErrorMm,
@@ -178,17 +179,21 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "by a step of spacing / 2^(depth+1)")
         ->capture_default_str()
         ->check(CLI::Range(0, 12));
-    const std::map<std::string, CapMode> caps{
-        {"flat", CapMode::Flat}, {"dome", CapMode::Dome}, {"none", CapMode::None}};
-    cmd->add_option("--cap", args->options.cap, "End caps: flat, dome or none (default flat)")
-        ->transform(CLI::CheckedTransformer(caps, CLI::ignore_case));
+    cmd->add_option("--cap", args->capName, "End caps: flat, dome or none")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"flat", "dome", "none"}));
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
                     "How far beyond an end contour its cap reaches, mm (default: half the slice "
                     "spacing; at most half the gap to the next slice)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
-    cmd->callback([args, &global] { runReconstruct(*args, global); });
+    cmd->callback([args, &global] {
+        args->options.cap = args->capName == "dome"   ? CapMode::Dome
+                            : args->capName == "none" ? CapMode::None
+                                                      : CapMode::Flat;
+        runReconstruct(*args, global);
+    });
 }
 
 }  // namespace dfrecon::app

@@ -14,15 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Polygon circle(Point2 centre, double radius, int points) {
-    Polygon polygon;
-    for (int i = 0; i < points; ++i) {
-        const double t = 2 * kPi * i / points;
-        polygon.push_back({centre.x + radius * std::cos(t), centre.y + radius * std::sin(t)});
-    }
-    return polygon;
-}
-
 int atLeast3(int points) {
     return std::max(points, 3);
 }
@@ -43,7 +34,7 @@ class Sphere : public AnalyticShape {
     std::vector<Polygon> section(double z, int points) const override {
         const double h = z - c_.z;
         if (std::abs(h) >= r_) return {};
-        return {circle({c_.x, c_.y}, std::sqrt(r_ * r_ - h * h), atLeast3(points))};
+        return {circlePolygon({c_.x, c_.y}, std::sqrt(r_ * r_ - h * h), atLeast3(points))};
     }
 
   private:
@@ -188,7 +179,8 @@ class Torus : public AnalyticShape {
         if (std::abs(z) >= r_) return {};
         const double w = std::sqrt(r_ * r_ - z * z);
         // An annulus: the outer contour and its hole.
-        return {circle({0, 0}, R_ + w, atLeast3(points)), circle({0, 0}, R_ - w, atLeast3(points))};
+        return {circlePolygon({0, 0}, R_ + w, atLeast3(points)),
+                circlePolygon({0, 0}, R_ - w, atLeast3(points))};
     }
 
   private:
@@ -259,8 +251,9 @@ class YShape : public AnalyticShape {
     double zMaxMm() const override { return L_; }
     std::vector<Polygon> section(double z, int points) const override {
         if (z <= -L_ || z >= L_ || z == 0) return {};
-        if (z < 0) return {circle({0, 0}, r_, atLeast3(points))};
-        return {circle({-d_, 0}, r_, atLeast3(points)), circle({d_, 0}, r_, atLeast3(points))};
+        if (z < 0) return {circlePolygon({0, 0}, r_, atLeast3(points))};
+        return {circlePolygon({-d_, 0}, r_, atLeast3(points)),
+                circlePolygon({d_, 0}, r_, atLeast3(points))};
     }
     double signedDistance(Vec3 p) const override {
         // Boundary = stem side and bottom, branch sides and tops, and the part
@@ -344,9 +337,10 @@ class HollowSphere : public AnalyticShape {
     double zMaxMm() const override { return R_; }
     std::vector<Polygon> section(double z, int points) const override {
         if (std::abs(z) >= R_) return {};
-        std::vector<Polygon> polygons{circle({0, 0}, std::sqrt(R_ * R_ - z * z), atLeast3(points))};
+        std::vector<Polygon> polygons{
+            circlePolygon({0, 0}, std::sqrt(R_ * R_ - z * z), atLeast3(points))};
         if (std::abs(z) < r_)
-            polygons.push_back(circle({0, 0}, std::sqrt(r_ * r_ - z * z), atLeast3(points)));
+            polygons.push_back(circlePolygon({0, 0}, std::sqrt(r_ * r_ - z * z), atLeast3(points)));
         return polygons;
     }
 

@@ -85,4 +85,14 @@ Box2 boundingBox(const Polygon& polygon) {
     return box;
 }
 
+Polygon circlePolygon(Point2 centre, double radius, int points, bool clockwise) {
+    constexpr double kPi = 3.14159265358979323846;
+    Polygon polygon;
+    for (int i = 0; i < points; ++i) {
+        const double t = 2 * kPi * (clockwise ? -i : i) / points;
+        polygon.push_back({centre.x + radius * std::cos(t), centre.y + radius * std::sin(t)});
+    }
+    return polygon;
+}
+
 }  // namespace dfrecon

@@ -79,4 +79,9 @@ struct Box2 {
 };
 Box2 boundingBox(const Polygon& polygon);
 
+/// A regular polygon with `points` vertices on the circle of `radius`
+/// around `centre`, the first at angle 0; counter-clockwise unless
+/// `clockwise`.
+Polygon circlePolygon(Point2 centre, double radius, int points, bool clockwise = false);
+
 }  // namespace dfrecon

@@ -20,12 +20,7 @@ ocl::Runtime& runtime() {
 }
 
 Polygon circle(Point2 c, double r, int n, bool ccw = true) {
-    Polygon p;
-    for (int k = 0; k < n; ++k) {
-        const double t = 2 * M_PI * (ccw ? k : -k) / n;
-        p.push_back({c.x + r * std::cos(t), c.y + r * std::sin(t)});
-    }
-    return p;
+    return circlePolygon(c, r, n, !ccw);
 }
 
 struct Pair {

@@ -19,13 +19,8 @@ ocl::Runtime& runtime() {
     return instance;
 }
 
-Polygon circle(Point2 centre, double radius, int points = 48, bool clockwise = false) {
-    Polygon p;
-    for (int k = 0; k < points; ++k) {
-        const double a = 2 * M_PI * k / points * (clockwise ? -1 : 1);
-        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
-    }
-    return p;
+Polygon circle(Point2 centre, double radius) {
+    return circlePolygon(centre, radius, 48);
 }
 
 Polygon square(double x0, double y0, double side) {

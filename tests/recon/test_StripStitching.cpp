@@ -11,12 +11,7 @@ namespace dfrecon {
 namespace {
 
 Polygon circle(Point2 centre, double radius, int points) {
-    Polygon p;
-    for (int k = 0; k < points; ++k) {
-        const double a = 2 * M_PI * k / points;
-        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
-    }
-    return p;
+    return circlePolygon(centre, radius, points);
 }
 
 struct Band {
