@@ -18,5 +18,6 @@ void addInfoCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 void addCheckCommand(CLI::App& root, const GlobalOptions& global);
 void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
+void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     addInfoCommand(root, global);
     addFieldsCommand(root, global);
     addReconstructCommand(root, global);
+    addFieldCommand(root, global);
     addCheckCommand(root, global);
 
     try {

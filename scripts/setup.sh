@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libopenmesh-dev
-  libopenvdb-dev libboost-iostreams-dev libtbb-dev
+  libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenvdb-tools
   libdcmtk-dev
   libcgal-dev
   libgtest-dev

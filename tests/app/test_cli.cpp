@@ -10,6 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
+
+#include "io/SlicesFile.hpp"
 #include "tests/BadSlicesInputs.hpp"
 
 namespace fs = std::filesystem;
@@ -246,4 +250,44 @@ TEST(Cli, ReconstructRejectsBadOptionsAndLeavesNothing) {
     EXPECT_EQ(noExtension.exitCode, 1) << noExtension.err;
     EXPECT_NE(noExtension.err.find("mesh extension"), std::string::npos) << noExtension.err;
     EXPECT_FALSE(fs::exists(mesh));
+}
+
+TEST(Cli, FieldWritesALevelSetWhoseZeroIsOnTheContours) {
+    const fs::path vdb = scratch() / "torus.vdb";
+    const std::string in = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    const Result run = runDfrecon("-q field " + in + " --json -o " + vdb.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    const double pixel = report["voxelMm"][0].get<double>();
+
+    openvdb::initialize();
+    openvdb::io::File file(vdb.string());
+    file.open();
+    const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("torus"));
+    file.close();
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(grid->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_EQ(grid->metaValue<std::string>("units"), "mm");
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(
+        *grid);
+    const dfrecon::ContourSet contours = dfrecon::readSlicesFile(in).contours;
+    std::size_t points = 0;
+    for (const dfrecon::Slice& slice : contours.rois[0].slices)
+        for (const dfrecon::Polygon& contour : slice.contours)
+            for (dfrecon::Point2 p : contour) {
+                // The zero crossing lies within half a voxel of every contour point.
+                ASSERT_LE(std::abs(sampler.wsSample(openvdb::Vec3d(p.x, p.y, slice.zMm))),
+                          0.5 * pixel)
+                    << p.x << " " << p.y << " " << slice.zMm;
+                ++points;
+            }
+    EXPECT_GT(points, 100u);
+
+    if (std::system("command -v vdb_print >/dev/null 2>&1") == 0) {
+        const fs::path listing = scratch() / "vdb_print.txt";
+        ASSERT_EQ(std::system(("vdb_print -l " + vdb.string() + " >" + listing.string()).c_str()),
+                  0);
+        EXPECT_NE(slurp(listing).find("Name: torus"), std::string::npos) << slurp(listing);
+    }
+    EXPECT_EQ(runDfrecon("field " + in + " -o " + (scratch() / "torus.nrrd").string()).exitCode, 1);
 }

@@ -1,0 +1,59 @@
+#include "io/LevelSetVdb.hpp"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/SignedFloodFill.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "io/AtomicWrite.hpp"
+
+namespace dfrecon {
+
+void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path,
+                      const LevelSetWriteOptions& options) {
+    if (volume.nx <= 0 || volume.ny <= 0 || volume.nz <= 0 ||
+        volume.valuesMm.size() !=
+            std::size_t(volume.nx) * std::size_t(volume.ny) * std::size_t(volume.nz))
+        throw std::invalid_argument("level set volume: dimensions do not match its values");
+    if (!(options.bandVoxels > 0)) throw std::invalid_argument("level set band must be positive");
+    static std::once_flag initialised;
+    std::call_once(initialised, [] { openvdb::initialize(); });
+
+    // Measured in the largest voxel side, so that across every cell the
+    // surface crosses, whatever its direction, both values are stored.
+    const double largest = std::max({volume.voxelMm[0], volume.voxelMm[1], volume.voxelMm[2]});
+    const float background = float(options.bandVoxels * largest);
+    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
+    grid->setName(options.gridName);
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    grid->setTransform(openvdb::math::Transform::Ptr(new openvdb::math::Transform(
+        openvdb::math::MapBase::Ptr(new openvdb::math::ScaleTranslateMap(
+            openvdb::Vec3d(volume.voxelMm[0], volume.voxelMm[1], volume.voxelMm[2]),
+            openvdb::Vec3d(volume.originMm[0], volume.originMm[1], volume.originMm[2]))))));
+    auto accessor = grid->getAccessor();
+    for (int k = 0; k < volume.nz; ++k)
+        for (int j = 0; j < volume.ny; ++j)
+            for (int i = 0; i < volume.nx; ++i) {
+                const float v =
+                    volume.valuesMm[(std::size_t(k) * std::size_t(volume.ny) + std::size_t(j)) *
+                                        std::size_t(volume.nx) +
+                                    std::size_t(i)];
+                if (std::fabs(v) < background) accessor.setValue(openvdb::Coord(i, j, k), v);
+            }
+    // Inactive voxels inside get -background, as level-set tools expect.
+    openvdb::tools::signedFloodFill(grid->tree());
+    for (const auto& [key, value] : options.metadata)
+        grid->insertMeta(key, openvdb::StringMetadata(value));
+
+    writeAtomically(path, [&](const std::string& temp) {
+        openvdb::io::File file(temp);
+        file.write({grid});
+        file.close();
+        return true;
+    });
+}
+
+}  // namespace dfrecon

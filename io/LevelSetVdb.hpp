@@ -1,0 +1,35 @@
+#pragma once
+// Signed distance volumes as OpenVDB level sets (.vdb), the format Blender,
+// Houdini and OpenVDB pipelines read.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dfrecon {
+
+/// A dense signed distance volume in mm (negative inside): voxel (i, j, k)
+/// is centred at originMm + (i·voxelMm[0], j·voxelMm[1], k·voxelMm[2]), and
+/// its value is valuesMm[(k·ny + j)·nx + i].
+struct DenseDistanceVolume {
+    int nx = 0, ny = 0, nz = 0;
+    double originMm[3] = {0, 0, 0};
+    double voxelMm[3] = {1, 1, 1};
+    std::vector<float> valuesMm;
+};
+
+struct LevelSetWriteOptions {
+    std::string gridName = "surface";
+    double bandVoxels = 3;  // narrow band half-width, in voxels of the largest side
+    std::map<std::string, std::string> metadata;  // written as string metadata
+};
+
+/// Writes `volume` as a FloatGrid of class level set with a scale-and-
+/// translate transform (the voxel sizes may differ per axis): only voxels
+/// within the band are stored, the rest is filled by sign (outside
+/// +band, inside -band), in world units (mm). Atomic (temporary file and
+/// rename). Throws std::invalid_argument for an inconsistent volume,
+/// std::runtime_error when the file cannot be written. O(voxels).
+void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path,
+                      const LevelSetWriteOptions& options);
+
+}  // namespace dfrecon
