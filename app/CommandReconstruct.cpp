@@ -48,18 +48,6 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
     auto stage = std::chrono::steady_clock::now();
     const MeshCheckReport check = checkMesh(result.surface);
     const double checkSeconds = secondsSince(stage);
-    if (getenv("DFRECON_DEBUG_PAIRS"))
-        for (auto [a, b] : check.intersectingExamples) {
-            for (auto t : {a, b}) {
-                for (int k = 0; k < 3; ++k) {
-                    auto p = result.surface.points[result.surface.triangles[t][std::size_t(k)]];
-                    std::cerr << result.surface.triangles[t][std::size_t(k)] << ":(" << p.x << ","
-                              << p.y << "," << p.z << ") ";
-                }
-                std::cerr << " | ";
-            }
-            std::cerr << "\n";
-        }
     stage = std::chrono::steady_clock::now();
     std::size_t refused = 0;
     const TriMesh mesh = toTriMesh(result.surface, &refused);
@@ -109,6 +97,7 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             {"deepestLevel", s.deepestLevel},
             {"closedAtDepthLimit", s.limitClosings},
             {"endContours", s.caps},
+            {"slabsClosedAsPrisms", s.fallbackSlabs},
             {"seconds",
              {{"simplify", s.simplifySeconds},
               {"fields", s.fieldsSeconds},

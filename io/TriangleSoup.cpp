@@ -118,6 +118,21 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh) {
     return soup;
 }
 
+void removeUnusedPoints(TriangleSoup& soup) {
+    constexpr std::uint32_t kUnused = 0xffffffffu;
+    std::vector<std::uint32_t> index(soup.points.size(), kUnused);
+    std::vector<Vec3> kept;
+    for (auto& t : soup.triangles)
+        for (std::uint32_t& v : t) {
+            if (index[v] == kUnused) {
+                index[v] = std::uint32_t(kept.size());
+                kept.push_back(soup.points[v]);
+            }
+            v = index[v];
+        }
+    soup.points = std::move(kept);
+}
+
 TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     TriMesh mesh;
     std::vector<TriMesh::VertexHandle> vertices;

@@ -26,6 +26,9 @@ TriangleSoup readTriangleSoup(const std::string& path);
 /// The triangles of a half-edge mesh.
 TriangleSoup toTriangleSoup(const TriMesh& mesh);
 
+/// Drops the points no triangle uses and renumbers the triangles. O(n).
+void removeUnusedPoints(TriangleSoup& soup);
+
 /// The half-edge mesh of a soup (writeMesh adds normals). OpenMesh refuses
 /// faces that would make an edge non-manifold; how many it refused is
 /// returned in `refusedFaces` (0 for any valid surface).

@@ -104,7 +104,21 @@ class SurfaceReconstructor {
     /// `lowerSlice` and `upperSlice` of `fields`.
     void originalSlab(const Layer& lower, const Layer& upper, const SliceFields& fields,
                       std::size_t lowerSlice, std::size_t upperSlice) {
-        slab(part(lower, all(lower)), part(upper, all(upper)), fields, lowerSlice, upperSlice, 0);
+        const std::size_t before = builder_.triangleCount();
+        const LayerPart x = part(lower, all(lower)), y = part(upper, all(upper));
+        slab(x, y, fields, lowerSlice, upperSlice, 0);
+        // Pieces are built one connected part at a time; parts that lie close
+        // in projection (an ending contour's lid under a neighbour's
+        // intermediate strips, say) can still meet. The slab is then closed
+        // as one prism piece instead, which cannot meet itself and stays
+        // within the slab.
+        const MeshCheckReport piece = checkMesh(builder_.trianglesSince(before));
+        if (piece.intersectingPairs > 0 || piece.nonManifoldEdges > 0 ||
+            piece.misorientedEdges > 0 || piece.degenerateTriangles > 0) {
+            builder_.truncateTriangles(before);
+            closeByPrisms(builder_, x, y, 0.5 * (lower.zMm + upper.zMm));
+            ++stats_.fallbackSlabs;
+        }
     }
 
     /// Caps the contours of `part` that end, up or down from its plane.
@@ -440,6 +454,8 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     stats.triangulationSeconds =
         secondsSince(start) - (stats.fieldsSeconds - fieldsAndMedialBefore) - stats.medialSeconds;
     result.surface = reconstructor.builder().release();
+    // Intermediate contours of discarded pieces leave points behind.
+    removeUnusedPoints(result.surface);
     return result;
 }
 

@@ -52,6 +52,7 @@ struct ReconstructionStats {
     int deepestLevel = 0;            // deepest recursion level used
     std::size_t limitClosings = 0;   // regions closed by prisms at the recursion limit
     std::size_t caps = 0;            // end contours capped (or left open with CapMode::None)
+    std::size_t fallbackSlabs = 0;   // slabs whose pieces met, closed as one prism piece
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "io/AnalyticShapes.hpp"
+#include "io/SlicesFile.hpp"
 #include "recon/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 
@@ -224,6 +225,19 @@ TEST(Reconstruction, NoisyContoursStayValidSolids) {
             rejected += c.result.stats.rejectedStrips;
         }
     EXPECT_GT(rejected, 0u) << "the fallback was exercised";
+}
+
+TEST(Reconstruction, SlabsWhosePiecesMeetAreClosedAsOnePrismPiece) {
+    for (const char* name : {"random-blobs-235.slices", "random-blobs-338.slices"}) {
+        SCOPED_TRACE(name);
+        const ContourSet set =
+            readSlicesFile(std::string(DFRECON_TEST_DATA) + "/recon/" + name).contours;
+        const Checked c = reconstruct(set.rois[0]);
+        EXPECT_TRUE(c.check.validSolid());
+        EXPECT_GT(c.result.stats.fallbackSlabs, 0u);
+        expectContoursAreVertices(set.rois[0], c.result.surface);
+        EXPECT_EQ(c.check.vertices, c.result.surface.points.size()) << "no unused points";
+    }
 }
 
 }  // namespace
