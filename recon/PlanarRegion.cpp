@@ -18,12 +18,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Cdt = CGAL::Constrained_triangulation_plus_2<
     CGAL::Constrained_Delaunay_triangulation_2<Kernel, CGAL::Default, CGAL::Exact_predicates_tag>>;
 
-int weightedWinding(Point2 p, const std::vector<WeightedContour>& contours) {
-    int sum = 0;
-    for (const WeightedContour& c : contours) sum += c.weight * windingNumber(p, *c.polygon);
-    return sum;
-}
-
 }  // namespace
 
 PlanarRegion triangulateRegion(const std::vector<WeightedContour>& contours,
@@ -60,12 +54,43 @@ PlanarRegion triangulateRegion(const std::vector<WeightedContour>& contours,
             region.edgeChains[c].push_back(std::move(chain));
         }
     }
+    // Winding numbers by walking faces outward-in from the unbounded region
+    // (winding 0): crossing a contour edge changes it by that contour's
+    // weight, with the sign of the crossing's direction. Exact, unlike
+    // winding numbers at centroids, which slivers along a contour make
+    // unreliable.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> crossing;  // directed edge → Σ weight
+    for (std::size_t c = 0; c < contours.size(); ++c)
+        for (const std::vector<std::uint32_t>& chain : region.edgeChains[c])
+            for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+                crossing[{chain[k], chain[k + 1]}] += contours[c].weight;
+    auto weightOf = [&](std::uint32_t from, std::uint32_t to) {
+        const auto it = crossing.find({from, to});
+        return it == crossing.end() ? 0 : it->second;
+    };
+    std::map<Cdt::Face_handle, int> winding;
+    std::vector<Cdt::Face_handle> pending;
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
+        if (cdt.is_infinite(f)) {
+            winding[f] = 0;
+            pending.push_back(f);
+        }
+    while (!pending.empty()) {
+        const Cdt::Face_handle f = pending.back();
+        pending.pop_back();
+        for (int i = 0; i < 3; ++i) {
+            const Cdt::Face_handle g = f->neighbor(i);
+            if (winding.count(g)) continue;
+            // f lies left of p→q (its counter-clockwise edge), g left of q→p.
+            const Cdt::Vertex_handle p = f->vertex(Cdt::ccw(i)), q = f->vertex(Cdt::cw(i));
+            if (cdt.is_infinite(p) || cdt.is_infinite(q)) continue;
+            const std::uint32_t ip = indexOf(p), iq = indexOf(q);
+            winding[g] = winding[f] + weightOf(iq, ip) - weightOf(ip, iq);
+            pending.push_back(g);
+        }
+    }
     for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-        const auto& a = f->vertex(0)->point();
-        const auto& b = f->vertex(1)->point();
-        const auto& d = f->vertex(2)->point();
-        const Point2 centroid{(a.x() + b.x() + d.x()) / 3, (a.y() + b.y() + d.y()) / 3};
-        const int w = weightedWinding(centroid, contours);
+        const int w = winding[f];
         if (w == 0) continue;
         region.triangles.push_back(
             {indexOf(f->vertex(0)), indexOf(f->vertex(1)), indexOf(f->vertex(2))});

@@ -34,7 +34,8 @@ struct PlanarRegion {
 /// `steinerPoints` (which must not lie on any contour) are added as interior
 /// vertices, e.g. to lift a dome. Contours may cross each other (the
 /// crossings become vertices) but none may cross itself. Θ(n log n) for n
-/// points in total plus the classification, O(triangles · contour points).
+/// points in total; faces are classified by walking across edges from the
+/// unbounded region, so slivers along contours are classified exactly.
 PlanarRegion triangulateRegion(const std::vector<WeightedContour>& contours,
                                const std::vector<Point2>& steinerPoints = {});
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "recon/PlanarRegion.hpp"
 
@@ -70,7 +71,34 @@ void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double 
                 const std::function<double(Point2)>& depthMm) {
     const std::vector<WeightedContour> contours = weighted(part, +1);
     if (contours.empty()) return;
-    const PlanarRegion region = triangulateRegion(contours, interiorPoints);
+    // An edge joining two contour points across the region (a chord) would
+    // lie flat in the contour plane, where a cap from the other side may use
+    // it too: chords get their midpoint as an inner vertex (a few rounds, as
+    // the triangulation changes around new points).
+    std::vector<Point2> inner = interiorPoints;
+    PlanarRegion region = triangulateRegion(contours, inner);
+    for (int round = 0; round < 4 && heightMm > 0; ++round) {
+        std::vector<bool> onContour(region.points.size(), false);
+        std::set<std::pair<std::uint32_t, std::uint32_t>> contourEdges;
+        for (const auto& chains : region.edgeChains)
+            for (const auto& chain : chains)
+                for (std::size_t k = 0; k < chain.size(); ++k) {
+                    onContour[chain[k]] = true;
+                    if (k + 1 < chain.size())
+                        contourEdges.insert(std::minmax(chain[k], chain[k + 1]));
+                }
+        std::set<std::pair<std::uint32_t, std::uint32_t>> chords;
+        for (const auto& t : region.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const auto edge = std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)]);
+                if (onContour[edge.first] && onContour[edge.second] && !contourEdges.count(edge))
+                    chords.insert(edge);
+            }
+        if (chords.empty()) break;
+        for (const auto& [a, b] : chords)
+            inner.push_back(0.5 * (region.points[a] + region.points[b]));
+        region = triangulateRegion(contours, inner);
+    }
     const double z0 = part.layer->zMm;
 
     // Contour corners keep their layer vertices; everything else is lifted.

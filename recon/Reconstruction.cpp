@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "recon/ContourSimplification.hpp"
@@ -371,13 +372,64 @@ class SurfaceReconstructor {
                 if (winding != 0) inner.push_back(p);
             }
         }
+        // Every outer contour needs an inner vertex, or its dome would be
+        // flat in the contour plane (and coincide with a cap from the other
+        // side): the lattice can miss small ones, so take their deepest
+        // pixel; contours too small for any get a flat cap instead.
+        for (std::uint32_t c : end.contours) {
+            const Polygon& contour = end.layer->contours[c];
+            if (signedArea(contour) <= 0) continue;
+            auto inside = [&](Point2 p) { return windingNumber(p, contour) != 0; };
+            if (std::any_of(inner.begin(), inner.end(), inside)) continue;
+            const Box2 box = boundingBox(contour);
+            double best = 0.5 * pixel;
+            std::optional<Point2> deepest;
+            const int i0 = std::max(0, int((box.min.x - grid_.originMm.x) / pixel));
+            const int i1 = std::min(grid_.width - 1, int((box.max.x - grid_.originMm.x) / pixel));
+            const int j0 = std::max(0, int((box.min.y - grid_.originMm.y) / pixel));
+            const int j1 = std::min(grid_.height - 1, int((box.max.y - grid_.originMm.y) / pixel));
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    if (depthAt(i, j) > best && inside(grid_.pixelCentre(i, j))) {
+                        best = depthAt(i, j);
+                        deepest = grid_.pixelCentre(i, j);
+                    }
+            if (!deepest) {
+                const double z = end.layer->zMm + (up ? heightMm : -heightMm);
+                if (up)
+                    closeByPrisms(builder_, end, {}, z);
+                else
+                    closeByPrisms(builder_, {}, end, z);
+                return;
+            }
+            inner.push_back(*deepest);
+        }
         auto depthMm = [&](Point2 p) {
-            const int i = int(std::floor((p.x - grid_.originMm.x) / pixel));
-            const int j = int(std::floor((p.y - grid_.originMm.y) / pixel));
-            if (i < 0 || j < 0 || i >= grid_.width || j >= grid_.height) return 0.0;
-            return double(depthAt(i, j));
+            double d = INFINITY;
+            for (std::uint32_t c : end.contours)
+                d = std::min(d, distanceToBoundary(p, end.layer->contours[c]));
+            return d;
         };
+        const std::size_t before = builder_.triangleCount();
         roundedCap(builder_, end, up, heightMm, roundingMm, inner, depthMm);
+        // The cap alone must be a clean sheet whose only border is the end
+        // contours; otherwise (contours touching inside it) a flat prism cap.
+        const MeshCheckReport cap = checkMesh(builder_.trianglesSince(before));
+        std::size_t contourEdges = 0;
+        for (std::uint32_t c : end.contours) contourEdges += end.layer->contours[c].size();
+        if (cap.intersectingPairs > 0 || cap.nonManifoldEdges > 0 || cap.misorientedEdges > 0 ||
+            cap.degenerateTriangles > 0 || cap.boundaryEdges != contourEdges) {
+            if (getenv("DFRECON_DEBUG_CAP"))
+                fprintf(stderr, "dome cap rejected: si %zu nm %zu b %zu/%zu deg %zu\n",
+                        cap.intersectingPairs, cap.nonManifoldEdges, cap.boundaryEdges,
+                        contourEdges, cap.degenerateTriangles);
+            builder_.truncateTriangles(before);
+            const double z = end.layer->zMm + (up ? heightMm : -heightMm);
+            if (up)
+                closeByPrisms(builder_, end, {}, z);
+            else
+                closeByPrisms(builder_, {}, end, z);
+        }
     }
 
     ocl::Runtime& runtime_;

@@ -187,6 +187,21 @@ TEST(Reconstruction, CapModesOrderTheVolumesOfANarrowingEnd) {
     EXPECT_LT(std::abs(none.check.volumeMm3), dome.check.volumeMm3);
 }
 
+TEST(Reconstruction, DomesOverSpikyContoursDoNotMeetTheirMirror) {
+    // A single slice is capped up and down: its two domes share the contour
+    // and must not share anything else (no flat ears or chords between
+    // narrow lobes).
+    Polygon star;
+    for (int k = 0; k < 40; ++k) {
+        const double a = 2 * M_PI * k / 40, r = k % 2 ? 3.0 : 9.0;
+        star.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    ReconstructionOptions options;
+    options.cap = CapMode::Dome;
+    const Checked c = reconstruct(stack({{star}}), options);
+    expectSolid(c, 0, 1);
+}
+
 TEST(Reconstruction, SingleSliceBecomesAFlatSlab) {
     const Checked c = reconstruct(stack({{square(0, 0, 10)}}));
     expectSolid(c, 0, 1);
