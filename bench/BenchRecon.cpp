@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <random>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +20,7 @@
 #include "recon/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 #include "recon/TriangleBvh.hpp"
+#include "simplify/SurfaceDistance.hpp"
 
 namespace dfrecon::bench {
 
@@ -30,36 +30,11 @@ struct SurfaceDistance {
     double hausdorffMm = 0, meanMm = 0;
 };
 
-// Area-weighted random points on the mesh's triangles.
-std::vector<Vec3> sampleMesh(const TriangleSoup& soup, std::size_t count, unsigned seed) {
-    std::vector<double> cumulative;
-    double total = 0;
-    for (const auto& t : soup.triangles) {
-        total += 0.5 * length(cross(soup.points[t[1]] - soup.points[t[0]],
-                                    soup.points[t[2]] - soup.points[t[0]]));
-        cumulative.push_back(total);
-    }
-    std::mt19937 random(seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    std::vector<Vec3> samples;
-    for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t t =
-            std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), u(random) * total) -
-                        cumulative.begin());
-        const auto& tri = soup.triangles[std::min(t, soup.triangles.size() - 1)];
-        double a = u(random), b = u(random);
-        if (a + b > 1) a = 1 - a, b = 1 - b;
-        const Vec3 p0 = soup.points[tri[0]];
-        samples.push_back(p0 + a * (soup.points[tri[1]] - p0) + b * (soup.points[tri[2]] - p0));
-    }
-    return samples;
-}
-
 SurfaceDistance measure(const AnalyticShape& shape, const TriangleSoup& soup) {
     constexpr std::size_t kSamples = 20000;
     SurfaceDistance d;
     double sum = 0;
-    for (const Vec3& p : sampleMesh(soup, kSamples, 7)) {
+    for (const Vec3& p : sampleTriangles(soup, kSamples, 7)) {
         const double e = std::abs(shape.signedDistance(p));
         d.hausdorffMm = std::max(d.hausdorffMm, e);
         sum += e;

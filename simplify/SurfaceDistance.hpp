@@ -1,0 +1,39 @@
+#pragma once
+// The verifier of simplification, independent of any distance field: how far
+// a surface is from another surface, and from the original contour
+// polylines, by dense sampling and exact point–triangle distances over a BVH.
+#include <cstddef>
+#include <vector>
+
+#include "io/ContourSet.hpp"
+#include "io/TriangleSoup.hpp"
+
+namespace dfrecon {
+
+/// `count` points distributed uniformly by area over the triangles of
+/// `soup` (seeded, reproducible). O(T + count log T).
+std::vector<Vec3> sampleTriangles(const TriangleSoup& soup, std::size_t count, unsigned seed);
+
+struct SampledDistance {
+    double maxMm = 0, meanMm = 0;
+    std::size_t samples = 0;
+};
+
+/// Distances from `points` to the nearest point of `surface`.
+/// O(T log T + points · log T) typically.
+SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleSoup& surface);
+
+/// Both directions between two surfaces: `samplesPerSurface` random points
+/// plus every vertex of each, to the other.
+struct TwoSidedDistance {
+    SampledDistance aToB, bToA;
+    double maxMm() const { return aToB.maxMm > bToA.maxMm ? aToB.maxMm : bToA.maxMm; }
+};
+TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
+                                  std::size_t samplesPerSurface, unsigned seed = 1);
+
+/// Points along every contour of `roi` (every vertex, and along each edge
+/// at most `stepMm` apart), at their slice's z.
+std::vector<Vec3> contourSamples(const Roi& roi, double stepMm);
+
+}  // namespace dfrecon
