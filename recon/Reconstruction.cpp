@@ -309,6 +309,14 @@ class SurfaceReconstructor {
         return count > 0 && gap > 0 ? std::max(0.0, -(sum / double(count)) / gap) : 0.0;
     }
 
+    /// The end contours extruded by `offsetMm` (up or down) under a flat lid.
+    void prismCap(const LayerPart& end, bool up, double offsetMm) {
+        if (up)
+            closeByPrisms(builder_, end, {}, end.layer->zMm + offsetMm);
+        else
+            closeByPrisms(builder_, {}, end, end.layer->zMm - offsetMm);
+    }
+
     /// The flat cap: a lid at the offset. Its rim continues the side's slope
     /// from the last slab (a vertical wall where the side is vertical or
     /// widening), so ends that were narrowing keep narrowing to the lid
@@ -319,10 +327,7 @@ class SurfaceReconstructor {
         const double z = end.layer->zMm + (up ? offsetMm : -offsetMm);
         const double insetMm = inwardSlope(end, up, fields, slice) * offsetMm;
         if (insetMm < grid_.pixelMm) {
-            if (up)
-                closeByPrisms(builder_, end, {}, z);
-            else
-                closeByPrisms(builder_, {}, end, z);
+            prismCap(end, up, offsetMm);
             return;
         }
         const SliceFields own = fieldsOf(end, {end.layer, {}});
@@ -395,11 +400,7 @@ class SurfaceReconstructor {
                         deepest = grid_.pixelCentre(i, j);
                     }
             if (!deepest) {
-                const double z = end.layer->zMm + (up ? heightMm : -heightMm);
-                if (up)
-                    closeByPrisms(builder_, end, {}, z);
-                else
-                    closeByPrisms(builder_, {}, end, z);
+                prismCap(end, up, heightMm);
                 return;
             }
             inner.push_back(*deepest);
@@ -424,11 +425,7 @@ class SurfaceReconstructor {
                         cap.intersectingPairs, cap.nonManifoldEdges, cap.boundaryEdges,
                         contourEdges, cap.degenerateTriangles);
             builder_.truncateTriangles(before);
-            const double z = end.layer->zMm + (up ? heightMm : -heightMm);
-            if (up)
-                closeByPrisms(builder_, end, {}, z);
-            else
-                closeByPrisms(builder_, {}, end, z);
+            prismCap(end, up, heightMm);
         }
     }
 
