@@ -2,6 +2,7 @@
 
 #include "io/Polygon.hpp"
 #include "recon/TriangleBvh.hpp"
+#include "recon/UnionFind.hpp"
 
 #include <algorithm>
 #include <array>
@@ -81,17 +82,6 @@ bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
                  s2 = orient(p, q, t[2], t[0]);
     return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
-
-// Union–find over indices.
-struct Components {
-    std::vector<std::size_t> parent;
-    explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void join(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
 
 using Triangle = std::array<std::uint32_t, 3>;
 
@@ -240,7 +230,7 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.triangle < y.triangle);
     });
 
-    Components parts(n);
+    UnionFind parts(n);
     for (std::size_t begin = 0; begin < uses.size();) {
         std::size_t end = begin;
         while (end < uses.size() && uses[end].lo == uses[begin].lo &&
@@ -264,7 +254,7 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         ++report.vertices;
         // The triangles around v must form one fan: join those sharing an
         // edge at v and count the groups.
-        Components local(around[v].size());
+        UnionFind local(around[v].size());
         for (std::size_t p = 0; p < around[v].size(); ++p)
             for (std::size_t q = p + 1; q < around[v].size(); ++q) {
                 const Triangle &s = soup.triangles[around[v][p]], &t = soup.triangles[around[v][q]];

@@ -15,6 +15,7 @@
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
+#include "recon/UnionFind.hpp"
 
 namespace dfrecon {
 
@@ -37,21 +38,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-class UnionFind {
-  public:
-    explicit UnionFind(std::size_t n) : parent_(n) {
-        std::iota(parent_.begin(), parent_.end(), std::size_t(0));
-    }
-    std::size_t find(std::size_t x) {
-        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-        return x;
-    }
-    void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
-
-  private:
-    std::vector<std::size_t> parent_;
-};
 
 /// What one slab's medial axes connect: contours of both sides (indices into
 /// the slab's field slices) and the axes between them.
