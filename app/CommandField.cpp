@@ -8,6 +8,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Stopwatch.hpp"
 #include "io/LevelSetVdb.hpp"
 #include "simplify/FieldVolume.hpp"
 
@@ -20,10 +21,6 @@ struct FieldArgs {
     double pixelMm = 0, bandVoxels = 3;
     bool isotropic = false, json = false;
 };
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void runField(const FieldArgs& args, const GlobalOptions& global) {
     const auto start = std::chrono::steady_clock::now();

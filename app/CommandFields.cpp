@@ -11,6 +11,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Stopwatch.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
 #include "io/RawVolume.hpp"
@@ -52,10 +53,6 @@ std::vector<Slice> simplifiedSlices(const Roi& roi, double epsilonMm,
               {"pointsAfter", after},
               {"maxDeviationMm", worst}};
     return slices;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,

@@ -9,6 +9,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Stopwatch.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
@@ -22,10 +23,6 @@ struct ReconstructArgs {
     bool all = false, json = false, ascii = false;
     ReconstructionOptions options;
 };
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Where ROI `roi` goes: the output path itself for one ROI, else
 // OUTPUT/NAME.EXT with the extension the output folder's name cannot give,

@@ -155,18 +155,35 @@ class SurfaceReconstructor {
         return sign < 0;
     }
 
-    SliceFields fieldsOf(const LayerPart& lower, const LayerPart& upper) {
-        std::vector<Slice> slices(2);
-        for (int s = 0; s < 2; ++s) {
-            const LayerPart& p = s == 0 ? lower : upper;
-            slices[std::size_t(s)].zMm = p.layer->zMm;
-            for (std::uint32_t c : p.contours)
-                slices[std::size_t(s)].contours.push_back(p.layer->contours[c]);
+    /// The fields of `parts`, one slice each, in order.
+    SliceFields fieldsOf(const std::vector<LayerPart>& parts) {
+        std::vector<Slice> slices;
+        for (const LayerPart& p : parts) {
+            Slice& slice = slices.emplace_back(Slice{p.layer->zMm, {}});
+            for (std::uint32_t c : p.contours) slice.contours.push_back(p.layer->contours[c]);
         }
         const auto start = Clock::now();
         SliceFields fields = computeSliceFields(runtime_, slices, grid_, {}, options_.kernel);
         stats_.fieldsSeconds += secondsSince(start);
         return fields;
+    }
+
+    /// Slice `ia` of `a` and slice `ib` of `b` as a two-slice stack, so a
+    /// field computed once serves both halves of a recursion.
+    static SliceFields pairOf(const SliceFields& a, std::size_t ia, const SliceFields& b,
+                              std::size_t ib) {
+        SliceFields pair;
+        pair.grid = a.grid;
+        const std::size_t pixels = a.grid.pixelCount();
+        for (const auto& [f, i] : {std::pair{&a, ia}, std::pair{&b, ib}}) {
+            pair.zMm.push_back(f->zMm[i]);
+            const auto from = std::ptrdiff_t(i * pixels), to = from + std::ptrdiff_t(pixels);
+            pair.distanceMm.insert(pair.distanceMm.end(), f->distanceMm.begin() + from,
+                                   f->distanceMm.begin() + to);
+            pair.nearestId.insert(pair.nearestId.end(), f->nearestId.begin() + from,
+                                  f->nearestId.begin() + to);
+        }
+        return pair;
     }
 
     /// Joins `lower` to `upper`; `fields` holds their fields (slice
@@ -243,7 +260,7 @@ class SurfaceReconstructor {
     /// The paper's Fig. 7: the medial axis becomes a contour half-way, and
     /// both halves are solved again.
     void recurse(const LayerPart& x, const LayerPart& y, int depth) {
-        const SliceFields fields = fieldsOf(x, y);
+        const SliceFields fields = fieldsOf({x, y});
         const auto start = Clock::now();
         const SliceSum sum = sumSlices(runtime_, fields, 0, 1);
         std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, grid_);
@@ -264,10 +281,10 @@ class SurfaceReconstructor {
         layers_.push_back(makeLayer(builder_, middle.zMm, std::move(middle.contours)));
         const Layer& mid = layers_.back();
         const LayerPart m = part(mid, all(mid));
-        const SliceFields below = fieldsOf(x, m);
-        slab(x, m, below, 0, 1, depth + 1);
-        const SliceFields above = fieldsOf(m, y);
-        slab(m, y, above, 0, 1, depth + 1);
+        // Only the intermediate contours' field is new; x's and y's are reused.
+        const SliceFields middleField = fieldsOf({m});
+        slab(x, m, pairOf(fields, 0, middleField, 0), 0, 1, depth + 1);
+        slab(m, y, pairOf(middleField, 0, fields, 1), 0, 1, depth + 1);
     }
 
     /// How fast the contours of `end` (slice `slice` of `fields`) move inward
@@ -316,7 +333,7 @@ class SurfaceReconstructor {
             prismCap(end, up, offsetMm);
             return;
         }
-        const SliceFields own = fieldsOf(end, {end.layer, {}});
+        const SliceFields own = fieldsOf({end});
         std::vector<float> shifted(own.distanceMm.begin(),
                                    own.distanceMm.begin() + std::ptrdiff_t(grid_.pixelCount()));
         for (float& d : shifted) d += float(insetMm);
@@ -335,11 +352,9 @@ class SurfaceReconstructor {
         const Layer& top = layers_.back();
         const LayerPart lidPart = part(top, all(top));
         if (up) {
-            const SliceFields between = fieldsOf(end, lidPart);
-            slab(end, lidPart, between, 0, 1, 1);
+            slab(end, lidPart, pairOf(own, 0, fieldsOf({lidPart}), 0), 0, 1, 1);
         } else {
-            const SliceFields between = fieldsOf(lidPart, end);
-            slab(lidPart, end, between, 0, 1, 1);
+            slab(lidPart, end, pairOf(fieldsOf({lidPart}), 0, own, 0), 0, 1, 1);
         }
         roundedCap(builder_, lidPart, up, 0.0, 0.0, {}, [](Point2) { return 0.0; });
     }
