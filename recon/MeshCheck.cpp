@@ -100,6 +100,13 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
         a[k] = soup.points[s[std::size_t(k)]];
         b[k] = soup.points[t[std::size_t(k)]];
     }
+    return trianglesCollide(s, a, t, b);
+}
+
+}  // namespace
+
+bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+                      const std::array<std::uint32_t, 3>& t, const Vec3 b[3]) {
     int shared = 0, sa[3] = {-1, -1, -1};  // sa[k]: index in t of s[k], or -1
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
@@ -158,6 +165,8 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     return false;
 }
 
+namespace {
+
 // Visits the pairs of non-degenerate triangles that collide.
 template <class Visit>
 void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenerate, Visit&& visit) {
@@ -170,13 +179,19 @@ void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenera
 
 }  // namespace
 
-std::size_t countSelfIntersections(const TriangleSoup& soup) {
+std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const TriangleSoup& soup) {
     std::vector<bool> degenerate(soup.triangles.size());
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
         degenerate[t] = isDegenerate(soup, soup.triangles[t]);
-    std::size_t pairs = 0;
-    visitCollisions(soup, degenerate, [&](std::size_t, std::size_t) { ++pairs; });
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
+        pairs.emplace_back(std::min(i, j), std::max(i, j));
+    });
     return pairs;
+}
+
+std::size_t countSelfIntersections(const TriangleSoup& soup) {
+    return selfIntersectingPairs(soup).size();
 }
 
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {

@@ -5,6 +5,7 @@
 // hierarchy), plus the topology figures (components, Euler characteristic,
 // genus) and enclosed volume. Works on a triangle soup so that broken input
 // can be described rather than refused.
+#include <array>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -47,8 +48,18 @@ MeshCheckReport checkMesh(const TriangleSoup& soup);
 /// checks (e.g. for a piece of surface, which has a boundary).
 std::size_t countSelfIntersections(const TriangleSoup& soup);
 
+/// The pairs of triangles countSelfIntersections counts (indices, i < j).
+std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const TriangleSoup& soup);
+
 /// Do two triangles share a point? Exposed for tests. Triangles sharing
 /// vertices (by index) are handled by checkMesh; this is the plain test.
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]);
+
+/// Do triangles s (corners a) and t (corners b), given by vertex ids, meet
+/// where they should not? Shared vertices are allowed contact: sharing an
+/// edge they collide only when folded onto each other, sharing one vertex
+/// only when they overlap beyond it. Both must be non-degenerate.
+bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+                      const std::array<std::uint32_t, 3>& t, const Vec3 b[3]);
 
 }  // namespace dfrecon

@@ -1,6 +1,7 @@
 #include "recon/TriangleBvh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 namespace dfrecon {
@@ -79,10 +80,13 @@ TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p) const {
     Nearest best;
     if (nodes_.empty()) return best;
     double best2 = INFINITY;
-    std::vector<int> stack{0};
-    while (!stack.empty()) {
-        const Node& node = nodes_[std::size_t(stack.back())];
-        stack.pop_back();
+    // Median splits keep the depth near log2(T/4), and each pop pushes at
+    // most two children, so a fixed stack suffices (no allocation per query).
+    std::array<int, 128> stack;
+    std::size_t size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+        const Node& node = nodes_[std::size_t(stack[--size])];
         if (node.box.distance2(p) >= best2) continue;
         if (node.left < 0) {
             for (std::size_t k = 0; k < node.count; ++k) {
@@ -100,13 +104,9 @@ TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p) const {
         }
         // Nearer child last, so it is searched first.
         const Node &l = nodes_[std::size_t(node.left)], &r = nodes_[std::size_t(node.right)];
-        if (l.box.distance2(p) < r.box.distance2(p)) {
-            stack.push_back(node.right);
-            stack.push_back(node.left);
-        } else {
-            stack.push_back(node.left);
-            stack.push_back(node.right);
-        }
+        const bool leftNearer = l.box.distance2(p) < r.box.distance2(p);
+        stack[size++] = leftNearer ? node.right : node.left;
+        stack[size++] = leftNearer ? node.left : node.right;
     }
     best.distance = std::sqrt(best2);
     return best;

@@ -49,12 +49,18 @@ class TriangleBvh {
     /// The triangle nearest to p and the distance; O(log T) typically.
     Nearest nearest(Vec3 p) const;
 
-  private:
+    /// The hierarchy as flat arrays, for device kernels that walk it:
+    /// node 0 is the root; a leaf's triangles are order()[first, first+count).
     struct Node {
         Box3 box;
         int left = -1, right = -1;         // children, or -1 for a leaf
         std::size_t first = 0, count = 0;  // leaf range in order_
     };
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<std::size_t>& order() const { return order_; }
+    const TriangleSoup& soup() const { return soup_; }
+
+  private:
     int build(std::size_t first, std::size_t last);
 
     const TriangleSoup& soup_;

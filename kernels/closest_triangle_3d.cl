@@ -1,0 +1,101 @@
+// Closest-primitive queries in space: the point of a triangle nearest to a
+// point, and the nearest triangle of a surface through a bounding volume
+// hierarchy laid out as recon/TriangleBvh exports it. The 3D member of the
+// closest-primitive family (closest_segment_2d.cl is the planar one); the
+// same Voronoi-region walk as closestPointOnTriangle in recon/TriangleBvh.cpp.
+//
+// REAL is double when the device has fp64 (the host passes -DREAL=double
+// -DREAL_IS_DOUBLE), else float. Vectors are REAL4 with w unused.
+#ifndef REAL
+#define REAL float
+#endif
+#define CONCAT(a, b) CONCAT_(a, b)
+#define CONCAT_(a, b) a##b
+#define REAL4 CONCAT(REAL, 4)
+#if defined(REAL_IS_DOUBLE)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+#ifndef BVH_STACK
+#define BVH_STACK 64
+#endif
+
+inline REAL dot3(REAL4 a, REAL4 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+REAL4 closest_point_on_triangle(REAL4 p, REAL4 a, REAL4 b, REAL4 c) {
+    const REAL4 ab = b - a, ac = c - a, ap = p - a;
+    const REAL d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const REAL4 bp = p - b;
+    const REAL d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const REAL vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+    const REAL4 cp = p - c;
+    const REAL d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const REAL vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+    const REAL va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const REAL denominator = 1 / (va + vb + vc);
+    return a + (vb * denominator) * ab + (vc * denominator) * ac;
+}
+
+inline REAL point_triangle_distance(REAL4 p, REAL4 a, REAL4 b, REAL4 c) {
+    const REAL4 d = p - closest_point_on_triangle(p, a, b, c);
+    return sqrt(dot3(d, d));
+}
+
+// Squared distance from p to the box [lo, hi] (0 inside).
+inline REAL box_distance2(REAL4 p, REAL4 lo, REAL4 hi) {
+    const REAL4 d = fmax(fmax(lo - p, p - hi), (REAL4)(0));
+    return dot3(d, d);
+}
+
+// The surface's triangles and the hierarchy over them. Node k has box
+// [node_lo[k], node_hi[k]]; node_links[k] = (left, right, first, count),
+// left < 0 for a leaf whose triangles are order[first .. first+count).
+typedef struct {
+    __global const REAL4* points;
+    __global const int4* triangles;
+    __global const REAL4* node_lo;
+    __global const REAL4* node_hi;
+    __global const int4* node_links;
+    __global const uint* order;
+} Surface;
+
+// The distance from p to the surface and the nearest triangle's index.
+REAL nearest_triangle(const Surface* s, REAL4 p, uint* nearest) {
+    REAL best2 = INFINITY;
+    int stack[BVH_STACK];
+    int size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+        const int node = stack[--size];
+        if (box_distance2(p, s->node_lo[node], s->node_hi[node]) >= best2) continue;
+        const int4 link = s->node_links[node];
+        if (link.x < 0) {
+            for (int k = 0; k < link.w; ++k) {
+                const uint t = s->order[link.z + k];
+                const int4 tri = s->triangles[t];
+                const REAL4 q = closest_point_on_triangle(p, s->points[tri.x], s->points[tri.y],
+                                                          s->points[tri.z]);
+                const REAL d2 = dot3(p - q, p - q);
+                if (d2 < best2) {
+                    best2 = d2;
+                    *nearest = t;
+                }
+            }
+            continue;
+        }
+        // Nearer child last, so it is searched first.
+        const bool left_nearer = box_distance2(p, s->node_lo[link.x], s->node_hi[link.x]) <
+                                 box_distance2(p, s->node_lo[link.y], s->node_hi[link.y]);
+        stack[size++] = left_nearer ? link.y : link.x;
+        stack[size++] = left_nearer ? link.x : link.y;
+    }
+    return sqrt(best2);
+}

@@ -1,0 +1,115 @@
+// Initial priorities of the error-bounded edge collapse (paper §6.2), one
+// work-item per halfedge of the unchanged mesh: the same bound as
+// collapseBound in simplify/CollapseBound.cpp — (a) deviation_bound of every
+// triangle the collapse creates from the original surface, (b) the distance
+// from the removed vertex to them — or -1 when either exceeds the limit or a
+// created triangle is a sliver. Needs closest_triangle_3d.cl first.
+#ifndef PIECE_STACK
+#define PIECE_STACK 64
+#endif
+
+// deviationBound (simplify/DeviationBound.cpp): split the triangle in four
+// until each piece is settled by dist(centre) + radius or by the largest
+// corner distance to the triangle nearest the centre.
+REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, REAL finest) {
+    REAL4 stack[PIECE_STACK][3];
+    int size = 0;
+    stack[size][0] = a;
+    stack[size][1] = b;
+    stack[size++][2] = c;
+    REAL bound = 0;
+    while (size > 0) {
+        --size;
+        const REAL4 p0 = stack[size][0], p1 = stack[size][1], p2 = stack[size][2];
+        const REAL4 centre = (p0 + p1 + p2) * (REAL)(1.0 / 3.0);
+        const REAL radius = fmax(fmax(sqrt(dot3(p0 - centre, p0 - centre)),
+                                      sqrt(dot3(p1 - centre, p1 - centre))),
+                                 sqrt(dot3(p2 - centre, p2 - centre)));
+        uint t = 0;
+        const REAL d = nearest_triangle(s, centre, &t);
+        if (d > limit) return d;
+        REAL settled = d + radius;
+        if (settled > limit) {
+            const int4 tri = s->triangles[t];
+            const REAL4 s0 = s->points[tri.x], s1 = s->points[tri.y], s2 = s->points[tri.z];
+            const REAL corners = fmax(fmax(point_triangle_distance(p0, s0, s1, s2),
+                                           point_triangle_distance(p1, s0, s1, s2)),
+                                      point_triangle_distance(p2, s0, s1, s2));
+            settled = fmin(settled, corners);
+        }
+        if (settled <= limit) {
+            bound = fmax(bound, settled);
+            continue;
+        }
+        if (radius < finest || size + 4 > PIECE_STACK) return settled;
+        const REAL4 m01 = (REAL)0.5 * (p0 + p1), m12 = (REAL)0.5 * (p1 + p2),
+                    m20 = (REAL)0.5 * (p2 + p0);
+        stack[size][0] = p0;
+        stack[size][1] = m01;
+        stack[size++][2] = m20;
+        stack[size][0] = m01;
+        stack[size][1] = p1;
+        stack[size++][2] = m12;
+        stack[size][0] = m20;
+        stack[size][1] = m12;
+        stack[size++][2] = p2;
+        stack[size][0] = m01;
+        stack[size][1] = m12;
+        stack[size++][2] = m20;
+    }
+    return bound;
+}
+
+// halfedges[h] = (v0, v1); the mesh's faces around vertex v are
+// ring_faces[ring_first[v] .. ring_first[v+1]) as vertex-index triples.
+// The mesh's vertices are mesh_points; the original surface (the same mesh
+// here, but passed separately) is the Surface arguments.
+__kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count,
+                             __global const REAL4* mesh_points,
+                             __global const uint* ring_first, __global const int4* ring_faces,
+                             __global const REAL4* points, __global const int4* triangles,
+                             __global const REAL4* node_lo, __global const REAL4* node_hi,
+                             __global const int4* node_links, __global const uint* order,
+                             REAL limit, REAL finest, REAL min_area_ratio,
+                             __global float* priority) {
+    const uint h = get_global_id(0);
+    if (h >= halfedge_count) return;
+    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order};
+    const int v0 = halfedges[h].x, v1 = halfedges[h].y;
+    const REAL4 removed = mesh_points[v0], kept = mesh_points[v1];
+    REAL homed = INFINITY, deviation = 0;
+    bool any = false;
+    for (uint k = ring_first[v0]; k < ring_first[v0 + 1]; ++k) {
+        const int4 f = ring_faces[k];
+        if (f.x == v1 || f.y == v1 || f.z == v1) continue;  // the edge's own faces
+        const REAL4 a = f.x == v0 ? kept : mesh_points[f.x];
+        const REAL4 b = f.y == v0 ? kept : mesh_points[f.y];
+        const REAL4 c = f.z == v0 ? kept : mesh_points[f.z];
+        const REAL4 e0 = b - a, e1 = c - a, e2 = c - b;
+        const REAL longest2 = fmax(fmax(dot3(e0, e0), dot3(e1, e1)), dot3(e2, e2));
+        const REAL4 n = cross(e0, e1);
+        if (sqrt(dot3(n, n)) <= min_area_ratio * longest2) {
+            priority[h] = -1;
+            return;
+        }
+        homed = fmin(homed, point_triangle_distance(removed, a, b, c));
+        any = true;
+    }
+    if (!any || homed > limit) {
+        priority[h] = -1;
+        return;
+    }
+    for (uint k = ring_first[v0]; k < ring_first[v0 + 1]; ++k) {
+        const int4 f = ring_faces[k];
+        if (f.x == v1 || f.y == v1 || f.z == v1) continue;
+        const REAL d = deviation_bound(&surface, f.x == v0 ? kept : mesh_points[f.x],
+                                       f.y == v0 ? kept : mesh_points[f.y],
+                                       f.z == v0 ? kept : mesh_points[f.z], limit, finest);
+        if (d > limit) {
+            priority[h] = -1;
+            return;
+        }
+        deviation = fmax(deviation, d);
+    }
+    priority[h] = (float)fmax(homed, deviation);
+}

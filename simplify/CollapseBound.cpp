@@ -1,0 +1,59 @@
+#include "simplify/CollapseBound.hpp"
+
+#include <algorithm>
+
+namespace dfrecon {
+
+namespace {
+
+constexpr double kMinAreaRatio = 1e-10;
+
+}  // namespace
+
+bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
+                            std::vector<NewTriangle>& out) {
+    out.clear();
+    const auto v0 = mesh.from_vertex_handle(v0v1), v1 = mesh.to_vertex_handle(v0v1);
+    const TriMesh::FaceHandle fl = mesh.face_handle(v0v1), fr = mesh.opposite_face_handle(v0v1);
+    for (auto f : mesh.vf_range(v0)) {
+        if (f == fl || f == fr) continue;
+        NewTriangle t;
+        int k = 0;
+        for (auto v : mesh.fv_range(f)) {
+            const auto moved = v == v0 ? v1 : v;
+            t.ids[std::size_t(k)] = std::uint32_t(moved.idx());
+            t.p[k++] = toVec3(mesh.point(moved));
+        }
+        const Vec3 e0 = t.p[1] - t.p[0], e1 = t.p[2] - t.p[0], e2 = t.p[2] - t.p[1];
+        const double longest2 = std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
+        if (length(cross(e0, e1)) <= kMinAreaRatio * longest2) return false;
+        out.push_back(t);
+    }
+    return true;
+}
+
+float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
+                    const TriangleBvh& original, const DeviationLimits& limits) {
+    const double limit = limits.limitMm;
+    // (b) first: a few exact distances per point, and the usual reason a
+    // collapse fails.
+    double homed = 0;
+    for (const Vec3& q : tracked) {
+        double nearest = INFINITY;
+        for (const NewTriangle& t : created) {
+            nearest = std::min(nearest, pointTriangleDistance(q, t.p[0], t.p[1], t.p[2]));
+            if (nearest <= homed) break;  // cannot raise the maximum
+        }
+        if (nearest > limit) return -1;
+        homed = std::max(homed, nearest);
+    }
+    double deviation = 0;
+    for (const NewTriangle& t : created) {
+        const double d = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+        if (d > limit) return -1;
+        deviation = std::max(deviation, d);
+    }
+    return float(std::max(homed, deviation));
+}
+
+}  // namespace dfrecon

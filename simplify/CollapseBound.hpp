@@ -1,0 +1,37 @@
+#pragma once
+// What one halfedge collapse would make, and the two-sided error bound of
+// it — shared by the Decimater module (any time) and the initial batch
+// (unchanged mesh), so both compute the same priority.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "io/TriMesh.hpp"
+#include "simplify/DeviationBound.hpp"
+
+namespace dfrecon {
+
+struct NewTriangle {
+    std::array<std::uint32_t, 3> ids;  // vertex indices after the collapse
+    Vec3 p[3];
+};
+
+/// The triangles collapsing `v0v1` (its from-vertex onto its to-vertex)
+/// creates: the from-vertex's faces other than the two on the edge, the
+/// from-vertex replaced. False if one would be a sliver (area below 1e-10
+/// of its longest edge squared), whose orientation rounding can flip.
+bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
+                            std::vector<NewTriangle>& out);
+
+/// The collapse's error bound: the larger of (a) deviationBound of every
+/// created triangle from the original and (b) the distance from each
+/// `tracked` point to the nearest created triangle; -1 when either exceeds
+/// limits.limitMm. O(created · (tracked + deviation pieces · log T)).
+float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
+                    const TriangleBvh& original, const DeviationLimits& limits);
+
+inline Vec3 toVec3(const TriMesh::Point& p) {
+    return {p[0], p[1], p[2]};
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,33 @@
+#pragma once
+// How far a triangle strays from a surface, as a certified upper bound: the
+// direction "simplified → original" of the simplifier's two-sided error.
+#include "recon/TriangleBvh.hpp"
+
+namespace dfrecon {
+
+struct DeviationLimits {
+    double limitMm = 0;  ///< the bound to certify (the simplifier's max error)
+    /// Pieces smaller than this fraction of the limit are not split further;
+    /// one still unsettled there is reported as over the limit (its centroid
+    /// is already within that fraction of it).
+    double finestFraction = 0.05;
+};
+
+/// An upper bound of max over p in abc of dist(p, S), S = the surface `bvh`
+/// was built over, or a value above limits.limitMm when that maximum may
+/// exceed it. The triangle is split in four recursively; a piece with
+/// centroid c, circumradius R about c and s the triangle of S nearest c is
+/// settled by the smaller of
+///   dist(c, S) + R            (the distance to S changes by at most 1 per mm)
+///   max over corners dist(corner, s)   (the distance to one triangle is
+///                             convex, so on a piece it peaks at a corner),
+/// when that is ≤ the limit. The result is the largest settling value; a
+/// centroid farther than the limit ends the search at once (a true
+/// violation). O(pieces · log |S|); pieces grow with (size / (limit − dist))².
+double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
+                      const DeviationLimits& limits);
+
+/// The distance from p to triangle abc (exact up to rounding).
+double pointTriangleDistance(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
+
+}  // namespace dfrecon

@@ -1,0 +1,128 @@
+#include "simplify/InitialPriorities.hpp"
+
+#include <algorithm>
+
+#include "cl/DeviceBuffer.hpp"
+#include "simplify/CollapseBound.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+// Must match CollapseBound.cpp's sliver test.
+constexpr double kMinAreaRatio = 1e-10;
+
+template <class Real, class Real4>
+Real4 toReal4(Vec3 p) {
+    Real4 r{};
+    r.s[0] = Real(p.x);
+    r.s[1] = Real(p.y);
+    r.s[2] = Real(p.z);
+    return r;
+}
+
+template <class Real, class Real4>
+std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh,
+                            const TriangleBvh& original, double maxErrorMm) {
+    std::vector<cl_int2> halfedges(mesh.n_halfedges());
+    for (auto h : mesh.halfedges())
+        halfedges[std::size_t(h.idx())] = {{mesh.from_vertex_handle(h).idx(),
+                                             mesh.to_vertex_handle(h).idx()}};
+    std::vector<Real4> meshPoints(mesh.n_vertices());
+    std::vector<cl_uint> ringFirst{0};
+    std::vector<cl_int4> ringFaces;
+    for (auto v : mesh.vertices()) {
+        meshPoints[std::size_t(v.idx())] = toReal4<Real, Real4>(toVec3(mesh.point(v)));
+        for (auto f : mesh.vf_range(v)) {
+            cl_int4 face{{0, 0, 0, 0}};
+            int k = 0;
+            for (auto u : mesh.fv_range(f)) face.s[k++] = u.idx();
+            ringFaces.push_back(face);
+        }
+        ringFirst.push_back(cl_uint(ringFaces.size()));
+    }
+    const TriangleSoup& soup = original.soup();
+    std::vector<Real4> points;
+    for (const Vec3& p : soup.points) points.push_back(toReal4<Real, Real4>(p));
+    std::vector<cl_int4> triangles;
+    for (const auto& t : soup.triangles) triangles.push_back({{int(t[0]), int(t[1]), int(t[2]), 0}});
+    std::vector<Real4> nodeLo, nodeHi;
+    std::vector<cl_int4> nodeLinks;
+    for (const TriangleBvh::Node& n : original.nodes()) {
+        nodeLo.push_back(toReal4<Real, Real4>(n.box.lo));
+        nodeHi.push_back(toReal4<Real, Real4>(n.box.hi));
+        nodeLinks.push_back({{n.left, n.right, int(n.first), int(n.count)}});
+    }
+    std::vector<cl_uint> order(original.order().begin(), original.order().end());
+
+    ocl::DeviceBuffer<cl_int2> dHalfedges(runtime, halfedges);
+    ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints), dPoints(runtime, points),
+        dLo(runtime, nodeLo), dHi(runtime, nodeHi);
+    ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst), dOrder(runtime, order);
+    ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces), dTriangles(runtime, triangles),
+        dLinks(runtime, nodeLinks);
+    ocl::DeviceBuffer<cl_float> priority(runtime, halfedges.size(), CL_MEM_WRITE_ONLY);
+    const std::string options =
+        sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float";
+    const cl::Program& program =
+        runtime.program({"closest_triangle_3d.cl", "collapse_bound.cl"}, options);
+    const DeviationLimits limits{maxErrorMm};
+    try {
+        cl::Kernel kernel(program, "collapse_bound");
+        int a = 0;
+        kernel.setArg(a++, dHalfedges.get());
+        kernel.setArg(a++, cl_uint(halfedges.size()));
+        kernel.setArg(a++, dMeshPoints.get());
+        kernel.setArg(a++, dRingFirst.get());
+        kernel.setArg(a++, dRingFaces.get());
+        kernel.setArg(a++, dPoints.get());
+        kernel.setArg(a++, dTriangles.get());
+        kernel.setArg(a++, dLo.get());
+        kernel.setArg(a++, dHi.get());
+        kernel.setArg(a++, dLinks.get());
+        kernel.setArg(a++, dOrder.get());
+        kernel.setArg(a++, Real(limits.limitMm));
+        kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
+        kernel.setArg(a++, Real(kMinAreaRatio));
+        kernel.setArg(a++, priority.get());
+        runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
+                                             cl::NDRange(ocl::roundUp(halfedges.size(), 64)));
+    } catch (const cl::Error& e) {
+        throw ocl::toClError(e, "collapse_bound.cl");
+    }
+    std::vector<float> result = priority.download(runtime);
+    if (sizeof(Real) < 8) {
+        Box3 box;
+        for (const Vec3& p : soup.points) box.add(p);
+        const float slack = float(1e-6 * length(box.hi - box.lo));
+        for (float& p : result)
+            if (p >= 0) p = p + slack > float(maxErrorMm) ? -1.0f : p + slack;
+    }
+    return result;
+}
+
+}  // namespace
+
+std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
+                                     const TriangleBvh& original, double maxErrorMm) {
+    if (mesh.n_halfedges() == 0) return {};
+    return runtime.device().doublePrecision
+               ? runBatch<cl_double, cl_double4>(runtime, mesh, original, maxErrorMm)
+               : runBatch<cl_float, cl_float4>(runtime, mesh, original, maxErrorMm);
+}
+
+std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
+                                              double maxErrorMm) {
+    std::vector<float> result(mesh.n_halfedges(), -1.0f);
+    std::vector<NewTriangle> created;
+    const DeviationLimits limits{maxErrorMm};
+    for (auto h : mesh.halfedges()) {
+        if (!trianglesAfterCollapse(mesh, h, created)) continue;
+        result[std::size_t(h.idx())] =
+            collapseBound({toVec3(mesh.point(mesh.from_vertex_handle(h)))}, created, original,
+                          limits);
+    }
+    return result;
+}
+
+}  // namespace dfrecon

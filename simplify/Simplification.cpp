@@ -1,0 +1,114 @@
+#include "simplify/Simplification.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+
+#include "recon/MeshCheck.hpp"
+#include "simplify/InitialPriorities.hpp"
+#include "simplify/ModErrorBound.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct Attempt {
+    TriangleSoup surface;
+    ModErrorBound::Bounds bounds;
+    std::size_t collapses = 0, cpuEvaluations = 0, batchEvaluations = 0;
+    double initialSeconds = 0, decimateSeconds = 0;
+};
+
+Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const TriangleBvh& bvh,
+                 const SimplifyOptions& options, const std::vector<bool>& locked) {
+    Attempt attempt;
+    TriMesh mesh = toTriMesh(input);
+    mesh.request_face_normals();
+    mesh.update_face_normals();
+    for (auto v : mesh.vertices())
+        if (locked[std::size_t(v.idx())]) mesh.status(v).set_locked(true);
+
+    OpenMesh::Decimater::DecimaterT<TriMesh> decimater(mesh);
+    ModErrorBound::Handle bound;
+    OpenMesh::Decimater::ModNormalFlippingT<TriMesh>::Handle flips;
+    decimater.add(bound);
+    decimater.add(flips);
+    decimater.module(flips).set_max_normal_deviation(options.maxNormalTurnDeg);
+    ModErrorBound& module = decimater.module(bound);
+    module.setOriginal(bvh, options.maxErrorMm);
+
+    auto start = std::chrono::steady_clock::now();
+    module.setInitialPriorities(runtime && options.initialBatchOnDevice
+                                    ? initialPriorities(*runtime, mesh, bvh, options.maxErrorMm)
+                                    : initialPrioritiesReference(mesh, bvh, options.maxErrorMm));
+    attempt.initialSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    if (!decimater.initialize()) throw std::logic_error("simplify: Decimater refused its modules");
+    attempt.collapses = decimater.decimate();
+    attempt.bounds = module.currentBounds();
+    attempt.cpuEvaluations = module.cpuEvaluations;
+    attempt.batchEvaluations = module.initialEvaluations;
+    mesh.garbage_collection();
+    attempt.decimateSeconds = secondsSince(start);
+    attempt.surface = toTriangleSoup(mesh);
+    return attempt;
+}
+
+}  // namespace
+
+Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
+                           const SimplifyOptions& options) {
+    if (!(options.maxErrorMm > 0)) throw std::invalid_argument("--max-error must be positive");
+    std::size_t refused = 0;
+    toTriMesh(input, &refused);
+    if (refused > 0)
+        throw std::invalid_argument("simplify: the surface is not manifold (" +
+                                    std::to_string(refused) + " faces refused)");
+    const TriangleBvh bvh(input);
+    std::vector<bool> locked(input.points.size(), false);
+    Simplified result;
+    result.stats.verticesBefore = input.points.size();
+    result.stats.trianglesBefore = input.triangles.size();
+    // A collapse is checked for collisions when it is queued; one queued
+    // long before, beside a sheet that has moved since, can still cut it.
+    // Such regions are locked and the run repeated (never seen so far).
+    constexpr int kMaxRetries = 3;
+    for (int run = 0;; ++run) {
+        Attempt attempt = decimate(runtime, input, bvh, options, locked);
+        const auto pairs = selfIntersectingPairs(attempt.surface);
+        SimplifyStats& s = result.stats;
+        s.initialSeconds += attempt.initialSeconds;
+        s.decimateSeconds += attempt.decimateSeconds;
+        if (pairs.empty() || run == kMaxRetries) {
+            result.surface = std::move(attempt.surface);
+            s.vertices = result.surface.points.size();
+            s.triangles = result.surface.triangles.size();
+            s.collapses = attempt.collapses;
+            s.surfaceToInputBoundMm = attempt.bounds.surfaceToOriginalMm;
+            s.inputToSurfaceBoundMm = attempt.bounds.originalToSurfaceMm;
+            s.cpuEvaluations = attempt.cpuEvaluations;
+            s.batchEvaluations = attempt.batchEvaluations;
+            s.retries = std::size_t(run);
+            return result;
+        }
+        Box3 region;
+        for (const auto& [i, j] : pairs)
+            for (std::size_t t : {i, j})
+                for (std::uint32_t v : attempt.surface.triangles[t])
+                    region.add(attempt.surface.points[v]);
+        const double margin = 4 * options.maxErrorMm;
+        region.lo = region.lo - Vec3{margin, margin, margin};
+        region.hi = region.hi + Vec3{margin, margin, margin};
+        for (std::size_t v = 0; v < input.points.size(); ++v)
+            if (region.distance2(input.points[v]) == 0) locked[v] = true;
+    }
+}
+
+}  // namespace dfrecon
