@@ -11,6 +11,7 @@ namespace dfrecon::bench {
 int benchFields(const std::string& device);
 int benchSlicesIO();
 int benchRecon(const std::string& device);
+int benchSimplify(const std::string& device);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

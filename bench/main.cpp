@@ -9,10 +9,11 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|recon|slices-io|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|recon|simplify|slices-io|all [--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
         "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"
+        "  simplify   error-bounded simplification vs OpenMesh's ModQuadric+ModHausdorff\n"
         "  slices-io  .slices reading and writing vs a bare iostream read\n";
     if (argc < 2) {
         std::cerr << usage;
@@ -25,7 +26,9 @@ int main(int argc, char** argv) {
     if (suite == "fields") return benchFields(device);
     if (suite == "slices-io") return benchSlicesIO();
     if (suite == "recon") return benchRecon(device);
-    if (suite == "all") return benchSlicesIO() | benchFields(device) | benchRecon(device);
+    if (suite == "simplify") return benchSimplify(device);
+    if (suite == "all")
+        return benchSlicesIO() | benchFields(device) | benchRecon(device) | benchSimplify(device);
     std::cerr << usage;
     return 1;
 }

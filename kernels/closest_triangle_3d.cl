@@ -68,8 +68,16 @@ typedef struct {
 } Surface;
 
 // The distance from p to the surface and the nearest triangle's index.
+// *nearest on entry is a hint (a triangle likely near p, or UINT_MAX) that
+// prunes the search from the start, as TriangleBvh::nearest's hint does.
 REAL nearest_triangle(const Surface* s, REAL4 p, uint* nearest) {
     REAL best2 = INFINITY;
+    if (*nearest != UINT_MAX) {
+        const int4 tri = s->triangles[*nearest];
+        const REAL4 q =
+            closest_point_on_triangle(p, s->points[tri.x], s->points[tri.y], s->points[tri.z]);
+        best2 = dot3(p - q, p - q);
+    }
     int stack[BVH_STACK];
     int size = 0;
     stack[size++] = 0;

@@ -8,35 +8,47 @@
 #define PIECE_STACK 64
 #endif
 
-// deviationBound (simplify/DeviationBound.cpp): split the triangle in four
-// until each piece is settled by dist(centre) + radius or by the largest
-// corner distance to the triangle nearest the centre.
+// deviationBound (simplify/DeviationBound.cpp), step for step: split the
+// triangle in four until each piece is settled by the largest corner
+// distance to the triangle nearest its parent's centre, or by
+// dist(centre) + radius or the corner distance to the triangle nearest the
+// centre.
+inline REAL corner_distance(const Surface* s, uint t, REAL4 p0, REAL4 p1, REAL4 p2) {
+    const int4 tri = s->triangles[t];
+    const REAL4 s0 = s->points[tri.x], s1 = s->points[tri.y], s2 = s->points[tri.z];
+    return fmax(fmax(point_triangle_distance(p0, s0, s1, s2), point_triangle_distance(p1, s0, s1, s2)),
+                point_triangle_distance(p2, s0, s1, s2));
+}
+
 REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, REAL finest) {
     REAL4 stack[PIECE_STACK][3];
+    uint near[PIECE_STACK];
     int size = 0;
     stack[size][0] = a;
     stack[size][1] = b;
-    stack[size++][2] = c;
+    stack[size][2] = c;
+    near[size++] = UINT_MAX;
     REAL bound = 0;
     while (size > 0) {
         --size;
         const REAL4 p0 = stack[size][0], p1 = stack[size][1], p2 = stack[size][2];
+        const uint hint = near[size];
+        if (hint != UINT_MAX) {
+            const REAL corners = corner_distance(s, hint, p0, p1, p2);
+            if (corners <= limit) {
+                bound = fmax(bound, corners);
+                continue;
+            }
+        }
         const REAL4 centre = (p0 + p1 + p2) * (REAL)(1.0 / 3.0);
         const REAL radius = fmax(fmax(sqrt(dot3(p0 - centre, p0 - centre)),
                                       sqrt(dot3(p1 - centre, p1 - centre))),
                                  sqrt(dot3(p2 - centre, p2 - centre)));
-        uint t = 0;
+        uint t = hint;
         const REAL d = nearest_triangle(s, centre, &t);
         if (d > limit) return d;
         REAL settled = d + radius;
-        if (settled > limit) {
-            const int4 tri = s->triangles[t];
-            const REAL4 s0 = s->points[tri.x], s1 = s->points[tri.y], s2 = s->points[tri.z];
-            const REAL corners = fmax(fmax(point_triangle_distance(p0, s0, s1, s2),
-                                           point_triangle_distance(p1, s0, s1, s2)),
-                                      point_triangle_distance(p2, s0, s1, s2));
-            settled = fmin(settled, corners);
-        }
+        if (settled > limit && t != hint) settled = fmin(settled, corner_distance(s, t, p0, p1, p2));
         if (settled <= limit) {
             bound = fmax(bound, settled);
             continue;
@@ -44,18 +56,13 @@ REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, RE
         if (radius < finest || size + 4 > PIECE_STACK) return settled;
         const REAL4 m01 = (REAL)0.5 * (p0 + p1), m12 = (REAL)0.5 * (p1 + p2),
                     m20 = (REAL)0.5 * (p2 + p0);
-        stack[size][0] = p0;
-        stack[size][1] = m01;
-        stack[size++][2] = m20;
-        stack[size][0] = m01;
-        stack[size][1] = p1;
-        stack[size++][2] = m12;
-        stack[size][0] = m20;
-        stack[size][1] = m12;
-        stack[size++][2] = p2;
-        stack[size][0] = m01;
-        stack[size][1] = m12;
-        stack[size++][2] = m20;
+        const REAL4 pieces[4][3] = {{p0, m01, m20}, {m01, p1, m12}, {m20, m12, p2}, {m01, m12, m20}};
+        for (int k = 0; k < 4; ++k) {
+            stack[size][0] = pieces[k][0];
+            stack[size][1] = pieces[k][1];
+            stack[size][2] = pieces[k][2];
+            near[size++] = t;
+        }
     }
     return bound;
 }

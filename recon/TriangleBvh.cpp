@@ -12,9 +12,9 @@ void Box3::add(Vec3 p) {
 }
 
 double Box3::distance2(Vec3 p) const {
-    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
-    const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
-    const double dz = std::max({lo.z - p.z, 0.0, p.z - hi.z});
+    // Plain comparisons: this is the inner loop of every nearest query.
+    auto gap = [](double l, double h, double v) { return v < l ? l - v : (v > h ? v - h : 0.0); };
+    const double dx = gap(lo.x, hi.x, p.x), dy = gap(lo.y, hi.y, p.y), dz = gap(lo.z, hi.z, p.z);
     return dx * dx + dy * dy + dz * dz;
 }
 
@@ -76,10 +76,17 @@ int TriangleBvh::build(std::size_t first, std::size_t last) {
     return index;
 }
 
-TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p) const {
+TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p, std::size_t hint) const {
     Nearest best;
     if (nodes_.empty()) return best;
     double best2 = INFINITY;
+    if (hint < soup_.triangles.size()) {
+        const auto& tri = soup_.triangles[hint];
+        const Vec3 q = closestPointOnTriangle(p, soup_.points[tri[0]], soup_.points[tri[1]],
+                                              soup_.points[tri[2]]);
+        best2 = dot(p - q, p - q);
+        best = {hint, 0, q};
+    }
     // Median splits keep the depth near log2(T/4), and each pop pushes at
     // most two children, so a fixed stack suffices (no allocation per query).
     std::array<int, 128> stack;

@@ -5,6 +5,7 @@
 // intersection checks) and the nearest triangle to a point (exact distances
 // for verifiers and benchmarks).
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -47,7 +48,9 @@ class TriangleBvh {
         Vec3 point;  // on the triangle
     };
     /// The triangle nearest to p and the distance; O(log T) typically.
-    Nearest nearest(Vec3 p) const;
+    /// A `hint` (a triangle likely near p, e.g. the answer for a point close
+    /// by) prunes the search from the start; the answer is the same.
+    Nearest nearest(Vec3 p, std::size_t hint = SIZE_MAX) const;
 
     /// The hierarchy as flat arrays, for device kernels that walk it:
     /// node 0 is the root; a leaf's triangles are order()[first, first+count).

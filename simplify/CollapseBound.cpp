@@ -1,6 +1,7 @@
 #include "simplify/CollapseBound.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dfrecon {
 
@@ -32,8 +33,26 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
     return true;
 }
 
+double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
+                             const DeviationLimits& limits) {
+    constexpr std::uint32_t kIdLimit = 1u << 21;
+    std::array<std::uint32_t, 3> ids = t.ids;
+    if (ids[0] >= kIdLimit || ids[1] >= kIdLimit || ids[2] >= kIdLimit)
+        return deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+    std::sort(ids.begin(), ids.end());
+    const std::uint64_t key = std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 |
+                              std::uint64_t(ids[2]) << 42;
+    const auto found = bounds_.find(key);
+    if (found != bounds_.end()) return found->second;
+    const double d = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+    // Stored rounded up, so the cached value is still an upper bound.
+    bounds_.emplace(key, std::nextafter(float(d), INFINITY));
+    return d;
+}
+
 float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
-                    const TriangleBvh& original, const DeviationLimits& limits) {
+                    const TriangleBvh& original, const DeviationLimits& limits,
+                    DeviationCache* cache) {
     const double limit = limits.limitMm;
     // (b) first: a few exact distances per point, and the usual reason a
     // collapse fails.
@@ -49,7 +68,8 @@ float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTrian
     }
     double deviation = 0;
     for (const NewTriangle& t : created) {
-        const double d = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+        const double d = cache ? cache->bound(t, original, limits)
+                               : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
         if (d > limit) return -1;
         deviation = std::max(deviation, d);
     }

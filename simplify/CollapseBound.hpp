@@ -4,6 +4,7 @@
 // (unchanged mesh), so both compute the same priority.
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "io/TriMesh.hpp"
@@ -23,12 +24,27 @@ struct NewTriangle {
 bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
                             std::vector<NewTriangle>& out);
 
+/// deviationBound of triangles by vertex ids, remembered: the Decimater
+/// evaluates the same candidate triangle again and again as the queue is
+/// updated around it, and with the original surface fixed its bound never
+/// changes. Only for meshes of fewer than 2^21 vertices (else not used).
+class DeviationCache {
+  public:
+    /// The cached bound of the triangle with these vertex ids, or computes it.
+    double bound(const NewTriangle& t, const TriangleBvh& original, const DeviationLimits& limits);
+
+  private:
+    std::unordered_map<std::uint64_t, float> bounds_;
+};
+
 /// The collapse's error bound: the larger of (a) deviationBound of every
 /// created triangle from the original and (b) the distance from each
 /// `tracked` point to the nearest created triangle; -1 when either exceeds
 /// limits.limitMm. O(created · (tracked + deviation pieces · log T)).
+/// With a cache, deviation bounds of triangles seen before are reused.
 float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
-                    const TriangleBvh& original, const DeviationLimits& limits);
+                    const TriangleBvh& original, const DeviationLimits& limits,
+                    DeviationCache* cache = nullptr);
 
 inline Vec3 toVec3(const TriMesh::Point& p) {
     return {p[0], p[1], p[2]};

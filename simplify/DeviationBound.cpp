@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 
 namespace dfrecon {
 
@@ -16,32 +17,42 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
     const TriangleSoup& surface = bvh.soup();
     struct Piece {
         Vec3 p[3];
+        std::size_t near;  // the triangle of S nearest the parent's centre
+    };
+    auto cornerDistance = [&](const Piece& piece, std::size_t t) {
+        const auto& s = surface.triangles[t];
+        const Vec3 s0 = surface.points[s[0]], s1 = surface.points[s[1]], s2 = surface.points[s[2]];
+        double corners = 0;
+        for (const Vec3& q : piece.p) corners = std::max(corners, pointTriangleDistance(q, s0, s1, s2));
+        return corners;
     };
     // Depth-first; each split replaces one piece by four, and pieces stop
     // splitting below `finest`, so the stack stays small for any triangle
     // not vastly larger than the limit — bounded anyway by refusing to split
     // when full.
-    std::array<Piece, 256> stack;
+    std::array<Piece, 64> stack;  // as PIECE_STACK in kernels/collapse_bound.cl
     std::size_t size = 0;
-    stack[size++] = {{a, b, c}};
+    stack[size++] = {{a, b, c}, SIZE_MAX};
     double bound = 0;
     while (size > 0) {
         const Piece piece = stack[--size];
+        // Most pieces of a split lie over the same original triangle as their
+        // parent: try it before searching.
+        if (piece.near != SIZE_MAX) {
+            const double corners = cornerDistance(piece, piece.near);
+            if (corners <= limit) {
+                bound = std::max(bound, corners);
+                continue;
+            }
+        }
         const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
         double radius = 0;
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
-        const TriangleBvh::Nearest nearest = bvh.nearest(centre);
+        const TriangleBvh::Nearest nearest = bvh.nearest(centre, piece.near);
         if (nearest.distance > limit) return nearest.distance;
         double settled = nearest.distance + radius;
-        if (settled > limit) {
-            const auto& s = surface.triangles[nearest.triangle];
-            const Vec3 s0 = surface.points[s[0]], s1 = surface.points[s[1]],
-                       s2 = surface.points[s[2]];
-            double corners = 0;
-            for (const Vec3& q : piece.p)
-                corners = std::max(corners, pointTriangleDistance(q, s0, s1, s2));
-            settled = std::min(settled, corners);
-        }
+        if (settled > limit && nearest.triangle != piece.near)
+            settled = std::min(settled, cornerDistance(piece, nearest.triangle));
         if (settled <= limit) {
             bound = std::max(bound, settled);
             continue;
@@ -49,10 +60,11 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         if (radius < finest || size + 4 > stack.size()) return settled;
         const Vec3 m01 = 0.5 * (piece.p[0] + piece.p[1]), m12 = 0.5 * (piece.p[1] + piece.p[2]),
                    m20 = 0.5 * (piece.p[2] + piece.p[0]);
-        stack[size++] = {{piece.p[0], m01, m20}};
-        stack[size++] = {{m01, piece.p[1], m12}};
-        stack[size++] = {{m20, m12, piece.p[2]}};
-        stack[size++] = {{m01, m12, m20}};
+        const std::size_t near = nearest.triangle;
+        stack[size++] = {{piece.p[0], m01, m20}, near};
+        stack[size++] = {{m01, piece.p[1], m12}, near};
+        stack[size++] = {{m20, m12, piece.p[2]}, near};
+        stack[size++] = {{m01, m12, m20}, near};
     }
     return bound;
 }

@@ -10,7 +10,7 @@ struct DeviationLimits {
     /// Pieces smaller than this fraction of the limit are not split further;
     /// one still unsettled there is reported as over the limit (its centroid
     /// is already within that fraction of it).
-    double finestFraction = 0.05;
+    double finestFraction = 0.1;
 };
 
 /// An upper bound of max over p in abc of dist(p, S), S = the surface `bvh`

@@ -100,7 +100,7 @@ float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
             const auto& points = mesh().property(tracked_, f);
             trackedScratch_.insert(trackedScratch_.end(), points.begin(), points.end());
         }
-        priority = collapseBound(trackedScratch_, scratch_, *original_, limits_);
+        priority = collapseBound(trackedScratch_, scratch_, *original_, limits_, &cache_);
         ++cpuEvaluations;
     }
     if (priority < 0) return ILLEGAL_COLLAPSE;

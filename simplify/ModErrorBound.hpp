@@ -73,6 +73,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::vector<Vec3> homeless_;  // tracked points of the faces being collapsed
     std::vector<NewTriangle> scratch_;
     std::vector<Vec3> trackedScratch_;
+    DeviationCache cache_;
 };
 
 }  // namespace dfrecon
