@@ -1,9 +1,9 @@
-// Initial priorities of the error-bounded edge collapse (paper §6.2), one
-// work-item per halfedge of the unchanged mesh: the same bound as
-// collapseBound in simplify/CollapseBound.cpp — (a) deviation_bound of every
-// triangle the collapse creates from the original surface, (b) the distance
-// from the removed vertex to them — or -1 when either exceeds the limit or a
-// created triangle is a sliver. Needs closest_triangle_3d.cl first.
+// Initial deviation bounds of the error-bounded edge collapse (paper §6.2),
+// one work-item per halfedge of the unchanged mesh: the same value as
+// surfaceDeviation in simplify/CollapseBound.cpp — the largest
+// deviation_bound of the triangles the collapse creates from the original
+// surface — or -1 when one exceeds the limit or is a sliver. Needs
+// closest_triangle_3d.cl first.
 #ifndef PIECE_STACK
 #define PIECE_STACK 64
 #endif
@@ -83,9 +83,9 @@ __kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count
     if (h >= halfedge_count) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order};
     const int v0 = halfedges[h].x, v1 = halfedges[h].y;
-    const REAL4 removed = mesh_points[v0], kept = mesh_points[v1];
-    REAL homed = INFINITY, deviation = 0;
-    bool any = false;
+    const REAL4 kept = mesh_points[v1];
+    REAL deviation = 0;
+    // Slivers first, as trianglesAfterCollapse refuses them before any bound.
     for (uint k = ring_first[v0]; k < ring_first[v0 + 1]; ++k) {
         const int4 f = ring_faces[k];
         if (f.x == v1 || f.y == v1 || f.z == v1) continue;  // the edge's own faces
@@ -99,12 +99,6 @@ __kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count
             priority[h] = -1;
             return;
         }
-        homed = fmin(homed, point_triangle_distance(removed, a, b, c));
-        any = true;
-    }
-    if (!any || homed > limit) {
-        priority[h] = -1;
-        return;
     }
     for (uint k = ring_first[v0]; k < ring_first[v0 + 1]; ++k) {
         const int4 f = ring_faces[k];
@@ -118,5 +112,5 @@ __kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count
         }
         deviation = fmax(deviation, d);
     }
-    priority[h] = (float)fmax(homed, deviation);
+    priority[h] = (float)deviation;
 }

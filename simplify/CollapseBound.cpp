@@ -50,30 +50,16 @@ double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
     return d;
 }
 
-float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
-                    const TriangleBvh& original, const DeviationLimits& limits,
-                    DeviationCache* cache) {
-    const double limit = limits.limitMm;
-    // (b) first: a few exact distances per point, and the usual reason a
-    // collapse fails.
-    double homed = 0;
-    for (const Vec3& q : tracked) {
-        double nearest = INFINITY;
-        for (const NewTriangle& t : created) {
-            nearest = std::min(nearest, pointTriangleDistance(q, t.p[0], t.p[1], t.p[2]));
-            if (nearest <= homed) break;  // cannot raise the maximum
-        }
-        if (nearest > limit) return -1;
-        homed = std::max(homed, nearest);
-    }
+float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+                       const DeviationLimits& limits, DeviationCache* cache) {
     double deviation = 0;
     for (const NewTriangle& t : created) {
         const double d = cache ? cache->bound(t, original, limits)
                                : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
-        if (d > limit) return -1;
+        if (d > limits.limitMm) return -1;
         deviation = std::max(deviation, d);
     }
-    return float(std::max(homed, deviation));
+    return float(deviation);
 }
 
 }  // namespace dfrecon

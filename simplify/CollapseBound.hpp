@@ -1,7 +1,7 @@
 #pragma once
-// What one halfedge collapse would make, and the two-sided error bound of
-// it — shared by the Decimater module (any time) and the initial batch
-// (unchanged mesh), so both compute the same priority.
+// What one halfedge collapse would make, and how far its triangles stray
+// from the original surface — shared by the Decimater module (any time)
+// and the initial batch (unchanged mesh), so both compute the same bound.
 #include <array>
 #include <cstdint>
 #include <unordered_map>
@@ -37,14 +37,12 @@ class DeviationCache {
     std::unordered_map<std::uint64_t, float> bounds_;
 };
 
-/// The collapse's error bound: the larger of (a) deviationBound of every
-/// created triangle from the original and (b) the distance from each
-/// `tracked` point to the nearest created triangle; -1 when either exceeds
-/// limits.limitMm. O(created · (tracked + deviation pieces · log T)).
-/// With a cache, deviation bounds of triangles seen before are reused.
-float collapseBound(const std::vector<Vec3>& tracked, const std::vector<NewTriangle>& created,
-                    const TriangleBvh& original, const DeviationLimits& limits,
-                    DeviationCache* cache = nullptr);
+/// Direction (a) of a collapse's error: the largest deviationBound of the
+/// created triangles from the original, or -1 when one exceeds
+/// limits.limitMm. With a cache, bounds of triangles seen before are reused.
+/// O(created · pieces · log T).
+float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+                       const DeviationLimits& limits, DeviationCache* cache = nullptr);
 
 inline Vec3 toVec3(const TriMesh::Point& p) {
     return {p[0], p[1], p[2]};

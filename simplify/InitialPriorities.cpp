@@ -118,9 +118,7 @@ std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const Triangl
     const DeviationLimits limits{maxErrorMm};
     for (auto h : mesh.halfedges()) {
         if (!trianglesAfterCollapse(mesh, h, created)) continue;
-        result[std::size_t(h.idx())] =
-            collapseBound({toVec3(mesh.point(mesh.from_vertex_handle(h)))}, created, original,
-                          limits);
+        result[std::size_t(h.idx())] = surfaceDeviation(created, original, limits);
     }
     return result;
 }

@@ -1,8 +1,10 @@
 #pragma once
-// The error-bounded collapse's priorities of every halfedge of an unchanged
-// mesh in one OpenCL batch (kernels/collapse_bound.cl), and the plain C++
-// reference the kernel is tested against (CollapseBound, the code the
-// Decimater module runs for later collapses).
+// The expensive half of the error-bounded collapse's priorities — how far
+// the triangles each collapse creates stray from the original surface — for
+// every halfedge of the unchanged mesh in one OpenCL batch
+// (kernels/collapse_bound.cl), and the plain C++ reference the kernel is
+// tested against (surfaceDeviation, the code the Decimater module runs for
+// later collapses).
 #include <vector>
 
 #include "cl/Runtime.hpp"
@@ -11,9 +13,9 @@
 
 namespace dfrecon {
 
-/// One value per halfedge index of `mesh`: the bound of collapsing it (its
-/// from-vertex onto its to-vertex), or -1 if it would break maxErrorMm or
-/// create a sliver. `original` is the BVH of the surface the bound is
+/// One value per halfedge index of `mesh`: surfaceDeviation of collapsing
+/// it (its from-vertex onto its to-vertex), or -1 if that exceeds
+/// maxErrorMm or a created triangle is a sliver. `original` is the BVH of the surface the bound is
 /// measured against (for simplifySurface: of `mesh` itself). Topology is not
 /// checked (the Decimater does). On a device without fp64 the kernel runs in
 /// float and each bound is raised by 1e-6 of the surface's extent so it
@@ -21,7 +23,7 @@ namespace dfrecon {
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
                                      const TriangleBvh& original, double maxErrorMm);
 
-/// The same on the CPU with collapseBound, in double precision.
+/// The same on the CPU with surfaceDeviation, in double precision.
 std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
                                               double maxErrorMm);
 

@@ -8,11 +8,11 @@
 namespace dfrecon {
 
 ModErrorBound::ModErrorBound(TriMesh& mesh) : Base(mesh, false) {
-    mesh.add_property(tracked_);
+    mesh.add_property(pieces_);
 }
 
 ModErrorBound::~ModErrorBound() {
-    mesh().remove_property(tracked_);
+    mesh().remove_property(pieces_);
 }
 
 const std::string& ModErrorBound::name() const {
@@ -26,12 +26,20 @@ void ModErrorBound::setOriginal(const TriangleBvh& original, double maxErrorMm) 
     limits_.limitMm = maxErrorMm;
 }
 
-void ModErrorBound::setInitialPriorities(std::vector<float> priorities) {
-    initial_ = std::move(priorities);
+void ModErrorBound::setInitialDeviations(std::vector<float> deviations) {
+    initial_ = std::move(deviations);
 }
 
 Vec3 ModErrorBound::point(TriMesh::VertexHandle v) const {
     return toVec3(const_cast<ModErrorBound*>(this)->mesh().point(v));
+}
+
+CoverCandidate ModErrorBound::candidateOf(TriMesh::FaceHandle f) const {
+    CoverCandidate c;
+    int k = 0;
+    for (auto v : const_cast<ModErrorBound*>(this)->mesh().fv_range(f)) c.p[k++] = point(v);
+    c.id = f.idx();
+    return c;
 }
 
 Box3 ModErrorBound::boxOf(TriMesh::FaceHandle f) const {
@@ -44,20 +52,57 @@ void ModErrorBound::initialize() {
     if (!original_) throw std::logic_error("ModErrorBound: setOriginal before initialize");
     TriMesh& m = mesh();
     if (!initial_.empty() && initial_.size() != m.n_halfedges())
-        throw std::invalid_argument("ModErrorBound: one initial priority per halfedge expected");
+        throw std::invalid_argument("ModErrorBound: one initial deviation per halfedge expected");
     touched_.assign(m.n_vertices(), 0);
-    // Every original vertex starts on one of its faces (distance 0).
-    double edgeSum = 0;
-    for (auto f : m.faces()) m.property(tracked_, f).clear();
-    for (auto v : m.vertices()) {
-        for (auto f : m.vf_range(v)) {
-            m.property(tracked_, f).push_back(point(v));
-            break;
-        }
+    rimSeen_.assign(m.n_faces(), 0);
+    // Every original triangle starts on itself (distance 0).
+    pieces = 0;
+    for (auto f : m.faces()) {
+        const CoverCandidate c = candidateOf(f);
+        m.property(pieces_, f) = {OriginalPiece{{c.p[0], c.p[1], c.p[2]}}};
+        ++pieces;
     }
+    double edgeSum = 0;
     for (auto e : m.edges()) edgeSum += m.calc_edge_length(e);
     faces_.reset(m.n_edges() ? 2 * edgeSum / double(m.n_edges()) : 1.0);
     for (auto f : m.faces()) faces_.insert(f.idx(), boxOf(f));
+}
+
+// Appends to candidates_ the faces around the neighbours of `centre` that do
+// not contain `centre` itself: the ring just outside centre's faces.
+void ModErrorBound::gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip) {
+    TriMesh& m = mesh();
+    ++rimCall_;
+    for (auto w : m.vv_range(centre))
+        for (auto f : m.vf_range(w)) {
+            int& seen = rimSeen_[std::size_t(f.idx())];
+            if (seen == rimCall_) continue;
+            seen = rimCall_;
+            bool inner = false;
+            for (auto u : m.fv_range(f)) inner = inner || u == centre || u == skip;
+            if (!inner) candidates_.push_back(candidateOf(f));
+        }
+}
+
+// Direction (b): can every piece on the faces being replaced be covered by
+// the created triangles or the unchanged faces just around them?
+double ModErrorBound::coverage(const CollapseInfo& ci) {
+    TriMesh& m = mesh();
+    candidates_.clear();
+    for (const NewTriangle& t : created_) candidates_.push_back({{t.p[0], t.p[1], t.p[2]}, -1});
+    gatherRim(ci.v0, ci.v0);
+    double worst = 0;
+    int created = 0;
+    for (auto f : m.vf_range(ci.v0)) {
+        // created_ follows this same order, skipping the edge's two faces.
+        const int firstTry = (f == ci.fl || f == ci.fr) ? -1 : created++;
+        for (const OriginalPiece& piece : m.property(pieces_, f)) {
+            worst = std::max(worst, coverPiece(piece, candidates_, firstTry, limits_,
+                                               [](const OriginalPiece&, int, double) {}));
+            if (worst > limits_.limitMm) return worst;
+        }
+    }
+    return worst;
 }
 
 bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriangle>& created) {
@@ -89,52 +134,51 @@ bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriang
 }
 
 float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
-    if (!trianglesAfterCollapse(mesh(), ci.v0v1, scratch_)) return ILLEGAL_COLLAPSE;
-    float priority;
+    if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
+    const double covered = coverage(ci);
+    if (covered > limits_.limitMm) return ILLEGAL_COLLAPSE;
+    float deviation;
     if (!initial_.empty() && !touched_[std::size_t(ci.v0.idx())]) {
-        priority = initial_[std::size_t(ci.v0v1.idx())];
+        deviation = initial_[std::size_t(ci.v0v1.idx())];
         ++initialEvaluations;
     } else {
-        trackedScratch_.clear();
-        for (auto f : mesh().vf_range(ci.v0)) {
-            const auto& points = mesh().property(tracked_, f);
-            trackedScratch_.insert(trackedScratch_.end(), points.begin(), points.end());
-        }
-        priority = collapseBound(trackedScratch_, scratch_, *original_, limits_, &cache_);
+        deviation = surfaceDeviation(created_, *original_, limits_, &cache_);
         ++cpuEvaluations;
     }
-    if (priority < 0) return ILLEGAL_COLLAPSE;
-    if (collides(ci, scratch_)) return ILLEGAL_COLLAPSE;
-    return priority;
+    if (deviation < 0) return ILLEGAL_COLLAPSE;
+    if (collides(ci, created_)) return ILLEGAL_COLLAPSE;
+    return std::max(float(covered), deviation);
 }
 
 void ModErrorBound::preprocess_collapse(const CollapseInfo& ci) {
     TriMesh& m = mesh();
     homeless_.clear();
     for (auto f : m.vf_range(ci.v0)) {
-        auto& points = m.property(tracked_, f);
-        homeless_.insert(homeless_.end(), points.begin(), points.end());
-        points.clear();
+        auto& stored = m.property(pieces_, f);
+        homeless_.insert(homeless_.end(), stored.begin(), stored.end());
+        pieces -= stored.size();
+        stored.clear();
     }
 }
 
 void ModErrorBound::postprocess_collapse(const CollapseInfo& ci) {
     TriMesh& m = mesh();
-    for (const Vec3& q : homeless_) {
-        TriMesh::FaceHandle home;
-        double nearest = INFINITY;
-        for (auto f : m.vf_range(ci.v1)) {
-            Vec3 p[3];
-            int k = 0;
-            for (auto v : m.fv_range(f)) p[k++] = point(v);
-            const double d = pointTriangleDistance(q, p[0], p[1], p[2]);
-            if (d < nearest) {
-                nearest = d;
-                home = f;
-            }
-        }
-        m.property(tracked_, home).push_back(q);
-    }
+    // The candidates now: v1's faces (the created ones among them) and the
+    // ring around them — a superset of what collapse_priority covered with,
+    // so every piece finds a home again.
+    candidates_.clear();
+    for (auto f : m.vf_range(ci.v1)) candidates_.push_back(candidateOf(f));
+    gatherRim(ci.v1, ci.v1);
+    auto home = [&](const OriginalPiece& part, int k, double) {
+        m.property(pieces_, TriMesh::FaceHandle(candidates_[std::size_t(k)].id)).push_back(part);
+        ++pieces;
+    };
+    for (const OriginalPiece& piece : homeless_)
+        if (coverPiece(piece, candidates_, -1, limits_, [](const OriginalPiece&, int, double) {}) <=
+            limits_.limitMm)
+            coverPiece(piece, candidates_, -1, limits_, home);
+        else  // unreachable by the superset argument; keep the piece anyway
+            home(piece, 0, 0);
     for (auto f : m.vf_range(ci.v1)) faces_.insert(f.idx(), boxOf(f));
     touched_[std::size_t(ci.v1.idx())] = 1;
     for (auto v : m.vv_range(ci.v1)) touched_[std::size_t(v.idx())] = 1;
@@ -144,14 +188,11 @@ ModErrorBound::Bounds ModErrorBound::currentBounds() {
     TriMesh& m = mesh();
     Bounds bounds;
     for (auto f : m.faces()) {
-        Vec3 p[3];
-        int k = 0;
-        for (auto v : m.fv_range(f)) p[k++] = point(v);
+        const CoverCandidate c = candidateOf(f);
         bounds.surfaceToOriginalMm = std::max(
-            bounds.surfaceToOriginalMm, deviationBound(*original_, p[0], p[1], p[2], limits_));
-        for (const Vec3& q : m.property(tracked_, f))
-            bounds.originalToSurfaceMm =
-                std::max(bounds.originalToSurfaceMm, pointTriangleDistance(q, p[0], p[1], p[2]));
+            bounds.surfaceToOriginalMm, deviationBound(*original_, c.p[0], c.p[1], c.p[2], limits_));
+        for (const OriginalPiece& piece : m.property(pieces_, f))
+            bounds.originalToSurfaceMm = std::max(bounds.originalToSurfaceMm, cornerDistance(piece, c));
     }
     return bounds;
 }

@@ -3,10 +3,11 @@
 // collapse is legal only if, afterwards,
 //   (a) every point of every new triangle is within maxError of the
 //       original surface (deviationBound over a BVH of the original), and
-//   (b) every original vertex — contour points included — is within
-//       maxError of the simplified surface: each is tracked on the face
-//       nearest it, as OpenMesh's ModHausdorff tracks removed vertices, and
-//       re-homed to the new faces when its face goes;
+//   (b) every point of the original surface is within maxError of the
+//       simplified one: the original triangles are kept on faces that cover
+//       them (Coverage.hpp), split where no single face does, and re-homed
+//       when their face goes — as OpenMesh's ModHausdorff keeps removed
+//       vertices, but for whole triangles;
 // and no new triangle collides with the rest of the surface. The priority
 // is the larger of the two bounds, so the collapses that change the
 // surface least go first (paper §6.2). Topology (link condition) and normal
@@ -20,6 +21,7 @@
 
 #include "io/TriMesh.hpp"
 #include "simplify/CollapseBound.hpp"
+#include "simplify/Coverage.hpp"
 #include "simplify/FaceGrid.hpp"
 
 namespace dfrecon {
@@ -39,10 +41,10 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// `original` must outlive the module and be the mesh being decimated.
     void setOriginal(const TriangleBvh& original, double maxErrorMm);
 
-    /// Priorities of the unchanged mesh for every halfedge (index =
+    /// surfaceDeviation of every halfedge of the unchanged mesh (index =
     /// halfedge index; < 0 = illegal), e.g. from the OpenCL batch. Used
     /// until a collapse changes the halfedge's neighbourhood.
-    void setInitialPriorities(std::vector<float> priorities);
+    void setInitialDeviations(std::vector<float> deviations);
 
     void initialize() override;
     float collapse_priority(const CollapseInfo& ci) override;
@@ -50,29 +52,36 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     void postprocess_collapse(const CollapseInfo& ci) override;
 
     /// The two bounds the current mesh meets: (a) over all faces, computed
-    /// afresh, and (b) over all tracked original vertices.
+    /// afresh, and (b) over all original pieces and the faces covering them.
     struct Bounds {
         double surfaceToOriginalMm = 0, originalToSurfaceMm = 0;
     };
     Bounds currentBounds();
 
-    /// Collapses evaluated on the CPU / taken from the initial priorities.
+    /// Deviations evaluated on the CPU / taken from the initial batch.
     std::size_t cpuEvaluations = 0, initialEvaluations = 0;
+    /// Original pieces stored (grows as pieces are split between faces).
+    std::size_t pieces = 0;
 
   private:
+    double coverage(const CollapseInfo& ci);
+    void gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip);
     bool collides(const CollapseInfo& ci, const std::vector<NewTriangle>& created);
     Vec3 point(TriMesh::VertexHandle v) const;
     Box3 boxOf(TriMesh::FaceHandle f) const;
+    CoverCandidate candidateOf(TriMesh::FaceHandle f) const;
 
     const TriangleBvh* original_ = nullptr;
     DeviationLimits limits_;
-    OpenMesh::FPropHandleT<std::vector<Vec3>> tracked_;
+    OpenMesh::FPropHandleT<std::vector<OriginalPiece>> pieces_;
     std::vector<float> initial_;
     std::vector<char> touched_;  // per vertex: neighbourhood changed since initial_
     FaceGrid faces_;
-    std::vector<Vec3> homeless_;  // tracked points of the faces being collapsed
-    std::vector<NewTriangle> scratch_;
-    std::vector<Vec3> trackedScratch_;
+    std::vector<OriginalPiece> homeless_;  // pieces of the faces being collapsed
+    std::vector<NewTriangle> created_;
+    std::vector<CoverCandidate> candidates_;
+    std::vector<int> rimSeen_;  // per face: the gatherRim call that last took it
+    int rimCall_ = 0;
     DeviationCache cache_;
 };
 

@@ -44,7 +44,7 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     module.setOriginal(bvh, options.maxErrorMm);
 
     auto start = std::chrono::steady_clock::now();
-    module.setInitialPriorities(runtime && options.initialBatchOnDevice
+    module.setInitialDeviations(runtime && options.initialBatchOnDevice
                                     ? initialPriorities(*runtime, mesh, bvh, options.maxErrorMm)
                                     : initialPrioritiesReference(mesh, bvh, options.maxErrorMm));
     attempt.initialSeconds = secondsSince(start);

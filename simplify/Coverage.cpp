@@ -1,0 +1,14 @@
+#include "simplify/Coverage.hpp"
+
+#include <algorithm>
+
+namespace dfrecon {
+
+double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidate) {
+    double d = 0;
+    for (const Vec3& q : piece.p)
+        d = std::max(d, pointTriangleDistance(q, candidate.p[0], candidate.p[1], candidate.p[2]));
+    return d;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,87 @@
+#pragma once
+// The direction "original → simplified" of the simplifier's two-sided error:
+// every piece of the original surface is kept on ("homed at") a face of the
+// simplified surface that covers it — every corner of the piece within the
+// bound of that face. The distance to one triangle is convex, so then every
+// point of the piece is within the bound: a guarantee for the whole
+// original surface, contour edges included, not only for its vertices
+// (which is all OpenMesh's ModHausdorff checks).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "simplify/DeviationBound.hpp"
+
+namespace dfrecon {
+
+/// A triangle of the original surface, or a part of one.
+struct OriginalPiece {
+    Vec3 p[3];
+};
+
+/// A triangle that may cover pieces: its corners and an id for the caller.
+struct CoverCandidate {
+    Vec3 p[3];
+    int id = -1;
+};
+
+/// The largest corner distance from `piece` to `candidate`: an upper bound
+/// of the distance from any point of the piece to the candidate.
+double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidate);
+
+/// Covers `piece` by `candidates`: if one covers it whole (trying
+/// `firstTry` first when ≥ 0, the usual answer), calls
+/// onCovered(piece, candidate index, distance); otherwise splits it in four
+/// and covers each part the same way, down to parts of circumradius
+/// limits.finestFraction · limit. Returns the largest distance reported, or
+/// a value above the limit as soon as a part cannot be covered (onCovered
+/// may then have been called for other parts). With a superset of
+/// candidates it succeeds whenever it did with the subset.
+template <class OnCovered>
+double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
+                  int firstTry, const DeviationLimits& limits, OnCovered&& onCovered);
+
+template <class OnCovered>
+double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
+                  int firstTry, const DeviationLimits& limits, OnCovered&& onCovered) {
+    const double limit = limits.limitMm;
+    if (firstTry >= 0) {
+        const double d = cornerDistance(piece, candidates[std::size_t(firstTry)]);
+        if (d <= limit) {
+            onCovered(piece, firstTry, d);
+            return d;
+        }
+    }
+    int best = -1;
+    double bestDistance = INFINITY;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        if (int(k) == firstTry) continue;
+        const double d = cornerDistance(piece, candidates[k]);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = int(k);
+        }
+    }
+    if (bestDistance <= limit) {
+        onCovered(piece, best, bestDistance);
+        return bestDistance;
+    }
+    const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
+    double radius = 0;
+    for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
+    if (radius < limits.finestFraction * limit) return bestDistance;
+    const Vec3 m01 = 0.5 * (piece.p[0] + piece.p[1]), m12 = 0.5 * (piece.p[1] + piece.p[2]),
+               m20 = 0.5 * (piece.p[2] + piece.p[0]);
+    const OriginalPiece parts[4] = {{{piece.p[0], m01, m20}},
+                                    {{m01, piece.p[1], m12}},
+                                    {{m20, m12, piece.p[2]}},
+                                    {{m01, m12, m20}}};
+    double worst = 0;
+    for (const OriginalPiece& part : parts) {
+        worst = std::max(worst, coverPiece(part, candidates, best, limits, onCovered));
+        if (worst > limit) return worst;
+    }
+    return worst;
+}
+
+}  // namespace dfrecon
