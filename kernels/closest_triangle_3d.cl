@@ -15,6 +15,9 @@
 #if defined(REAL_IS_DOUBLE)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
+// No fused multiply-adds: the C++ reference (built without contraction)
+// must see the same roundings, or near-ties pick different triangles.
+#pragma OPENCL FP_CONTRACT OFF
 #ifndef BVH_STACK
 #define BVH_STACK 64
 #endif

@@ -54,9 +54,14 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     }
     int best = -1;
     double bestDistance = INFINITY;
+    const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         if (int(k) == firstTry) continue;
-        const double d = cornerDistance(piece, candidates[k]);
+        // Convexity again: the largest corner distance is at least the
+        // centre's, one distance instead of three to rule a candidate out.
+        const CoverCandidate& c = candidates[k];
+        if (pointTriangleDistance(centre, c.p[0], c.p[1], c.p[2]) >= bestDistance) continue;
+        const double d = cornerDistance(piece, c);
         if (d < bestDistance) {
             bestDistance = d;
             best = int(k);
@@ -66,7 +71,6 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
         onCovered(piece, best, bestDistance);
         return bestDistance;
     }
-    const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
     double radius = 0;
     for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
     if (radius < limits.finestFraction * limit) return bestDistance;

@@ -135,8 +135,6 @@ bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriang
 
 float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
     if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
-    const double covered = coverage(ci);
-    if (covered > limits_.limitMm) return ILLEGAL_COLLAPSE;
     float deviation;
     if (!initial_.empty() && !touched_[std::size_t(ci.v0.idx())]) {
         deviation = initial_[std::size_t(ci.v0v1.idx())];
@@ -146,6 +144,9 @@ float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
         ++cpuEvaluations;
     }
     if (deviation < 0) return ILLEGAL_COLLAPSE;
+    // Cheapest first: the deviation is mostly a look-up (batch, cache).
+    const double covered = coverage(ci);
+    if (covered > limits_.limitMm) return ILLEGAL_COLLAPSE;
     if (collides(ci, created_)) return ILLEGAL_COLLAPSE;
     return std::max(float(covered), deviation);
 }

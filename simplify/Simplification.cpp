@@ -21,7 +21,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 struct Attempt {
     TriangleSoup surface;
     ModErrorBound::Bounds bounds;
-    std::size_t collapses = 0, cpuEvaluations = 0, batchEvaluations = 0;
+    std::size_t collapses = 0, cpuEvaluations = 0, batchEvaluations = 0, pieces = 0;
     double initialSeconds = 0, decimateSeconds = 0;
 };
 
@@ -55,6 +55,7 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     attempt.bounds = module.currentBounds();
     attempt.cpuEvaluations = module.cpuEvaluations;
     attempt.batchEvaluations = module.initialEvaluations;
+    attempt.pieces = module.pieces;
     mesh.garbage_collection();
     attempt.decimateSeconds = secondsSince(start);
     attempt.surface = toTriangleSoup(mesh);
@@ -95,6 +96,7 @@ Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
             s.inputToSurfaceBoundMm = attempt.bounds.originalToSurfaceMm;
             s.cpuEvaluations = attempt.cpuEvaluations;
             s.batchEvaluations = attempt.batchEvaluations;
+            s.pieces = attempt.pieces;
             s.retries = std::size_t(run);
             return result;
         }

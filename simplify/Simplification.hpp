@@ -28,6 +28,9 @@ struct SimplifyStats {
     /// stale priority let through (rare; 0 on every test and benchmark mesh).
     std::size_t retries = 0;
     std::size_t cpuEvaluations = 0, batchEvaluations = 0;
+    /// Pieces of the original surface kept on the result's faces (its
+    /// triangles, split where no single face covers them).
+    std::size_t pieces = 0;
     double initialSeconds = 0, decimateSeconds = 0;
 };
 

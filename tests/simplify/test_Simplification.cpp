@@ -4,9 +4,13 @@
 // on every synth shape at three bounds.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "io/AnalyticShapes.hpp"
 #include "recon/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
+#include "simplify/DeviationBound.hpp"
+#include "simplify/InitialPriorities.hpp"
 #include "simplify/Simplification.hpp"
 #include "simplify/SurfaceDistance.hpp"
 
@@ -59,6 +63,120 @@ TEST(Simplification, EverySynthShapeStaysWithinTheBoundBothWays) {
             SCOPED_TRACE(name + " at " + std::to_string(bound) + " mm");
             simplifyAndVerify(reconstructed(name, 2.0), bound);
         }
+}
+
+// The deviation bound against brute force: when within the limit it is
+// never below the largest distance found by dense sampling, and it says
+// "over" whenever sampling finds a point over.
+TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
+    const Case c = reconstructed("sphere", 2.0);
+    const TriangleBvh bvh(c.surface);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    const DeviationLimits limits{0.5};
+    int over = 0, under = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        // A triangle with its corners up to 3 mm from a point of the sphere
+        // (radius 20 mm), at radius 20 ± 0.6 mm: some within the limit,
+        // some not.
+        const Vec3 dir{unit(rng), unit(rng), unit(rng)};
+        const Vec3 centre = (20.0 / length(dir)) * dir;
+        Vec3 p[3];
+        for (Vec3& q : p) {
+            const Vec3 r = centre + Vec3{3 * unit(rng), 3 * unit(rng), 3 * unit(rng)};
+            q = ((20.0 + 0.6 * unit(rng)) / length(r)) * r;
+        }
+        const double bound = deviationBound(bvh, p[0], p[1], p[2], limits);
+        double sampled = 0;
+        for (int i = 0; i <= 40; ++i)
+            for (int j = 0; i + j <= 40; ++j) {
+                const double u = i / 40.0, v = j / 40.0;
+                const Vec3 q = p[0] + u * (p[1] - p[0]) + v * (p[2] - p[0]);
+                sampled = std::max(sampled, bvh.nearest(q).distance);
+            }
+        // Within the limit the value is an upper bound; over it, only "over"
+        // is promised.
+        if (bound <= limits.limitMm) {
+            EXPECT_GE(bound + 1e-12, sampled);
+        }
+        if (sampled > limits.limitMm) {
+            EXPECT_GT(bound, limits.limitMm);
+        }
+        (bound <= limits.limitMm ? under : over)++;
+    }
+    EXPECT_GT(under, 20);  // both outcomes exercised
+    EXPECT_GT(over, 20);
+}
+
+TEST(DeviationBound, FlatTriangleAboveAPlaneIsBoundedByItsHeight) {
+    // Over one big triangle the corner rule settles at once: exactly the
+    // height. Over two, pieces across the diagonal settle by distance plus
+    // radius: still a bound, at most the limit.
+    TriangleSoup plane;
+    plane.points = {{-10, -10, 0}, {30, -10, 0}, {-10, 30, 0}, {10, 10, 0}};
+    plane.triangles = {{0, 1, 2}};
+    const Vec3 a{-2, -1, 0.2}, b{3, -1, 0.2}, c{0, 4, 0.2};
+    EXPECT_NEAR(deviationBound(TriangleBvh(plane), a, b, c, {0.5}), 0.2, 1e-12);
+    plane.triangles = {{0, 1, 3}, {0, 3, 2}};
+    const TriangleBvh split(plane);
+    const double bound = deviationBound(split, a, b, c, {0.5});
+    EXPECT_GE(bound, 0.2 - 1e-12);
+    EXPECT_LE(bound, 0.5);
+    EXPECT_GT(deviationBound(split, a, b, c, {0.1}), 0.1);
+}
+
+// The OpenCL batch against its C++ reference on every halfedge: the same
+// legality and, where legal, the same value (in double on devices with
+// fp64 and without contraction the two agree to rounding; in float within
+// the slack the host adds).
+TEST(InitialPriorities, KernelMatchesReference) {
+    for (const char* shape : {"sphere", "torus", "y"}) {
+        const Case c = reconstructed(shape, 5.0);
+        const TriMesh mesh = toTriMesh(c.surface);
+        const TriangleBvh bvh(c.surface);
+        for (double bound : {0.25, 1.0}) {
+            const std::vector<float> device = initialPriorities(runtime(), mesh, bvh, bound);
+            const std::vector<float> reference = initialPrioritiesReference(mesh, bvh, bound);
+            ASSERT_EQ(device.size(), reference.size());
+            std::size_t legal = 0, mismatched = 0;
+            for (std::size_t h = 0; h < device.size(); ++h) {
+                if ((device[h] < 0) != (reference[h] < 0)) {
+                    ++mismatched;  // only a value within rounding of the bound may flip
+                    EXPECT_NEAR(std::max(device[h], reference[h]), bound, 1e-4) << "halfedge " << h;
+                    continue;
+                }
+                if (reference[h] < 0) continue;
+                ++legal;
+                EXPECT_NEAR(device[h], reference[h], 1e-4) << "halfedge " << h;
+            }
+            EXPECT_GT(legal, device.size() / 10) << shape;
+            EXPECT_LE(mismatched, device.size() / 1000) << shape;
+        }
+    }
+}
+
+TEST(Simplification, RefusesBadOptionsAndNonManifoldInput) {
+    const Case c = reconstructed("sphere", 5.0);
+    SimplifyOptions options;
+    options.maxErrorMm = 0;
+    EXPECT_THROW(simplifySurface(&runtime(), c.surface, options), std::invalid_argument);
+    TriangleSoup fin = c.surface;  // a third face on one edge
+    const auto t = fin.triangles[0];
+    fin.points.push_back({0, 0, 100});
+    fin.triangles.push_back({t[0], t[1], std::uint32_t(fin.points.size() - 1)});
+    options.maxErrorMm = 0.5;
+    EXPECT_THROW(simplifySurface(&runtime(), fin, options), std::invalid_argument);
+}
+
+TEST(Simplification, CpuAndDeviceInitialBoundsGiveValidResults) {
+    const Case c = reconstructed("torus", 5.0);
+    SimplifyOptions options;
+    options.maxErrorMm = 0.5;
+    options.initialBatchOnDevice = false;
+    const Simplified cpu = simplifySurface(nullptr, c.surface, options);
+    EXPECT_EQ(cpu.stats.batchEvaluations + cpu.stats.cpuEvaluations > 0, true);
+    EXPECT_TRUE(checkMesh(cpu.surface).validSolid());
+    EXPECT_LE(twoSidedDistance(c.surface, cpu.surface, 20000).maxMm(), 0.5);
 }
 
 }  // namespace
