@@ -9,6 +9,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/MeshCheck.hpp"
@@ -21,6 +22,7 @@ namespace {
 struct ReconstructArgs {
     std::string input, output, roi, capName = "flat";
     bool all = false, json = false, ascii = false;
+    double maxErrorMm = 0;  // 0: no simplification
     ReconstructionOptions options;
 };
 
@@ -41,6 +43,14 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         Progress progress("reconstructing " + roi.name, !global.quiet);
         result =
             reconstructSurface(runtime, roi, args.options, [&](double f) { progress.update(f); });
+    }
+    nlohmann::ordered_json simplification = nullptr;
+    if (args.maxErrorMm > 0) {
+        SimplifyRequest request;
+        request.options.maxErrorMm = args.maxErrorMm;
+        request.contours = &roi;
+        request.label = "simplifying " + roi.name;
+        simplification = simplifyAndVerify(runtime, result.surface, request, global);
     }
     auto stage = std::chrono::steady_clock::now();
     const MeshCheckReport check = checkMesh(result.surface);
@@ -95,6 +105,7 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             {"closedAtDepthLimit", s.limitClosings},
             {"endContours", s.caps},
             {"slabsClosedAsPrisms", s.fallbackSlabs},
+            {"simplification", simplification},
             {"seconds",
              {{"simplify", s.simplifySeconds},
               {"fields", s.fieldsSeconds},
@@ -171,6 +182,12 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
                     "How far beyond an end contour its cap reaches, mm (default: half the slice "
                     "spacing; at most half the gap to the next slice)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--max-error", args->maxErrorMm,
+                    "Then simplify with this two-sided bound in mm, as dfrecon simplify does "
+                    "(0 = keep every triangle); the report gives the certified bound and the "
+                    "verified distance to the full surface and the contours")
+        ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");

@@ -19,5 +19,6 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 void addCheckCommand(CLI::App& root, const GlobalOptions& global);
 void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldCommand(CLI::App& root, const GlobalOptions& global);
+void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

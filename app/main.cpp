@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
     addFieldsCommand(root, global);
     addReconstructCommand(root, global);
     addFieldCommand(root, global);
+    addSimplifyCommand(root, global);
     addCheckCommand(root, global);
 
     try {

@@ -1,6 +1,7 @@
 #include "io/LevelSetVdb.hpp"
 
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/SignedFloodFill.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/InputError.hpp"
 
 namespace dfrecon {
 
@@ -54,6 +56,50 @@ void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path
         file.close();
         return true;
     });
+}
+
+struct LevelSetSampler::Grid {
+    openvdb::FloatGrid::ConstPtr grid;
+    std::string name;
+};
+
+LevelSetSampler::LevelSetSampler(const std::string& path, const std::string& gridName)
+    : grid_(std::make_unique<Grid>()) {
+    static std::once_flag initialised;
+    std::call_once(initialised, [] { openvdb::initialize(); });
+    openvdb::GridPtrVecPtr grids;
+    try {
+        openvdb::io::File file(path);
+        file.open();
+        grids = file.getGrids();
+        file.close();
+    } catch (const std::exception& e) {
+        throw InputError(path, 0, std::string("not a readable OpenVDB file: ") + e.what());
+    }
+    for (const openvdb::GridBase::Ptr& base : *grids) {
+        auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+        if (!grid || (!gridName.empty() && grid->getName() != gridName)) continue;
+        grid_->grid = grid;
+        grid_->name = grid->getName();
+        return;
+    }
+    throw InputError(path, 0,
+                     gridName.empty() ? "no float grid in the file"
+                                      : "no float grid named '" + gridName + "' in the file");
+}
+
+LevelSetSampler::~LevelSetSampler() = default;
+LevelSetSampler::LevelSetSampler(LevelSetSampler&&) noexcept = default;
+
+const std::string& LevelSetSampler::gridName() const {
+    return grid_->name;
+}
+
+double LevelSetSampler::operator()(Vec3 p) const {
+    // A sampler per call: accessors cache nodes and are not thread-safe.
+    openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(
+        *grid_->grid);
+    return sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z));
 }
 
 }  // namespace dfrecon

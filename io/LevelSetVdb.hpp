@@ -2,8 +2,11 @@
 // Signed distance volumes as OpenVDB level sets (.vdb), the format Blender,
 // Houdini and OpenVDB pipelines read.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "io/Vec3.hpp"
 
 namespace dfrecon {
 
@@ -31,5 +34,26 @@ struct LevelSetWriteOptions {
 /// std::runtime_error when the file cannot be written. O(voxels).
 void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path,
                       const LevelSetWriteOptions& options);
+
+/// A float grid read back from a .vdb file, sampled in world millimetres
+/// (trilinear interpolation of the stored voxels; the background outside
+/// the narrow band).
+class LevelSetSampler {
+  public:
+    /// Reads the grid named `gridName`, or the file's first float grid when
+    /// empty. Throws InputError naming the file when it cannot be read, or
+    /// holds no such grid.
+    explicit LevelSetSampler(const std::string& path, const std::string& gridName = {});
+    ~LevelSetSampler();
+    LevelSetSampler(LevelSetSampler&&) noexcept;
+
+    const std::string& gridName() const;
+    /// The interpolated value at p. Thread-safe. O(1).
+    double operator()(Vec3 p) const;
+
+  private:
+    struct Grid;
+    std::unique_ptr<Grid> grid_;
+};
 
 }  // namespace dfrecon
