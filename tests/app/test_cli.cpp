@@ -83,7 +83,8 @@ TEST(Cli, UsageErrorsExitOne) {
 
 TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
     for (const std::string sub :
-         {"", "synth ", "devices ", "info ", "fields ", "check ", "reconstruct "}) {
+         {"", "synth ", "devices ", "info ", "fields ", "check ", "reconstruct ", "field ",
+          "simplify "}) {
         const Result run = runDfrecon(sub + "--help");
         EXPECT_EQ(run.exitCode, 0) << sub;
         EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
@@ -290,4 +291,67 @@ TEST(Cli, FieldWritesALevelSetWhoseZeroIsOnTheContours) {
         EXPECT_NE(slurp(listing).find("Name: torus"), std::string::npos) << slurp(listing);
     }
     EXPECT_EQ(runDfrecon("field " + in + " -o " + (scratch() / "torus.nrrd").string()).exitCode, 1);
+}
+
+TEST(Cli, SimplifyKeepsTheBoundAndReportsTheVerifiedDistance) {
+    const std::string slices = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    const fs::path full = scratch() / "torus-full.ply", small = scratch() / "torus-small.ply",
+                   field = scratch() / "torus-field.vdb";
+    ASSERT_EQ(runDfrecon("-q reconstruct " + slices + " -o " + full.string()).exitCode, 0);
+    ASSERT_EQ(runDfrecon("-q field " + slices + " -o " + field.string()).exitCode, 0);
+    const Result run = runDfrecon("-q simplify " + full.string() + " --max-error 0.5 --json -o " +
+                                  small.string() + " --contours " + slices + " --field " +
+                                  field.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_LT(report["triangles"].get<int>(), report["trianglesBefore"].get<int>() / 2);
+    EXPECT_LE(report["boundMm"]["resultToInput"].get<double>(), 0.5);
+    EXPECT_LE(report["boundMm"]["inputToResult"].get<double>(), 0.5);
+    EXPECT_LE(report["verified"]["maxMm"].get<double>(), 0.5);
+    EXPECT_LE(report["verified"]["contoursToResultMaxMm"].get<double>(), 0.5);
+    EXPECT_GT(report["verified"]["fieldAbsMaxMm"].get<double>(), 0.0);
+    EXPECT_TRUE(report["withinBound"].get<bool>());
+    EXPECT_TRUE(report["validSolid"].get<bool>());
+    EXPECT_EQ(report["genus"], 1);
+    const Result check = runDfrecon("check --json " + small.string());
+    ASSERT_EQ(check.exitCode, 0) << check.out;
+    EXPECT_EQ(nlohmann::json::parse(check.out)["triangles"], report["triangles"]);
+
+    // The same in one run from the contours.
+    const Result once = runDfrecon("-q reconstruct " + slices + " --max-error 0.5 --json -o " +
+                                   (scratch() / "torus-once.ply").string());
+    ASSERT_EQ(once.exitCode, 0) << once.err;
+    const auto roi = nlohmann::json::parse(once.out)["rois"][0];
+    EXPECT_LE(roi["simplification"]["verified"]["contoursToResultMaxMm"].get<double>(), 0.5);
+    EXPECT_EQ(roi["triangles"], roi["simplification"]["triangles"]);
+    EXPECT_TRUE(roi["validSolid"].get<bool>());
+}
+
+TEST(Cli, SimplifyRefusesBadInputAndWritesNothing) {
+    const fs::path open = scratch() / "open-for-simplify.off", out = scratch() / "never.ply";
+    std::ofstream(open) << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n";
+    const Result notClosed = runDfrecon("simplify " + open.string() + " --max-error 1 -o " +
+                                        out.string());
+    EXPECT_EQ(notClosed.exitCode, 2);
+    EXPECT_NE(notClosed.err.find(open.string()), std::string::npos) << notClosed.err;
+    EXPECT_EQ(runDfrecon("simplify " + (scratch() / "missing.ply").string() +
+                         " --max-error 1 -o " + out.string())
+                  .exitCode,
+              2);
+    const fs::path tetra = scratch() / "tetra-for-simplify.off";
+    std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                         << "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+    EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " --max-error 0 -o " + out.string())
+                  .exitCode,
+              1);
+    EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " -o " + out.string()).exitCode, 1);
+    EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " --max-error 1 -o " +
+                         (scratch() / "never.txt").string())
+                  .exitCode,
+              1);
+    const Result badField = runDfrecon("simplify " + tetra.string() + " --max-error 1 --field " +
+                                       open.string() + " -o " + out.string());
+    EXPECT_EQ(badField.exitCode, 2);
+    EXPECT_NE(badField.err.find("OpenVDB"), std::string::npos) << badField.err;
+    EXPECT_FALSE(fs::exists(out));
 }
