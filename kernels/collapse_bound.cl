@@ -8,8 +8,8 @@
 #define PIECE_STACK 64
 #endif
 
-// deviationBound (simplify/DeviationBound.cpp), step for step: split the
-// triangle in four until each piece is settled by the largest corner
+// deviationBound (simplify/DeviationBound.cpp), step for step: halve the
+// triangle's longest edge until each piece is settled by the largest corner
 // distance to the triangle nearest its parent's centre, or by
 // dist(centre) + radius or the corner distance to the triangle nearest the
 // centre.
@@ -53,16 +53,23 @@ REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, RE
             bound = fmax(bound, settled);
             continue;
         }
-        if (radius < finest || size + 4 > PIECE_STACK) return settled;
-        const REAL4 m01 = (REAL)0.5 * (p0 + p1), m12 = (REAL)0.5 * (p1 + p2),
-                    m20 = (REAL)0.5 * (p2 + p0);
-        const REAL4 pieces[4][3] = {{p0, m01, m20}, {m01, p1, m12}, {m20, m12, p2}, {m01, m12, m20}};
-        for (int k = 0; k < 4; ++k) {
-            stack[size][0] = pieces[k][0];
-            stack[size][1] = pieces[k][1];
-            stack[size][2] = pieces[k][2];
-            near[size++] = t;
-        }
+        if (radius < finest || size + 2 > PIECE_STACK) return settled;
+        // Halve the longest edge (the first of equal ones, as longestEdge).
+        const REAL l0 = dot3(p1 - p0, p1 - p0), l1 = dot3(p2 - p1, p2 - p1),
+                   l2 = dot3(p0 - p2, p0 - p2);
+        const int k = (l0 >= l1 && l0 >= l2) ? 0 : (l1 >= l2 ? 1 : 2);
+        const REAL4 from = k == 0 ? p0 : (k == 1 ? p1 : p2);
+        const REAL4 to = k == 0 ? p1 : (k == 1 ? p2 : p0);
+        const REAL4 apex = k == 0 ? p2 : (k == 1 ? p0 : p1);
+        const REAL4 mid = (REAL)0.5 * (from + to);
+        stack[size][0] = from;
+        stack[size][1] = mid;
+        stack[size][2] = apex;
+        near[size++] = t;
+        stack[size][0] = mid;
+        stack[size][1] = to;
+        stack[size][2] = apex;
+        near[size++] = t;
     }
     return bound;
 }

@@ -16,6 +16,9 @@ echo
 echo "\$ dfrecon reconstruct examples/two-rois.slices --all -o out/demo/two-rois"
 "$dfrecon" reconstruct examples/two-rois.slices --all -o out/demo/two-rois
 echo
+echo "\$ dfrecon simplify out/demo/y.ply --max-error 0.5 --contours examples/y.slices -o out/demo/y-0.5mm.ply"
+"$dfrecon" simplify out/demo/y.ply --max-error 0.5 --contours examples/y.slices -o out/demo/y-0.5mm.ply
+echo
 echo "\$ dfrecon check out/demo/y.ply"
 "$dfrecon" check out/demo/y.ply
 echo

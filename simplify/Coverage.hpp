@@ -31,8 +31,8 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 
 /// Covers `piece` by `candidates`: if one covers it whole (trying
 /// `firstTry` first when ≥ 0, the usual answer), calls
-/// onCovered(piece, candidate index, distance); otherwise splits it in four
-/// and covers each part the same way, down to parts of circumradius
+/// onCovered(piece, candidate index, distance); otherwise halves its
+/// longest edge and covers each part the same way, down to parts of circumradius
 /// limits.finestFraction · limit. Returns the largest distance reported, or
 /// a value above the limit as soon as a part cannot be covered (onCovered
 /// may then have been called for other parts). With a superset of
@@ -74,12 +74,10 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     double radius = 0;
     for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
     if (radius < limits.finestFraction * limit) return bestDistance;
-    const Vec3 m01 = 0.5 * (piece.p[0] + piece.p[1]), m12 = 0.5 * (piece.p[1] + piece.p[2]),
-               m20 = 0.5 * (piece.p[2] + piece.p[0]);
-    const OriginalPiece parts[4] = {{{piece.p[0], m01, m20}},
-                                    {{m01, piece.p[1], m12}},
-                                    {{m20, m12, piece.p[2]}},
-                                    {{m01, m12, m20}}};
+    const int k = longestEdge(piece.p);  // halved: see deviationBound
+    const Vec3 mid = 0.5 * (piece.p[k] + piece.p[(k + 1) % 3]);
+    const Vec3 apex = piece.p[(k + 2) % 3];
+    const OriginalPiece parts[2] = {{{piece.p[k], mid, apex}}, {{mid, piece.p[(k + 1) % 3], apex}}};
     double worst = 0;
     for (const OriginalPiece& part : parts) {
         worst = std::max(worst, coverPiece(part, candidates, best, limits, onCovered));

@@ -6,6 +6,12 @@
 
 namespace dfrecon {
 
+int longestEdge(const Vec3 p[3]) {
+    const double l0 = dot(p[1] - p[0], p[1] - p[0]), l1 = dot(p[2] - p[1], p[2] - p[1]),
+                 l2 = dot(p[0] - p[2], p[0] - p[2]);
+    return l0 >= l1 && l0 >= l2 ? 0 : (l1 >= l2 ? 1 : 2);
+}
+
 double pointTriangleDistance(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
     return length(p - closestPointOnTriangle(p, a, b, c));
 }
@@ -26,7 +32,7 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         for (const Vec3& q : piece.p) corners = std::max(corners, pointTriangleDistance(q, s0, s1, s2));
         return corners;
     };
-    // Depth-first; each split replaces one piece by four, and pieces stop
+    // Depth-first; each split replaces one piece by two, and pieces stop
     // splitting below `finest`, so the stack stays small for any triangle
     // not vastly larger than the limit — bounded anyway by refusing to split
     // when full.
@@ -57,14 +63,16 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
             bound = std::max(bound, settled);
             continue;
         }
-        if (radius < finest || size + 4 > stack.size()) return settled;
-        const Vec3 m01 = 0.5 * (piece.p[0] + piece.p[1]), m12 = 0.5 * (piece.p[1] + piece.p[2]),
-                   m20 = 0.5 * (piece.p[2] + piece.p[0]);
+        if (radius < finest || size + 2 > stack.size()) return settled;
+        // Halve the longest edge: pieces get rounder, so their number grows
+        // with area / size², where splitting in four similar triangles keeps
+        // a long sliver's shape and grows with length².
+        const int k = longestEdge(piece.p);
+        const Vec3 mid = 0.5 * (piece.p[k] + piece.p[(k + 1) % 3]);
+        const Vec3 apex = piece.p[(k + 2) % 3];
         const std::size_t near = nearest.triangle;
-        stack[size++] = {{piece.p[0], m01, m20}, near};
-        stack[size++] = {{m01, piece.p[1], m12}, near};
-        stack[size++] = {{m20, m12, piece.p[2]}, near};
-        stack[size++] = {{m01, m12, m20}, near};
+        stack[size++] = {{piece.p[k], mid, apex}, near};
+        stack[size++] = {{mid, piece.p[(k + 1) % 3], apex}, near};
     }
     return bound;
 }

@@ -15,7 +15,8 @@ struct DeviationLimits {
 
 /// An upper bound of max over p in abc of dist(p, S), S = the surface `bvh`
 /// was built over, or a value above limits.limitMm when that maximum may
-/// exceed it. The triangle is split in four recursively; a piece with
+/// exceed it. The triangle is split in two recursively (at the middle of
+/// its longest edge); a piece with
 /// centroid c, circumradius R about c and s the triangle of S nearest c is
 /// settled by the smaller of
 ///   dist(c, S) + R            (the distance to S changes by at most 1 per mm)
@@ -23,9 +24,13 @@ struct DeviationLimits {
 ///                             convex, so on a piece it peaks at a corner),
 /// when that is ≤ the limit. The result is the largest settling value; a
 /// centroid farther than the limit ends the search at once (a true
-/// violation). O(pieces · log |S|); pieces grow with (size / (limit − dist))².
+/// violation). O(pieces · log |S|); pieces grow with area / (limit − dist)².
 double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits);
+
+/// Which edge of p is longest: k for the edge p[k] → p[(k+1) % 3] (the
+/// first of equal ones).
+int longestEdge(const Vec3 p[3]);
 
 /// The distance from p to triangle abc (exact up to rounding).
 double pointTriangleDistance(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
