@@ -31,9 +31,10 @@ nlohmann::ordered_json simplifyAndVerify(ocl::Runtime& runtime, TriangleSoup& su
     const auto start = std::chrono::steady_clock::now();
     const TwoSidedDistance verified =
         twoSidedDistance(surface, result.surface, verifySamples(surface, result.surface));
-    nlohmann::ordered_json distances{{"inputToResultMaxMm", verified.aToB.maxMm},
-                                     {"resultToInputMaxMm", verified.bToA.maxMm},
-                                     {"meanMm", 0.5 * (verified.aToB.meanMm + verified.bToA.meanMm)}};
+    nlohmann::ordered_json distances{
+        {"inputToResultMaxMm", verified.aToB.maxMm},
+        {"resultToInputMaxMm", verified.bToA.maxMm},
+        {"meanMm", 0.5 * (verified.aToB.meanMm + verified.bToA.meanMm)}};
     double verifiedMax = verified.maxMm();
     if (request.contours) {
         const SampledDistance c = distanceToSurface(
@@ -54,22 +55,22 @@ nlohmann::ordered_json simplifyAndVerify(ocl::Runtime& runtime, TriangleSoup& su
     const double verifySeconds = secondsSince(start);
     const SimplifyStats& s = result.stats;
     surface = std::move(result.surface);
-    return {{"maxErrorMm", request.options.maxErrorMm},
-            {"trianglesBefore", s.trianglesBefore},
-            {"triangles", s.triangles},
-            {"vertices", s.vertices},
-            {"collapses", s.collapses},
-            {"boundMm",
-             {{"resultToInput", s.surfaceToInputBoundMm},
-              {"inputToResult", s.inputToSurfaceBoundMm}}},
-            {"verified", distances},
-            {"withinBound", verifiedMax <= request.options.maxErrorMm},
-            {"originalPieces", s.pieces},
-            {"retries", s.retries},
-            {"seconds",
-             {{"initialBatch", s.initialSeconds},
-              {"decimate", s.decimateSeconds},
-              {"verify", verifySeconds}}}};
+    return {
+        {"maxErrorMm", request.options.maxErrorMm},
+        {"trianglesBefore", s.trianglesBefore},
+        {"triangles", s.triangles},
+        {"vertices", s.vertices},
+        {"collapses", s.collapses},
+        {"boundMm",
+         {{"resultToInput", s.surfaceToInputBoundMm}, {"inputToResult", s.inputToSurfaceBoundMm}}},
+        {"verified", distances},
+        {"withinBound", verifiedMax <= request.options.maxErrorMm},
+        {"originalPieces", s.pieces},
+        {"retries", s.retries},
+        {"seconds",
+         {{"initialBatch", s.initialSeconds},
+          {"decimate", s.decimateSeconds},
+          {"verify", verifySeconds}}}};
 }
 
 }  // namespace dfrecon::app

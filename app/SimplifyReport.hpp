@@ -14,9 +14,9 @@ namespace dfrecon::app {
 
 struct SimplifyRequest {
     SimplifyOptions options;
-    const Roi* contours = nullptr;          // verify against these too
+    const Roi* contours = nullptr;           // verify against these too
     const LevelSetSampler* field = nullptr;  // report |field| on the result
-    std::string label;                      // progress text
+    std::string label;                       // progress text
 };
 
 /// Simplifies `surface` (replaced by the result) and returns the report:

@@ -115,8 +115,8 @@ int benchSimplify(const std::string& device) {
             seconds = bestSeconds(1, [&] { theirs = openMeshDecimate(input, maxError, 0); });
             printRow(caseName, "openmesh-hausdorff", seconds, theirs,
                      verifiedMaxMm(roi, input, theirs, maxError));
-            seconds = bestSeconds(
-                1, [&] { theirs = openMeshDecimate(input, maxError, s.triangles); });
+            seconds =
+                bestSeconds(1, [&] { theirs = openMeshDecimate(input, maxError, s.triangles); });
             printRow(caseName, "openmesh-quadric", seconds, theirs,
                      verifiedMaxMm(roi, input, theirs, maxError));
         }

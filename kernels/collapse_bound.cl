@@ -16,8 +16,9 @@
 inline REAL corner_distance(const Surface* s, uint t, REAL4 p0, REAL4 p1, REAL4 p2) {
     const int4 tri = s->triangles[t];
     const REAL4 s0 = s->points[tri.x], s1 = s->points[tri.y], s2 = s->points[tri.z];
-    return fmax(fmax(point_triangle_distance(p0, s0, s1, s2), point_triangle_distance(p1, s0, s1, s2)),
-                point_triangle_distance(p2, s0, s1, s2));
+    return fmax(
+        fmax(point_triangle_distance(p0, s0, s1, s2), point_triangle_distance(p1, s0, s1, s2)),
+        point_triangle_distance(p2, s0, s1, s2));
 }
 
 REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, REAL finest) {
@@ -41,14 +42,15 @@ REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, RE
             }
         }
         const REAL4 centre = (p0 + p1 + p2) * (REAL)(1.0 / 3.0);
-        const REAL radius = fmax(fmax(sqrt(dot3(p0 - centre, p0 - centre)),
-                                      sqrt(dot3(p1 - centre, p1 - centre))),
-                                 sqrt(dot3(p2 - centre, p2 - centre)));
+        const REAL radius =
+            fmax(fmax(sqrt(dot3(p0 - centre, p0 - centre)), sqrt(dot3(p1 - centre, p1 - centre))),
+                 sqrt(dot3(p2 - centre, p2 - centre)));
         uint t = hint;
         const REAL d = nearest_triangle(s, centre, &t);
         if (d > limit) return d;
         REAL settled = d + radius;
-        if (settled > limit && t != hint) settled = fmin(settled, corner_distance(s, t, p0, p1, p2));
+        if (settled > limit && t != hint)
+            settled = fmin(settled, corner_distance(s, t, p0, p1, p2));
         if (settled <= limit) {
             bound = fmax(bound, settled);
             continue;
@@ -79,13 +81,12 @@ REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, RE
 // The mesh's vertices are mesh_points; the original surface (the same mesh
 // here, but passed separately) is the Surface arguments.
 __kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count,
-                             __global const REAL4* mesh_points,
-                             __global const uint* ring_first, __global const int4* ring_faces,
-                             __global const REAL4* points, __global const int4* triangles,
-                             __global const REAL4* node_lo, __global const REAL4* node_hi,
-                             __global const int4* node_links, __global const uint* order,
-                             REAL limit, REAL finest, REAL min_area_ratio,
-                             __global float* priority) {
+                             __global const REAL4* mesh_points, __global const uint* ring_first,
+                             __global const int4* ring_faces, __global const REAL4* points,
+                             __global const int4* triangles, __global const REAL4* node_lo,
+                             __global const REAL4* node_hi, __global const int4* node_links,
+                             __global const uint* order, REAL limit, REAL finest,
+                             REAL min_area_ratio, __global float* priority) {
     const uint h = get_global_id(0);
     if (h >= halfedge_count) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order};

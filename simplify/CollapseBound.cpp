@@ -40,8 +40,8 @@ double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
     if (ids[0] >= kIdLimit || ids[1] >= kIdLimit || ids[2] >= kIdLimit)
         return deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
     std::sort(ids.begin(), ids.end());
-    const std::uint64_t key = std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 |
-                              std::uint64_t(ids[2]) << 42;
+    const std::uint64_t key =
+        std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 | std::uint64_t(ids[2]) << 42;
     const auto found = bounds_.find(key);
     if (found != bounds_.end()) return found->second;
     const double d = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);

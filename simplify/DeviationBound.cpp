@@ -29,7 +29,8 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         const auto& s = surface.triangles[t];
         const Vec3 s0 = surface.points[s[0]], s1 = surface.points[s[1]], s2 = surface.points[s[2]];
         double corners = 0;
-        for (const Vec3& q : piece.p) corners = std::max(corners, pointTriangleDistance(q, s0, s1, s2));
+        for (const Vec3& q : piece.p)
+            corners = std::max(corners, pointTriangleDistance(q, s0, s1, s2));
         return corners;
     };
     // Depth-first; each split replaces one piece by two, and pieces stop

@@ -24,8 +24,7 @@ void FaceGrid::insert(int face, const Box3& box) {
     const CellRange r = cellsOf(box);
     for (std::int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
         for (std::int64_t j = r.lo[1]; j <= r.hi[1]; ++j)
-            for (std::int64_t k = r.lo[2]; k <= r.hi[2]; ++k)
-                cells_[key(i, j, k)].push_back(face);
+            for (std::int64_t k = r.lo[2]; k <= r.hi[2]; ++k) cells_[key(i, j, k)].push_back(face);
 }
 
 }  // namespace dfrecon

@@ -22,12 +22,12 @@ Real4 toReal4(Vec3 p) {
 }
 
 template <class Real, class Real4>
-std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh,
-                            const TriangleBvh& original, double maxErrorMm) {
+std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const TriangleBvh& original,
+                            double maxErrorMm) {
     std::vector<cl_int2> halfedges(mesh.n_halfedges());
     for (auto h : mesh.halfedges())
-        halfedges[std::size_t(h.idx())] = {{mesh.from_vertex_handle(h).idx(),
-                                             mesh.to_vertex_handle(h).idx()}};
+        halfedges[std::size_t(h.idx())] = {
+            {mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()}};
     std::vector<Real4> meshPoints(mesh.n_vertices());
     std::vector<cl_uint> ringFirst{0};
     std::vector<cl_int4> ringFaces;
@@ -45,7 +45,8 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh,
     std::vector<Real4> points;
     for (const Vec3& p : soup.points) points.push_back(toReal4<Real, Real4>(p));
     std::vector<cl_int4> triangles;
-    for (const auto& t : soup.triangles) triangles.push_back({{int(t[0]), int(t[1]), int(t[2]), 0}});
+    for (const auto& t : soup.triangles)
+        triangles.push_back({{int(t[0]), int(t[1]), int(t[2]), 0}});
     std::vector<Real4> nodeLo, nodeHi;
     std::vector<cl_int4> nodeLinks;
     for (const TriangleBvh::Node& n : original.nodes()) {

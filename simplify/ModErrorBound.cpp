@@ -190,10 +190,16 @@ ModErrorBound::Bounds ModErrorBound::currentBounds() {
     Bounds bounds;
     for (auto f : m.faces()) {
         const CoverCandidate c = candidateOf(f);
-        bounds.surfaceToOriginalMm = std::max(
-            bounds.surfaceToOriginalMm, deviationBound(*original_, c.p[0], c.p[1], c.p[2], limits_));
-        for (const OriginalPiece& piece : m.property(pieces_, f))
-            bounds.originalToSurfaceMm = std::max(bounds.originalToSurfaceMm, cornerDistance(piece, c));
+        const double deviation = deviationBound(*original_, c.p[0], c.p[1], c.p[2], limits_);
+        bounds.surfaceToOriginalMm = std::max(bounds.surfaceToOriginalMm, deviation);
+        if (deviation > limits_.limitMm)
+            bounds.outOfBound.insert(bounds.outOfBound.end(), c.p, c.p + 3);
+        for (const OriginalPiece& piece : m.property(pieces_, f)) {
+            const double d = cornerDistance(piece, c);
+            bounds.originalToSurfaceMm = std::max(bounds.originalToSurfaceMm, d);
+            if (d > limits_.limitMm)
+                bounds.outOfBound.insert(bounds.outOfBound.end(), piece.p, piece.p + 3);
+        }
     }
     return bounds;
 }

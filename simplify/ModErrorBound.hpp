@@ -55,6 +55,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// afresh, and (b) over all original pieces and the faces covering them.
     struct Bounds {
         double surfaceToOriginalMm = 0, originalToSurfaceMm = 0;
+        std::vector<Vec3> outOfBound;  // corners of faces or pieces over the bound
     };
     Bounds currentBounds();
 

@@ -1,6 +1,6 @@
 #pragma once
 // Error-bounded simplification of a closed surface (paper §6): OpenMesh's
-// Decimater with ModErrorBound (two-sided bound, no self-intersections) and
+// decimation (CheckedDecimater) with ModErrorBound (two-sided bound, no self-intersections) and
 // ModNormalFlipping, initial priorities of all edges in one OpenCL batch.
 #include <cstddef>
 
@@ -31,6 +31,8 @@ struct SimplifyStats {
     /// Pieces of the original surface kept on the result's faces (its
     /// triangles, split where no single face covers them).
     std::size_t pieces = 0;
+    /// Queued collapses found stale when taken, and re-queued.
+    std::size_t staleCollapses = 0;
     double initialSeconds = 0, decimateSeconds = 0;
 };
 

@@ -82,9 +82,8 @@ TEST(Cli, UsageErrorsExitOne) {
 }
 
 TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
-    for (const std::string sub :
-         {"", "synth ", "devices ", "info ", "fields ", "check ", "reconstruct ", "field ",
-          "simplify "}) {
+    for (const std::string sub : {"", "synth ", "devices ", "info ", "fields ", "check ",
+                                  "reconstruct ", "field ", "simplify "}) {
         const Result run = runDfrecon(sub + "--help");
         EXPECT_EQ(run.exitCode, 0) << sub;
         EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
@@ -299,9 +298,9 @@ TEST(Cli, SimplifyKeepsTheBoundAndReportsTheVerifiedDistance) {
                    field = scratch() / "torus-field.vdb";
     ASSERT_EQ(runDfrecon("-q reconstruct " + slices + " -o " + full.string()).exitCode, 0);
     ASSERT_EQ(runDfrecon("-q field " + slices + " -o " + field.string()).exitCode, 0);
-    const Result run = runDfrecon("-q simplify " + full.string() + " --max-error 0.5 --json -o " +
-                                  small.string() + " --contours " + slices + " --field " +
-                                  field.string());
+    const Result run =
+        runDfrecon("-q simplify " + full.string() + " --max-error 0.5 --json -o " + small.string() +
+                   " --contours " + slices + " --field " + field.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const auto report = nlohmann::json::parse(run.out);
     EXPECT_LT(report["triangles"].get<int>(), report["trianglesBefore"].get<int>() / 2);
@@ -330,20 +329,19 @@ TEST(Cli, SimplifyKeepsTheBoundAndReportsTheVerifiedDistance) {
 TEST(Cli, SimplifyRefusesBadInputAndWritesNothing) {
     const fs::path open = scratch() / "open-for-simplify.off", out = scratch() / "never.ply";
     std::ofstream(open) << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n";
-    const Result notClosed = runDfrecon("simplify " + open.string() + " --max-error 1 -o " +
-                                        out.string());
+    const Result notClosed =
+        runDfrecon("simplify " + open.string() + " --max-error 1 -o " + out.string());
     EXPECT_EQ(notClosed.exitCode, 2);
     EXPECT_NE(notClosed.err.find(open.string()), std::string::npos) << notClosed.err;
-    EXPECT_EQ(runDfrecon("simplify " + (scratch() / "missing.ply").string() +
-                         " --max-error 1 -o " + out.string())
+    EXPECT_EQ(runDfrecon("simplify " + (scratch() / "missing.ply").string() + " --max-error 1 -o " +
+                         out.string())
                   .exitCode,
               2);
     const fs::path tetra = scratch() / "tetra-for-simplify.off";
     std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
                          << "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
-    EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " --max-error 0 -o " + out.string())
-                  .exitCode,
-              1);
+    EXPECT_EQ(
+        runDfrecon("simplify " + tetra.string() + " --max-error 0 -o " + out.string()).exitCode, 1);
     EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " -o " + out.string()).exitCode, 1);
     EXPECT_EQ(runDfrecon("simplify " + tetra.string() + " --max-error 1 -o " +
                          (scratch() / "never.txt").string())

@@ -43,8 +43,8 @@ TriangleSoup simplifyAndVerify(const Case& c, double maxErrorMm) {
     options.maxErrorMm = maxErrorMm;
     const Simplified s = simplifySurface(&runtime(), c.surface, options);
     const MeshCheckReport before = checkMesh(c.surface), after = checkMesh(s.surface);
-    EXPECT_TRUE(after.validSolid()) << "watertight " << after.watertight() << ", intersecting "
-                                    << after.intersectingPairs;
+    EXPECT_TRUE(after.validSolid())
+        << "watertight " << after.watertight() << ", intersecting " << after.intersectingPairs;
     EXPECT_EQ(after.genus, before.genus);
     EXPECT_EQ(after.components, before.components);
     EXPECT_LT(s.stats.triangles, s.stats.trianglesBefore);
