@@ -5,12 +5,6 @@
 
 namespace dfrecon {
 
-namespace {
-
-constexpr double kMinAreaRatio = 1e-10;
-
-}  // namespace
-
 bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
                             std::vector<NewTriangle>& out) {
     out.clear();
@@ -27,7 +21,7 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
         }
         const Vec3 e0 = t.p[1] - t.p[0], e1 = t.p[2] - t.p[0], e2 = t.p[2] - t.p[1];
         const double longest2 = std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
-        if (length(cross(e0, e1)) <= kMinAreaRatio * longest2) return false;
+        if (length(cross(e0, e1)) <= kSliverAreaRatio * longest2) return false;
         out.push_back(t);
     }
     return true;

@@ -17,10 +17,14 @@ struct NewTriangle {
     Vec3 p[3];
 };
 
+/// A created triangle whose doubled area is at most this fraction of its
+/// longest edge squared is a sliver (the kernel batch gets the same number).
+constexpr double kSliverAreaRatio = 1e-10;
+
 /// The triangles collapsing `v0v1` (its from-vertex onto its to-vertex)
 /// creates: the from-vertex's faces other than the two on the edge, the
-/// from-vertex replaced. False if one would be a sliver (area below 1e-10
-/// of its longest edge squared), whose orientation rounding can flip.
+/// from-vertex replaced. False if one would be a sliver, whose orientation
+/// rounding can flip.
 bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
                             std::vector<NewTriangle>& out);
 

@@ -9,9 +9,6 @@ namespace dfrecon {
 
 namespace {
 
-// Must match CollapseBound.cpp's sliver test.
-constexpr double kMinAreaRatio = 1e-10;
-
 template <class Real, class Real4>
 Real4 toReal4(Vec3 p) {
     Real4 r{};
@@ -84,7 +81,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         kernel.setArg(a++, dOrder.get());
         kernel.setArg(a++, Real(limits.limitMm));
         kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
-        kernel.setArg(a++, Real(kMinAreaRatio));
+        kernel.setArg(a++, Real(kSliverAreaRatio));
         kernel.setArg(a++, priority.get());
         runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
                                              cl::NDRange(ocl::roundUp(halfedges.size(), 64)));
