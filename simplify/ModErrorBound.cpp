@@ -170,16 +170,21 @@ void ModErrorBound::postprocess_collapse(const CollapseInfo& ci) {
     candidates_.clear();
     for (auto f : m.vf_range(ci.v1)) candidates_.push_back(candidateOf(f));
     gatherRim(ci.v1, ci.v1);
-    auto home = [&](const OriginalPiece& part, int k, double) {
+    auto home = [&](const OriginalPiece& part, int k) {
         m.property(pieces_, TriMesh::FaceHandle(candidates_[std::size_t(k)].id)).push_back(part);
         ++pieces;
     };
-    for (const OriginalPiece& piece : homeless_)
-        if (coverPiece(piece, candidates_, -1, limits_, [](const OriginalPiece&, int, double) {}) <=
-            limits_.limitMm)
-            coverPiece(piece, candidates_, -1, limits_, home);
+    for (const OriginalPiece& piece : homeless_) {
+        // One pass: the parts are stored only once the whole piece is covered.
+        homedParts_.clear();
+        const double d = coverPiece(
+            piece, candidates_, -1, limits_,
+            [&](const OriginalPiece& part, int k, double) { homedParts_.emplace_back(part, k); });
+        if (d <= limits_.limitMm)
+            for (const auto& [part, k] : homedParts_) home(part, k);
         else  // unreachable by the superset argument; keep the piece anyway
-            home(piece, 0, 0);
+            home(piece, 0);
+    }
     for (auto f : m.vf_range(ci.v1)) faces_.insert(f.idx(), boxOf(f));
     touched_[std::size_t(ci.v1.idx())] = 1;
     for (auto v : m.vv_range(ci.v1)) touched_[std::size_t(v.idx())] = 1;

@@ -15,6 +15,7 @@
 #if defined(__GNUC__)
 #pragma GCC system_header  // OpenMesh's module macros are not -Wshadow clean
 #endif
+#include <utility>
 #include <vector>
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
@@ -81,6 +82,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::vector<OriginalPiece> homeless_;  // pieces of the faces being collapsed
     std::vector<NewTriangle> created_;
     std::vector<CoverCandidate> candidates_;
+    std::vector<std::pair<OriginalPiece, int>> homedParts_;  // parts and their candidate
     std::vector<int> rimSeen_;  // per face: the gatherRim call that last took it
     int rimCall_ = 0;
     DeviationCache cache_;
