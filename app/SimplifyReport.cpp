@@ -29,21 +29,17 @@ nlohmann::ordered_json simplifyAndVerify(ocl::Runtime& runtime, TriangleSoup& su
         result = simplifySurface(&runtime, surface, request.options);
     }
     const auto start = std::chrono::steady_clock::now();
-    const TwoSidedDistance verified =
-        twoSidedDistance(surface, result.surface, verifySamples(surface, result.surface));
-    nlohmann::ordered_json distances{
-        {"inputToResultMaxMm", verified.aToB.maxMm},
-        {"resultToInputMaxMm", verified.bToA.maxMm},
-        {"meanMm", 0.5 * (verified.aToB.meanMm + verified.bToA.meanMm)}};
-    double verifiedMax = verified.maxMm();
-    if (request.contours) {
-        const SampledDistance c = distanceToSurface(
-            contourSamples(*request.contours, request.options.maxErrorMm / 8), result.surface);
-        distances["contoursToResultMaxMm"] = c.maxMm;
-        verifiedMax = std::max(verifiedMax, c.maxMm);
-    }
+    const SimplificationDistance verified = verifySimplification(
+        surface, result.surface, request.contours, request.options.maxErrorMm / 8,
+        verifySamples(surface, result.surface));
+    const TwoSidedDistance& both = verified.surfaces;
+    nlohmann::ordered_json distances{{"inputToResultMaxMm", both.aToB.maxMm},
+                                     {"resultToInputMaxMm", both.bToA.maxMm},
+                                     {"meanMm", 0.5 * (both.aToB.meanMm + both.bToA.meanMm)}};
+    if (request.contours) distances["contoursToResultMaxMm"] = verified.contours.maxMm;
+    const double verifiedMax = verified.maxMm();
     distances["maxMm"] = verifiedMax;
-    distances["samples"] = verified.aToB.samples + verified.bToA.samples;
+    distances["samples"] = both.aToB.samples + both.bToA.samples;
     if (request.field) {
         // Not a bound: the field is interpolated, and its zero set is the
         // contours' surface, not the mesh simplified.

@@ -29,9 +29,7 @@ constexpr std::size_t kVerifySamples = 50000;
 
 double verifiedMaxMm(const Roi& roi, const TriangleSoup& input, const TriangleSoup& result,
                      double maxErrorMm) {
-    const double surfaces = twoSidedDistance(input, result, kVerifySamples).maxMm();
-    const double contours = distanceToSurface(contourSamples(roi, maxErrorMm / 8), result).maxMm;
-    return std::max(surfaces, contours);
+    return verifySimplification(input, result, &roi, maxErrorMm / 8, kVerifySamples).maxMm();
 }
 
 // OpenMesh's own error-bounded decimation: quadric priority, Hausdorff

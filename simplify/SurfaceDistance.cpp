@@ -75,4 +75,13 @@ std::vector<Vec3> contourSamples(const Roi& roi, double stepMm) {
     return points;
 }
 
+SimplificationDistance verifySimplification(const TriangleSoup& input, const TriangleSoup& result,
+                                            const Roi* contours, double contourStepMm,
+                                            std::size_t samplesPerSurface) {
+    SimplificationDistance d;
+    d.surfaces = twoSidedDistance(input, result, samplesPerSurface);
+    if (contours) d.contours = distanceToSurface(contourSamples(*contours, contourStepMm), result);
+    return d;
+}
+
 }  // namespace dfrecon

@@ -2,6 +2,7 @@
 // The verifier of simplification, independent of any distance field: how far
 // a surface is from another surface, and from the original contour
 // polylines, by dense sampling and exact point–triangle distances over a BVH.
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -35,5 +36,17 @@ TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
 /// Points along every contour of `roi` (every vertex, and along each edge
 /// at most `stepMm` apart), at their slice's z.
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm);
+
+/// The verifier's verdict on a simplification: both directions between
+/// `input` and `result`, and, given `contours`, their points every
+/// `contourStepMm` (use a fraction of the bound) to the result.
+struct SimplificationDistance {
+    TwoSidedDistance surfaces;
+    SampledDistance contours;  // samples == 0 without contours
+    double maxMm() const { return std::max(surfaces.maxMm(), contours.maxMm); }
+};
+SimplificationDistance verifySimplification(const TriangleSoup& input, const TriangleSoup& result,
+                                            const Roi* contours, double contourStepMm,
+                                            std::size_t samplesPerSurface);
 
 }  // namespace dfrecon

@@ -51,11 +51,11 @@ TriangleSoup simplifyAndVerify(const Case& c, double maxErrorMm) {
     EXPECT_LT(s.stats.triangles, s.stats.trianglesBefore);
     EXPECT_LE(s.stats.surfaceToInputBoundMm, maxErrorMm);
     EXPECT_LE(s.stats.inputToSurfaceBoundMm, maxErrorMm);
-    const TwoSidedDistance d = twoSidedDistance(c.surface, s.surface, 20000);
-    EXPECT_LE(d.maxMm(), maxErrorMm);
-    const SampledDistance contours =
-        distanceToSurface(contourSamples(c.roi, maxErrorMm / 8), s.surface);
-    EXPECT_LE(contours.maxMm, maxErrorMm);
+    const SimplificationDistance d =
+        verifySimplification(c.surface, s.surface, &c.roi, maxErrorMm / 8, 20000);
+    EXPECT_LE(d.surfaces.maxMm(), maxErrorMm);
+    EXPECT_LE(d.contours.maxMm, maxErrorMm);
+    EXPECT_GT(d.contours.samples, 0u);
     return s.surface;
 }
 
