@@ -23,6 +23,12 @@ const Roi* ContourSet::findRoi(const std::string& name) const {
     return nullptr;
 }
 
+const Roi* ContourSet::findRoiNumber(int number) const {
+    for (const Roi& roi : rois)
+        if (roi.number == number) return &roi;
+    return nullptr;
+}
+
 // A point of `inner` that is not on `outer`'s boundary, so the winding test is
 // decisive even when the two contours touch. Vertices first, then edge
 // midpoints; touching contours share at most isolated points, so one exists.

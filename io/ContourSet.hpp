@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/PlaneFrame.hpp"
 #include "io/Polygon.hpp"
 
 namespace dfrecon {
@@ -26,8 +27,13 @@ struct Slice {
 /// at most once.
 struct Roi {
     std::string name;
+    std::optional<int> number;  // DICOM ROI Number, where the ROI came from DICOM
     std::optional<Rgb> colour;
     std::vector<Slice> slices;
+    PlaneFrame frame;  // slice coordinates → patient coordinates (identity: axial)
+    /// DICOM Contour Slab Thickness where the source gave one (0: none); a
+    /// single-slice ROI is a slab this thick.
+    double slabThicknessMm = 0;
 
     std::size_t contourCount() const;
     std::size_t pointCount() const;
@@ -36,8 +42,10 @@ struct Roi {
 struct ContourSet {
     std::vector<Roi> rois;
 
-    /// The ROI with this exact name, or nullptr.
+    /// The first ROI with this exact name, or nullptr.
     const Roi* findRoi(const std::string& name) const;
+    /// The ROI with this DICOM ROI Number, or nullptr.
+    const Roi* findRoiNumber(int number) const;
 };
 
 /// Nesting depth of each contour of a slice: 0 for contours inside no other,

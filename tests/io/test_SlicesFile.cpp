@@ -163,7 +163,8 @@ TEST(SlicesWriter, RoundTripsExactly) {
 
 TEST(SlicesWriter, RejectsNamesTheFormatCannotHold) {
     ContourSet set;
-    set.rois.push_back({"bad\"name", {}, {}});
+    set.rois.emplace_back();
+    set.rois.back().name = "bad\"name";
     std::ostringstream out;
     EXPECT_THROW(formatSlices(set, out), std::invalid_argument);
 }

@@ -1,0 +1,87 @@
+#pragma once
+// DICOM RT Structure Sets (RTSTRUCT, docs/formats.md): reading into the
+// contour data model and writing it back. Coordinates are patient (LPS)
+// millimetres, as in the file.
+#include <string>
+#include <vector>
+
+#include "io/ContourSet.hpp"
+#include "io/InputError.hpp"
+
+namespace dfrecon {
+
+/// How an ROI draws its holes, as found while reading.
+enum class HoleConvention {
+    None,     // no holes
+    Nested,   // holes are separate contours inside their outer contour
+    Keyhole,  // holes joined to their outer contour by a zero-width channel
+    Xor,      // CLOSEDPLANAR_XOR contours, combined by exclusive or
+};
+const char* holeConventionName(HoleConvention convention);
+
+/// What reading found about one ROI beyond its contours.
+struct RtStructRoiInfo {
+    int number = 0;
+    std::string name;
+    std::size_t contoursRead = 0;     // closed planar contours accepted
+    std::size_t contoursSkipped = 0;  // POINT, OPEN_PLANAR, OPEN_NONPLANAR, degenerate
+    std::size_t keyholeCuts = 0;
+    HoleConvention holes = HoleConvention::None;
+    bool hasContourSequence = false;
+};
+
+/// Bounds that keep hostile files from exhausting memory or time.
+struct RtStructLimits {
+    std::size_t maxRois = 10'000;
+    std::size_t maxContoursPerRoi = 1'000'000;
+    std::size_t maxPointsTotal = 20'000'000;
+    double maxAbsCoordinateMm = 1e6;
+};
+
+struct RtStructLoad {
+    ContourSet contours;               // one Roi per StructureSetROISequence item, in file order
+    std::vector<RtStructRoiInfo> rois;  // same order
+    std::vector<InputWarning> warnings;
+    std::string frameOfReferenceUid, studyInstanceUid, seriesInstanceUid, patientId,
+        patientName;
+};
+
+/// Two contour planes closer than this are one slice: z values are decimal
+/// strings and planning systems write 2.4991 and 2.4992 for one plane.
+inline constexpr double kSamePlaneToleranceMm = 0.01;
+
+/// Reads an RTSTRUCT file (Part 10 or raw dataset). ROIs come from
+/// StructureSetROISequence joined to ROIContourSequence by ROI number;
+/// CLOSED_PLANAR and CLOSEDPLANAR_XOR contours are grouped into planes
+/// within kSamePlaneToleranceMm, keyholes are split, and contours are
+/// nested and oriented as Slice requires; non-axial stacks get a PlaneFrame.
+/// Other geometric types are skipped with a warning. Throws InputError
+/// naming the tag for anything unreadable, missing, contradictory or over
+/// `limits`. Linear in the file size plus validation.
+RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {});
+
+/// True if `path` looks like a DICOM file (".dcm" extension or the "DICM"
+/// magic at byte 128).
+bool isDicomFile(const std::string& path);
+
+/// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated
+/// (a standalone structure set with its own frame of reference).
+struct RtStructWriteOptions {
+    std::string frameOfReferenceUid, studyInstanceUid, patientId, patientName;
+    std::string structureSetLabel = "dfrecon";
+    std::string seriesDescription = "dfrecon contours";
+};
+
+/// Writes `contours` as an RTSTRUCT (through a temporary file and a rename):
+/// one ROI per Roi (its number, or its position from 1), CLOSED_PLANAR
+/// contours in patient coordinates via each ROI's frame, DS values in at most
+/// 16 characters, exactly the read values wherever they fit. Throws
+/// std::runtime_error if DCMTK cannot write.
+void writeRtStruct(const ContourSet& contours, const std::string& path,
+                   const RtStructWriteOptions& options = {});
+
+/// The shortest decimal string (at most 16 characters, the DS limit) that
+/// reads back as `value`, or the closest that fits.
+std::string formatDecimalString(double value);
+
+}  // namespace dfrecon

@@ -1,0 +1,383 @@
+// RT Structure Sets: exact round trips through our writer, and the reader on
+// datasets built here with DCMTK's dcmdata (jittered planes, skipped contour
+// types, keyholes, XOR, non-axial stacks) and on broken files (the tag named).
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dctk.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "io/AnalyticShapes.hpp"
+#include "io/RtStruct.hpp"
+
+using namespace dfrecon;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tempPath(const std::string& name) {
+    return (fs::temp_directory_path() / ("dfrecon-test-rt-" + name + ".dcm")).string();
+}
+
+// ---- datasets built by hand with dcmdata ----------------------------------
+
+struct ContourSpec {
+    std::string type = "CLOSED_PLANAR";
+    std::vector<Vec3> points;
+    std::string slabThickness;  // empty: absent
+};
+struct RoiSpec {
+    int number = 1;
+    std::string name = "PTV";
+    bool hasContourSequence = true;
+    std::vector<ContourSpec> contours;
+};
+
+// Valid DS values (at most 16 characters), as any DICOM writer must give.
+std::string decimal(double v) {
+    return formatDecimalString(v);
+}
+
+ContourSpec square(double x0, double y0, double side, double z, bool clockwise = false) {
+    ContourSpec c;
+    std::vector<Vec3> p = {{x0, y0, z}, {x0 + side, y0, z}, {x0 + side, y0 + side, z},
+                           {x0, y0 + side, z}};
+    if (clockwise) std::reverse(p.begin(), p.end());
+    c.points = p;
+    return c;
+}
+
+std::string contourDataText(const std::vector<Vec3>& points) {
+    std::string text;
+    for (const Vec3& p : points)
+        for (int a = 0; a < 3; ++a) text += (text.empty() ? "" : "\\") + decimal(p[a]);
+    return text;
+}
+
+void writeDataset(const std::string& path, const std::vector<RoiSpec>& rois,
+                  const std::string& modality = "RTSTRUCT", bool withRoiList = true) {
+    DcmFileFormat file;
+    DcmDataset& ds = *file.getDataset();
+    ds.putAndInsertString(DCM_SOPClassUID, UID_RTStructureSetStorage);
+    ds.putAndInsertString(DCM_SOPInstanceUID, "1.2.3.4");
+    ds.putAndInsertString(DCM_Modality, modality.c_str());
+    DcmItem* item = nullptr;
+    if (withRoiList) {
+        ds.insertEmptyElement(DCM_StructureSetROISequence);
+        for (const RoiSpec& roi : rois) {
+            ds.findOrCreateSequenceItem(DCM_StructureSetROISequence, item, -2);
+            item->putAndInsertString(DCM_ROINumber, std::to_string(roi.number).c_str());
+            item->putAndInsertString(DCM_ROIName, roi.name.c_str());
+        }
+    }
+    for (const RoiSpec& roi : rois) {
+        ds.findOrCreateSequenceItem(DCM_ROIContourSequence, item, -2);
+        item->putAndInsertString(DCM_ReferencedROINumber, std::to_string(roi.number).c_str());
+        item->putAndInsertString(DCM_ROIDisplayColor, "10\\20\\30");
+        if (!roi.hasContourSequence) continue;
+        item->insertEmptyElement(DCM_ContourSequence);
+        for (const ContourSpec& c : roi.contours) {
+            DcmItem* contour = nullptr;
+            item->findOrCreateSequenceItem(DCM_ContourSequence, contour, -2);
+            contour->putAndInsertString(DCM_ContourGeometricType, c.type.c_str());
+            contour->putAndInsertString(DCM_NumberOfContourPoints,
+                                        std::to_string(c.points.size()).c_str());
+            contour->putAndInsertString(DCM_ContourData, contourDataText(c.points).c_str());
+            if (!c.slabThickness.empty())
+                contour->putAndInsertString(DCM_RETIRED_ContourSlabThickness,
+                                            c.slabThickness.c_str());
+        }
+    }
+    ASSERT_TRUE(file.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+}
+
+std::string readError(const std::string& path) {
+    try {
+        readRtStruct(path);
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), path);
+        return e.problem();
+    }
+    ADD_FAILURE() << "no error reading " << path;
+    return "";
+}
+
+bool anyWarning(const RtStructLoad& load, const std::string& text) {
+    for (const InputWarning& w : load.warnings)
+        if (w.message.find(text) != std::string::npos) return true;
+    return false;
+}
+
+// A ring (hole inside) and a separate island on each of three slices.
+ContourSet ringsAndIslands() {
+    ContourSet set;
+    Roi roi;
+    roi.name = "Rectum wall";
+    roi.number = 7;
+    roi.colour = Rgb{200, 100, 0};
+    for (int k = 0; k < 3; ++k) {
+        Slice s;
+        s.zMm = -12.5 + 2.5 * k;
+        s.contours = {circlePolygon({1.25, -3.3}, 20, 48), circlePolygon({1.25, -3.3}, 9.7, 36, true),
+                      circlePolygon({60.1, 0.3}, 5 + k, 24)};
+        roi.slices.push_back(s);
+    }
+    set.rois.push_back(roi);
+    return set;
+}
+
+// Every point equal within toleranceMm (0: bit for bit); reports the first
+// difference only.
+void expectSameContours(const ContourSet& a, const ContourSet& b, double toleranceMm = 0) {
+    ASSERT_EQ(a.rois.size(), b.rois.size());
+    for (std::size_t r = 0; r < a.rois.size(); ++r) {
+        const Roi &x = a.rois[r], &y = b.rois[r];
+        EXPECT_EQ(x.name, y.name);
+        ASSERT_EQ(x.slices.size(), y.slices.size()) << x.name;
+        for (std::size_t s = 0; s < x.slices.size(); ++s) {
+            ASSERT_NEAR(x.slices[s].zMm, y.slices[s].zMm, toleranceMm);
+            ASSERT_EQ(x.slices[s].contours.size(), y.slices[s].contours.size());
+            for (std::size_t c = 0; c < x.slices[s].contours.size(); ++c) {
+                const Polygon &p = x.slices[s].contours[c], &q = y.slices[s].contours[c];
+                ASSERT_EQ(p.size(), q.size());
+                for (std::size_t i = 0; i < p.size(); ++i)
+                    ASSERT_TRUE(std::abs(p[i].x - q[i].x) <= toleranceMm &&
+                                std::abs(p[i].y - q[i].y) <= toleranceMm)
+                        << x.name << " slice " << s << " contour " << c << " point " << i << ": ("
+                        << p[i].x << ", " << p[i].y << ") vs (" << q[i].x << ", " << q[i].y << ")";
+            }
+        }
+    }
+}
+
+}  // namespace
+
+TEST(RtStruct, DecimalStringsFitSixteenCharactersAndReadBack) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> mm(-600, 600);
+    for (int i = 0; i < 20000; ++i) {
+        const double v = i % 2 ? mm(rng) : std::round(mm(rng) * 1e4) / 1e4;
+        const std::string text = formatDecimalString(v);
+        ASSERT_LE(text.size(), 16u) << v;
+        const double back = std::stod(text);
+        // 16 characters hold 13+ significant digits here; values with four
+        // decimals (as planning systems write) come back exactly.
+        if (i % 2 == 0)
+            EXPECT_EQ(back, v) << text;
+        else
+            EXPECT_NEAR(back, v, 1e-10) << text;
+    }
+    EXPECT_EQ(formatDecimalString(-0.0), "0");
+    EXPECT_LE(formatDecimalString(-1.234567890123456e-7).size(), 16u);
+}
+
+TEST(RtStruct, RoundTripKeepsEveryPoint) {
+    ContourSet set = sliceShape(*makeShape("torus"), {2.0, 64, 0.3, 5});
+    set.rois.front().colour = Rgb{1, 2, 3};
+    const ContourSet rings = ringsAndIslands();
+    set.rois.push_back(rings.rois.front());
+    const std::string path = tempPath("roundtrip");
+    writeRtStruct(set, path);
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_TRUE(load.warnings.empty()) << load.warnings.front().toString();
+    // Full doubles become 16-character DS values on the way in...
+    expectSameContours(set, load.contours, 1e-10);
+    ASSERT_EQ(load.rois.size(), 2u);
+    EXPECT_EQ(load.rois[0].number, 1);  // the torus had no number: its position
+    EXPECT_EQ(load.rois[1].number, 7);
+    EXPECT_EQ(load.contours.rois[1].colour->g, 100);
+    EXPECT_EQ(load.rois[0].holes, HoleConvention::Nested);  // torus slices through the hole
+    EXPECT_FALSE(load.frameOfReferenceUid.empty());
+
+    // ...and from there RTSTRUCT -> ContourSet -> RTSTRUCT keeps every point exactly.
+    const std::string again = tempPath("roundtrip2");
+    writeRtStruct(load.contours, again);
+    const RtStructLoad second = readRtStruct(again);
+    expectSameContours(load.contours, second.contours);
+    EXPECT_EQ(second.rois[1].number, 7);
+    fs::remove(path);
+    fs::remove(again);
+}
+
+TEST(RtStruct, JitteredPlanesGroupIntoSlices) {
+    RoiSpec roi;
+    roi.contours = {square(0, 0, 10, 2.4991), square(20, 0, 5, 2.4992), square(0, 0, 10, 5.0),
+                    square(0, 0, 10, 8.0)};
+    const std::string path = tempPath("jitter");
+    writeDataset(path, {roi});
+    const RtStructLoad load = readRtStruct(path);
+    const Roi& read = load.contours.rois.front();
+    ASSERT_EQ(read.slices.size(), 3u);
+    EXPECT_EQ(read.slices[0].contours.size(), 2u);
+    EXPECT_NEAR(read.slices[0].zMm, 2.4991, 1e-9);
+    EXPECT_EQ(read.slices[2].zMm, 8.0);
+    EXPECT_TRUE(anyWarning(load, "uneven slice spacing"));
+    EXPECT_EQ(read.colour->b, 30);
+    EXPECT_EQ(read.number, 1);
+    fs::remove(path);
+}
+
+TEST(RtStruct, SkipsPointAndOpenContoursAndListsEmptyRois) {
+    RoiSpec body;
+    body.contours = {square(0, 0, 10, 0), square(0, 0, 10, 3)};
+    ContourSpec point;
+    point.type = "POINT";
+    point.points = {{1, 2, 3}};
+    ContourSpec open = square(0, 0, 4, 6);
+    open.type = "OPEN_PLANAR";
+    body.contours.push_back(point);
+    body.contours.push_back(open);
+    RoiSpec marker{2, "Marker", true, {point}};
+    RoiSpec empty{3, "Empty", false, {}};
+    const std::string path = tempPath("skip");
+    writeDataset(path, {body, marker, empty});
+    const RtStructLoad load = readRtStruct(path);
+    ASSERT_EQ(load.rois.size(), 3u);
+    EXPECT_EQ(load.contours.rois[0].slices.size(), 2u);
+    EXPECT_EQ(load.rois[0].contoursSkipped, 2u);
+    EXPECT_TRUE(anyWarning(load, "POINT"));
+    EXPECT_TRUE(anyWarning(load, "OPEN_PLANAR"));
+    EXPECT_TRUE(load.contours.rois[1].slices.empty());
+    EXPECT_TRUE(load.contours.rois[2].slices.empty());
+    EXPECT_FALSE(load.rois[2].hasContourSequence);
+    EXPECT_EQ(load.contours.findRoiNumber(3)->name, "Empty");
+    fs::remove(path);
+}
+
+TEST(RtStruct, KeyholeContoursBecomeOuterAndHole) {
+    // plastimatch's way: one path around the outer square, in along a
+    // zero-width channel, around the hole and back out.
+    RoiSpec roi;
+    for (double z : {0.0, 3.0}) {
+        ContourSpec c;
+        for (Point2 p : {Point2{0, 0}, Point2{5, 0}, Point2{5, 3}, Point2{3, 3}, Point2{3, 7},
+                         Point2{7, 7}, Point2{7, 3}, Point2{5, 3}, Point2{5, 0}, Point2{10, 0},
+                         Point2{10, 10}, Point2{0, 10}})
+            c.points.push_back({p.x, p.y, z});
+        roi.contours.push_back(c);
+    }
+    const std::string path = tempPath("keyhole");
+    writeDataset(path, {roi});
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_EQ(load.rois[0].holes, HoleConvention::Keyhole);
+    for (const Slice& slice : load.contours.rois[0].slices) {
+        ASSERT_EQ(slice.contours.size(), 2u);
+        const std::vector<int> depth = nestingDepths(slice);
+        for (std::size_t c = 0; c < 2; ++c)
+            EXPECT_DOUBLE_EQ(signedArea(slice.contours[c]), depth[c] == 0 ? 100.0 : -16.0);
+    }
+    fs::remove(path);
+}
+
+TEST(RtStruct, SagittalStackGetsItsFrame) {
+    RoiSpec roi;
+    for (double x : {-4.0, -2.0, 0.0}) {
+        ContourSpec c;
+        for (int k = 0; k < 16; ++k) {
+            const double a = 2 * M_PI * k / 16;
+            c.points.push_back({x, 10 + 5 * std::cos(a), -20 + 8 * std::sin(a)});
+        }
+        roi.contours.push_back(c);
+    }
+    const std::string path = tempPath("sagittal");
+    writeDataset(path, {roi});
+    const RtStructLoad load = readRtStruct(path);
+    const Roi& read = load.contours.rois[0];
+    EXPECT_STREQ(read.frame.orientationName(), "sagittal");
+    EXPECT_TRUE(anyWarning(load, "sagittal"));
+    ASSERT_EQ(read.slices.size(), 3u);
+    // Plane coordinates map back onto the written points.
+    const Point2 first = read.slices[0].contours[0][0];
+    const Vec3 patient = read.frame.toPatient({first.x, first.y, read.slices[0].zMm});
+    EXPECT_NEAR(patient.x, -4.0, 1e-12);
+    EXPECT_NEAR(std::hypot((patient.y - 10) / 5, (patient.z + 20) / 8), 1.0, 1e-12);
+    // And the writer puts them back where they were.
+    writeRtStruct(load.contours, path);
+    const RtStructLoad again = readRtStruct(path);
+    expectSameContours(load.contours, again.contours);
+    fs::remove(path);
+}
+
+TEST(RtStruct, XorContoursAreReported) {
+    RoiSpec roi;
+    ContourSpec outer = square(0, 0, 10, 0), inner = square(3, 3, 4, 0);
+    outer.type = inner.type = "CLOSEDPLANAR_XOR";
+    roi.contours = {outer, inner};
+    const std::string path = tempPath("xor");
+    writeDataset(path, {roi});
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_EQ(load.rois[0].holes, HoleConvention::Xor);
+    EXPECT_EQ(nestingDepths(load.contours.rois[0].slices[0]), (std::vector<int>{0, 1}));
+    fs::remove(path);
+}
+
+TEST(RtStruct, SlabThicknessIsKept) {
+    RoiSpec roi;
+    roi.contours = {square(0, 0, 10, 0)};
+    roi.contours[0].slabThickness = "3.5";
+    const std::string path = tempPath("slab");
+    writeDataset(path, {roi});
+    EXPECT_EQ(readRtStruct(path).contours.rois[0].slabThicknessMm, 3.5);
+    fs::remove(path);
+}
+
+TEST(RtStruct, BrokenFilesNameWhatIsWrong) {
+    const std::string path = tempPath("broken");
+    RoiSpec roi;
+    roi.contours = {square(0, 0, 10, 0), square(0, 0, 10, 3)};
+
+    writeDataset(path, {roi}, "CT");
+    EXPECT_NE(readError(path).find("(0008,0060) Modality is 'CT'"), std::string::npos);
+
+    writeDataset(path, {roi}, "RTSTRUCT", false);
+    EXPECT_NE(readError(path).find("missing (3006,0020) StructureSetROISequence"),
+              std::string::npos);
+
+    RoiSpec sevenValues = roi;
+    sevenValues.contours[0].points.push_back({1, 2, std::nan("")});
+    writeDataset(path, {sevenValues});
+    EXPECT_NE(readError(path).find("(3006,0050) ContourData"), std::string::npos);
+
+    RoiSpec tilted = roi;
+    tilted.contours[1].points[2].z += 0.5;  // not planar, and not parallel
+    writeDataset(path, {tilted});
+    EXPECT_NE(readError(path).find("not planar"), std::string::npos);
+
+    RoiSpec crossing = roi;
+    crossing.contours.push_back(square(5, 5, 10, 0));
+    writeDataset(path, {crossing});
+    EXPECT_NE(readError(path).find("contours cross"), std::string::npos);
+
+    RoiSpec twice = roi;
+    writeDataset(path, {roi, twice});
+    EXPECT_NE(readError(path).find("(3006,0022) ROINumber 1 is used twice"), std::string::npos);
+
+    // Truncated in the middle of the contour data.
+    writeDataset(path, {roi});
+    fs::resize_file(path, fs::file_size(path) - 40);
+    EXPECT_FALSE(readError(path).empty());
+
+    std::ofstream(path) << "not DICOM at all";
+    EXPECT_NE(readError(path).find("not a readable DICOM file"), std::string::npos);
+    fs::remove(path);
+    EXPECT_NE(readError(path).find("not a readable DICOM file"), std::string::npos);
+}
+
+TEST(RtStruct, LimitsStopHostileSizes) {
+    RoiSpec roi;
+    roi.contours = {square(0, 0, 10, 0), square(0, 0, 10, 3)};
+    const std::string path = tempPath("limits");
+    writeDataset(path, {roi});
+    RtStructLimits limits;
+    limits.maxPointsTotal = 5;
+    try {
+        readRtStruct(path, limits);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(e.problem().find("points"), std::string::npos) << e.what();
+    }
+    fs::remove(path);
+}
