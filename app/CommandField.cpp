@@ -24,7 +24,7 @@ struct FieldArgs {
 
 void runField(const FieldArgs& args, const GlobalOptions& global) {
     const auto start = std::chrono::steady_clock::now();
-    const SlicesLoad load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global);
     const Roi& roi = *selectRois(load.contours, args.roi, false).front();
     std::vector<Slice> slices;
     for (const Slice& s : roi.slices)
@@ -55,6 +55,7 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     const DenseDistanceVolume volume = resampleAlongZ(field, zStep);
     LevelSetWriteOptions options;
     options.gridName = roi.name;
+    options.frame = roi.frame;
     options.bandVoxels = args.bandVoxels;
     options.metadata = {{"source", args.input},
                         {"units", "mm"},
@@ -107,7 +108,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "(i, j, k) centred at the reported origin + (i, j, k) x voxel size, in mm; metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, "Input .slices file")->required();
+    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")->required();
     cmd->add_option("-o,--output", args->output, "Output .vdb file")->required();
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
     cmd->add_option("--pixel-mm", args->pixelMm,

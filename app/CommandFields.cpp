@@ -143,7 +143,7 @@ nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,
 
 void runFields(const FieldsArgs& args, const GlobalOptions& global) {
     const auto start = std::chrono::steady_clock::now();
-    const SlicesLoad load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
     const double loadSeconds = secondsSince(start);
     std::filesystem::create_directories(args.outputDir);
@@ -206,7 +206,7 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
         "Writes, per ROI, NAME-distance.nhdr/.raw (float32 mm, negative inside) and "
         "NAME-ids.nhdr/.raw (uint32 nearest primitive), which 3D Slicer and ParaView open, and "
         "NAME-fields.json describing the layout (docs/fields.md).");
-    cmd->add_option("file", args->input, "Input .slices file")->required();
+    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")->required();
     cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
         ->required();
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");

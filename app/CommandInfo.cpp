@@ -1,4 +1,4 @@
-// dfrecon info FILE: what a contour file holds (ROIs, slices, nesting,
+// dfrecon info FILE: what a contour file (.slices or RTSTRUCT) holds (ROIs, slices, nesting,
 // spacing, extent), after the same validation every command applies.
 #include <iomanip>
 #include <iostream>
@@ -24,7 +24,7 @@ nlohmann::ordered_json sliceJson(const Slice& slice) {
     return {{"zMm", slice.zMm}, {"contours", contours}};
 }
 
-nlohmann::ordered_json roiJson(const Roi& roi) {
+nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
     const Extent3 extent = extentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
     nlohmann::ordered_json slices = nlohmann::ordered_json::array();
@@ -35,6 +35,8 @@ nlohmann::ordered_json roiJson(const Roi& roi) {
             holes += contour["depth"].get<int>() % 2;
     }
     nlohmann::ordered_json j = {{"name", roi.name},
+                                {"number", roi.number ? nlohmann::ordered_json(*roi.number)
+                                                      : nullptr},
                                 {"slices", roi.slices.size()},
                                 {"contours", roi.contourCount()},
                                 {"holes", holes},
@@ -44,7 +46,15 @@ nlohmann::ordered_json roiJson(const Roi& roi) {
                                   {"max", spacing.maxMm},
                                   {"mean", spacing.meanMm},
                                   {"uniform", spacing.uniform}}},
+                                {"planes", roi.frame.orientationName()},
                                 {"perSlice", slices}};
+    if (dicom) {
+        j["holeConvention"] = holeConventionName(dicom->holes);
+        j["keyholeCuts"] = dicom->keyholeCuts;
+        j["contoursSkipped"] = dicom->contoursSkipped;
+        j["slabThicknessMm"] = roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm)
+                                                       : nullptr;
+    }
     j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
                              : nlohmann::ordered_json(nullptr);
     if (!extent.empty)
@@ -57,16 +67,27 @@ std::string counted(std::size_t n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-void printRoi(const Roi& roi) {
+void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
     const Extent3 extent = extentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
-    std::cout << "ROI \"" << roi.name << "\"";
+    std::cout << "ROI ";
+    if (roi.number) std::cout << *roi.number << " ";
+    std::cout << "\"" << roi.name << "\"";
     if (roi.colour)
         std::cout << " (colour " << roi.colour->r << " " << roi.colour->g << " " << roi.colour->b
                   << ")";
     std::cout << ": " << counted(roi.slices.size(), "slice") << ", "
               << counted(roi.contourCount(), "contour") << ", "
-              << counted(roi.pointCount(), "point") << "\n";
+              << counted(roi.pointCount(), "point");
+    if (dicom) {
+        if (dicom->holes != HoleConvention::None)
+            std::cout << ", holes drawn " << holeConventionName(dicom->holes);
+        if (dicom->contoursSkipped > 0)
+            std::cout << ", " << counted(dicom->contoursSkipped, "contour") << " skipped";
+        if (!dicom->hasContourSequence) std::cout << " (no ContourSequence: empty)";
+    }
+    if (!roi.frame.isIdentity()) std::cout << ", " << roi.frame.orientationName() << " planes";
+    std::cout << "\n";
     if (extent.empty) return;
     std::cout << "  extent x " << extent.min[0] << " .. " << extent.max[0] << ", y "
               << extent.min[1] << " .. " << extent.max[1] << ", z " << extent.min[2] << " .. "
@@ -85,23 +106,24 @@ void printRoi(const Roi& roi) {
 }
 
 void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
-    const SlicesLoad load = loadContours(path, global);
+    const ContourInput load = loadContours(path, global);
     if (json) {
         nlohmann::ordered_json rois = nlohmann::ordered_json::array();
-        for (const Roi& roi : load.contours.rois) rois.push_back(roiJson(roi));
+        for (const Roi& roi : load.contours.rois) rois.push_back(roiJson(roi, load.dicomInfo(roi)));
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
         std::cout << nlohmann::ordered_json{{"command", "info"},
                                             {"file", path},
-                                            {"format", "dfrecon-slices 1"},
+                                            {"format", load.format},
                                             {"rois", rois},
                                             {"warnings", warnings}}
                          .dump(2)
                   << "\n";
         return;
     }
-    std::cout << path << ": " << counted(load.contours.rois.size(), "ROI") << "\n";
-    for (const Roi& roi : load.contours.rois) printRoi(roi);
+    std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI")
+              << "\n";
+    for (const Roi& roi : load.contours.rois) printRoi(roi, load.dicomInfo(roi));
 }
 
 }  // namespace
@@ -114,7 +136,8 @@ void addInfoCommand(CLI::App& root, const GlobalOptions& global) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = root.add_subcommand(
         "info", "Validate a contour file and summarise it: ROIs, slices, contours, holes, extent");
-    cmd->add_option("file", args->path, "Input .slices file")->required();
+    cmd->add_option("file", args->path, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+        ->required();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([&global, args] { runInfo(global, args->path, args->json); });
 }

@@ -26,24 +26,25 @@ struct ReconstructArgs {
     ReconstructionOptions options;
 };
 
-// Where ROI `roi` goes: the output path itself for one ROI, else
-// OUTPUT/NAME.EXT with the extension the output folder's name cannot give,
-// so .ply.
-std::string outputPathFor(const ReconstructArgs& args, const Roi& roi, bool several) {
+// Where the ROI with file stem `stem` goes: the output path itself for one
+// ROI, else OUTPUT/STEM.ply (the folder's name cannot give an extension).
+std::string outputPathFor(const ReconstructArgs& args, const std::string& stem, bool several) {
     namespace fs = std::filesystem;
     if (!several) return args.output;
-    return (fs::path(args.output) / (fileStem(roi.name) + ".ply")).string();
+    return (fs::path(args.output) / (stem + ".ply")).string();
 }
 
 nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
-                                      const std::string& path, const ReconstructArgs& args,
-                                      const GlobalOptions& global) {
+                                      const std::string& path, const ContourInput& input,
+                                      const ReconstructArgs& args, const GlobalOptions& global) {
     Reconstruction result;
     {
         Progress progress("reconstructing " + roi.name, !global.quiet);
         result =
             reconstructSurface(runtime, roi, args.options, [&](double f) { progress.update(f); });
     }
+    // Sagittal, coronal and oblique stacks were reconstructed in their planes.
+    toPatient(result.surface, roi.frame);
     nlohmann::ordered_json simplification = nullptr;
     if (args.maxErrorMm > 0) {
         SimplifyRequest request;
@@ -75,7 +76,9 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         std::cerr << "warning: " << roi.name
                   << ": the surface is not a valid closed solid (run dfrecon check " << path
                   << ")\n";
+    const RtStructRoiInfo* dicom = input.dicomInfo(roi);
     return {{"roi", roi.name},
+            {"roiNumber", roi.number ? nlohmann::ordered_json(*roi.number) : nullptr},
             {"output", path},
             {"vertices", check.vertices},
             {"triangles", check.triangles},
@@ -95,6 +98,10 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             {"degenerateTriangles", check.degenerateTriangles},
             {"facesRefusedByOpenMesh", refused},
             {"slices", s.slices},
+            {"planes", roi.frame.orientationName()},
+            {"holeConvention", dicom ? holeConventionName(dicom->holes) : nullptr},
+            {"slabThicknessMm",
+             roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm) : nullptr},
             {"contourPoints", s.contourPoints},
             {"pixelMm", s.pixelMm},
             {"cap", capModeName(args.options.cap)},
@@ -118,7 +125,7 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const auto start = std::chrono::steady_clock::now();
-    const SlicesLoad load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
     const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output));
     if (several)
@@ -127,18 +134,25 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
         throw std::invalid_argument("output '" + args.output +
                                     "' needs a mesh extension (.ply .stl .obj .off)");
     ocl::Runtime runtime(global.device);
+    const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
-    for (const Roi* roi : rois)
-        reports.push_back(
-            reconstructRoi(runtime, *roi, outputPathFor(args, *roi, several), args, global));
+    for (std::size_t i = 0; i < rois.size(); ++i)
+        reports.push_back(reconstructRoi(runtime, *rois[i], outputPathFor(args, stems[i], several),
+                                         load, args, global));
+    nlohmann::ordered_json empty = nlohmann::ordered_json::array();
+    if (args.all)
+        for (const Roi& roi : load.contours.rois)
+            if (roi.slices.empty()) empty.push_back(roi.name);
     if (args.json)
         std::cout << nlohmann::ordered_json{{"command", "reconstruct"},
                                             {"input", args.input},
+                                            {"format", load.format},
                                             {"device", runtime.device().deviceName},
                                             {"maxDepth", args.options.maxDepth},
                                             {"contourErrorMm", args.options.contourErrorMm},
                                             {"seconds", secondsSince(start)},
-                                            {"rois", reports}}
+                                            {"rois", reports},
+                                            {"emptyRois", empty}}
                          .dump(2)
                   << "\n";
 }
@@ -151,17 +165,22 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         "reconstruct", "Reconstruct a closed triangle surface from the contours of an ROI");
     cmd->footer(
         "One ROI: OUT is a mesh file (.ply .stl .obj .off). Several ROIs (--all): OUT is a "
-        "folder that gets NAME.ply per ROI. Contour points are mesh vertices; normals point "
+        "folder that gets NAME.ply per ROI (NAME_NUMBER.ply where names repeat). Coordinates "
+        "are the contours' (DICOM: patient LPS mm; sagittal, coronal and oblique stacks are "
+        "reconstructed in their planes and written back in patient space). Contour points "
+        "are mesh vertices; normals point "
         "outward. Caps: 'flat' closes each end contour with a flat lid at the cap offset whose "
         "rim continues the side's slope from the last slab, so straight sides give exactly the "
         "volume planning systems count (area x spacing per slice); 'dome' rises from the contour "
         "to the cap offset (less volume, rounder ends); 'none' leaves the ends open. Exit codes: "
         "0 done, 1 usage, 2 bad input, 3 runtime failure. See docs/reconstruction.md.");
-    cmd->add_option("file", args->input, "Input .slices file")->required();
+    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+        ->required();
     cmd->add_option("-o,--output", args->output, "Output mesh file, or folder with --all")
         ->required();
-    cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
-    cmd->add_flag("--all", args->all, "Every ROI of the file");
+    cmd->add_option("--roi", args->roi,
+                    "ROI name, or DICOM ROI number (default: the only ROI of the file)");
+    cmd->add_flag("--all", args->all, "Every ROI of the file that has contours");
     cmd->add_option("--pixel-mm", args->options.pixelMm,
                     "Field pixel size in mm (default 0: the ROI's extent plus margin fits 256 px)")
         ->capture_default_str()
@@ -180,8 +199,9 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         ->capture_default_str()
         ->check(CLI::IsMember({"flat", "dome", "none"}));
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
-                    "How far beyond an end contour its cap reaches, mm (default: half the slice "
-                    "spacing; at most half the gap to the next slice)")
+                    "How far beyond an end contour its cap reaches, mm (default: half the DICOM "
+                    "contour slab thickness if given, else half the slice spacing; at most half "
+                    "the gap to the next slice)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--max-error", args->maxErrorMm,
                     "Then simplify with this two-sided bound in mm, as dfrecon simplify does "

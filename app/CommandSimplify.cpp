@@ -45,7 +45,7 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
         field = std::make_unique<LevelSetSampler>(args.field);
         request.field = field.get();
     }
-    SlicesLoad contours;
+    ContourInput contours;
     if (!args.contours.empty()) {
         contours = loadContours(args.contours, global);
         request.contours = selectRois(contours.contours, args.roi, false).front();

@@ -20,5 +20,6 @@ void addCheckCommand(CLI::App& root, const GlobalOptions& global);
 void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
+void addConvertCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -2,27 +2,60 @@
 
 #include <cctype>
 #include <iostream>
+#include <map>
 #include <stdexcept>
 
 #include "app/Progress.hpp"
 
 namespace dfrecon::app {
 
-SlicesLoad loadContours(const std::string& path, const GlobalOptions& global) {
-    SlicesLoad load;
-    {
-        Progress progress("reading " + path, !global.quiet);
-        load = readSlicesFile(path, {}, [&](double f) { progress.update(f); });
+const RtStructRoiInfo* ContourInput::dicomInfo(const Roi& roi) const {
+    const std::size_t i = std::size_t(&roi - contours.rois.data());
+    return i < dicomRois.size() ? &dicomRois[i] : nullptr;
+}
+
+ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
+    ContourInput input;
+    if (isDicomFile(path)) {
+        RtStructLoad load;
+        {
+            Progress progress("reading " + path, !global.quiet);
+            load = readRtStruct(path);
+        }
+        input.format = "DICOM RTSTRUCT";
+        input.contours = std::move(load.contours);
+        input.warnings = std::move(load.warnings);
+        input.dicomRois = std::move(load.rois);
+    } else {
+        SlicesLoad load;
+        {
+            Progress progress("reading " + path, !global.quiet);
+            load = readSlicesFile(path, {}, [&](double f) { progress.update(f); });
+        }
+        input.format = "dfrecon-slices 1";
+        input.contours = std::move(load.contours);
+        input.warnings = std::move(load.warnings);
     }
     if (!global.quiet)
-        for (const InputWarning& w : load.warnings) std::cerr << w.toString() << "\n";
-    return load;
+        for (const InputWarning& w : input.warnings) std::cerr << w.toString() << "\n";
+    return input;
 }
 
 static std::string roiNames(const ContourSet& contours) {
     std::string names;
-    for (const Roi& roi : contours.rois) names += (names.empty() ? "" : ", ") + roi.name;
+    for (const Roi& roi : contours.rois) {
+        names += (names.empty() ? "" : ", ") + roi.name;
+        if (roi.number) names += " (" + std::to_string(*roi.number) + ")";
+        if (roi.slices.empty()) names += " [empty]";
+    }
     return names.empty() ? "(none)" : names;
+}
+
+static const Roi* findByNameOrNumber(const ContourSet& contours, const std::string& name) {
+    if (const Roi* roi = contours.findRoi(name)) return roi;
+    const bool digits = !name.empty() && name.size() < 10 &&
+                        name.find_first_not_of("0123456789") == std::string::npos;
+    return digits ? contours.findRoiNumber(std::stoi(name)) : nullptr;
 }
 
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all) {
@@ -33,16 +66,23 @@ std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string
         if (chosen.empty()) throw std::invalid_argument("no ROI has contours");
         return chosen;
     }
+    const Roi* roi = nullptr;
     if (!name.empty()) {
-        if (const Roi* roi = contours.findRoi(name)) return {roi};
-        throw std::invalid_argument("no ROI named '" + name +
-                                    "'; available: " + roiNames(contours));
+        roi = findByNameOrNumber(contours, name);
+        if (!roi)
+            throw std::invalid_argument("no ROI named or numbered '" + name +
+                                        "'; available: " + roiNames(contours));
+    } else if (contours.rois.size() == 1) {
+        roi = &contours.rois.front();
+    } else {
+        throw std::invalid_argument(
+            "the file holds several ROIs; choose one with --roi NAME|NUMBER or use "
+            "--all (available: " +
+            roiNames(contours) + ")");
     }
-    if (contours.rois.size() == 1) return {&contours.rois.front()};
-    throw std::invalid_argument(
-        "the file holds several ROIs; choose one with --roi NAME or use "
-        "--all (available: " +
-        roiNames(contours) + ")");
+    if (roi->slices.empty())
+        throw std::invalid_argument("ROI '" + roi->name + "' has no closed planar contours");
+    return {roi};
 }
 
 std::string fileStem(const std::string& name) {
@@ -52,6 +92,19 @@ std::string fileStem(const std::string& name) {
                     ? c
                     : '_';
     return stem.empty() ? "roi" : stem;
+}
+
+std::vector<std::string> uniqueFileStems(const std::vector<const Roi*>& rois) {
+    std::map<std::string, int> uses;
+    for (const Roi* roi : rois) ++uses[fileStem(roi->name)];
+    std::vector<std::string> stems;
+    for (std::size_t i = 0; i < rois.size(); ++i) {
+        std::string stem = fileStem(rois[i]->name);
+        if (uses[stem] > 1)
+            stem += "_" + std::to_string(rois[i]->number.value_or(int(i) + 1));
+        stems.push_back(stem);
+    }
+    return stems;
 }
 
 }  // namespace dfrecon::app

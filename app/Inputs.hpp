@@ -1,23 +1,42 @@
 #pragma once
 // What every subcommand does with its inputs: load a contour file (progress
-// on a TTY, repair warnings on stderr unless quiet) and pick ROIs by name.
+// on a TTY, repair warnings on stderr unless quiet) and pick ROIs by name or
+// number.
 #include <string>
 #include <vector>
 
 #include "app/Commands.hpp"
+#include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::app {
 
-/// Loads and validates `path`; throws InputError (exit 2) on bad input.
-SlicesLoad loadContours(const std::string& path, const GlobalOptions& global);
+/// Contours from any supported file, with what the format adds.
+struct ContourInput {
+    std::string format;  // "dfrecon-slices 1" or "DICOM RTSTRUCT"
+    ContourSet contours;
+    std::vector<InputWarning> warnings;
+    std::vector<RtStructRoiInfo> dicomRois;  // per ROI, DICOM input only
 
-/// The ROIs a command works on: `all` → every ROI with slices; a name → that
-/// ROI; neither → the only ROI. Throws std::invalid_argument (exit 1) naming
-/// the available ROIs when the choice is missing or unknown.
+    /// What DICOM reading found about `roi` (one of contours.rois), or nullptr.
+    const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
+};
+
+/// Loads and validates `path`: a DICOM RT Structure Set (by extension or
+/// magic) or a .slices file. Throws InputError (exit 2) on bad input.
+ContourInput loadContours(const std::string& path, const GlobalOptions& global);
+
+/// The ROIs a command works on: `all` → every ROI with slices; a name →
+/// that ROI (or, failing a name, the ROI with that DICOM number); neither →
+/// the only ROI. Throws std::invalid_argument (exit 1) naming the available
+/// ROIs when the choice is missing, unknown or has no contours.
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all);
 
 /// `name` made safe as part of a file name (letters, digits, - _ . kept).
 std::string fileStem(const std::string& name);
+
+/// One file stem per ROI, unique among them: a stem two ROIs share gets
+/// the ROI's number (or position) appended.
+std::vector<std::string> uniqueFileStems(const std::vector<const Roi*>& rois);
 
 }  // namespace dfrecon::app

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
     addReconstructCommand(root, global);
     addFieldCommand(root, global);
     addSimplifyCommand(root, global);
+    addConvertCommand(root, global);
     addCheckCommand(root, global);
 
     try {

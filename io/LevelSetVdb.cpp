@@ -14,6 +14,30 @@
 
 namespace dfrecon {
 
+namespace {
+
+// index → world: scale and translate, then the frame's rotation when the
+// volume's axes are not the patient's (OpenVDB maps row vectors: world =
+// index · M, so row a of M is the world image of index axis a).
+openvdb::math::Transform::Ptr transformOf(const DenseDistanceVolume& volume,
+                                          const PlaneFrame& frame) {
+    const openvdb::Vec3d voxel(volume.voxelMm[0], volume.voxelMm[1], volume.voxelMm[2]);
+    const openvdb::Vec3d origin(volume.originMm[0], volume.originMm[1], volume.originMm[2]);
+    if (frame.isIdentity())
+        return openvdb::math::Transform::Ptr(new openvdb::math::Transform(
+            openvdb::math::MapBase::Ptr(new openvdb::math::ScaleTranslateMap(voxel, origin))));
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    const Vec3 axes[3] = {frame.u, frame.v, frame.n};
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) m(a, c) = voxel[a] * axes[a][c];
+    const Vec3 translation = frame.toPatient({origin[0], origin[1], origin[2]});
+    for (int c = 0; c < 3; ++c) m(3, c) = translation[c];
+    return openvdb::math::Transform::Ptr(new openvdb::math::Transform(
+        openvdb::math::MapBase::Ptr(new openvdb::math::AffineMap(m))));
+}
+
+}  // namespace
+
 void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path,
                       const LevelSetWriteOptions& options) {
     if (volume.nx <= 0 || volume.ny <= 0 || volume.nz <= 0 ||
@@ -31,10 +55,7 @@ void writeLevelSetVdb(const DenseDistanceVolume& volume, const std::string& path
     openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
     grid->setName(options.gridName);
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
-    grid->setTransform(openvdb::math::Transform::Ptr(new openvdb::math::Transform(
-        openvdb::math::MapBase::Ptr(new openvdb::math::ScaleTranslateMap(
-            openvdb::Vec3d(volume.voxelMm[0], volume.voxelMm[1], volume.voxelMm[2]),
-            openvdb::Vec3d(volume.originMm[0], volume.originMm[1], volume.originMm[2]))))));
+    grid->setTransform(transformOf(volume, options.frame));
     auto accessor = grid->getAccessor();
     for (int k = 0; k < volume.nz; ++k)
         for (int j = 0; j < volume.ny; ++j)

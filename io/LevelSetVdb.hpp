@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/PlaneFrame.hpp"
 #include "io/Vec3.hpp"
 
 namespace dfrecon {
@@ -24,6 +25,9 @@ struct LevelSetWriteOptions {
     std::string gridName = "surface";
     double bandVoxels = 3;  // narrow band half-width, in voxels of the largest side
     std::map<std::string, std::string> metadata;  // written as string metadata
+    /// The volume's axes in patient space: a non-identity frame (sagittal,
+    /// coronal, oblique contour stacks) makes the transform an affine map.
+    PlaneFrame frame;
 };
 
 /// Writes `volume` as a FloatGrid of class level set with a scale-and-

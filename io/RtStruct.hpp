@@ -72,6 +72,12 @@ struct RtStructWriteOptions {
     std::string seriesDescription = "dfrecon contours";
 };
 
+/// The patient, study and frame of reference of an existing DICOM file (an
+/// image of the planning CT, or another RTSTRUCT), so that written contours
+/// belong with it. Throws InputError naming the file and tag when it is not
+/// DICOM or has no frame of reference.
+RtStructWriteOptions referenceFrom(const std::string& dicomPath);
+
 /// Writes `contours` as an RTSTRUCT (through a temporary file and a rename):
 /// one ROI per Roi (its number, or its position from 1), CLOSED_PLANAR
 /// contours in patient coordinates via each ROI's frame, DS values in at most

@@ -102,6 +102,34 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
 
 }  // namespace
 
+RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
+    silenceDcmtkLog();
+    DcmFileFormat file;
+    const OFCondition status = file.loadFile(dicomPath.c_str());
+    if (status.bad())
+        throw InputError(dicomPath, 0,
+                         std::string("not a readable DICOM file (") + status.text() + ")");
+    DcmDataset& data = *file.getDataset();
+    auto text = [](DcmItem& item, const DcmTagKey& key) {
+        OFString value;
+        return item.findAndGetOFStringArray(key, value).good() ? std::string(value.c_str()) : "";
+    };
+    RtStructWriteOptions options;
+    options.patientName = text(data, DCM_PatientName);
+    options.patientId = text(data, DCM_PatientID);
+    options.studyInstanceUid = text(data, DCM_StudyInstanceUID);
+    options.frameOfReferenceUid = text(data, DCM_FrameOfReferenceUID);  // images
+    DcmItem* frame = nullptr;
+    if (options.frameOfReferenceUid.empty() &&
+        data.findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0).good())
+        options.frameOfReferenceUid = text(*frame, DCM_FrameOfReferenceUID);  // structure sets
+    if (options.frameOfReferenceUid.empty())
+        throw InputError(dicomPath, 0, "no (0020,0052) FrameOfReferenceUID to refer to");
+    if (options.studyInstanceUid.empty())
+        throw InputError(dicomPath, 0, "no (0020,000D) StudyInstanceUID to refer to");
+    return options;
+}
+
 void writeRtStruct(const ContourSet& contours, const std::string& path,
                    const RtStructWriteOptions& options) {
     silenceDcmtkLog();

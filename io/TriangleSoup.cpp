@@ -148,4 +148,9 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     return mesh;
 }
 
+void toPatient(TriangleSoup& soup, const PlaneFrame& frame) {
+    if (frame.isIdentity()) return;
+    for (Vec3& p : soup.points) p = frame.toPatient(p);
+}
+
 }  // namespace dfrecon

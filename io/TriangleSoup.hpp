@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/TriMesh.hpp"
+#include "io/PlaneFrame.hpp"
 #include "io/Vec3.hpp"
 
 namespace dfrecon {
@@ -28,6 +29,10 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh);
 
 /// Drops the points no triangle uses and renumbers the triangles. O(n).
 void removeUnusedPoints(TriangleSoup& soup);
+
+/// Maps every point from `frame`'s plane coordinates to patient
+/// coordinates; the frame is a rotation, so orientation is kept. O(n).
+void toPatient(TriangleSoup& soup, const PlaneFrame& frame);
 
 /// The half-edge mesh of a soup (writeMesh adds normals). OpenMesh refuses
 /// faces that would make an edge non-manifold; how many it refused is

@@ -441,8 +441,13 @@ class SurfaceReconstructor {
 }  // namespace
 
 Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
-                                  const ReconstructionOptions& options,
+                                  const ReconstructionOptions& requested,
                                   const std::function<void(double)>& progress) {
+    ReconstructionOptions options = requested;
+    // A DICOM slab thickness says how far each contour reaches along the
+    // normal, so the end caps go half of it beyond the end contours.
+    if (options.capOffsetMm < 0 && roi.slabThicknessMm > 0)
+        options.capOffsetMm = 0.5 * roi.slabThicknessMm;
     if (options.maxDepth < 0) throw std::invalid_argument("reconstruct: max depth must be >= 0");
     Reconstruction result;
     ReconstructionStats& stats = result.stats;

@@ -38,7 +38,8 @@ struct ReconstructionOptions {
     int maxDepth = 4;           // recursion levels for branching regions
     CapMode cap = CapMode::Flat;
     double capOffsetMm =
-        -1;  // how far beyond an end contour its cap reaches; < 0: half the spacing
+        -1;  // how far beyond an end contour its cap reaches; < 0: half the ROI's slab
+             // thickness if it has one, else half the spacing
     FieldKernelOptions kernel;
 };
 

@@ -69,7 +69,7 @@ std::vector<Vec3> contourSamples(const Roi& roi, double stepMm) {
                 const int steps = std::max(1, int(std::ceil(length(b - a) / stepMm)));
                 for (int s = 0; s < steps; ++s) {
                     const Point2 p = a + (double(s) / steps) * (b - a);
-                    points.push_back({p.x, p.y, slice.zMm});
+                    points.push_back(roi.frame.toPatient({p.x, p.y, slice.zMm}));
                 }
             }
     return points;

@@ -34,7 +34,8 @@ TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
                                   std::size_t samplesPerSurface, unsigned seed = 1);
 
 /// Points along every contour of `roi` (every vertex, and along each edge
-/// at most `stepMm` apart), at their slice's z.
+/// at most `stepMm` apart), at their slice's z, in patient coordinates
+/// (through the ROI's frame).
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm);
 
 /// The verifier's verdict on a simplification: both directions between
