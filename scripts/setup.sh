@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages dfrecon needs (see DESIGN.md), only those
-# that are missing, and says which. Idempotent: a second run installs nothing.
+# that are missing, and says which; then makes the RTSTRUCT test fixtures in
+# build/fixtures (scripts/fixtures.sh). Idempotent: a second run installs and
+# regenerates nothing.
 set -euo pipefail
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 # Packages installed with their recommends.
 packages=(
@@ -16,8 +19,13 @@ packages=(
   clang libclang-rt-14-dev clang-format
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
-# imgcodecs only.
-packages_no_recommends=(libopencv-dev)
+# imgcodecs only. The rest make the RTSTRUCT test fixtures (scripts/
+# fixtures.sh) and need none of theirs (pydicom's would add python3-pil,
+# dicom3tools' ghostscript and netpbm).
+packages_no_recommends=(
+  libopencv-dev
+  python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
+)
 
 missing() {
   local out=()
@@ -27,24 +35,32 @@ missing() {
   echo "${out[@]:-}"
 }
 
-want=$(missing "${packages[@]}")
-want_nr=$(missing "${packages_no_recommends[@]}")
-if [ -z "$want" ] && [ -z "$want_nr" ]; then
-  echo "setup: all dependencies present"
-  exit 0
-fi
+install_missing() {
+  local want want_nr
+  want=$(missing "${packages[@]}")
+  want_nr=$(missing "${packages_no_recommends[@]}")
+  if [ -z "$want" ] && [ -z "$want_nr" ]; then
+    echo "setup: all dependencies present"
+    return
+  fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-echo "setup: installing:${want:+ $want}${want_nr:+ $want_nr}"
-$SUDO apt-get update -qq
-if [ -n "$want" ]; then
-  # shellcheck disable=SC2086
-  $SUDO apt-get install -y -qq $want
-fi
-if [ -n "$want_nr" ]; then
-  # shellcheck disable=SC2086
-  $SUDO apt-get install -y -qq --no-install-recommends $want_nr
-fi
+  local SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  echo "setup: installing:${want:+ $want}${want_nr:+ $want_nr}"
+  $SUDO apt-get update -qq
+  if [ -n "$want" ]; then
+    # shellcheck disable=SC2086
+    $SUDO apt-get install -y -qq $want
+  fi
+  if [ -n "$want_nr" ]; then
+    # shellcheck disable=SC2086
+    $SUDO apt-get install -y -qq --no-install-recommends $want_nr
+  fi
+  echo "setup: packages installed"
+}
+
+install_missing
+# Fast when they are already there (a stamp check).
+bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/fixtures"
 echo "setup: done"
