@@ -15,7 +15,7 @@ enum class HoleConvention {
     None,     // no holes
     Nested,   // holes are separate contours inside their outer contour
     Keyhole,  // holes joined to their outer contour by a zero-width channel
-    Xor,      // CLOSEDPLANAR_XOR contours, combined by exclusive or
+    Xor,      // CLOSEDPLANAR_XOR contours, or contours sharing edges: exclusive or
 };
 const char* holeConventionName(HoleConvention convention);
 
@@ -26,6 +26,7 @@ struct RtStructRoiInfo {
     std::size_t contoursRead = 0;     // closed planar contours accepted
     std::size_t contoursSkipped = 0;  // POINT, OPEN_PLANAR, OPEN_NONPLANAR, degenerate
     std::size_t keyholeCuts = 0;
+    std::size_t planesCombined = 0;  // planes whose contours crossed or shared edges: even-odd
     HoleConvention holes = HoleConvention::None;
     bool hasContourSequence = false;
 };
@@ -53,8 +54,10 @@ inline constexpr double kSamePlaneToleranceMm = 0.01;
 /// Reads an RTSTRUCT file (Part 10 or raw dataset). ROIs come from
 /// StructureSetROISequence joined to ROIContourSequence by ROI number;
 /// CLOSED_PLANAR and CLOSEDPLANAR_XOR contours are grouped into planes
-/// within kSamePlaneToleranceMm, keyholes are split, and contours are
-/// nested and oriented as Slice requires; non-axial stacks get a PlaneFrame.
+/// within kSamePlaneToleranceMm, keyholes are split, contours of a plane
+/// that cross or share edges are combined by exclusive or (even-odd), and
+/// contours are nested and oriented as Slice requires; non-axial stacks get
+/// a PlaneFrame.
 /// Other geometric types are skipped with a warning. Throws InputError
 /// naming the tag for anything unreadable, missing, contradictory or over
 /// `limits`. Linear in the file size plus validation.

@@ -12,6 +12,7 @@
 
 #include "io/ContourValidation.hpp"
 #include "io/KeyholeSplit.hpp"
+#include "io/PolygonXor.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -381,10 +382,11 @@ class Reader {
         bool anyHole = false;
         for (const Slice& slice : roi.slices)
             for (int depth : nestingDepths(slice)) anyHole = anyHole || depth % 2 == 1;
-        info.holes = anyXor                ? HoleConvention::Xor
-                     : info.keyholeCuts > 0 ? HoleConvention::Keyhole
-                     : anyHole              ? HoleConvention::Nested
-                                            : HoleConvention::None;
+        info.holes = anyXor                     ? HoleConvention::Xor
+                     : info.keyholeCuts > 0      ? HoleConvention::Keyhole
+                     : info.planesCombined > 0 ? HoleConvention::Xor
+                     : anyHole                   ? HoleConvention::Nested
+                                                 : HoleConvention::None;
         const SpacingStats spacing = spacingOf(roi);
         if (!spacing.uniform)
             warn(roiLabel(r) + ": uneven slice spacing, " + std::to_string(spacing.minMm) +
@@ -411,6 +413,15 @@ class Reader {
                 slice.contours.push_back(std::move(loop));
                 items.push_back(contours[i].item);
             }
+        }
+        // Contours that share edges or cross bound their region by the
+        // even-odd rule (holes reaching the image border share it with
+        // their outer contour in mask-made files; XOR contours may cross).
+        if (const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
+            defect && defect->kind == ContourDefect::Kind::Crossing) {
+            slice.contours = xorRegions(slice.contours);
+            items.assign(slice.contours.size(), 0);
+            ++out_.rois[r].planesCombined;
         }
         validate(r, slice, items);
         normaliseOrientation(slice);
@@ -443,15 +454,15 @@ class Reader {
                                 : defect->contact == SegmentContact::Touch ? " touches "
                                                                            : " crosses ";
         auto segment = [&](std::size_t contour, std::size_t s) {
-            return "contour " + std::to_string(items[contour]) + " segment " +
-                   std::to_string(s + 1);
+            return (items[contour] > 0 ? "contour " + std::to_string(items[contour])
+                                       : std::string("a combined contour")) +
+                   " segment " + std::to_string(s + 1);
         };
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(plane + "self-intersecting contour: " + segment(defect->contourA, defect->segmentA) +
                  how + "its segment " + std::to_string(defect->segmentB + 1));
         fail(plane + "contours cross: " + segment(defect->contourA, defect->segmentA) + how +
-             segment(defect->contourB, defect->segmentB) +
-             " (overlapping contours are not combined; draw holes inside their outer contour)");
+             segment(defect->contourB, defect->segmentB));
     }
 
     std::string file_;

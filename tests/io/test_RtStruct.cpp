@@ -314,6 +314,29 @@ TEST(RtStruct, XorContoursAreReported) {
     fs::remove(path);
 }
 
+double regionArea(const Slice& slice) {
+    double area = 0;  // outer contours count positive, holes negative
+    for (const Polygon& contour : slice.contours) area += signedArea(contour);
+    return area;
+}
+
+TEST(RtStruct, ContoursSharingEdgesOrCrossingCombineByExclusiveOr) {
+    // A notch reaching the border, drawn as its own contour on the outer
+    // contour's edge (as mask converters do), and two crossing squares.
+    RoiSpec notch;
+    notch.contours = {square(0, 0, 10, 0), square(4, 0, 2, 0), square(0, 0, 10, 3)};
+    RoiSpec crossing{2, "Crossing", true, {square(0, 0, 10, 0), square(5, 5, 10, 0)}};
+    const std::string path = tempPath("evenodd");
+    writeDataset(path, {notch, crossing});
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_EQ(load.rois[0].holes, HoleConvention::Xor);
+    EXPECT_EQ(load.rois[0].planesCombined, 1u);
+    EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[0].slices[0]), 96.0);
+    EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[0].slices[1]), 100.0);
+    EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[1].slices[0]), 150.0);
+    fs::remove(path);
+}
+
 TEST(RtStruct, SlabThicknessIsKept) {
     RoiSpec roi;
     roi.contours = {square(0, 0, 10, 0)};
@@ -346,10 +369,10 @@ TEST(RtStruct, BrokenFilesNameWhatIsWrong) {
     writeDataset(path, {tilted});
     EXPECT_NE(readError(path).find("not planar"), std::string::npos);
 
-    RoiSpec crossing = roi;
-    crossing.contours.push_back(square(5, 5, 10, 0));
-    writeDataset(path, {crossing});
-    EXPECT_NE(readError(path).find("contours cross"), std::string::npos);
+    RoiSpec bowTie = roi;
+    bowTie.contours[0].points = {{0, 0, 0}, {10, 10, 0}, {10, 0, 0}, {0, 4, 0}};
+    writeDataset(path, {bowTie});
+    EXPECT_NE(readError(path).find("self-intersecting contour"), std::string::npos);
 
     RoiSpec twice = roi;
     writeDataset(path, {roi, twice});
