@@ -59,8 +59,8 @@ struct LabelVolume {
 /// flipped, no space at all means identity axes with `spacings` (or 1 mm);
 /// NIfTI uses the sform when sform_code > 0, else the qform, both RAS.
 /// Throws InputError(path, 0, what is wrong) for a missing, unreadable,
-/// unsupported or inconsistent file: not 3-D (a 4-D file is accepted only
-/// when its extra axes have size 1), more than kMaxLabelVolumeVoxels voxels,
+/// unsupported or inconsistent file: not 3-D (a NIfTI file with more axes
+/// is accepted when they all have size 1), more than kMaxLabelVolumeVoxels voxels,
 /// less data in the file than the header claims (checked before the data
 /// are allocated), non-positive or non-finite spacing, degenerate axes, or a
 /// label that is not an integer in int32 range. Thread-safe (the libraries'
