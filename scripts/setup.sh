@@ -13,6 +13,7 @@ packages=(
   libopenmesh-dev
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenvdb-tools
   libdcmtk-dev
+  libnifti2-dev libteem-dev zlib1g-dev
   libcgal-dev
   libgtest-dev
   libcli11-dev nlohmann-json3-dev

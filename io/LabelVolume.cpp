@@ -1,0 +1,365 @@
+#include "io/LabelVolume.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+#include "io/InputError.hpp"
+#include "io/LabelVolumeDetail.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+using Matrix3 = std::array<std::array<double, 3>, 3>;
+
+// Determinant of the matrix whose columns are c[0], c[1], c[2].
+double determinant(const Matrix3& c) {
+    return c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
+           c[1][0] * (c[0][1] * c[2][2] - c[0][2] * c[2][1]) +
+           c[2][0] * (c[0][1] * c[1][2] - c[0][2] * c[1][1]);
+}
+
+// Below this |det| of the unit axis directions, the axes are taken as
+// parallel: the volume of a voxel would be under a millionth of
+// spacing[0]·spacing[1]·spacing[2], which no scanner writes.
+constexpr double kMinAxisDeterminant = 1e-6;
+// A direction read back from a file is normalised here, but one handed to
+// a writer must already be a unit vector within this.
+constexpr double kUnitTolerance = 1e-6;
+
+bool endsWith(const std::string& text, const std::string& suffix) {
+    if (text.size() < suffix.size()) return false;
+    return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == b;
+    });
+}
+
+}  // namespace
+
+std::size_t VolumeGeometry::voxelCount() const {
+    if (size[0] <= 0 || size[1] <= 0 || size[2] <= 0) return 0;
+    return std::size_t(size[0]) * std::size_t(size[1]) * std::size_t(size[2]);
+}
+
+std::size_t VolumeGeometry::linearIndex(int i, int j, int k) const {
+    return (std::size_t(k) * std::size_t(size[1]) + std::size_t(j)) * std::size_t(size[0]) +
+           std::size_t(i);
+}
+
+Vec3 VolumeGeometry::worldOfIndex(double i, double j, double k) const {
+    const double index[3] = {i, j, k};
+    double p[3] = {originMm[0], originMm[1], originMm[2]};
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) p[c] += index[a] * spacingMm[a] * direction[a][c];
+    return {p[0], p[1], p[2]};
+}
+
+std::array<double, 3> VolumeGeometry::indexOfWorld(Vec3 pointMm) const {
+    // Columns of the index-to-world matrix M; the index is M⁻¹·(p − origin),
+    // with M⁻¹ from the cofactors (rows of M⁻¹ are cross products of
+    // columns over det M).
+    Matrix3 m;
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) m[a][c] = spacingMm[a] * direction[a][c];
+    const double det = determinant(m);
+    const double scale = spacingMm[0] * spacingMm[1] * spacingMm[2];
+    if (!std::isfinite(det) || !(std::fabs(det) > kMinAxisDeterminant * std::fabs(scale)))
+        throw std::domain_error("indexOfWorld: degenerate volume axes");
+    const Vec3 c0{m[0][0], m[0][1], m[0][2]}, c1{m[1][0], m[1][1], m[1][2]},
+        c2{m[2][0], m[2][1], m[2][2]};
+    const Vec3 d = pointMm - Vec3{originMm[0], originMm[1], originMm[2]};
+    return {dot(cross(c1, c2), d) / det, dot(cross(c2, c0), d) / det, dot(cross(c0, c1), d) / det};
+}
+
+namespace labelvolume {
+
+std::size_t sampleBytes(SampleType type) {
+    switch (type) {
+        case SampleType::Int8:
+        case SampleType::UInt8:
+            return 1;
+        case SampleType::Int16:
+        case SampleType::UInt16:
+            return 2;
+        case SampleType::Int32:
+        case SampleType::UInt32:
+        case SampleType::Float32:
+            return 4;
+        case SampleType::Int64:
+        case SampleType::UInt64:
+        case SampleType::Float64:
+            return 8;
+    }
+    return 0;
+}
+
+std::array<int, 3> checkedSizes(const std::string& path, const std::vector<std::uint64_t>& sizes) {
+    if (sizes.size() < 3)
+        throw InputError(
+            path, 0, std::to_string(sizes.size()) + "-D image; a label volume needs 3 dimensions");
+    for (std::size_t a = 0; a < sizes.size(); ++a)
+        if (sizes[a] == 0) throw InputError(path, 0, "axis " + std::to_string(a) + " has size 0");
+    for (std::size_t a = 3; a < sizes.size(); ++a)
+        if (sizes[a] != 1)
+            throw InputError(path, 0,
+                             std::to_string(sizes.size()) + "-D image (axis " + std::to_string(a) +
+                                 " has size " + std::to_string(sizes[a]) +
+                                 "); a label volume needs 3 dimensions");
+    // Each factor is checked against the cap before multiplying, so the
+    // product never overflows 64 bits.
+    std::uint64_t voxels = 1;
+    for (int a = 0; a < 3; ++a) {
+        if (sizes[a] > kMaxLabelVolumeVoxels || voxels * sizes[a] > kMaxLabelVolumeVoxels)
+            throw InputError(path, 0,
+                             "claims " + std::to_string(sizes[0]) + " x " +
+                                 std::to_string(sizes[1]) + " x " + std::to_string(sizes[2]) +
+                                 " voxels, more than the limit of " +
+                                 std::to_string(kMaxLabelVolumeVoxels));
+        voxels *= sizes[a];
+    }
+    std::array<int, 3> result{};
+    for (int a = 0; a < 3; ++a) {
+        if (sizes[a] > std::uint64_t(INT_MAX))
+            throw InputError(path, 0,
+                             "axis " + std::to_string(a) + " has " + std::to_string(sizes[a]) +
+                                 " voxels, more than " + std::to_string(INT_MAX));
+        result[a] = int(sizes[a]);
+    }
+    return result;
+}
+
+void requireBytes(const std::string& path, std::uint64_t neededBytes, std::uint64_t availableBytes,
+                  const char* what) {
+    if (availableBytes < neededBytes)
+        throw InputError(path, 0,
+                         std::string("truncated: ") + what + " can hold at most " +
+                             std::to_string(availableBytes) +
+                             " bytes of samples, the header needs " + std::to_string(neededBytes));
+}
+
+std::string geometryProblem(const VolumeGeometry& g) {
+    for (int a = 0; a < 3; ++a)
+        if (g.size[a] <= 0) return "axis " + std::to_string(a) + " has no voxels";
+    if (std::uint64_t(g.voxelCount()) > kMaxLabelVolumeVoxels)
+        return "more than " + std::to_string(kMaxLabelVolumeVoxels) + " voxels";
+    for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(g.spacingMm[a]) || !(g.spacingMm[a] > 0)) {
+            std::ostringstream s;
+            s << "axis " << a << " has spacing " << g.spacingMm[a]
+              << " mm; spacing must be positive";
+            return s.str();
+        }
+        if (!std::isfinite(g.originMm[a])) return "the origin is not finite";
+        const auto& d = g.direction[a];
+        const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!std::isfinite(norm) || std::fabs(norm - 1) > kUnitTolerance)
+            return "the direction of axis " + std::to_string(a) + " is not a unit vector";
+    }
+    if (!(std::fabs(determinant(g.direction)) > kMinAxisDeterminant))
+        return "the axis directions are (nearly) parallel";
+    return {};
+}
+
+VolumeGeometry geometryFromSteps(const std::string& path, const std::array<int, 3>& size,
+                                 const std::array<std::array<double, 3>, 3>& steps,
+                                 const std::array<double, 3>& originMm) {
+    VolumeGeometry g;
+    g.size = size;
+    for (int c = 0; c < 3; ++c) g.originMm[c] = originMm[c] + 0.0;
+    for (int a = 0; a < 3; ++a) {
+        const auto& v = steps[a];
+        const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (!std::isfinite(length))
+            throw InputError(path, 0, "the step of axis " + std::to_string(a) + " is not finite");
+        if (!(length > 0))
+            throw InputError(
+                path, 0,
+                "axis " + std::to_string(a) + " has zero spacing; spacing must be positive");
+        g.spacingMm[a] = length;
+        // + 0.0 turns the −0 of a negated zero into 0, for tidy printing.
+        for (int c = 0; c < 3; ++c) g.direction[a][c] = v[c] / length + 0.0;
+    }
+    const std::string problem = geometryProblem(g);
+    if (!problem.empty()) throw InputError(path, 0, problem);
+    return g;
+}
+
+namespace {
+
+template <class T>
+T loadSample(const unsigned char* bytes, std::size_t index) {
+    // memcpy: the libraries' buffers are malloc-aligned, but this keeps the
+    // read well-defined whatever buffer it is given.
+    T value;
+    std::memcpy(&value, bytes + index * sizeof(T), sizeof(T));
+    return value;
+}
+
+[[noreturn]] void badLabel(const std::string& path, const VolumeGeometry& g, std::size_t index,
+                           double value, const char* why) {
+    const std::size_t nx = std::size_t(g.size[0]), ny = std::size_t(g.size[1]);
+    std::ostringstream s;
+    s.precision(17);
+    s << "voxel (" << index % nx << ", " << (index / nx) % ny << ", " << index / (nx * ny)
+      << ") holds " << value << ", " << why;
+    throw InputError(path, 0, s.str());
+}
+
+// A double that must be an integral label in int32.
+std::int32_t labelOf(const std::string& path, const VolumeGeometry& g, std::size_t index,
+                     double value) {
+    if (!std::isfinite(value)) badLabel(path, g, index, value, "not a finite label");
+    if (std::floor(value) != value) badLabel(path, g, index, value, "not an integer label");
+    if (value < double(std::numeric_limits<std::int32_t>::min()) ||
+        value > double(std::numeric_limits<std::int32_t>::max()))
+        badLabel(path, g, index, value, "outside the int32 label range");
+    return std::int32_t(value);
+}
+
+template <class T>
+void convert(const std::string& path, const unsigned char* bytes, const VolumeGeometry& g,
+             LinearScale scale, std::vector<std::int32_t>& out) {
+    const std::size_t count = out.size();
+    constexpr bool exact = std::is_integral_v<T> && sizeof(T) <= 2;
+    if (exact && scale.identity()) {
+        // int8..uint16 always fit: no check per voxel.
+        for (std::size_t n = 0; n < count; ++n) out[n] = std::int32_t(loadSample<T>(bytes, n));
+        return;
+    }
+    for (std::size_t n = 0; n < count; ++n) {
+        const T stored = loadSample<T>(bytes, n);
+        if constexpr (std::is_integral_v<T>) {
+            if (scale.identity()) {
+                // 32- and 64-bit integers: compared as integers, since
+                // doubles round beyond 2^53.
+                bool fits;
+                if constexpr (std::is_signed_v<T>)
+                    fits = std::int64_t(stored) >= std::numeric_limits<std::int32_t>::min() &&
+                           std::int64_t(stored) <= std::numeric_limits<std::int32_t>::max();
+                else
+                    fits = std::uint64_t(stored) <=
+                           std::uint64_t(std::numeric_limits<std::int32_t>::max());
+                if (!fits) badLabel(path, g, n, double(stored), "outside the int32 label range");
+                out[n] = std::int32_t(stored);
+                continue;
+            }
+        }
+        out[n] = labelOf(path, g, n, scale.slope * double(stored) + scale.intercept);
+    }
+}
+
+}  // namespace
+
+std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void* data,
+                                            SampleType type, const VolumeGeometry& geometry,
+                                            LinearScale scale) {
+    std::vector<std::int32_t> labels(geometry.voxelCount());
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    switch (type) {
+        case SampleType::Int8:
+            convert<std::int8_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::UInt8:
+            convert<std::uint8_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::Int16:
+            convert<std::int16_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::UInt16:
+            convert<std::uint16_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::Int32:
+            convert<std::int32_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::UInt32:
+            convert<std::uint32_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::Int64:
+            convert<std::int64_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::UInt64:
+            convert<std::uint64_t>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::Float32:
+            convert<float>(path, bytes, geometry, scale, labels);
+            break;
+        case SampleType::Float64:
+            convert<double>(path, bytes, geometry, scale, labels);
+            break;
+    }
+    return labels;
+}
+
+}  // namespace labelvolume
+
+LabelVolume readLabelVolume(const std::string& path) {
+    namespace fs = std::filesystem;
+    const bool nrrd = endsWith(path, ".nrrd") || endsWith(path, ".nhdr");
+    const bool nifti = endsWith(path, ".nii") || endsWith(path, ".nii.gz");
+    if (!nrrd && !nifti)
+        throw InputError(path, 0,
+                         "unknown label volume format; expected .nrrd, .nhdr, .nii or .nii.gz");
+    // Checked here because both libraries would otherwise try other names
+    // (niftilib adds .gz) or block on a FIFO.
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (ec || !fs::exists(status)) throw InputError(path, 0, "no such file");
+    if (!fs::is_regular_file(status)) throw InputError(path, 0, "not a regular file");
+    return nrrd ? labelvolume::readNrrdLabelVolume(path) : labelvolume::readNiftiLabelVolume(path);
+}
+
+void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
+                   const std::vector<std::uint8_t>& mask) {
+    if (!endsWith(path, ".nrrd"))
+        throw std::invalid_argument("writeMaskNrrd: " + path + " does not end in .nrrd");
+    const std::string problem = labelvolume::geometryProblem(geometry);
+    if (!problem.empty()) throw std::invalid_argument("writeMaskNrrd: " + problem);
+    if (mask.size() != geometry.voxelCount())
+        throw std::invalid_argument("writeMaskNrrd: mask size does not match the geometry");
+    labelvolume::writeNrrdSamples(path, geometry, mask.data(), labelvolume::SampleType::UInt8);
+}
+
+namespace {
+
+template <class T>
+std::vector<T> narrowed(const std::vector<std::int32_t>& labels) {
+    return std::vector<T>(labels.begin(), labels.end());
+}
+
+}  // namespace
+
+void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
+    using labelvolume::SampleType;
+    if (!endsWith(path, ".nrrd"))
+        throw std::invalid_argument("writeLabelNrrd: " + path + " does not end in .nrrd");
+    const std::string problem = labelvolume::geometryProblem(volume.geometry);
+    if (!problem.empty()) throw std::invalid_argument("writeLabelNrrd: " + problem);
+    if (volume.labels.size() != volume.geometry.voxelCount())
+        throw std::invalid_argument("writeLabelNrrd: label count does not match the geometry");
+    const auto [low, high] = std::minmax_element(volume.labels.begin(), volume.labels.end());
+    // The narrowest type keeps files small and is what Slicer writes for
+    // label maps (unsigned char, short); the values never change.
+    if (*low >= 0 && *high <= 255) {
+        const auto samples = narrowed<std::uint8_t>(volume.labels);
+        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::UInt8);
+    } else if (*low >= 0 && *high <= 65535) {
+        const auto samples = narrowed<std::uint16_t>(volume.labels);
+        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::UInt16);
+    } else if (*low >= -32768 && *high <= 32767) {
+        const auto samples = narrowed<std::int16_t>(volume.labels);
+        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::Int16);
+    } else {
+        labelvolume::writeNrrdSamples(path, volume.geometry, volume.labels.data(),
+                                      SampleType::Int32);
+    }
+}
+
+}  // namespace dfrecon

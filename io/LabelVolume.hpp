@@ -1,0 +1,85 @@
+#pragma once
+// Label volumes (mask stacks, label maps) placed in patient space, read from
+// NRRD (.nrrd, .nhdr) and NIfTI (.nii, .nii.gz) files and written as gzip
+// NRRD files that 3D Slicer opens as label maps. Coordinates are DICOM
+// patient LPS millimetres: x towards the patient's left, y posterior, z
+// superior (head).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/Vec3.hpp"
+
+namespace dfrecon {
+
+/// The most voxels a volume may have (2^31): a file claiming more is
+/// rejected before anything is allocated.
+inline constexpr std::uint64_t kMaxLabelVolumeVoxels = std::uint64_t(1) << 31;
+
+/// A voxel grid in patient space. Voxel (i, j, k) is centred at
+/// originMm + i·spacingMm[0]·direction[0] + j·spacingMm[1]·direction[1]
+///          + k·spacingMm[2]·direction[2]
+/// (the convention of DICOM, NRRD and ITK: positions are voxel centres).
+struct VolumeGeometry {
+    std::array<int, 3> size{{0, 0, 0}};            // voxels along axes 0 (fastest), 1, 2
+    std::array<double, 3> spacingMm{{1, 1, 1}};    // centre-to-centre distance along each axis
+    std::array<double, 3> originMm{{0, 0, 0}};     // LPS position of the CENTRE of voxel (0,0,0)
+    std::array<std::array<double, 3>, 3> direction{// direction[a]: unit vector of axis a, LPS
+                                                   {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}}};
+
+    /// size[0]·size[1]·size[2] (0 when a size is not positive). O(1).
+    std::size_t voxelCount() const;
+    /// Position in labels of voxel (i, j, k): (k·size[1] + j)·size[0] + i. O(1).
+    std::size_t linearIndex(int i, int j, int k) const;
+    /// LPS millimetres of index (i, j, k); fractional indices give points
+    /// between voxel centres, (-0.5, -0.5, -0.5) is the outer corner of the
+    /// first voxel. O(1).
+    Vec3 worldOfIndex(double i, double j, double k) const;
+    /// The inverse of worldOfIndex: fractional (i, j, k) of an LPS point.
+    /// Throws std::domain_error when the axes are degenerate (parallel
+    /// directions or zero spacing). O(1).
+    std::array<double, 3> indexOfWorld(Vec3 pointMm) const;
+};
+
+/// One integer label per voxel; 0 is conventionally background.
+struct LabelVolume {
+    VolumeGeometry geometry;
+    std::vector<std::int32_t> labels;  // geometry.voxelCount() values, x fastest
+};
+
+/// Reads a 3-D label volume, choosing the format by the name's ending
+/// (case-insensitive): .nrrd / .nhdr (NRRD, through teem: raw, gzip, ascii
+/// or hex encoding, attached or detached header with one data file) or
+/// .nii / .nii.gz (single-file NIfTI-1 or NIfTI-2, through niftilib).
+/// Samples may be any integer type, or floating point holding integral
+/// values within int32 (NIfTI scl_slope/scl_inter applied first).
+/// Geometry is converted to LPS: NRRD `space` LPS as is, RAS and LAS
+/// flipped, no space at all means identity axes with `spacings` (or 1 mm);
+/// NIfTI uses the sform when sform_code > 0, else the qform, both RAS.
+/// Throws InputError(path, 0, what is wrong) for a missing, unreadable,
+/// unsupported or inconsistent file: not 3-D (a NIfTI file with more axes
+/// is accepted when they all have size 1), more than kMaxLabelVolumeVoxels voxels,
+/// less data in the file than the header claims (checked before the data
+/// are allocated), non-positive or non-finite spacing, degenerate axes, or a
+/// label that is not an integer in int32 range. Thread-safe (the libraries'
+/// global state is guarded). O(voxels).
+LabelVolume readLabelVolume(const std::string& path);
+
+/// Writes `mask` (geometry.voxelCount() bytes, x fastest) as an attached
+/// NRRD: type uchar, gzip encoding, `space: left-posterior-superior`,
+/// `space directions` = spacingMm[a]·direction[a], `space origin` = originMm
+/// (the NRRD origin is the centre of the first sample, as here),
+/// `kinds: domain domain domain`. `path` must end in .nrrd. Atomic: on
+/// failure nothing is left at `path`. Throws std::invalid_argument for a
+/// mask or geometry that does not fit (see readLabelVolume's rules),
+/// std::runtime_error when the file cannot be written. O(voxels).
+void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
+                   const std::vector<std::uint8_t>& mask);
+
+/// Same for a label map, stored in the smallest of uchar, ushort, short and
+/// int that holds every label. O(voxels).
+void writeLabelNrrd(const std::string& path, const LabelVolume& volume);
+
+}  // namespace dfrecon
