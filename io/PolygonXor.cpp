@@ -30,8 +30,12 @@ Polygon fromCgal(const CgalPolygon& polygon, bool clockwise) {
 }  // namespace
 
 std::vector<Polygon> xorRegions(const std::vector<Polygon>& contours) {
+    std::vector<CgalPolygon> polygons;
+    for (const Polygon& contour : contours) polygons.push_back(toCgal(contour));
+    // The range form merges divide-and-conquer; one polygon at a time would
+    // rebuild the growing arrangement every step (quadratic).
     CGAL::Polygon_set_2<Kernel> region;
-    for (const Polygon& contour : contours) region.symmetric_difference(toCgal(contour));
+    region.symmetric_difference(polygons.begin(), polygons.end());
     std::vector<PolygonWithHoles> pieces;
     region.polygons_with_holes(std::back_inserter(pieces));
     std::vector<Polygon> out;

@@ -419,13 +419,55 @@ class Reader {
         // their outer contour in mask-made files; XOR contours may cross).
         if (const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
             defect && defect->kind == ContourDefect::Kind::Crossing) {
-            slice.contours = xorRegions(slice.contours);
-            items.assign(slice.contours.size(), 0);
+            combineConflicts(slice, items);
             ++out_.rois[r].planesCombined;
         }
         validate(r, slice, items);
         normaliseOrientation(slice);
         return slice;
+    }
+
+    // Contours whose bounding boxes overlap form groups (union-find); only a
+    // group with crossings or shared edges is combined by exclusive or, so
+    // every other contour keeps its points exactly as written. O(c²) box tests.
+    static void combineConflicts(Slice& slice, std::vector<std::size_t>& items) {
+        const std::size_t n = slice.contours.size();
+        std::vector<Box2> boxes;
+        for (const Polygon& c : slice.contours) boxes.push_back(boundingBox(c));
+        std::vector<std::size_t> group(n);
+        for (std::size_t i = 0; i < n; ++i) group[i] = i;
+        auto root = [&](std::size_t i) {
+            while (group[i] != i) i = group[i] = group[group[i]];
+            return i;
+        };
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = i + 1; j < n; ++j)
+                if (boxes[i].min.x <= boxes[j].max.x && boxes[j].min.x <= boxes[i].max.x &&
+                    boxes[i].min.y <= boxes[j].max.y && boxes[j].min.y <= boxes[i].max.y)
+                    group[root(i)] = root(j);
+        std::map<std::size_t, std::vector<std::size_t>> members;
+        for (std::size_t i = 0; i < n; ++i) members[root(i)].push_back(i);
+        Slice combined{slice.zMm, {}};
+        std::vector<std::size_t> combinedItems;
+        for (const auto& [rootIndex, indices] : members) {
+            std::vector<Polygon> polygons;
+            for (std::size_t i : indices) polygons.push_back(std::move(slice.contours[i]));
+            // CGAL needs simple polygons: a group holding a self-crossing
+            // contour stays as it is, for validate() to report.
+            const std::optional<ContourDefect> defect =
+                polygons.size() > 1 ? findContourDefect(polygons) : std::nullopt;
+            const bool conflict =
+                defect && defect->kind == ContourDefect::Kind::Crossing &&
+                std::none_of(polygons.begin(), polygons.end(),
+                             [](const Polygon& p) { return findContourDefect({p}).has_value(); });
+            if (conflict) polygons = xorRegions(polygons);
+            for (std::size_t k = 0; k < polygons.size(); ++k) {
+                combined.contours.push_back(std::move(polygons[k]));
+                combinedItems.push_back(conflict ? 0 : items[indices[k]]);
+            }
+        }
+        slice = std::move(combined);
+        items = std::move(combinedItems);
     }
 
     // A contour that touches itself is a keyhole (or a pinch); split it.
