@@ -21,7 +21,8 @@ struct ConvertArgs {
 };
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
@@ -38,8 +39,8 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
         chosen.rois.push_back(*selectRois(input.contours, args.roi, false).front());
 
     if (toDicom) {
-        RtStructWriteOptions options = args.like.empty() ? RtStructWriteOptions{}
-                                                          : referenceFrom(args.like);
+        RtStructWriteOptions options =
+            args.like.empty() ? RtStructWriteOptions{} : referenceFrom(args.like);
         options.structureSetLabel = args.label;
         writeRtStruct(chosen, args.output, options);
     } else {
@@ -57,8 +58,8 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
                                             {"input", args.input},
                                             {"inputFormat", input.format},
                                             {"output", args.output},
-                                            {"outputFormat", toDicom ? "DICOM RTSTRUCT"
-                                                                     : "dfrecon-slices 1"},
+                                            {"outputFormat",
+                                             toDicom ? "DICOM RTSTRUCT" : "dfrecon-slices 1"},
                                             {"rois", chosen.rois.size()},
                                             {"contours", contours}}
                          .dump(2)

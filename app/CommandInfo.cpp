@@ -34,26 +34,26 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
         for (const auto& contour : slices.back()["contours"])
             holes += contour["depth"].get<int>() % 2;
     }
-    nlohmann::ordered_json j = {{"name", roi.name},
-                                {"number", roi.number ? nlohmann::ordered_json(*roi.number)
-                                                      : nullptr},
-                                {"slices", roi.slices.size()},
-                                {"contours", roi.contourCount()},
-                                {"holes", holes},
-                                {"points", roi.pointCount()},
-                                {"spacingMm",
-                                 {{"min", spacing.minMm},
-                                  {"max", spacing.maxMm},
-                                  {"mean", spacing.meanMm},
-                                  {"uniform", spacing.uniform}}},
-                                {"planes", roi.frame.orientationName()},
-                                {"perSlice", slices}};
+    nlohmann::ordered_json j = {
+        {"name", roi.name},
+        {"number", roi.number ? nlohmann::ordered_json(*roi.number) : nullptr},
+        {"slices", roi.slices.size()},
+        {"contours", roi.contourCount()},
+        {"holes", holes},
+        {"points", roi.pointCount()},
+        {"spacingMm",
+         {{"min", spacing.minMm},
+          {"max", spacing.maxMm},
+          {"mean", spacing.meanMm},
+          {"uniform", spacing.uniform}}},
+        {"planes", roi.frame.orientationName()},
+        {"perSlice", slices}};
     if (dicom) {
         j["holeConvention"] = holeConventionName(dicom->holes);
         j["keyholeCuts"] = dicom->keyholeCuts;
         j["contoursSkipped"] = dicom->contoursSkipped;
-        j["slabThicknessMm"] = roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm)
-                                                       : nullptr;
+        j["slabThicknessMm"] =
+            roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm) : nullptr;
     }
     j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
                              : nlohmann::ordered_json(nullptr);

@@ -21,5 +21,6 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 void addConvertCommand(CLI::App& root, const GlobalOptions& global);
+void addRasterizeCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -100,8 +100,7 @@ std::vector<std::string> uniqueFileStems(const std::vector<const Roi*>& rois) {
     std::vector<std::string> stems;
     for (std::size_t i = 0; i < rois.size(); ++i) {
         std::string stem = fileStem(rois[i]->name);
-        if (uses[stem] > 1)
-            stem += "_" + std::to_string(rois[i]->number.value_or(int(i) + 1));
+        if (uses[stem] > 1) stem += "_" + std::to_string(rois[i]->number.value_or(int(i) + 1));
         stems.push_back(stem);
     }
     return stems;

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     addFieldCommand(root, global);
     addSimplifyCommand(root, global);
     addConvertCommand(root, global);
+    addRasterizeCommand(root, global);
     addCheckCommand(root, global);
 
     try {

@@ -32,8 +32,8 @@ openvdb::math::Transform::Ptr transformOf(const DenseDistanceVolume& volume,
         for (int c = 0; c < 3; ++c) m(a, c) = voxel[a] * axes[a][c];
     const Vec3 translation = frame.toPatient({origin[0], origin[1], origin[2]});
     for (int c = 0; c < 3; ++c) m(3, c) = translation[c];
-    return openvdb::math::Transform::Ptr(new openvdb::math::Transform(
-        openvdb::math::MapBase::Ptr(new openvdb::math::AffineMap(m))));
+    return openvdb::math::Transform::Ptr(
+        new openvdb::math::Transform(openvdb::math::MapBase::Ptr(new openvdb::math::AffineMap(m))));
 }
 
 }  // namespace

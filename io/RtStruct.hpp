@@ -40,11 +40,10 @@ struct RtStructLimits {
 };
 
 struct RtStructLoad {
-    ContourSet contours;               // one Roi per StructureSetROISequence item, in file order
+    ContourSet contours;                // one Roi per StructureSetROISequence item, in file order
     std::vector<RtStructRoiInfo> rois;  // same order
     std::vector<InputWarning> warnings;
-    std::string frameOfReferenceUid, studyInstanceUid, seriesInstanceUid, patientId,
-        patientName;
+    std::string frameOfReferenceUid, studyInstanceUid, seriesInstanceUid, patientId, patientName;
 };
 
 /// Two contour planes closer than this are one slice: z values are decimal

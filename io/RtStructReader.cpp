@@ -19,10 +19,14 @@ namespace dfrecon {
 
 const char* holeConventionName(HoleConvention convention) {
     switch (convention) {
-        case HoleConvention::None: return "none";
-        case HoleConvention::Nested: return "nested";
-        case HoleConvention::Keyhole: return "keyhole";
-        case HoleConvention::Xor: return "xor";
+        case HoleConvention::None:
+            return "none";
+        case HoleConvention::Nested:
+            return "nested";
+        case HoleConvention::Keyhole:
+            return "keyhole";
+        case HoleConvention::Xor:
+            return "xor";
     }
     return "?";
 }
@@ -86,7 +90,9 @@ class Reader {
     }
 
   private:
-    [[noreturn]] void fail(const std::string& problem) const { throw InputError(file_, 0, problem); }
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw InputError(file_, 0, problem);
+    }
     void warn(const std::string& message) { out_.warnings.push_back({file_, 0, message}); }
 
     std::string roiLabel(std::size_t r) const {
@@ -333,7 +339,8 @@ class Reader {
             const Vec3 n = newellNormal(c.points);
             sum = sum + (dot(n, sum) < 0 ? -1.0 : 1.0) * n;
         }
-        if (length(sum) == 0) fail(roiLabel(r) + ": contours have no area; cannot find their plane");
+        if (length(sum) == 0)
+            fail(roiLabel(r) + ": contours have no area; cannot find their plane");
         Vec3 normal = (1.0 / length(sum)) * sum;
         for (int a = 0; a < 3; ++a)  // a patient axis within rounding is that axis
             if (std::abs(std::abs(normal[a]) - 1) < 1e-9) {
@@ -344,9 +351,10 @@ class Reader {
             const double span = spanAlong(c.points, normal);
             if (span > kSamePlaneToleranceMm)
                 fail(roiLabel(r) + ": contour " + std::to_string(c.item) + " of " +
-                     tagName(DCM_ContourSequence) + " is not planar, or not parallel to the "
-                     "others: its points spread " + std::to_string(span) +
-                     " mm along the common normal");
+                     tagName(DCM_ContourSequence) +
+                     " is not planar, or not parallel to the "
+                     "others: its points spread " +
+                     std::to_string(span) + " mm along the common normal");
         }
         const PlaneFrame frame = frameWithNormal(normal);
         warn(roiLabel(r) + ": contours lie in " + frame.orientationName() +
@@ -382,15 +390,15 @@ class Reader {
         bool anyHole = false;
         for (const Slice& slice : roi.slices)
             for (int depth : nestingDepths(slice)) anyHole = anyHole || depth % 2 == 1;
-        info.holes = anyXor                     ? HoleConvention::Xor
-                     : info.keyholeCuts > 0      ? HoleConvention::Keyhole
+        info.holes = anyXor                    ? HoleConvention::Xor
+                     : info.keyholeCuts > 0    ? HoleConvention::Keyhole
                      : info.planesCombined > 0 ? HoleConvention::Xor
-                     : anyHole                   ? HoleConvention::Nested
-                                                 : HoleConvention::None;
+                     : anyHole                 ? HoleConvention::Nested
+                                               : HoleConvention::None;
         const SpacingStats spacing = spacingOf(roi);
         if (!spacing.uniform)
-            warn(roiLabel(r) + ": uneven slice spacing, " + std::to_string(spacing.minMm) +
-                 " to " + std::to_string(spacing.maxMm) + " mm");
+            warn(roiLabel(r) + ": uneven slice spacing, " + std::to_string(spacing.minMm) + " to " +
+                 std::to_string(spacing.maxMm) + " mm");
     }
 
     Slice buildSlice(std::size_t r, std::size_t begin, std::size_t end) {
@@ -501,8 +509,9 @@ class Reader {
                    " segment " + std::to_string(s + 1);
         };
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
-            fail(plane + "self-intersecting contour: " + segment(defect->contourA, defect->segmentA) +
-                 how + "its segment " + std::to_string(defect->segmentB + 1));
+            fail(plane +
+                 "self-intersecting contour: " + segment(defect->contourA, defect->segmentA) + how +
+                 "its segment " + std::to_string(defect->segmentB + 1));
         fail(plane + "contours cross: " + segment(defect->contourA, defect->segmentA) + how +
              segment(defect->contourB, defect->segmentB));
     }

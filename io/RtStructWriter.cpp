@@ -21,8 +21,8 @@ std::string formatDecimalString(double value) {
     auto written = std::to_chars(buffer, buffer + sizeof buffer, value);
     if (written.ptr - buffer <= 16) return std::string(buffer, written.ptr);
     for (int precision = 15; precision > 0; --precision) {
-        written = std::to_chars(buffer, buffer + sizeof buffer, value,
-                                std::chars_format::general, precision);
+        written = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general,
+                                precision);
         if (written.ptr - buffer <= 16) return std::string(buffer, written.ptr);
     }
     throw std::invalid_argument("cannot write " + std::to_string(value) + " as a DICOM DS value");
@@ -45,7 +45,8 @@ std::string contourData(const Polygon& polygon, double zMm, const PlaneFrame& fr
     std::string data;
     data.reserve(polygon.size() * 3 * 12);
     for (const Point2& p : polygon) {
-        const Vec3 patient = frame.isIdentity() ? Vec3{p.x, p.y, zMm} : frame.toPatient({p.x, p.y, zMm});
+        const Vec3 patient =
+            frame.isIdentity() ? Vec3{p.x, p.y, zMm} : frame.toPatient({p.x, p.y, zMm});
         for (int a = 0; a < 3; ++a) {
             if (!data.empty()) data += '\\';
             data += formatDecimalString(patient[a]);
@@ -59,7 +60,8 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
     DRTStructureSetROISequence::Item* info = nullptr;
     check(rt.getStructureSetROISequence().addItem(info), "StructureSetROISequence");
     check(info->setROINumber(numberText), "ROINumber");
-    check(info->setReferencedFrameOfReferenceUID(frameUid.c_str()), "ReferencedFrameOfReferenceUID");
+    check(info->setReferencedFrameOfReferenceUID(frameUid.c_str()),
+          "ReferencedFrameOfReferenceUID");
     check(info->setROIName(roi.name.c_str()), "ROIName");
     check(info->setROIGenerationAlgorithm("SEMIAUTOMATIC"), "ROIGenerationAlgorithm");
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/TriMesh.hpp"
 #include "io/PlaneFrame.hpp"
+#include "io/TriMesh.hpp"
 #include "io/Vec3.hpp"
 
 namespace dfrecon {

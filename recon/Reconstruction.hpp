@@ -37,9 +37,8 @@ struct ReconstructionOptions {
     double contourErrorMm = 0;  // simplify contours within this bound first (0: keep all points)
     int maxDepth = 4;           // recursion levels for branching regions
     CapMode cap = CapMode::Flat;
-    double capOffsetMm =
-        -1;  // how far beyond an end contour its cap reaches; < 0: half the ROI's slab
-             // thickness if it has one, else half the spacing
+    double capOffsetMm = -1;  // how far beyond an end contour its cap reaches; < 0: half the ROI's
+                              // slab thickness if it has one, else half the spacing
     FieldKernelOptions kernel;
 };
 

@@ -13,6 +13,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
+#include "io/LabelVolume.hpp"
 #include "io/SlicesFile.hpp"
 #include "tests/BadSlicesInputs.hpp"
 
@@ -82,8 +83,9 @@ TEST(Cli, UsageErrorsExitOne) {
 }
 
 TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
-    for (const std::string sub : {"", "synth ", "devices ", "info ", "fields ", "check ",
-                                  "reconstruct ", "field ", "simplify "}) {
+    for (const std::string sub :
+         {"", "synth ", "devices ", "info ", "fields ", "check ", "reconstruct ", "field ",
+          "simplify ", "convert ", "rasterize "}) {
         const Result run = runDfrecon(sub + "--help");
         EXPECT_EQ(run.exitCode, 0) << sub;
         EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
@@ -352,4 +354,76 @@ TEST(Cli, SimplifyRefusesBadInputAndWritesNothing) {
     EXPECT_EQ(badField.exitCode, 2);
     EXPECT_NE(badField.err.find("OpenVDB"), std::string::npos) << badField.err;
     EXPECT_FALSE(fs::exists(out));
+}
+
+// ---- DICOM RT Structure Sets and label maps --------------------------------
+
+TEST(Cli, RtStructConvertsAndReconstructsLikeTheSlicesFile) {
+    const fs::path slices = scratch() / "rt-torus.slices", dicom = scratch() / "rt-torus.dcm";
+    ASSERT_EQ(runDfrecon("synth torus -o " + slices.string()).exitCode, 0);
+    const Result convert = runDfrecon("convert " + slices.string() + " -o " + dicom.string());
+    ASSERT_EQ(convert.exitCode, 0) << convert.err;
+    const Result info = runDfrecon("info --json " + dicom.string());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const auto infoJson = nlohmann::json::parse(info.out);
+    EXPECT_EQ(infoJson["format"], "DICOM RTSTRUCT");
+    EXPECT_EQ(infoJson["rois"][0]["holeConvention"], "nested");
+    EXPECT_EQ(infoJson["rois"][0]["number"], 1);
+
+    auto volumeOf = [](const std::string& input, const std::string& roi) {
+        const fs::path mesh = scratch() / "rt-out.ply";
+        const Result run =
+            runDfrecon("reconstruct --json -q " + input + " --roi " + roi + " -o " + mesh.string());
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        const auto report = nlohmann::json::parse(run.out)["rois"][0];
+        EXPECT_TRUE(report["validSolid"].get<bool>());
+        return report["volumeCc"].get<double>();
+    };
+    // By number, as planning systems list ROIs; DS values keep 16 characters.
+    const double fromSlices = volumeOf(slices.string(), "torus");
+    EXPECT_NEAR(volumeOf(dicom.string(), "1"), fromSlices, 1e-6 * fromSlices);
+}
+
+TEST(Cli, BadRtStructExitsTwoNamingTheTag) {
+    const fs::path notDicom = scratch() / "broken.dcm";
+    std::ofstream(notDicom) << "DICM? no";
+    const Result run = runDfrecon("info " + notDicom.string());
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.err.find("not a readable DICOM file"), std::string::npos) << run.err;
+    EXPECT_TRUE(run.out.empty());
+}
+
+TEST(Cli, RasterizeOnTheLabelVolumeGivesBackTheLabel) {
+    // plastimatch's contours of label 4, rasterised on the label volume's own
+    // grid: the contour planes hold the voxel centres, so every voxel agrees.
+    const fs::path study = fs::path(DFRECON_FIXTURES) / "kmeans_axial";
+    ASSERT_TRUE(fs::exists(study / "rtstruct.dcm")) << "run make setup";
+    const fs::path out = scratch() / "label4.nrrd";
+    const Result run = runDfrecon("rasterize -q --json " + (study / "rtstruct.dcm").string() +
+                                  " --roi label_4 --like " + (study / "labels.nii.gz").string() +
+                                  " -o " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const dfrecon::LabelVolume mask = dfrecon::readLabelVolume(out.string());
+    const dfrecon::LabelVolume labels =
+        dfrecon::readLabelVolume((study / "labels.nii.gz").string());
+    ASSERT_EQ(mask.labels.size(), labels.labels.size());
+    std::size_t differ = 0, inside = 0;
+    for (std::size_t v = 0; v < mask.labels.size(); ++v) {
+        differ += (mask.labels[v] == 1) != (labels.labels[v] == 4);
+        inside += labels.labels[v] == 4;
+    }
+    EXPECT_EQ(differ, 0u) << "of " << inside;
+    EXPECT_EQ(nlohmann::json::parse(run.out)["insideVoxels"], inside);
+}
+
+TEST(Cli, RasterizedSphereHasTheBallsVolume) {
+    const fs::path slices = scratch() / "ras-sphere.slices", out = scratch() / "ras-sphere.nrrd";
+    ASSERT_EQ(runDfrecon("synth sphere -o " + slices.string()).exitCode, 0);
+    const Result run =
+        runDfrecon("rasterize --json -q " + slices.string() + " --voxel-mm 1 -o " + out.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const double ballCc = 4.0 / 3.0 * M_PI * 20 * 20 * 20 / 1000;
+    EXPECT_NEAR(nlohmann::json::parse(run.out)["volumeCc"].get<double>(), ballCc, 0.02 * ballCc);
+    EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " -o " + out.string()).exitCode, 1);
+    EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " --voxel-mm 1 -o x.vdb").exitCode, 1);
 }

@@ -25,8 +25,7 @@ Polygon squareKeyhole(bool channelSidesShareVertices) {
     for (Point2 q : {Point2{3, 3}, Point2{3, 7}, Point2{7, 7}, Point2{7, 3}, Point2{5, 3}})
         p.push_back(q);  // around the hole, clockwise, back to the channel's top
     if (!channelSidesShareVertices) p.push_back({5, 1.5});  // a point the way up lacks
-    for (Point2 q : {Point2{5, 0}, Point2{10, 0}, Point2{10, 10}, Point2{0, 10}})
-        p.push_back(q);
+    for (Point2 q : {Point2{5, 0}, Point2{10, 0}, Point2{10, 10}, Point2{0, 10}}) p.push_back(q);
     return p;
 }
 
@@ -52,9 +51,9 @@ TEST(KeyholeSplit, ChannelSidesSampledApartStillSplit) {
 TEST(KeyholeSplit, TwoHolesThroughOneContour) {
     // Outer 0..20 × 0..10, holes 2..6 and 12..16 (× 3..7), channels at x = 4
     // and x = 14 from the bottom edge.
-    Polygon p = {{0, 0}, {4, 0}, {4, 3}, {2, 3}, {2, 7}, {6, 7}, {6, 3}, {4, 3}, {4, 0},
-                 {14, 0}, {14, 3}, {12, 3}, {12, 7}, {16, 7}, {16, 3}, {14, 3}, {14, 0},
-                 {20, 0}, {20, 10}, {0, 10}};
+    Polygon p = {{0, 0},  {4, 0},  {4, 3},  {2, 3},  {2, 7},   {6, 7},  {6, 3},
+                 {4, 3},  {4, 0},  {14, 0}, {14, 3}, {12, 3},  {12, 7}, {16, 7},
+                 {16, 3}, {14, 3}, {14, 0}, {20, 0}, {20, 10}, {0, 10}};
     const KeyholeSplit split = splitKeyholes(p);
     ASSERT_EQ(split.loops.size(), 3u);
     const std::vector<double> areas = sortedAreas(split.loops);

@@ -43,8 +43,8 @@ std::string decimal(double v) {
 
 ContourSpec square(double x0, double y0, double side, double z, bool clockwise = false) {
     ContourSpec c;
-    std::vector<Vec3> p = {{x0, y0, z}, {x0 + side, y0, z}, {x0 + side, y0 + side, z},
-                           {x0, y0 + side, z}};
+    std::vector<Vec3> p = {
+        {x0, y0, z}, {x0 + side, y0, z}, {x0 + side, y0 + side, z}, {x0, y0 + side, z}};
     if (clockwise) std::reverse(p.begin(), p.end());
     c.points = p;
     return c;
@@ -121,7 +121,8 @@ ContourSet ringsAndIslands() {
     for (int k = 0; k < 3; ++k) {
         Slice s;
         s.zMm = -12.5 + 2.5 * k;
-        s.contours = {circlePolygon({1.25, -3.3}, 20, 48), circlePolygon({1.25, -3.3}, 9.7, 36, true),
+        s.contours = {circlePolygon({1.25, -3.3}, 20, 48),
+                      circlePolygon({1.25, -3.3}, 9.7, 36, true),
                       circlePolygon({60.1, 0.3}, 5 + k, 24)};
         roi.slices.push_back(s);
     }

@@ -55,8 +55,8 @@ std::vector<std::uint8_t> fillRoi(const Roi& roi, const VolumeGeometry& g) {
         for (const Polygon& contour : slice.contours) {
             const Box2 box = boundingBox(contour);
             int lo[2] = {g.size[0], g.size[1]}, hi[2] = {-1, -1};
-            for (Point2 corner : {box.min, box.max, Point2{box.min.x, box.max.y},
-                                  Point2{box.max.x, box.min.y}}) {
+            for (Point2 corner :
+                 {box.min, box.max, Point2{box.min.x, box.max.y}, Point2{box.max.x, box.min.y}}) {
                 const auto c = g.indexOfWorld(roi.frame.toPatient({corner.x, corner.y, slice.zMm}));
                 for (int a = 0; a < 2; ++a) {
                     lo[a] = std::min(lo[a], int(std::floor(c[a])));
@@ -90,7 +90,7 @@ void expectContoursRebuildLabels(const std::string& study, const char* orientati
         const std::vector<std::uint8_t> filled = fillRoi(roi, g);
         std::size_t voxels = 0, wrong = 0;
         for (int k = 0; k < g.size[2]; ++k)
-            for (int j = 1; j + 1 < g.size[1]; ++j)  // edge rows: the implied closing
+            for (int j = 1; j + 1 < g.size[1]; ++j)        // edge rows: the implied closing
                 for (int i = 1; i + 1 < g.size[0]; ++i) {  // edges run through their centres
                     const std::size_t v = g.linearIndex(i, j, k);
                     const bool expected = labels.labels[v] == label;
