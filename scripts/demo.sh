@@ -19,6 +19,13 @@ echo
 echo "\$ dfrecon simplify out/demo/y.ply --max-error 0.5 --contours examples/y.slices -o out/demo/y-0.5mm.ply"
 "$dfrecon" simplify out/demo/y.ply --max-error 0.5 --contours examples/y.slices -o out/demo/y-0.5mm.ply
 echo
+echo "\$ dfrecon convert examples/two-rois.slices -o out/demo/two-rois.dcm   # a DICOM RT Structure Set"
+"$dfrecon" convert examples/two-rois.slices -o out/demo/two-rois.dcm
+"$dfrecon" info out/demo/two-rois.dcm | head -3
+echo
+echo "\$ dfrecon rasterize out/demo/two-rois.dcm --roi 1 --voxel-mm 1 -o out/demo/roi1.nrrd   # a label map for 3D Slicer"
+"$dfrecon" rasterize out/demo/two-rois.dcm --roi 1 --voxel-mm 1 -o out/demo/roi1.nrrd
+echo
 echo "\$ dfrecon check out/demo/y.ply"
 "$dfrecon" check out/demo/y.ply
 echo
