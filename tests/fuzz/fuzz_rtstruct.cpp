@@ -1,0 +1,108 @@
+// libFuzzer target for the RTSTRUCT reader (docs/fuzzing.md). DCMTK reads
+// files, not memory, so each input goes through a temporary file. Oracle: any
+// input either loads or raises InputError; whatever loads must write out with
+// writeRtStruct and read back to the same ROIs and contours, point by point.
+//
+// "The same" allows a tolerance: the writer rounds every coordinate to a
+// DICOM DS value of at most 16 characters, and a non-axial ROI is written
+// through its plane frame and gets a frame recomputed from the rounded points
+// on reading, so only axial coordinates that were valid DS values come back
+// bit for bit. Contours within a plane are matched as a set, since a
+// recomputed frame may order contours of one plane differently.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "io/RtStruct.hpp"
+
+using namespace dfrecon;
+
+namespace {
+
+// Far below any real file's coordinates' rounding to 16 characters matters
+// (1e6 mm written with 16 characters keeps ~1e-8 mm), far above the error of
+// a frame rotation and back.
+constexpr double kToleranceMm = 1e-6;
+
+std::string scratch(const char* role) {
+    // Per process, so that several fuzzers (or -fork) never share a file;
+    // /dev/shm where there is one keeps the disk out of the loop.
+    static const std::string dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    return dir + "/dfrecon-fuzz-rtstruct-" + std::to_string(getpid()) + "-" + role + ".dcm";
+}
+
+bool near(Vec3 a, Vec3 b) {
+    return std::abs(a.x - b.x) <= kToleranceMm && std::abs(a.y - b.y) <= kToleranceMm &&
+           std::abs(a.z - b.z) <= kToleranceMm;
+}
+
+// Same point sequence in patient coordinates (frames may differ).
+bool sameContour(const Roi& ra, const Polygon& a, double za, const Roi& rb, const Polygon& b,
+                 double zb) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!near(ra.frame.toPatient({a[i].x, a[i].y, za}),
+                  rb.frame.toPatient({b[i].x, b[i].y, zb})))
+            return false;
+    return true;
+}
+
+void expectSame(const RtStructLoad& a, const RtStructLoad& b) {
+    if (a.contours.rois.size() != b.contours.rois.size()) __builtin_trap();
+    for (std::size_t r = 0; r < a.contours.rois.size(); ++r) {
+        const Roi &x = a.contours.rois[r], &y = b.contours.rois[r];
+        if (x.name != y.name || x.number != y.number || x.slices.size() != y.slices.size())
+            __builtin_trap();
+        for (std::size_t s = 0; s < x.slices.size(); ++s) {
+            const Slice &p = x.slices[s], &q = y.slices[s];
+            if (p.contours.size() != q.contours.size()) __builtin_trap();
+            std::vector<bool> used(q.contours.size(), false);
+            for (const Polygon& c : p.contours) {
+                bool found = false;
+                for (std::size_t k = 0; k < q.contours.size() && !found; ++k)
+                    if (!used[k] && sameContour(x, c, p.zMm, y, q.contours[k], q.zMm))
+                        used[k] = found = true;
+                if (!found) __builtin_trap();
+            }
+        }
+    }
+}
+
+}  // namespace
+
+// The suppressions travel with the binary, so replaying one input by hand
+// behaves as the fuzzing run did.
+extern "C" const char* __ubsan_default_options() {
+    return "print_stacktrace=1:suppressions=" DFRECON_UBSAN_SUPPRESSIONS;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    // Small limits keep each run fast and its memory bounded; the limit
+    // checks themselves are fuzzed.
+    RtStructLimits limits;
+    limits.maxRois = 64;
+    limits.maxContoursPerRoi = 2000;
+    limits.maxPointsTotal = 50'000;
+
+    static const std::string input = scratch("in"), output = scratch("out");
+    {
+        std::ofstream file(input, std::ios::binary | std::ios::trunc);
+        file.write(reinterpret_cast<const char*>(data), std::streamsize(size));
+        if (!file) __builtin_trap();  // scratch space full: not the reader's fault
+    }
+    RtStructLoad load;
+    try {
+        load = readRtStruct(input, limits);
+    } catch (const InputError&) {
+        return 0;
+    }
+    writeRtStruct(load.contours, output);
+    const RtStructLoad back = readRtStruct(output, limits);
+    expectSame(load, back);
+    std::remove(output.c_str());
+    return 0;
+}
