@@ -23,9 +23,9 @@ using namespace dfrecon;
 
 namespace {
 
-// Far below any real file's coordinates' rounding to 16 characters matters
-// (1e6 mm written with 16 characters keeps ~1e-8 mm), far above the error of
-// a frame rotation and back.
+// Above the rounding to DS values of 16 characters (about 1e-8 mm at the
+// 1e6 mm coordinate limit) and the error of a frame rotation and back; far
+// below anything that matters in a contour.
 constexpr double kToleranceMm = 1e-6;
 
 // The reader flattens each contour onto its plane, which is only defined to
@@ -102,7 +102,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     limits.maxContoursPerRoi = 2000;
     limits.maxPointsTotal = 50'000;
 
-    static const std::string input = scratch("in"), output = scratch("out");
+    // Removed at exit: -fork starts a process, so a pair of files, per job.
+    struct Scratch {
+        std::string in = scratch("in"), out = scratch("out");
+        ~Scratch() {
+            std::remove(in.c_str());
+            std::remove(out.c_str());
+        }
+    };
+    static const Scratch files;
+    const std::string &input = files.in, &output = files.out;
     {
         std::ofstream file(input, std::ios::binary | std::ios::trunc);
         file.write(reinterpret_cast<const char*>(data), std::streamsize(size));
