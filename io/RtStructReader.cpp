@@ -157,21 +157,18 @@ class Reader {
         if (out_.rois.empty()) warn(tagName(DCM_StructureSetROISequence) + " is empty: no ROIs");
     }
 
-    // The writer, like any DICOM consumer, accepts only valid LO values
-    // (at most 64 characters, no control characters or backslashes), so a
-    // name that is not one is mended here, with a warning, rather than make
-    // every file read from it unwritable (found by fuzzing: a control
-    // character in ROIName made writeRtStruct throw).
+    // The writer, like any DICOM consumer, accepts only valid LO values (no
+    // control characters or backslashes; DCMTK does not check the 64
+    // character limit), so a name that is not one is mended here, with a
+    // warning, rather than make every file read from it unwritable (found by
+    // fuzzing: a control character in ROIName made writeRtStruct throw).
     std::string validRoiName(std::string name, const std::string& where) {
         if (DcmLongString::checkStringValue(name.c_str(), "1").good()) return name;
-        const std::string original = name;
         for (char& c : name)
             if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') c = '_';
-        if (name.size() > 64) name.resize(64);
         if (DcmLongString::checkStringValue(name.c_str(), "1").bad()) name.clear();
         warn(where + ": " + tagName(DCM_ROIName) +
-             " is not a valid LO value (over 64 "
-             "characters, control characters or backslashes); " +
+             " is not a valid LO value (control characters or backslashes); " +
              (name.empty() ? std::string("replaced") : "read as '" + name + "'"));
         return name;
     }
