@@ -53,16 +53,28 @@ bool near(Vec3 a, Vec3 b, double tolerance) {
            std::abs(a.z - b.z) <= tolerance;
 }
 
-// Same point sequence in patient coordinates (frames may differ).
+// Same point sequence in patient coordinates. Where the frame changed, a
+// flipped normal reverses the orientation that normaliseOrientation gives,
+// so the sequence may also run backwards.
 bool sameContour(const Roi& ra, const Polygon& a, double za, const Roi& rb, const Polygon& b,
                  double zb) {
     if (a.size() != b.size()) return false;
-    const double tolerance = sameFrame(ra.frame, rb.frame) ? kToleranceMm : kSamePlaneToleranceMm;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (!near(ra.frame.toPatient({a[i].x, a[i].y, za}),
-                  rb.frame.toPatient({b[i].x, b[i].y, zb}), tolerance))
-            return false;
-    return true;
+    const bool same = sameFrame(ra.frame, rb.frame);
+    const double tolerance = same ? kToleranceMm : kSamePlaneToleranceMm;
+    const std::size_t n = a.size();
+    // Either direction from any start (std::reverse moves the first point).
+    for (int direction : {1, -1})
+        for (std::size_t start = 0; start < n; ++start) {
+            if (same && (direction < 0 || start > 0)) return false;
+            bool all = true;
+            for (std::size_t i = 0; i < n && all; ++i) {
+                const Point2 q = b[(start + (direction > 0 ? i : n - i)) % n];
+                all = near(ra.frame.toPatient({a[i].x, a[i].y, za}),
+                           rb.frame.toPatient({q.x, q.y, zb}), tolerance);
+            }
+            if (all) return true;
+        }
+    return false;
 }
 
 void expectSame(const RtStructLoad& a, const RtStructLoad& b) {
@@ -71,8 +83,11 @@ void expectSame(const RtStructLoad& a, const RtStructLoad& b) {
         const Roi &x = a.contours.rois[r], &y = b.contours.rois[r];
         if (x.name != y.name || x.number != y.number || x.slices.size() != y.slices.size())
             __builtin_trap();
+        // A normal that flips with the frame (oblique -z read back as
+        // axial +z) orders the same planes the other way.
+        const bool flipped = dot(x.frame.n, y.frame.n) < 0;
         for (std::size_t s = 0; s < x.slices.size(); ++s) {
-            const Slice &p = x.slices[s], &q = y.slices[s];
+            const Slice &p = x.slices[s], &q = y.slices[flipped ? x.slices.size() - 1 - s : s];
             if (p.contours.size() != q.contours.size()) __builtin_trap();
             std::vector<bool> used(q.contours.size(), false);
             for (const Polygon& c : p.contours) {
