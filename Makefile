@@ -5,7 +5,10 @@ BUILD_DIR      ?= build
 SANITIZE_DIR   ?= build-sanitize
 FUZZ_DIR       ?= build-fuzz
 JOBS           ?= $(shell nproc 2>/dev/null || echo 2)
+# make fuzz runs both fuzz targets one after the other, FUZZ_SECONDS in all.
 FUZZ_SECONDS   ?= 600
+FUZZ_SLICES_SECONDS   ?= $(shell echo $$(( $(FUZZ_SECONDS) / 2 )))
+FUZZ_RTSTRUCT_SECONDS ?= $(shell echo $$(( $(FUZZ_SECONDS) - $(FUZZ_SLICES_SECONDS) )))
 CMAKE_FLAGS    ?=
 # CI sets CI=true: warnings become errors there.
 ifeq ($(CI),true)
@@ -45,14 +48,21 @@ sanitize-test: setup
 	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:use_tls=0:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer on the .slices parser for FUZZ_SECONDS (docs/fuzzing.md).
+# libFuzzer on the .slices parser, then on the RTSTRUCT reader, for
+# FUZZ_SECONDS in all (docs/fuzzing.md). One process each: one core.
 fuzz: setup
 	@cmake --preset fuzz >/dev/null
-	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_slices_parser
-	@mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/crashes
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_slices_parser fuzz_rtstruct
+	@mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/crashes $(FUZZ_DIR)/corpus-rtstruct \
+	  $(FUZZ_DIR)/crashes-rtstruct
 	@cp -n examples/*.slices tests/data/fuzz/*.slices $(FUZZ_DIR)/corpus/ 2>/dev/null || true
-	$(FUZZ_DIR)/bin/fuzz_slices_parser -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 \
+	@cp -n tests/data/fuzz-rtstruct/* tests/data/fuzz-rtstruct-regressions/* \
+	  $(FUZZ_DIR)/corpus-rtstruct/ 2>/dev/null || true
+	$(FUZZ_DIR)/bin/fuzz_slices_parser -max_total_time=$(FUZZ_SLICES_SECONDS) -rss_limit_mb=2048 \
 	  -timeout=10 -artifact_prefix=$(FUZZ_DIR)/crashes/ $(FUZZ_DIR)/corpus
+	$(FUZZ_DIR)/bin/fuzz_rtstruct -max_total_time=$(FUZZ_RTSTRUCT_SECONDS) -rss_limit_mb=2048 \
+	  -timeout=10 -max_len=8192 -artifact_prefix=$(FUZZ_DIR)/crashes-rtstruct/ \
+	  $(FUZZ_DIR)/corpus-rtstruct
 
 format:
 	@clang-format -i $$(git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp' '*.cl')

@@ -84,7 +84,8 @@ RtStructWriteOptions referenceFrom(const std::string& dicomPath);
 /// one ROI per Roi (its number, or its position from 1), CLOSED_PLANAR
 /// contours in patient coordinates via each ROI's frame, DS values in at most
 /// 16 characters, exactly the read values wherever they fit. Throws
-/// std::runtime_error if DCMTK cannot write.
+/// std::runtime_error if `contours` has no ROIs (the IOD needs one) or
+/// DCMTK cannot write.
 void writeRtStruct(const ContourSet& contours, const std::string& path,
                    const RtStructWriteOptions& options = {});
 

@@ -148,7 +148,7 @@ class Reader {
             indexOfNumber_[number] = out_.rois.size();
             RtStructRoiInfo info;
             info.number = number;
-            info.name = text(item, DCM_ROIName);
+            info.name = validRoiName(text(item, DCM_ROIName), where);
             if (info.name.empty()) {
                 info.name = "ROI " + std::to_string(number);
                 warn(where + ": no " + tagName(DCM_ROIName) + "; called '" + info.name + "'");
@@ -161,6 +161,22 @@ class Reader {
             contours_.emplace_back();
         }
         if (out_.rois.empty()) warn(tagName(DCM_StructureSetROISequence) + " is empty: no ROIs");
+    }
+
+    // The writer, like any DICOM consumer, accepts only valid LO values (no
+    // control characters or backslashes; DCMTK does not check the 64
+    // character limit), so a name that is not one is mended here, with a
+    // warning, rather than make every file read from it unwritable (found by
+    // fuzzing: a control character in ROIName made writeRtStruct throw).
+    std::string validRoiName(std::string name, const std::string& where) {
+        if (DcmLongString::checkStringValue(name.c_str(), "1").good()) return name;
+        for (char& c : name)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') c = '_';
+        if (DcmLongString::checkStringValue(name.c_str(), "1").bad()) name.clear();
+        warn(where + ": " + tagName(DCM_ROIName) +
+             " is not a valid LO value (control characters or backslashes); " +
+             (name.empty() ? std::string("replaced") : "read as '" + name + "'"));
+        return name;
     }
 
     void readRoiContours(DcmDataset& data) {
@@ -427,6 +443,12 @@ class Reader {
         // their outer contour in mask-made files; XOR contours may cross).
         if (const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
             defect && defect->kind == ContourDefect::Kind::Crossing) {
+            // CGAL's Boolean operations require simple polygons and check
+            // it only in debug builds: a contour crossing itself corrupted
+            // the arrangement (found by fuzzing). Such a contour is an error
+            // here as on any other plane, so it is reported before the XOR.
+            for (std::size_t i = 0; i < slice.contours.size(); ++i)
+                validate(r, Slice{slice.zMm, {slice.contours[i]}}, {items[i]});
             combineConflicts(slice, items);
             ++out_.rois[r].planesCombined;
         }

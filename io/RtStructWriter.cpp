@@ -134,6 +134,12 @@ RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
 
 void writeRtStruct(const ContourSet& contours, const std::string& path,
                    const RtStructWriteOptions& options) {
+    // The IOD requires at least one StructureSetROISequence item; say so
+    // rather than let DCMTK's check fail with "Invalid Value" (found by
+    // fuzzing: a file with an empty sequence reads as no ROIs).
+    if (contours.rois.empty())
+        throw std::runtime_error("cannot write RTSTRUCT " + path +
+                                 ": no ROIs (an RT Structure Set needs at least one)");
     silenceDcmtkLog();
     char date[16], time[16];
     const std::time_t now = std::time(nullptr);

@@ -248,6 +248,30 @@ TEST(RtStruct, SkipsPointAndOpenContoursAndListsEmptyRois) {
     fs::remove(path);
 }
 
+// Found by fuzzing: names that are not valid LO values (control
+// characters, backslashes) are mended on reading, so that what loads can be
+// written. Longer names than LO's 64 characters pass DCMTK's check both ways
+// and are kept.
+TEST(RtStruct, InvalidRoiNamesAreMendedAndWritable) {
+    RoiSpec control{1, "Left\x01Lung", true, {square(0, 0, 10, 0)}};
+    RoiSpec slash{2, "A\\B", true, {square(0, 0, 10, 0)}};
+    RoiSpec longName{3, std::string(80, 'x'), true, {square(0, 0, 10, 0)}};
+    const std::string path = tempPath("names"), again = tempPath("names-again");
+    writeDataset(path, {control, slash, longName});
+    const RtStructLoad load = readRtStruct(path);
+    ASSERT_EQ(load.rois.size(), 3u);
+    EXPECT_EQ(load.rois[0].name, "Left_Lung");
+    EXPECT_EQ(load.rois[1].name, "A_B");
+    EXPECT_EQ(load.rois[2].name, std::string(80, 'x'));
+    EXPECT_TRUE(anyWarning(load, "not a valid LO value"));
+    writeRtStruct(load.contours, again);
+    const RtStructLoad back = readRtStruct(again);
+    EXPECT_EQ(back.contours.rois[0].name, "Left_Lung");
+    EXPECT_EQ(back.contours.rois[2].name, std::string(80, 'x'));
+    fs::remove(path);
+    fs::remove(again);
+}
+
 TEST(RtStruct, KeyholeContoursBecomeOuterAndHole) {
     // plastimatch's way: one path around the outer square, in along a
     // zero-width channel, around the hole and back out.
@@ -319,6 +343,21 @@ double regionArea(const Slice& slice) {
     double area = 0;  // outer contours count positive, holes negative
     for (const Polygon& contour : slice.contours) area += signedArea(contour);
     return area;
+}
+
+// Found by fuzzing: a contour crossing itself on a plane that needs the
+// exclusive or reached CGAL, whose Boolean operations require simple
+// polygons (undefined behaviour: crashes, empty or wrong planes).
+TEST(RtStruct, SelfCrossingContourIsAnErrorBeforeExclusiveOr) {
+    RoiSpec roi;
+    ContourSpec square0 = square(0, 0, 10, 0), bowtie;
+    bowtie.points = {{5, 5, 0}, {15, 5, 0}, {1, 15, 0}, {5, 15, 0}};
+    square0.type = bowtie.type = "CLOSEDPLANAR_XOR";
+    roi.contours = {square0, bowtie};
+    const std::string path = tempPath("xor-self-crossing");
+    writeDataset(path, {roi});
+    EXPECT_NE(readError(path).find("self-intersecting contour: contour 2"), std::string::npos);
+    fs::remove(path);
 }
 
 TEST(RtStruct, ContoursSharingEdgesOrCrossingCombineByExclusiveOr) {
