@@ -26,7 +26,8 @@ struct SampleLattice {
 
 /// The borders of the region where `values` < 0. `values` is a row-major
 /// image of `width` × `height` samples (x fastest) placed by `lattice`;
-/// samples outside the image count as positive, so every border closes. Crossings are placed by
+/// samples outside the image count as +1, so every border closes (pad the
+/// image where the crossings at its edge matter). Crossings are placed by
 /// linear interpolation along the lattice edges between neighbouring samples (0.5 − mask gives the
 /// midpoints between inside and outside samples). Samples in [0,
 /// `minPositive`) are raised to `minPositive` first, so no crossing falls

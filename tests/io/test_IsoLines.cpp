@@ -32,23 +32,29 @@ TEST(IsoLines, SinglePixelIsACounterClockwiseDiamondThroughEdgeMidpoints) {
     EXPECT_DOUBLE_EQ(signedArea(diamond), 0.5);
 }
 
-TEST(IsoLines, RingGivesOuterAndClockwiseHoleEvenAtTheImageBorder) {
-    // A 3 × 3 ring filling a 3 × 3 image: outside the image counts as outside.
+TEST(IsoLines, RingGivesOuterAndClockwiseHole) {
+    // A 3 × 3 ring in a 5 × 5 image.
     std::vector<std::pair<int, int>> ring;
-    for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i)
-            if (i != 1 || j != 1) ring.push_back({i, j});
-    const auto polygons = negativeRegionBorders(maskImage(3, 3, ring), 3, 3);
+    for (int j = 1; j < 4; ++j)
+        for (int i = 1; i < 4; ++i)
+            if (i != 2 || j != 2) ring.push_back({i, j});
+    const auto polygons = negativeRegionBorders(maskImage(5, 5, ring), 5, 5);
     ASSERT_EQ(polygons.size(), 2u);
     std::vector<double> areas{signedArea(polygons[0]), signedArea(polygons[1])};
     std::sort(areas.begin(), areas.end());
-    EXPECT_DOUBLE_EQ(areas[0], -0.5);           // the hole: a diamond round pixel (1, 1)
+    EXPECT_DOUBLE_EQ(areas[0], -0.5);           // the hole: a diamond round pixel (2, 2)
     EXPECT_DOUBLE_EQ(areas[1], 9 - 4 * 0.125);  // the square with its corners cut
-    for (const Polygon& polygon : polygons)
-        for (Point2 p : polygon) {
-            EXPECT_GE(p.x, -0.5);
-            EXPECT_LE(p.x, 2.5);
-        }
+}
+
+TEST(IsoLines, OutsideTheImageCountsAsPlusOne) {
+    // All negative (−½): the border crosses towards the +1 outside at t = 1/3.
+    const auto polygons = negativeRegionBorders(std::vector<float>(4, -0.5f), 2, 2);
+    ASSERT_EQ(polygons.size(), 1u);
+    Box2 box;
+    for (Point2 p : polygons[0]) box.add(p);
+    EXPECT_NEAR(box.min.x, -1.0 / 3, 1e-12);
+    EXPECT_NEAR(box.max.y, 1 + 1.0 / 3, 1e-12);
+    EXPECT_GT(signedArea(polygons[0]), 0);
 }
 
 TEST(IsoLines, DiagonalNeighboursStaySeparate) {
