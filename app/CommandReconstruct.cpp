@@ -99,7 +99,10 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             {"facesRefusedByOpenMesh", refused},
             {"slices", s.slices},
             {"planes", roi.frame.orientationName()},
-            {"holeConvention", dicom ? holeConventionName(dicom->holes) : nullptr},
+            // Both branches json: `cond ? const char* : nullptr` is a null
+            // const char*, which json turns into std::string(nullptr).
+            {"holeConvention", dicom ? nlohmann::ordered_json(holeConventionName(dicom->holes))
+                                     : nlohmann::ordered_json(nullptr)},
             {"slabThicknessMm",
              roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm) : nullptr},
             {"contourPoints", s.contourPoints},
