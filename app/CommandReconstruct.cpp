@@ -99,6 +99,8 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
             {"facesRefusedByOpenMesh", refused},
             {"slices", s.slices},
             {"planes", roi.frame.orientationName()},
+            // Both branches json: `cond ? const char* : nullptr` is a null
+            // const char*, which json turns into std::string(nullptr).
             {"holeConvention", dicom ? nlohmann::ordered_json(holeConventionName(dicom->holes))
                                      : nlohmann::ordered_json(nullptr)},
             {"slabThicknessMm",

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/Progress.hpp"
+#include "io/LabelInput.hpp"
 
 namespace dfrecon::app {
 
@@ -16,7 +17,11 @@ const RtStructRoiInfo* ContourInput::dicomInfo(const Roi& roi) const {
 
 ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
     ContourInput input;
-    if (isDicomFile(path)) {
+    if (isLabelInputPath(path)) {
+        Progress progress("reading " + path, !global.quiet);
+        input.format = "label volume";
+        input.contours = readLabelContours(path);
+    } else if (isDicomFile(path)) {
         RtStructLoad load;
         {
             Progress progress("reading " + path, !global.quiet);

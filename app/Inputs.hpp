@@ -13,7 +13,7 @@ namespace dfrecon::app {
 
 /// Contours from any supported file, with what the format adds.
 struct ContourInput {
-    std::string format;  // "dfrecon-slices 1" or "DICOM RTSTRUCT"
+    std::string format;  // "dfrecon-slices 1", "DICOM RTSTRUCT" or "label volume"
     ContourSet contours;
     std::vector<InputWarning> warnings;
     std::vector<RtStructRoiInfo> dicomRois;  // per ROI, DICOM input only
@@ -22,8 +22,10 @@ struct ContourInput {
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
 };
 
-/// Loads and validates `path`: a DICOM RT Structure Set (by extension or
-/// magic) or a .slices file. Throws InputError (exit 2) on bad input.
+/// Loads and validates `path`: a label volume (.nrrd .nhdr .nii .nii.gz) or
+/// mask stack (folder with stack.json, or the .json itself), contoured per
+/// label; a DICOM RT Structure Set (by extension or magic); or a .slices
+/// file. Throws InputError (exit 2) on bad input.
 ContourInput loadContours(const std::string& path, const GlobalOptions& global);
 
 /// The ROIs a command works on: `all` → every ROI with slices; a name →

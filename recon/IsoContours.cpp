@@ -1,112 +1,23 @@
 #include "recon/IsoContours.hpp"
 
-#include <cstdint>
 #include <stdexcept>
 
+#include "io/IsoLines.hpp"
+
 namespace dfrecon {
-
-namespace {
-
-// The padded lattice: cells (i, j) for i in [-1, W-1], j in [-1, H-1] join
-// pixel centres (i, j), (i+1, j), (i+1, j+1), (i, j+1); pixels outside the
-// grid are positive, so every isoline closes.
-class Lattice {
-  public:
-    Lattice(const std::vector<float>& values, const SliceGrid& grid)
-        : values_(values), grid_(grid), minPositive_(float(1e-6 * grid.pixelMm)) {}
-
-    float at(int i, int j) const {
-        if (i < 0 || j < 0 || i >= grid_.width || j >= grid_.height) return 1.0f;
-        const float v = values_[std::size_t(j) * std::size_t(grid_.width) + std::size_t(i)];
-        // A zero sample would put crossings of neighbouring edges on the same
-        // point; nudging it to the positive side keeps polygons simple.
-        return v < 0 ? v : std::max(v, minPositive_);
-    }
-    // Crossing points are named by the lattice edge they lie on: the edge from
-    // pixel (i, j) to (i+1, j) is 2·key(i, j), the one to (i, j+1) is 2·key + 1.
-    std::uint32_t key(int i, int j) const {
-        return std::uint32_t((j + 1) * (grid_.width + 2) + (i + 1));
-    }
-    std::size_t keyCount() const {
-        return 2 * std::size_t(grid_.width + 2) * std::size_t(grid_.height + 2);
-    }
-    Point2 crossing(std::uint32_t edge) const {
-        const int w = grid_.width + 2;
-        const int i = int(edge / 2) % w - 1, j = int(edge / 2) / w - 1;
-        const int i2 = (edge & 1) ? i : i + 1, j2 = (edge & 1) ? j + 1 : j;
-        const double a = at(i, j), b = at(i2, j2);
-        const double t = a / (a - b);
-        const Point2 p = grid_.pixelCentre(i, j), q = grid_.pixelCentre(i2, j2);
-        return p + t * (q - p);
-    }
-
-  private:
-    const std::vector<float>& values_;
-    const SliceGrid& grid_;
-    float minPositive_;
-};
-
-}  // namespace
 
 std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceGrid& grid) {
     if (values.size() != grid.pixelCount())
         throw std::invalid_argument("zeroIsolines: field size does not match the grid");
-    const Lattice lattice(values, grid);
-    constexpr std::uint32_t kNone = 0xffffffffu;
-    std::vector<std::uint32_t> next(lattice.keyCount(), kNone);
-    std::vector<std::uint32_t> starts;
-
-    for (int j = -1; j < grid.height; ++j) {
-        for (int i = -1; i < grid.width; ++i) {
-            // Corners and the edges after each, counter-clockwise from the
-            // lower left: edge k runs from corner k to corner k+1.
-            const float v[4] = {lattice.at(i, j), lattice.at(i + 1, j), lattice.at(i + 1, j + 1),
-                                lattice.at(i, j + 1)};
-            const std::uint32_t edge[4] = {2 * lattice.key(i, j), 2 * lattice.key(i + 1, j) + 1,
-                                           2 * lattice.key(i, j + 1), 2 * lattice.key(i, j) + 1};
-            int exits[2], entries[2], nExit = 0, nEntry = 0;
-            for (int k = 0; k < 4; ++k) {
-                const bool from = v[k] < 0, to = v[(k + 1) % 4] < 0;
-                if (from && !to) exits[nExit++] = k;
-                if (!from && to) entries[nEntry++] = k;
-            }
-            if (nExit == 0) continue;
-            // A segment leaves where the walk exits the negative region and
-            // rejoins where it re-enters, so negative stays on its left.
-            // Saddles: joined negatives pair each exit with the next entry,
-            // separated ones with the previous.
-            const bool joined = nExit == 2 && (v[0] + v[1] + v[2] + v[3]) < 0;
-            for (int e = 0; e < nExit; ++e) {
-                int best = -1;
-                for (int step = 1; step < 4 && best < 0; ++step) {
-                    const int k =
-                        joined || nExit == 1 ? (exits[e] + step) % 4 : (exits[e] - step + 4) % 4;
-                    for (int f = 0; f < nEntry; ++f)
-                        if (entries[f] == k) best = k;
-                }
-                const std::uint32_t from = edge[exits[e]], to = edge[best];
-                next[from] = to;
-                starts.push_back(from);
-            }
-        }
-    }
-
-    std::vector<Polygon> polygons;
-    for (std::uint32_t start : starts) {
-        if (next[start] == kNone) continue;  // already part of a traced loop
-        Polygon polygon;
-        std::uint32_t edge = start;
-        while (next[edge] != kNone) {
-            const Point2 p = lattice.crossing(edge);
-            if (polygon.empty() || p != polygon.back()) polygon.push_back(p);
-            const std::uint32_t following = next[edge];
-            next[edge] = kNone;
-            edge = following;
-        }
-        if (polygon.size() > 1 && polygon.front() == polygon.back()) polygon.pop_back();
-        if (polygon.size() >= 3) polygons.push_back(std::move(polygon));
-    }
-    return polygons;
+    // Sample (i, j) at the pixel centre origin + (i + ½)·pixelMm, the same
+    // expression as SliceGrid::pixelCentre, so crossings round identically.
+    SampleLattice lattice;
+    lattice.originMm = grid.originMm;
+    lattice.stepMm = {grid.pixelMm, grid.pixelMm};
+    lattice.indexOffset = {0.5, 0.5};
+    // Field values are millimetres, so the zero nudge scales with the pixel.
+    return negativeRegionBorders(values, grid.width, grid.height, lattice,
+                                 float(1e-6 * grid.pixelMm));
 }
 
 }  // namespace dfrecon

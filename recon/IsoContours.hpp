@@ -1,8 +1,9 @@
 #pragma once
-// Zero isolines of a field sampled at pixel centres (marching squares), as
-// closed polygons in millimetres. Used for the intermediate contours of the
-// recursion: the zero set of D_lower + D_upper is the contour half-way between
-// two slices (reconstruction paper Fig. 7).
+// Zero isolines of a field sampled at pixel centres, as closed polygons in
+// millimetres: io/IsoLines.hpp's marching squares mapped onto a SliceGrid.
+// Used for the intermediate contours of the recursion: the zero set of
+// D_lower + D_upper is the contour half-way between two slices
+// (reconstruction paper Fig. 7).
 #include <vector>
 
 #include "io/Polygon.hpp"
