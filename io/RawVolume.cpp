@@ -31,7 +31,8 @@ void writeVolume(const std::string& nhdrPath, const std::string& rawPath,
             << "# " << info.description << "\n"
             << "type: " << nrrdType << "\n"
             << "dimension: 3\n"
-            << "space: right-anterior-superior\n"
+            // Patient LPS, as DICOM and the meshes: 3D Slicer reads both alike.
+            << "space: left-posterior-superior\n"
             << "sizes: " << info.width << " " << info.height << " " << info.slices << "\n"
             << "space directions: (" << info.spacingMm[0] << ",0,0) (0," << info.spacingMm[1]
             << ",0) (0,0," << info.spacingMm[2] << ")\n"
