@@ -162,7 +162,12 @@ void writeRtStruct(const ContourSet& contours, const std::string& path,
           "StudyInstanceUID");
     check(rt.setStudyDate(date), "StudyDate");
     check(rt.setStudyTime(time), "StudyTime");
+    check(rt.setStudyID(""), "StudyID");
     check(rt.setModality("RTSTRUCT"), "Modality");
+    // The Frame of Reference module is part of the RTSTRUCT IOD since 2019
+    // (dciodvfy asks for it); the UID is the one the contours refer to.
+    check(rt.setFrameOfReferenceUID(frameUid.c_str()), "FrameOfReferenceUID");
+    check(rt.setPositionReferenceIndicator(""), "PositionReferenceIndicator");
     check(rt.setSeriesInstanceUID(newUid().c_str()), "SeriesInstanceUID");
     check(rt.setSeriesNumber("1"), "SeriesNumber");
     check(rt.setSeriesDescription(options.seriesDescription.c_str()), "SeriesDescription");

@@ -444,3 +444,25 @@ TEST(RtStruct, LimitsStopHostileSizes) {
     }
     fs::remove(path);
 }
+
+TEST(RtStruct, WrittenFilesPassDciodvfy) {
+    // dicom3tools' IOD checker (installed by `make setup`): no errors; the
+    // only warnings are the empty Patient ID and Study ID of a standalone set.
+    ASSERT_EQ(std::system("command -v dciodvfy >/dev/null"), 0)
+        << "dciodvfy missing: run make setup";
+    const std::string path = tempPath("dciodvfy");
+    const std::string report = path + ".txt";
+    writeRtStruct(ringsAndIslands(), path);
+    ASSERT_EQ(std::system(("dciodvfy " + path + " >" + report + " 2>&1").c_str()) == -1, false);
+    std::ifstream in(report);
+    std::string line, all;
+    std::size_t errors = 0;
+    while (std::getline(in, line)) {
+        all += line + "\n";
+        errors += line.rfind("Error", 0) == 0;
+    }
+    EXPECT_EQ(errors, 0u) << all;
+    EXPECT_NE(all.find("RTStructureSet"), std::string::npos) << all;  // it checked the right IOD
+    fs::remove(path);
+    fs::remove(report);
+}
