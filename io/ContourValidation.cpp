@@ -1,6 +1,7 @@
 #include "io/ContourValidation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -64,6 +65,50 @@ bool adjacent(const Segment& s, const Segment& t, std::size_t contourSize) {
     return d == 1 || d == contourSize - 1;
 }
 
+// The two directions in which `contour` leaves point p, which lies on its
+// segment `index` (at an end or inside).
+std::array<Point2, 2> raysAt(const Polygon& contour, std::size_t index, Point2 p) {
+    const std::size_t n = contour.size();
+    const Point2 a = contour[index], b = contour[(index + 1) % n];
+    if (p == a) return {contour[(index + n - 1) % n] - p, b - p};
+    if (p == b) return {a - p, contour[(index + 2) % n] - p};
+    return {a - p, b - p};
+}
+
+// Counter-clockwise angle from direction `from` to direction `to`, in [0, 2π).
+double turn(Point2 from, Point2 to) {
+    const double angle = std::atan2(cross(from, to), dot(from, to));
+    return angle < 0 ? angle + 2 * M_PI : angle;
+}
+
+// Whether two contours that meet at the single point p pass through each
+// other there: the other contour's two directions lie in different sectors
+// of the plane that this contour's two directions bound. Touching contours
+// stay on one side; crossing ones make the nesting ambiguous.
+bool crossAtPoint(const Polygon& a, std::size_t segmentA, const Polygon& b, std::size_t segmentB,
+                  Point2 p) {
+    const std::array<Point2, 2> ra = raysAt(a, segmentA, p), rb = raysAt(b, segmentB, p);
+    const double sector = turn(ra[0], ra[1]);
+    const bool first = turn(ra[0], rb[0]) < sector, second = turn(ra[0], rb[1]) < sector;
+    return first != second;
+}
+
+// The point two touching segments share: the end of one that lies on the
+// other (nearest, as the distance of a point on a segment may round above 0).
+Point2 touchPoint(const Segment& s, const Segment& t) {
+    Point2 best = s.a;
+    double bestDistance = INFINITY;
+    for (const auto& [p, other] :
+         {std::pair{s.a, &t}, std::pair{s.b, &t}, std::pair{t.a, &s}, std::pair{t.b, &s}}) {
+        const double d = distanceToSegment(p, other->a, other->b);
+        if (d < bestDistance) {
+            best = p;
+            bestDistance = d;
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
 std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& contours,
@@ -110,7 +155,13 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
                     defect.kind = ContourDefect::Kind::SelfIntersection;
                     return defect;
                 }
-                if (contact == SegmentContact::Touch) continue;  // contours may touch
+                // Contours may touch at isolated points, but not cross there.
+                if (contact == SegmentContact::Touch) {
+                    if (!crossAtPoint(contours[s.contour], s.index, contours[t.contour], t.index,
+                                      touchPoint(s, t)))
+                        continue;
+                    defect.contact = SegmentContact::Cross;
+                }
                 return defect;
             }
         begin = end;

@@ -99,3 +99,30 @@ TEST(ContourValidation, LongSegmentsCannotExhaustMemory) {
     ASSERT_TRUE(defect.has_value());
     EXPECT_EQ(defect->kind, ContourDefect::Kind::TooComplex);
 }
+
+TEST(ContourValidation, ContoursTouchingAtAPointAreValid) {
+    const Polygon a = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    const Polygon cornerToCorner = {{10, 10}, {20, 10}, {20, 20}, {10, 20}};
+    const Polygon vertexOnEdge = {{5, 10}, {8, 15}, {2, 15}};  // outside, tip on a's top edge
+    const Polygon holeTouching = {{5, 0}, {7, 5}, {3, 5}};     // inside, tip on a's bottom edge
+    EXPECT_FALSE(findContourDefect({a, cornerToCorner}));
+    EXPECT_FALSE(findContourDefect({a, vertexOnEdge}));
+    EXPECT_FALSE(findContourDefect({a, holeTouching}));
+}
+
+TEST(ContourValidation, ContoursCrossingOnlyAtSharedPointsAreCrossings) {
+    // A square whose corners lie on a triangle's hypotenuse: the boundaries
+    // meet only at those points but pass through each other there (a fuzz
+    // finding: the nesting then depended on the square's starting point).
+    const Polygon triangle = {{0, 0}, {20, 0}, {0, 20}};
+    const Polygon square = {{5, 5}, {15, 5}, {15, 15}, {5, 15}};
+    const auto defect = findContourDefect({triangle, square});
+    ASSERT_TRUE(defect);
+    EXPECT_EQ(defect->kind, ContourDefect::Kind::Crossing);
+    EXPECT_EQ(defect->contact, SegmentContact::Cross);
+    // Corner to corner, but passing through: two squares sharing the corner
+    // (10, 10), the second entering the first there.
+    const Polygon a = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    const Polygon through = {{10, 10}, {5, 12}, {-2, 4}};
+    EXPECT_TRUE(findContourDefect({a, through}));
+}
