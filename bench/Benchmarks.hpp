@@ -12,6 +12,7 @@ int benchFields(const std::string& device);
 int benchSlicesIO();
 int benchRecon(const std::string& device);
 int benchSimplify(const std::string& device);
+int benchRtStruct();
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>
