@@ -17,6 +17,7 @@
 
 #include "io/InputError.hpp"
 #include "io/LabelVolume.hpp"
+#include "tests/TempDir.hpp"
 
 namespace dfrecon {
 namespace {
@@ -24,25 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using Direction = std::array<std::array<double, 3>, 3>;
 
-// A folder of its own per test, removed afterwards.
-class TempDir {
-  public:
-    TempDir() {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("dfrecon-labelvolume-" + std::to_string(::getpid()) + "-" + test->name());
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-
-  private:
-    fs::path path_;
-};
+using TempDir = ::dfrecon::testing::TempDir;
 
 void writeFile(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -190,7 +173,7 @@ TEST(VolumeGeometry, IndexOfWorldInvertsWorldOfIndexOnObliqueAxes) {
 }
 
 TEST(LabelVolume, MaskRoundTripsThroughNrrdWithObliqueAnisotropicGeometry) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     const VolumeGeometry geometry = obliqueGeometry();
     std::mt19937 random(2024);
     std::bernoulli_distribution inside(0.3);
@@ -217,7 +200,7 @@ TEST(LabelVolume, MaskRoundTripsThroughNrrdWithObliqueAnisotropicGeometry) {
 }
 
 TEST(LabelVolume, LabelMapRoundTripsInTheNarrowestType) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     LabelVolume volume;
     volume.geometry = obliqueGeometry();
     volume.geometry.size = {5, 4, 3};
@@ -237,7 +220,7 @@ TEST(LabelVolume, LabelMapRoundTripsInTheNarrowestType) {
 }
 
 TEST(LabelVolume, ReadsAHandWrittenGzipNrrdInRasSpaceAsLps) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     // 3 x 2 x 2 big-endian shorts, n·100 − 500 at position n.
     std::string samples;
     for (int n = 0; n < 12; ++n) {
@@ -272,7 +255,7 @@ TEST(LabelVolume, ReadsAHandWrittenGzipNrrdInRasSpaceAsLps) {
 }
 
 TEST(LabelVolume, ReadsADetachedRawNrrdWithoutSpaceAsIdentityAxes) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     std::vector<std::uint8_t> samples(4 * 3 * 2);
     for (std::size_t n = 0; n < samples.size(); ++n) samples[n] = std::uint8_t(n % 5);
     writeFile(dir / "labels.raw", bytesOf(samples));
@@ -295,7 +278,7 @@ TEST(LabelVolume, ReadsADetachedRawNrrdWithoutSpaceAsIdentityAxes) {
 }
 
 TEST(LabelVolume, ReadsNiftiSformFromRasToLps) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     std::vector<std::int16_t> samples(3 * 4 * 5);
     for (std::size_t n = 0; n < samples.size(); ++n) samples[n] = std::int16_t(n % 7) - 1;
     const std::string path = dir / "sform.nii";
@@ -322,7 +305,7 @@ TEST(LabelVolume, ReadsNiftiSformFromRasToLps) {
 }
 
 TEST(LabelVolume, ReadsGzipNiftiQformAndScaling) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     std::vector<std::uint8_t> samples(2 * 3 * 2);
     for (std::size_t n = 0; n < samples.size(); ++n) samples[n] = std::uint8_t(n);
     const std::string path = dir / "qform.nii.gz";
@@ -355,7 +338,7 @@ TEST(LabelVolume, ReadsGzipNiftiQformAndScaling) {
 }
 
 TEST(LabelVolume, RefusesMissingAndUnknownFiles) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     expectInputError(dir / "absent.nrrd", "no such file");
     expectInputError(dir / "absent.nii.gz", "no such file");
     writeFile(dir / "volume.mha", "ObjectType = Image\n");
@@ -370,7 +353,7 @@ TEST(LabelVolume, RefusesMissingAndUnknownFiles) {
 }
 
 TEST(LabelVolume, RefusesImagesThatAreNotThreeDimensional) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     writeFile(dir / "flat.nrrd",
               "NRRD0004\ntype: uint8\ndimension: 2\nsizes: 4 4\nencoding: raw\n\n" +
                   std::string(16, '\1'));
@@ -387,7 +370,7 @@ TEST(LabelVolume, RefusesImagesThatAreNotThreeDimensional) {
 }
 
 TEST(LabelVolume, RefusesTruncatedData) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     const std::string header =
         "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 10 10 10\nencoding: raw\n\n";
     writeFile(dir / "raw.nrrd", header + std::string(1000, '\2'));
@@ -420,7 +403,7 @@ TEST(LabelVolume, RefusesTruncatedData) {
 }
 
 TEST(LabelVolume, RefusesAbsurdSizesBeforeAllocating) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     // 10^15 voxels: over the cap.
     writeFile(dir / "huge.nrrd",
               "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 100000\n"
@@ -452,7 +435,7 @@ TEST(LabelVolume, RefusesAbsurdSizesBeforeAllocating) {
 }
 
 TEST(LabelVolume, RefusesLabelsThatAreNotInt32Integers) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     const std::string header =
         "NRRD0004\ndimension: 3\nsizes: 2 1 1\nendian: little\n"
         "encoding: raw\n";
@@ -472,7 +455,7 @@ TEST(LabelVolume, RefusesLabelsThatAreNotInt32Integers) {
 }
 
 TEST(LabelVolume, RefusesBadGeometry) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     const std::string start = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n";
     const std::string data = "\n" + std::string(8, '\0');
     writeFile(dir / "zero.nrrd", start +
@@ -504,7 +487,7 @@ TEST(LabelVolume, RefusesBadGeometry) {
 }
 
 TEST(LabelVolume, RefusesDataFileFormsThatTeemMishandles) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     const std::string start = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n";
     // teem would sprintf these names into a buffer sized for 10 digits.
     writeFile(dir / "format.nhdr", start + "data file: x%0999d 1 2 1 2\n");
@@ -531,7 +514,7 @@ TEST(LabelVolume, RefusesDataFileFormsThatTeemMishandles) {
 }
 
 TEST(LabelVolume, WritersRefuseInconsistentArgumentsAndLeaveNothingOnFailure) {
-    TempDir dir;
+    TempDir dir("labelvolume");
     VolumeGeometry geometry;
     geometry.size = {2, 2, 2};
     EXPECT_THROW(writeMaskNrrd(dir / "m.nrrd", geometry, std::vector<std::uint8_t>(7)),

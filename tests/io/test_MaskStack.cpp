@@ -15,6 +15,7 @@
 #include "io/InputError.hpp"
 #include "io/MaskContours.hpp"
 #include "io/MaskStack.hpp"
+#include "tests/TempDir.hpp"
 
 namespace dfrecon {
 namespace {
@@ -22,25 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class TempDir {
-  public:
-    TempDir() {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("dfrecon-maskstack-" + std::to_string(::getpid()) + "-" + test->name());
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-    std::string str() const { return path_.string(); }
-
-  private:
-    fs::path path_;
-};
+using TempDir = ::dfrecon::testing::TempDir;
 
 // Writes plane k of `volume` as an image of `type` (CV_8U or CV_16U).
 void writePlanes(const LabelVolume& volume, const TempDir& dir, const std::string& prefix,
@@ -79,7 +62,7 @@ TEST(MaskStack, PngStackGivesTheSameContoursAsTheVolume) {
                 if (blobs->signedDistance(volume.geometry.worldOfIndex(i, j, k)) < 0)
                     volume.labels[volume.geometry.linearIndex(i, j, k)] = 1;
     volume.labels[volume.geometry.linearIndex(3, 4, 5)] = 9;
-    TempDir dir;
+    TempDir dir("maskstack");
     json files = json::array();
     writePlanes(volume, dir, "slice_", ".png", CV_8U, files);
     writeJson(dir / "stack.json", {{"pixelSpacingMm", {0.7, 0.7}},
@@ -121,7 +104,7 @@ TEST(MaskStack, SixteenBitTiffPatternAndUnevenPositions) {
     volume.geometry.size = {5, 4, 3};
     volume.labels.assign(volume.geometry.voxelCount(), 0);
     for (int k = 0; k < 3; ++k) volume.labels[volume.geometry.linearIndex(2, 1, k)] = 300 + k;
-    TempDir dir;
+    TempDir dir("maskstack");
     json files = json::array();
     // Names s8, s9, s10 sort naturally (s10 last), not as text.
     for (int k = 0; k < 3; ++k) {
@@ -146,7 +129,7 @@ TEST(MaskStack, SixteenBitTiffPatternAndUnevenPositions) {
 }
 
 TEST(MaskStack, HostileStacksAreRefused) {
-    TempDir dir;
+    TempDir dir("maskstack");
     cv::Mat small(4, 5, CV_8U, cv::Scalar(1)), other(5, 5, CV_8U, cv::Scalar(1));
     ASSERT_TRUE(cv::imwrite(dir / "a.png", small));
     ASSERT_TRUE(cv::imwrite(dir / "b.png", other));

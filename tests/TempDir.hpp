@@ -1,0 +1,36 @@
+#pragma once
+// A scratch folder of the running test's own, removed when it goes out of
+// scope: ctest runs tests in parallel processes, so the name holds the pid
+// and the test's name.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace dfrecon::testing {
+
+class TempDir {
+  public:
+    explicit TempDir(const std::string& prefix) {
+        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = std::filesystem::temp_directory_path() /
+                ("dfrecon-" + prefix + "-" + std::to_string(::getpid()) + "-" + test->name());
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+    std::string str() const { return path_.string(); }
+
+  private:
+    std::filesystem::path path_;
+};
+
+}  // namespace dfrecon::testing
