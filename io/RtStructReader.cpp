@@ -441,8 +441,8 @@ class Reader {
         // Contours that share edges or cross bound their region by the
         // even-odd rule (holes reaching the image border share it with
         // their outer contour in mask-made files; XOR contours may cross).
-        if (const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
-            defect && defect->kind == ContourDefect::Kind::Crossing) {
+        const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
+        if (defect && defect->kind == ContourDefect::Kind::Crossing) {
             // CGAL's Boolean operations require simple polygons and check
             // it only in debug builds: a contour crossing itself corrupted
             // the arrangement (found by fuzzing). Such a contour is an error
@@ -452,7 +452,7 @@ class Reader {
             combineConflicts(slice, items);
             ++out_.rois[r].planesCombined;
         }
-        validate(r, slice, items);
+        if (defect) validate(r, slice, items);  // a valid plane needs no second look
         normaliseOrientation(slice);
         return slice;
     }
