@@ -40,13 +40,14 @@ bench: build
 # The tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with
 # LeakSanitizer. use_tls=0: scanning thread-local storage makes LSan's tracer
 # crash on a bogus dynamic-TLS range in this process mix (tests/lsan.supp
-# says more); suppressions name third-party libraries only.
+# says more); suppressions (tests/lsan.supp, tests/ubsan.supp) name
+# third-party code only.
 sanitize-test: setup
 	@cmake --preset sanitize $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	@cd $(SANITIZE_DIR) && POCL_CACHE_DIR=$(CURDIR)/$(SANITIZE_DIR)/pocl-cache \
 	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:use_tls=0:print_suppressions=0 \
-	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tests/ubsan.supp ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer on the .slices parser, then on the RTSTRUCT reader, for
 # FUZZ_SECONDS in all (docs/fuzzing.md). One process each: one core.
