@@ -7,7 +7,8 @@
 
 namespace dfrecon {
 
-/// An orthonormal, right-handed basis: patient = x·u + y·v + z·n.
+/// An orthonormal, right-handed basis: patient = x·u + y·v + z·n. For the
+/// identity both maps return their argument bit for bit (x·1 + y·0 + z·0).
 struct PlaneFrame {
     Vec3 u{1, 0, 0}, v{0, 1, 0}, n{0, 0, 1};
 

@@ -387,7 +387,7 @@ class Reader {
         roi.frame = chooseFrame(r);
         for (SourceContour& c : contours) {
             std::vector<double> z;
-            for (Vec3 p : c.points) z.push_back(roi.frame.isIdentity() ? p.z : dot(p, roi.frame.n));
+            for (Vec3 p : c.points) z.push_back(roi.frame.fromPatient(p).z);
             std::nth_element(z.begin(), z.begin() + std::ptrdiff_t(z.size() / 2), z.end());
             c.planeZ = z[z.size() / 2];  // a value of the file, so round trips are exact
         }
@@ -427,10 +427,10 @@ class Reader {
         std::vector<std::size_t> items;  // source item of each polygon, for messages
         for (std::size_t i = begin; i < end; ++i) {
             Polygon polygon;
-            for (Vec3 p : contours[i].points)
-                polygon.push_back(roi.frame.isIdentity()
-                                      ? Point2{p.x, p.y}
-                                      : Point2{dot(p, roi.frame.u), dot(p, roi.frame.v)});
+            for (Vec3 p : contours[i].points) {
+                const Vec3 q = roi.frame.fromPatient(p);  // exact for the identity
+                polygon.push_back({q.x, q.y});
+            }
             polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
             while (polygon.size() > 1 && polygon.back() == polygon.front()) polygon.pop_back();
             for (Polygon& loop : splitSelfTouching(r, std::move(polygon), contours[i].item)) {

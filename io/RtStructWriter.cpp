@@ -45,8 +45,7 @@ std::string contourData(const Polygon& polygon, double zMm, const PlaneFrame& fr
     std::string data;
     data.reserve(polygon.size() * 3 * 12);
     for (const Point2& p : polygon) {
-        const Vec3 patient =
-            frame.isIdentity() ? Vec3{p.x, p.y, zMm} : frame.toPatient({p.x, p.y, zMm});
+        const Vec3 patient = frame.toPatient({p.x, p.y, zMm});  // exact for the identity
         for (int a = 0; a < 3; ++a) {
             if (!data.empty()) data += '\\';
             data += formatDecimalString(patient[a]);
