@@ -28,6 +28,11 @@
 #                                    axial planes 3 mm apart, coordinates that
 #                                    plastimatch writes as float32 digits
 #                                    ("-3.0999999"); same files
+#   OUTDIR/meshes/NAME.off           meshes from libcgal-demo's data.tar.gz
+#                                    (surface distance map scenes, geodesic
+#                                    benchmarks): femur, bunny00, armadillo,
+#                                    refined_elephant, elephant, blobby, eight,
+#                                    sphere, cube, knot1 (all closed, manifold)
 #
 # Usage: scripts/fixtures.sh OUTDIR
 # Idempotent: skips when OUTDIR/.complete holds this script's stamp (its and
@@ -43,7 +48,8 @@ fi
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 out=$1
 python=/usr/bin/python3 # Debian's, with python3-numpy and python3-pydicom
-source_packages=(plastimatch python3-pydicom python3-numpy insighttoolkit5-examples dicom3tools)
+source_packages=(plastimatch python3-pydicom python3-numpy insighttoolkit5-examples dicom3tools
+  libcgal-demo)
 
 stamp() {
   echo "fixtures v1"
@@ -75,6 +81,7 @@ package_file() {
 pydicom_rtstruct=$(package_file python3-pydicom rtstruct.dcm)
 kmeans_labels=$(package_file insighttoolkit5-examples KmeansTest_T1KmeansPrelimSegmentation.nii.gz)
 kmeans_t1=$(package_file insighttoolkit5-examples KmeansTest_T1UCharRaw.nii.gz)
+cgal_data=$(package_file libcgal-demo data.tar.gz)
 
 start=$SECONDS
 mkdir -p "$(dirname "$out")"
@@ -209,6 +216,15 @@ axial_nifti() {
 axial_nifti "$kmeans_labels" labels
 axial_nifti "$kmeans_t1" t1
 make_study kmeans_axial "$scratch/labels-axial.nii.gz" "$scratch/t1-axial.nii.gz"
+
+# --- real meshes: CGAL's demo data -------------------------------------------
+cgal_meshes=(femur bunny00 armadillo refined_elephant elephant blobby eight sphere cube knot1)
+mkdir -p "$tmp/meshes"
+members=()
+for m in "${cgal_meshes[@]}"; do members+=("data/meshes/$m.off"); done
+logged "$scratch/meshes.log" tar -xzf "$cgal_data" -C "$tmp/meshes" --strip-components=2 \
+  "${members[@]}"
+made meshes "(${#cgal_meshes[@]} OFF files)"
 
 rm -rf "$scratch"
 echo "$want_stamp" >"$tmp/.complete"

@@ -26,6 +26,7 @@ packages=(
 packages_no_recommends=(
   libopencv-dev
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
+  libcgal-demo
 )
 
 missing() {
