@@ -18,25 +18,30 @@ double Box3::distance2(Vec3 p) const {
     return dx * dx + dy * dy + dz * dz;
 }
 
-Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, TriangleFeature* feature) {
+    TriangleFeature ignored;
+    TriangleFeature& on = feature ? *feature : ignored;
     // Which feature's Voronoi region holds p: a vertex, an edge, or the face.
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return a;
+    if (d1 <= 0 && d2 <= 0) return on = TriangleFeature::VertexA, a;
     const Vec3 bp = p - b;
     const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return b;
+    if (d3 >= 0 && d4 <= d3) return on = TriangleFeature::VertexB, b;
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        return on = TriangleFeature::EdgeAB, a + (d1 / (d1 - d3)) * ab;
     const Vec3 cp = p - c;
     const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return c;
+    if (d6 >= 0 && d5 <= d6) return on = TriangleFeature::VertexC, c;
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        return on = TriangleFeature::EdgeCA, a + (d2 / (d2 - d6)) * ac;
     const double va = d3 * d6 - d5 * d4;
     if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+        return on = TriangleFeature::EdgeBC, b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
     const double denominator = 1 / (va + vb + vc);
+    on = TriangleFeature::Face;
     return a + (vb * denominator) * ab + (vc * denominator) * ac;
 }
 
@@ -77,15 +82,24 @@ int TriangleBvh::build(std::size_t first, std::size_t last) {
 }
 
 TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p, std::size_t hint) const {
-    Nearest best;
+    Nearest best = nearestWithin(p, INFINITY, hint);
+    if (best.triangle == SIZE_MAX) best.triangle = 0;  // an empty soup
+    return best;
+}
+
+TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
+                                                std::size_t hint) const {
+    Nearest best{SIZE_MAX, INFINITY, {}};
     if (nodes_.empty()) return best;
-    double best2 = INFINITY;
+    double best2 = maxDistance2;
     if (hint < soup_.triangles.size()) {
         const auto& tri = soup_.triangles[hint];
         const Vec3 q = closestPointOnTriangle(p, soup_.points[tri[0]], soup_.points[tri[1]],
                                               soup_.points[tri[2]]);
-        best2 = dot(p - q, p - q);
-        best = {hint, 0, q};
+        if (dot(p - q, p - q) < best2) {
+            best2 = dot(p - q, p - q);
+            best = {hint, 0, q};
+        }
     }
     // Median splits keep the depth near log2(T/4), and each pop pushes at
     // most two children, so a fixed stack suffices (no allocation per query).
@@ -115,7 +129,10 @@ TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p, std::size_t hint) const {
         stack[size++] = leftNearer ? node.right : node.left;
         stack[size++] = leftNearer ? node.left : node.right;
     }
-    best.distance = std::sqrt(best2);
+    if (best.triangle != SIZE_MAX) {
+        best.distance = std::sqrt(best2);
+        best.distance2 = best2;
+    }
     return best;
 }
 

@@ -28,9 +28,22 @@ struct Box3 {
     double distance2(Vec3 p) const;
 };
 
+/// The feature of triangle abc whose Voronoi region holds a point: a
+/// corner, the interior of an edge (edge k runs from corner k to k+1), or
+/// the interior of the face. Pseudo-normal signs and primitive ids need it.
+enum class TriangleFeature : std::uint8_t {
+    VertexA,
+    VertexB,
+    VertexC,
+    EdgeAB,
+    EdgeBC,
+    EdgeCA,
+    Face
+};
+
 /// The point of triangle abc nearest to p (Voronoi-region walk, exact up to
-/// rounding).
-Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
+/// rounding), and in `feature`, when given, the feature it lies on.
+Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, TriangleFeature* feature = nullptr);
 
 class TriangleBvh {
   public:
@@ -45,12 +58,17 @@ class TriangleBvh {
     struct Nearest {
         std::size_t triangle = 0;
         double distance = INFINITY;
-        Vec3 point;  // on the triangle
+        Vec3 point;                   // on the triangle
+        double distance2 = INFINITY;  // distance squared, as compared in the search
     };
     /// The triangle nearest to p and the distance; O(log T) typically.
     /// A `hint` (a triangle likely near p, e.g. the answer for a point close
     /// by) prunes the search from the start; the answer is the same.
     Nearest nearest(Vec3 p, std::size_t hint = SIZE_MAX) const;
+    /// The same, among triangles nearer than sqrt(maxDistance2) (strictly):
+    /// a search bounded by a distance already found elsewhere. When none is
+    /// that near, triangle is SIZE_MAX and distance infinite.
+    Nearest nearestWithin(Vec3 p, double maxDistance2, std::size_t hint = SIZE_MAX) const;
 
     /// The hierarchy as flat arrays, for device kernels that walk it:
     /// node 0 is the root; a leaf's triangles are order()[first, first+count).

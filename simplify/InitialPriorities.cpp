@@ -3,20 +3,12 @@
 #include <algorithm>
 
 #include "cl/DeviceBuffer.hpp"
+#include "recon/TriangleBvhArrays.hpp"
 #include "simplify/CollapseBound.hpp"
 
 namespace dfrecon {
 
 namespace {
-
-template <class Real, class Real4>
-Real4 toReal4(Vec3 p) {
-    Real4 r{};
-    r.s[0] = Real(p.x);
-    r.s[1] = Real(p.y);
-    r.s[2] = Real(p.z);
-    return r;
-}
 
 template <class Real, class Real4>
 std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const TriangleBvh& original,
@@ -25,11 +17,12 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     for (auto h : mesh.halfedges())
         halfedges[std::size_t(h.idx())] = {
             {mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()}};
+    using Arrays = TriangleBvhArrays<Real4>;
     std::vector<Real4> meshPoints(mesh.n_vertices());
     std::vector<cl_uint> ringFirst{0};
     std::vector<cl_int4> ringFaces;
     for (auto v : mesh.vertices()) {
-        meshPoints[std::size_t(v.idx())] = toReal4<Real, Real4>(toVec3(mesh.point(v)));
+        meshPoints[std::size_t(v.idx())] = Arrays::real4(toVec3(mesh.point(v)));
         for (auto f : mesh.vf_range(v)) {
             cl_int4 face{{0, 0, 0, 0}};
             int k = 0;
@@ -38,27 +31,15 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         }
         ringFirst.push_back(cl_uint(ringFaces.size()));
     }
-    const TriangleSoup& soup = original.soup();
-    std::vector<Real4> points;
-    for (const Vec3& p : soup.points) points.push_back(toReal4<Real, Real4>(p));
-    std::vector<cl_int4> triangles;
-    for (const auto& t : soup.triangles)
-        triangles.push_back({{int(t[0]), int(t[1]), int(t[2]), 0}});
-    std::vector<Real4> nodeLo, nodeHi;
-    std::vector<cl_int4> nodeLinks;
-    for (const TriangleBvh::Node& n : original.nodes()) {
-        nodeLo.push_back(toReal4<Real, Real4>(n.box.lo));
-        nodeHi.push_back(toReal4<Real, Real4>(n.box.hi));
-        nodeLinks.push_back({{n.left, n.right, int(n.first), int(n.count)}});
-    }
-    std::vector<cl_uint> order(original.order().begin(), original.order().end());
+    Arrays surface;
+    surface.append(original);
 
     ocl::DeviceBuffer<cl_int2> dHalfedges(runtime, halfedges);
-    ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints), dPoints(runtime, points),
-        dLo(runtime, nodeLo), dHi(runtime, nodeHi);
-    ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst), dOrder(runtime, order);
-    ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces), dTriangles(runtime, triangles),
-        dLinks(runtime, nodeLinks);
+    ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints), dPoints(runtime, surface.points),
+        dLo(runtime, surface.nodeLo), dHi(runtime, surface.nodeHi);
+    ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst), dOrder(runtime, surface.order);
+    ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces),
+        dTriangles(runtime, surface.triangles), dLinks(runtime, surface.nodeLinks);
     ocl::DeviceBuffer<cl_float> priority(runtime, halfedges.size(), CL_MEM_WRITE_ONLY);
     const std::string options =
         sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float";
@@ -91,7 +72,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     std::vector<float> result = priority.download(runtime);
     if (sizeof(Real) < 8) {
         Box3 box;
-        for (const Vec3& p : soup.points) box.add(p);
+        for (const Vec3& p : original.soup().points) box.add(p);
         const float slack = float(1e-6 * length(box.hi - box.lo));
         for (float& p : result)
             if (p >= 0) p = p + slack > float(maxErrorMm) ? -1.0f : p + slack;

@@ -1,0 +1,56 @@
+#pragma once
+// Triangle hierarchies as the flat arrays kernels/closest_triangle_3d.cl
+// walks: points and triangles, node boxes, node links and the leaf order.
+// Several hierarchies can share one set of arrays (a scene of objects), each
+// searched from its own root node, with every triangle tagged by its object.
+#include <type_traits>
+#include <vector>
+
+#include "cl/OpenCL.hpp"
+#include "recon/TriangleBvh.hpp"
+
+namespace dfrecon {
+
+/// `Real4` is cl_double4 or cl_float4, whichever the device computes in.
+template <class Real4>
+struct TriangleBvhArrays {
+    std::vector<Real4> points;
+    std::vector<cl_int4> triangles;  // (a, b, c, tag), indices into points
+    std::vector<Real4> nodeLo, nodeHi;
+    std::vector<cl_int4> nodeLinks;  // (left, right, first, count); left < 0 for a leaf
+    std::vector<cl_uint> order;      // leaf ranges, as global triangle indices
+
+    static Real4 real4(Vec3 p) {
+        using Real = std::remove_reference_t<decltype(Real4{}.s[0])>;
+        Real4 r{};
+        r.s[0] = Real(p.x);
+        r.s[1] = Real(p.y);
+        r.s[2] = Real(p.z);
+        return r;
+    }
+
+    /// Appends `bvh` and its soup, tagging its triangles with `tag`, and
+    /// returns its root node's index (-1 for an empty soup). Global triangle
+    /// t of the appended soup is firstTriangle + t, firstTriangle being
+    /// triangles.size() before the call. O(points + triangles + nodes).
+    int append(const TriangleBvh& bvh, int tag = 0) {
+        const TriangleSoup& soup = bvh.soup();
+        const int pointBase = int(points.size()), triangleBase = int(triangles.size()),
+                  nodeBase = int(nodeLinks.size()), orderBase = int(order.size());
+        for (const Vec3& p : soup.points) points.push_back(real4(p));
+        for (const auto& t : soup.triangles)
+            triangles.push_back(
+                {{pointBase + int(t[0]), pointBase + int(t[1]), pointBase + int(t[2]), tag}});
+        for (const TriangleBvh::Node& n : bvh.nodes()) {
+            nodeLo.push_back(real4(n.box.lo));
+            nodeHi.push_back(real4(n.box.hi));
+            const bool leaf = n.left < 0;
+            nodeLinks.push_back({{leaf ? -1 : nodeBase + n.left, leaf ? -1 : nodeBase + n.right,
+                                  orderBase + int(n.first), int(n.count)}});
+        }
+        for (std::size_t t : bvh.order()) order.push_back(cl_uint(triangleBase + int(t)));
+        return bvh.nodes().empty() ? -1 : nodeBase;
+    }
+};
+
+}  // namespace dfrecon

@@ -1,0 +1,308 @@
+#include "sdm/ClosestPrimitives.hpp"
+
+#include <map>
+#include <unordered_map>
+
+#include "cl/DeviceBuffer.hpp"
+#include "recon/TriangleBvhArrays.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+bool isCandidate(const DistanceQuery& query, std::size_t own, std::size_t object) {
+    return object != own && (query.target < 0 || object == std::size_t(query.target));
+}
+
+double bandSquared(const DistanceQuery& query) {
+    return query.maxDistanceMm * query.maxDistanceMm;
+}
+
+Vec3 centroid(const TriangleSoup& soup, std::size_t t) {
+    const auto& tri = soup.triangles[t];
+    return (1.0 / 3.0) * (soup.points[tri[0]] + soup.points[tri[1]] + soup.points[tri[2]]);
+}
+
+// The full answer once the nearest triangle is known: the closest point,
+// its feature, and the sign from that feature's pseudo-normal.
+ClosestPrimitive describe(const SurfaceScene& scene, std::size_t object, std::size_t triangle,
+                          Vec3 p) {
+    const TriangleSoup& soup = scene.object(object);
+    const auto& tri = soup.triangles[triangle];
+    ClosestPrimitive answer;
+    answer.object = std::int32_t(object);
+    answer.triangle = std::uint32_t(triangle);
+    answer.point = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
+                                          soup.points[tri[2]], &answer.feature);
+    const Vec3 away = p - answer.point;
+    answer.distanceMm = length(away);
+    if (scene.closed(object) && dot(away, scene.pseudoNormal(object, triangle, answer.feature)) < 0)
+        answer.distanceMm = -answer.distanceMm;
+    return answer;
+}
+
+struct Found {
+    std::size_t object = SIZE_MAX, triangle = SIZE_MAX;
+    double distance2 = INFINITY;
+};
+
+// The bounded search the kernel makes: the hint first, then each
+// candidate object's hierarchy with the best distance so far as its bound.
+Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, Found hint,
+                    const DistanceQuery& query) {
+    Found best;
+    best.distance2 = bandSquared(query);
+    if (hint.object != SIZE_MAX && isCandidate(query, own, hint.object)) {
+        const auto& soup = scene.object(hint.object);
+        const auto& tri = soup.triangles[hint.triangle];
+        const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
+                                              soup.points[tri[2]]);
+        if (dot(p - q, p - q) < best.distance2)
+            best = {hint.object, hint.triangle, dot(p - q, p - q)};
+    }
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        if (!isCandidate(query, own, o)) continue;
+        const TriangleBvh::Nearest n = scene.bvh(o).nearestWithin(p, best.distance2);
+        if (n.triangle != SIZE_MAX) best = {o, n.triangle, n.distance2};
+    }
+    return best;
+}
+
+std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
+    return (std::uint64_t(object) << 32) | std::uint64_t(triangle);
+}
+
+}  // namespace
+
+std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& scene,
+                                                         const std::vector<SurfaceSample>& samples,
+                                                         const DistanceQuery& query) {
+    // Hints: the nearest triangle to the centre of each sample's triangle.
+    std::unordered_map<std::uint64_t, Found> hints;
+    for (const SurfaceSample& s : samples) {
+        const std::uint64_t key = triangleKey(s.object, s.triangle);
+        if (hints.count(key)) continue;
+        hints[key] = searchObjects(scene, centroid(scene.object(s.object), s.triangle), s.object,
+                                   Found{}, query);
+    }
+    std::vector<ClosestPrimitive> answers(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        const SurfaceSample& s = samples[k];
+        const Found best = searchObjects(scene, s.point, s.object,
+                                         hints[triangleKey(s.object, s.triangle)], query);
+        if (best.object != SIZE_MAX)
+            answers[k] = describe(scene, best.object, best.triangle, s.point);
+    }
+    return answers;
+}
+
+std::vector<ClosestPrimitive> closestPrimitivesBruteForce(const SurfaceScene& scene,
+                                                          const std::vector<SurfaceSample>& samples,
+                                                          const DistanceQuery& query) {
+    std::vector<ClosestPrimitive> answers(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        const SurfaceSample& s = samples[k];
+        Found best;
+        best.distance2 = bandSquared(query);
+        for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+            if (!isCandidate(query, s.object, o)) continue;
+            const TriangleSoup& soup = scene.object(o);
+            for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+                const auto& tri = soup.triangles[t];
+                const Vec3 q = closestPointOnTriangle(s.point, soup.points[tri[0]],
+                                                      soup.points[tri[1]], soup.points[tri[2]]);
+                const double d2 = dot(s.point - q, s.point - q);
+                if (d2 < best.distance2) best = {o, t, d2};
+            }
+        }
+        if (best.object != SIZE_MAX)
+            answers[k] = describe(scene, best.object, best.triangle, s.point);
+    }
+    return answers;
+}
+
+// --- OpenCL ------------------------------------------------------------------
+
+namespace {
+
+// The interface both precisions implement.
+struct DeviceScene {
+    virtual ~DeviceScene() = default;
+    virtual std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
+                                              const DistanceQuery& query) = 0;
+};
+
+template <class Real, class Real4>
+class DeviceSceneT final : public DeviceScene {
+  public:
+    DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene)
+        : runtime_(runtime), scene_(scene) {
+        TriangleBvhArrays<Real4> arrays;
+        std::vector<Real4> normals;
+        std::vector<cl_uchar> closed;
+        for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+            firstTriangle_.push_back(arrays.triangles.size());
+            roots_.push_back(arrays.append(scene.bvh(o), int(o)));
+            closed.push_back(scene.closed(o) ? 1 : 0);
+            for (std::size_t t = 0; t < scene.object(o).triangles.size(); ++t)
+                for (int f = 0; f < 7; ++f)
+                    normals.push_back(TriangleBvhArrays<Real4>::real4(
+                        scene.pseudoNormal(o, t, TriangleFeature(f))));
+        }
+        objectOfTriangle_.reserve(arrays.triangles.size());
+        for (const cl_int4& t : arrays.triangles) objectOfTriangle_.push_back(std::size_t(t.s[3]));
+        points_ = ocl::DeviceBuffer<Real4>(runtime, arrays.points);
+        triangles_ = ocl::DeviceBuffer<cl_int4>(runtime, arrays.triangles);
+        nodeLo_ = ocl::DeviceBuffer<Real4>(runtime, arrays.nodeLo);
+        nodeHi_ = ocl::DeviceBuffer<Real4>(runtime, arrays.nodeHi);
+        nodeLinks_ = ocl::DeviceBuffer<cl_int4>(runtime, arrays.nodeLinks);
+        order_ = ocl::DeviceBuffer<cl_uint>(runtime, arrays.order);
+        objectRoot_ = ocl::DeviceBuffer<cl_int>(runtime, roots_);
+        normals_ = ocl::DeviceBuffer<Real4>(runtime, normals);
+        closed_ = ocl::DeviceBuffer<cl_uchar>(runtime, closed);
+        const std::string options =
+            sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float";
+        program_ = &runtime.program({"closest_triangle_3d.cl", "surface_distance.cl"}, options);
+    }
+
+    std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
+                                      const DistanceQuery& query) override {
+        // Pass 1: the nearest triangle to each distinct sample triangle's
+        // centre, the hint that bounds pass 2 from its start.
+        std::unordered_map<std::uint64_t, std::size_t> slot;
+        std::vector<SurfaceSample> centres;
+        std::vector<std::size_t> slotOfSample(samples.size());
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+            const SurfaceSample& s = samples[k];
+            const auto [it, fresh] =
+                slot.emplace(triangleKey(s.object, s.triangle), centres.size());
+            if (fresh)
+                centres.push_back({centroid(scene_.object(s.object), s.triangle), s.object, 0});
+            slotOfSample[k] = it->second;
+        }
+        const Launch hints =
+            launch(centres, std::vector<cl_uint>(centres.size(), CL_UINT_MAX), query);
+        std::vector<cl_uint> sampleHints(samples.size());
+        for (std::size_t k = 0; k < samples.size(); ++k)
+            sampleHints[k] = hints.nearest[slotOfSample[k]];
+        const Launch found = launch(samples, sampleHints, query);
+
+        std::vector<ClosestPrimitive> answers(samples.size());
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+            const cl_uint t = found.nearest[k];
+            if (t == CL_UINT_MAX) continue;
+            ClosestPrimitive& a = answers[k];
+            a.object = std::int32_t(objectOfTriangle_[t]);
+            a.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
+            a.distanceMm = double(found.distance[k]);
+            a.feature = TriangleFeature(found.feature[k]);
+            a.point = {double(found.closest[k].s[0]), double(found.closest[k].s[1]),
+                       double(found.closest[k].s[2])};
+        }
+        return answers;
+    }
+
+  private:
+    struct Launch {
+        std::vector<cl_uint> nearest;
+        std::vector<Real> distance;
+        std::vector<cl_uchar> feature;
+        std::vector<Real4> closest;
+    };
+
+    Launch launch(const std::vector<SurfaceSample>& samples, const std::vector<cl_uint>& hints,
+                  const DistanceQuery& query) {
+        Launch out;
+        if (samples.empty()) return out;
+        std::vector<Real4> points(samples.size());
+        std::vector<cl_uint> objects(samples.size());
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+            points[k] = TriangleBvhArrays<Real4>::real4(samples[k].point);
+            objects[k] = samples[k].object;
+        }
+        ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
+        ocl::DeviceBuffer<cl_uint> dObjects(runtime_, objects), dHints(runtime_, hints);
+        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real> dDistance(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real4> dClosest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
+        try {
+            cl::Kernel kernel(*program_, "closest_primitive");
+            int a = 0;
+            kernel.setArg(a++, dPoints.get());
+            kernel.setArg(a++, dObjects.get());
+            kernel.setArg(a++, dHints.get());
+            kernel.setArg(a++, cl_uint(samples.size()));
+            kernel.setArg(a++, points_.get());
+            kernel.setArg(a++, triangles_.get());
+            kernel.setArg(a++, nodeLo_.get());
+            kernel.setArg(a++, nodeHi_.get());
+            kernel.setArg(a++, nodeLinks_.get());
+            kernel.setArg(a++, order_.get());
+            kernel.setArg(a++, objectRoot_.get());
+            kernel.setArg(a++, cl_uint(roots_.size()));
+            kernel.setArg(a++, normals_.get());
+            kernel.setArg(a++, closed_.get());
+            kernel.setArg(a++, cl_int(query.target));
+            kernel.setArg(a++, Real(bandSquared(query)));
+            kernel.setArg(a++, dDistance.get());
+            kernel.setArg(a++, dNearest.get());
+            kernel.setArg(a++, dFeature.get());
+            kernel.setArg(a++, dClosest.get());
+            runtime_.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
+                                                  cl::NDRange(ocl::roundUp(samples.size(), 64)));
+        } catch (const cl::Error& e) {
+            throw ocl::toClError(e, "surface_distance.cl");
+        }
+        out.nearest = dNearest.download(runtime_);
+        out.distance = dDistance.download(runtime_);
+        out.feature = dFeature.download(runtime_);
+        out.closest = dClosest.download(runtime_);
+        return out;
+    }
+
+    ocl::Runtime& runtime_;
+    const SurfaceScene& scene_;
+    const cl::Program* program_ = nullptr;
+    std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
+    std::vector<cl_int> roots_;
+    ocl::DeviceBuffer<Real4> points_, nodeLo_, nodeHi_, normals_;
+    ocl::DeviceBuffer<cl_int4> triangles_, nodeLinks_;
+    ocl::DeviceBuffer<cl_uint> order_;
+    ocl::DeviceBuffer<cl_int> objectRoot_;
+    ocl::DeviceBuffer<cl_uchar> closed_;
+};
+
+}  // namespace
+
+struct ClosestPrimitiveKernel::Impl {
+    std::unique_ptr<DeviceScene> device;
+    double extentMm = 0;
+    bool doublePrecision = true;
+};
+
+ClosestPrimitiveKernel::ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->doublePrecision = runtime.device().doublePrecision;
+    if (impl_->doublePrecision)
+        impl_->device = std::make_unique<DeviceSceneT<cl_double, cl_double4>>(runtime, scene);
+    else
+        impl_->device = std::make_unique<DeviceSceneT<cl_float, cl_float4>>(runtime, scene);
+    Box3 box;
+    for (std::size_t o = 0; o < scene.objectCount(); ++o)
+        for (const Vec3& p : scene.object(o).points) box.add(p);
+    impl_->extentMm = length(box.hi - box.lo);
+}
+
+ClosestPrimitiveKernel::~ClosestPrimitiveKernel() = default;
+
+std::vector<ClosestPrimitive> ClosestPrimitiveKernel::run(const std::vector<SurfaceSample>& samples,
+                                                          const DistanceQuery& query) {
+    return impl_->device->run(samples, query);
+}
+
+double ClosestPrimitiveKernel::toleranceMm() const {
+    return (impl_->doublePrecision ? 1e-12 : 1e-6) * impl_->extentMm;
+}
+
+}  // namespace dfrecon
