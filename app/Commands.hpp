@@ -22,5 +22,6 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 void addConvertCommand(CLI::App& root, const GlobalOptions& global);
 void addRasterizeCommand(CLI::App& root, const GlobalOptions& global);
+void addSdmCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     addSimplifyCommand(root, global);
     addConvertCommand(root, global);
     addRasterizeCommand(root, global);
+    addSdmCommand(root, global);
     addCheckCommand(root, global);
 
     try {

@@ -99,4 +99,15 @@ void writeLabelPng(const std::string& path, const std::uint32_t* labels, const I
     writePng(path, image);
 }
 
+void writeFloatTiff(const std::string& path, const float* values, int width, int height,
+                    int channels) {
+    if (width <= 0 || height <= 0 || (channels != 1 && channels != 3))
+        throw std::invalid_argument("writeFloatTiff: bad image shape");
+    cv::Mat image(height, width, channels == 1 ? CV_32FC1 : CV_32FC3, const_cast<float*>(values));
+    cv::Mat written = image;
+    if (channels == 3) cv::cvtColor(image, written, cv::COLOR_RGB2BGR);  // OpenCV stores BGR
+    writeAtomically(path,
+                    [&](const std::string& temporary) { return cv::imwrite(temporary, written); });
+}
+
 }  // namespace dfrecon

@@ -36,4 +36,10 @@ void writeSignedFieldPng(const std::string& path, const float* distanceMm, const
 void writeLabelPng(const std::string& path, const std::uint32_t* labels, const ImageFrame& frame,
                    const std::vector<Polygon>& contours);
 
+/// A float image (row-major, row 0 first, `channels` of 1 or 3 interleaved)
+/// as a 32-bit float TIFF that keeps every value (NaN included), for
+/// ParaView, 3D Slicer, Fiji or numpy. Written atomically.
+void writeFloatTiff(const std::string& path, const float* values, int width, int height,
+                    int channels);
+
 }  // namespace dfrecon

@@ -11,7 +11,7 @@
 // are negative inside them.
 __kernel void closest_primitive(
     __global const REAL4* sample_points, __global const uint* sample_object,
-    __global const uint* sample_hint, uint sample_count, __global const REAL4* points,
+    __global const uint4* sample_hint, uint sample_count, __global const REAL4* points,
     __global const int4* triangles, __global const REAL4* node_lo, __global const REAL4* node_hi,
     __global const int4* node_links, __global const uint* order, __global const int* object_root,
     uint object_count, __global const REAL4* pseudo_normals, __global const uchar* object_closed,
@@ -24,16 +24,18 @@ __kernel void closest_primitive(
     const uint own = sample_object[k];
     REAL best2 = max_distance2;
     uint t = UINT_MAX;
-    // The hint first: a tight bound prunes most of every hierarchy below.
-    const uint hint = sample_hint[k];
-    if (hint != UINT_MAX) {
-        const uint o = (uint)triangles[hint].w;
-        if (o != own && (target < 0 || o == (uint)target)) {
-            const REAL d2 = triangle_distance2(&surface, hint, p);
-            if (d2 < best2) {
-                best2 = d2;
-                t = hint;
-            }
+    // The hints first (the nearest triangles to the centre and corners of
+    // the sample's triangle): a tight bound prunes most of every hierarchy.
+    const uint4 hints = sample_hint[k];
+    const uint hint[4] = {hints.x, hints.y, hints.z, hints.w};
+    for (int h = 0; h < 4; ++h) {
+        if (hint[h] == UINT_MAX) continue;
+        const uint o = (uint)triangles[hint[h]].w;
+        if (o == own || (target >= 0 && o != (uint)target)) continue;
+        const REAL d2 = triangle_distance2(&surface, hint[h], p);
+        if (d2 < best2) {
+            best2 = d2;
+            t = hint[h];
         }
     }
     for (uint o = 0; o < object_count; ++o) {

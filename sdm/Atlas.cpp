@@ -202,21 +202,25 @@ Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options) {
 
 AtlasSamples atlasSamples(const Atlas& atlas, const TriangleSoup& soup) {
     AtlasSamples samples;
-    std::vector<ChartFrame> frames(soup.triangles.size());
-    for (std::size_t t = 0; t < frames.size(); ++t) frames[t] = chartFrame(soup, t);
-    for (std::size_t texel = 0; texel < atlas.texelTriangle.size(); ++texel) {
-        const std::int32_t t = atlas.texelTriangle[texel];
-        if (t < 0) continue;
-        const TriangleChart& chart = atlas.charts[std::size_t(t)];
-        const ChartFrame& f = frames[std::size_t(t)];
-        const double i = double(texel % std::size_t(atlas.width)) + 0.5 - chart.x,
-                     j = double(texel / std::size_t(atlas.width)) + 0.5 - chart.y;
-        const Vec3 preimage = f.origin + (i * atlas.texelMm) * f.along + (j * atlas.texelMm) * f.up;
-        const auto& tri = soup.triangles[std::size_t(t)];
-        samples.texel.push_back(std::uint32_t(texel));
-        samples.triangle.push_back(std::uint32_t(t));
-        samples.point.push_back(closestPointOnTriangle(preimage, soup.points[tri[0]],
-                                                       soup.points[tri[1]], soup.points[tri[2]]));
+    // Chart by chart, so that neighbouring samples (work-items) share a
+    // triangle, its hint and most of their search.
+    for (std::size_t t = 0; t < atlas.charts.size(); ++t) {
+        const TriangleChart& chart = atlas.charts[t];
+        const ChartFrame f = chartFrame(soup, t);
+        const auto& tri = soup.triangles[t];
+        for (int j = chart.y; j < chart.y + chart.height; ++j)
+            for (int i = chart.x; i < chart.x + chart.width; ++i) {
+                const std::size_t texel =
+                    std::size_t(j) * std::size_t(atlas.width) + std::size_t(i);
+                if (atlas.texelTriangle[texel] != std::int32_t(t)) continue;
+                const double u = (i + 0.5 - chart.x) * atlas.texelMm,
+                             v = (j + 0.5 - chart.y) * atlas.texelMm;
+                const Vec3 preimage = f.origin + u * f.along + v * f.up;
+                samples.texel.push_back(std::uint32_t(texel));
+                samples.triangle.push_back(std::uint32_t(t));
+                samples.point.push_back(closestPointOnTriangle(
+                    preimage, soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]));
+            }
     }
     return samples;
 }

@@ -58,9 +58,9 @@ struct Atlas {
 /// size searches the texel size by bisection (O(T) per step).
 Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options = {});
 
-/// The surface points the atlas samples: for every used texel (row-major
-/// order), its index, its triangle and the triangle's point nearest to the
-/// texel centre's preimage. O(used texels).
+/// The surface points the atlas samples: for every used texel (grouped by
+/// triangle), its index, its triangle and the triangle's point nearest to
+/// the texel centre's preimage. O(used texels).
 struct AtlasSamples {
     std::vector<std::uint32_t> texel;
     std::vector<std::uint32_t> triangle;

@@ -1,5 +1,6 @@
 #include "sdm/ClosestPrimitives.hpp"
 
+#include <array>
 #include <map>
 #include <unordered_map>
 
@@ -46,13 +47,19 @@ struct Found {
     double distance2 = INFINITY;
 };
 
-// The bounded search the kernel makes: the hint first, then each
+// Each sample's search starts from the nearest triangles found for its own
+// triangle's centre and corners: the best of them bounds the search.
+constexpr int kHints = 4;
+using Hints = std::array<Found, kHints>;
+
+// The bounded search the kernel makes: the hints first, then each
 // candidate object's hierarchy with the best distance so far as its bound.
-Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, Found hint,
+Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, const Hints& hints,
                     const DistanceQuery& query) {
     Found best;
     best.distance2 = bandSquared(query);
-    if (hint.object != SIZE_MAX && isCandidate(query, own, hint.object)) {
+    for (const Found& hint : hints) {
+        if (hint.object == SIZE_MAX || !isCandidate(query, own, hint.object)) continue;
         const auto& soup = scene.object(hint.object);
         const auto& tri = soup.triangles[hint.triangle];
         const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
@@ -68,6 +75,13 @@ Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, Found hi
     return best;
 }
 
+// Where the hints of a triangle's samples are looked for: its centre and
+// its corners.
+std::array<Vec3, kHints> hintPoints(const TriangleSoup& soup, std::size_t t) {
+    const auto& tri = soup.triangles[t];
+    return {centroid(soup, t), soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]};
+}
+
 std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
     return (std::uint64_t(object) << 32) | std::uint64_t(triangle);
 }
@@ -77,13 +91,15 @@ std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
 std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& scene,
                                                          const std::vector<SurfaceSample>& samples,
                                                          const DistanceQuery& query) {
-    // Hints: the nearest triangle to the centre of each sample's triangle.
-    std::unordered_map<std::uint64_t, Found> hints;
+    std::unordered_map<std::uint64_t, Hints> hints;
     for (const SurfaceSample& s : samples) {
         const std::uint64_t key = triangleKey(s.object, s.triangle);
         if (hints.count(key)) continue;
-        hints[key] = searchObjects(scene, centroid(scene.object(s.object), s.triangle), s.object,
-                                   Found{}, query);
+        Hints& h = hints[key];
+        const auto points = hintPoints(scene.object(s.object), s.triangle);
+        for (int k = 0; k < kHints; ++k)
+            h[std::size_t(k)] =
+                searchObjects(scene, points[std::size_t(k)], s.object, Hints{}, query);
     }
     std::vector<ClosestPrimitive> answers(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
@@ -167,24 +183,27 @@ class DeviceSceneT final : public DeviceScene {
 
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query) override {
-        // Pass 1: the nearest triangle to each distinct sample triangle's
-        // centre, the hint that bounds pass 2 from its start.
+        // Pass 1: the nearest triangles to each distinct sample triangle's
+        // centre and corners, the hints that bound pass 2 from its start.
         std::unordered_map<std::uint64_t, std::size_t> slot;
-        std::vector<SurfaceSample> centres;
+        std::vector<SurfaceSample> hintSamples;
         std::vector<std::size_t> slotOfSample(samples.size());
         for (std::size_t k = 0; k < samples.size(); ++k) {
             const SurfaceSample& s = samples[k];
             const auto [it, fresh] =
-                slot.emplace(triangleKey(s.object, s.triangle), centres.size());
+                slot.emplace(triangleKey(s.object, s.triangle), hintSamples.size() / kHints);
             if (fresh)
-                centres.push_back({centroid(scene_.object(s.object), s.triangle), s.object, 0});
+                for (const Vec3& p : hintPoints(scene_.object(s.object), s.triangle))
+                    hintSamples.push_back({p, s.object, 0});
             slotOfSample[k] = it->second;
         }
+        const cl_uint4 none{{CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX}};
         const Launch hints =
-            launch(centres, std::vector<cl_uint>(centres.size(), CL_UINT_MAX), query);
-        std::vector<cl_uint> sampleHints(samples.size());
+            launch(hintSamples, std::vector<cl_uint4>(hintSamples.size(), none), query);
+        std::vector<cl_uint4> sampleHints(samples.size());
         for (std::size_t k = 0; k < samples.size(); ++k)
-            sampleHints[k] = hints.nearest[slotOfSample[k]];
+            for (int h = 0; h < kHints; ++h)
+                sampleHints[k].s[h] = hints.nearest[slotOfSample[k] * kHints + std::size_t(h)];
         const Launch found = launch(samples, sampleHints, query);
 
         std::vector<ClosestPrimitive> answers(samples.size());
@@ -210,7 +229,7 @@ class DeviceSceneT final : public DeviceScene {
         std::vector<Real4> closest;
     };
 
-    Launch launch(const std::vector<SurfaceSample>& samples, const std::vector<cl_uint>& hints,
+    Launch launch(const std::vector<SurfaceSample>& samples, const std::vector<cl_uint4>& hints,
                   const DistanceQuery& query) {
         Launch out;
         if (samples.empty()) return out;
@@ -221,7 +240,8 @@ class DeviceSceneT final : public DeviceScene {
             objects[k] = samples[k].object;
         }
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
-        ocl::DeviceBuffer<cl_uint> dObjects(runtime_, objects), dHints(runtime_, hints);
+        ocl::DeviceBuffer<cl_uint> dObjects(runtime_, objects);
+        ocl::DeviceBuffer<cl_uint4> dHints(runtime_, hints);
         ocl::DeviceBuffer<cl_uint> dNearest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<Real> dDistance(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, samples.size(), CL_MEM_WRITE_ONLY);

@@ -11,8 +11,9 @@
 //                              baseline
 // All cull as paper §4.2 does with a hierarchy per object and distance
 // bounds: an object whose root box is farther than the best distance so far
-// is skipped, and a hint (the nearest triangle found for the sample's own
-// triangle's centre) starts each search with a tight bound.
+// is skipped, and hints (the nearest triangles found for the centre and
+// corners of the sample's own triangle) start each search with a tight
+// bound.
 #include <cstdint>
 #include <limits>
 #include <memory>

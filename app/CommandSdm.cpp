@@ -1,0 +1,264 @@
+// dfrecon sdm A.ply B.ply ... -o DIR: surface distance maps between meshes
+// (paper surface-distance-maps): at every vertex and atlas texel of each
+// mesh, the signed distance to the nearest other mesh and which one it is;
+// plus pairwise separation, collision and penetration with their bounds.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Progress.hpp"
+#include "app/Stopwatch.hpp"
+#include "io/AtomicWrite.hpp"
+#include "io/FieldImages.hpp"
+#include "io/InputError.hpp"
+#include "io/VertexDataMesh.hpp"
+#include "sdm/ProximityQueries.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+struct SdmArgs {
+    std::vector<std::string> inputs;
+    std::string outputDir;
+    int sizeTexels = 512;
+    double maxErrorMm = 0;
+    double maxDistanceMm = 0;
+    bool json = false, noImages = false, noPairs = false;
+};
+
+// File stems of the inputs, made unique with _2, _3... when they repeat.
+std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
+    std::map<std::string, int> seen;
+    std::vector<std::string> names;
+    for (const std::string& input : inputs) {
+        std::string stem = std::filesystem::path(input).stem().string();
+        if (stem.empty()) stem = "mesh";
+        const int n = ++seen[stem];
+        names.push_back(n == 1 ? stem : stem + "_" + std::to_string(n));
+    }
+    return names;
+}
+
+// Distance → colour for the meshes: red inside another object, yellow at
+// contact, fading through green to blue at `farMm` and beyond; grey where
+// nothing is within the band.
+std::array<std::uint8_t, 3> distanceColour(double d, double farMm) {
+    if (!std::isfinite(d)) return {160, 160, 160};
+    if (d < 0) return {220, 30, 30};
+    const double t = std::min(1.0, d / farMm);
+    const double r = t < 0.5 ? 1 - 2 * t : 0, g = t < 0.5 ? 1 : 2 - 2 * t, b = t;
+    return {std::uint8_t(40 + 215 * r), std::uint8_t(40 + 215 * g), std::uint8_t(40 + 215 * b)};
+}
+
+nlohmann::ordered_json vec(Vec3 p) {
+    return {p.x, p.y, p.z};
+}
+
+void writeObjectOutputs(const std::filesystem::path& dir, const std::string& name,
+                        const SurfaceScene& scene, std::size_t o, const ObjectSamples& samples,
+                        const ObjectDistanceMap& map, double colourFarMm, bool images) {
+    const TriangleSoup& soup = scene.object(o);
+    VertexData data;
+    std::vector<float> distance(soup.points.size());
+    std::vector<std::int32_t> nearest(soup.points.size());
+    std::vector<Vec3> direction(soup.points.size());
+    for (std::size_t v = 0; v < soup.points.size(); ++v) {
+        const ClosestPrimitive& c = map.vertices[v];
+        distance[v] = c.object < 0 ? std::numeric_limits<float>::infinity() : float(c.distanceMm);
+        nearest[v] = c.object;
+        direction[v] = c.object < 0 ? Vec3{} : c.point - soup.points[v];
+        data.colours.push_back(distanceColour(c.object < 0 ? INFINITY : c.distanceMm, colourFarMm));
+    }
+    data.scalars = {{"distance", distance}, {"quality", distance}};
+    data.labels = {{"nearest_object", nearest}};
+    writePlyWithVertexData(soup, data, (dir / (name + ".ply")).string());
+    data.scalars.pop_back();  // "quality" is for MeshLab only
+    data.vectors = {{"to_nearest", direction}};
+    writeVtkWithVertexData(soup, data, (dir / (name + ".vtk")).string());
+    if (!images) return;
+    const int w = samples.atlas.width, h = samples.atlas.height;
+    const std::vector<float> d = distanceImage(samples, map);
+    writeFloatTiff((dir / (name + "_distance.tif")).string(), d.data(), w, h, 1);
+    const std::vector<float> n = nearestObjectImage(samples, map);
+    writeFloatTiff((dir / (name + "_nearest.tif")).string(), n.data(), w, h, 1);
+    const std::vector<float> dir3 = directionImage(samples, map);
+    writeFloatTiff((dir / (name + "_direction.tif")).string(), dir3.data(), w, h, 3);
+    ImageFrame frame;
+    frame.pixelMm = samples.atlas.texelMm;
+    frame.width = w;
+    frame.height = h;
+    writeSignedFieldPng((dir / (name + "_distance.png")).string(), d.data(), frame, {},
+                        colourFarMm / 4);
+    std::vector<std::uint32_t> labels(n.size());
+    for (std::size_t k = 0; k < n.size(); ++k)
+        labels[k] = n[k] < 0 ? 0xffffffffu : std::uint32_t(n[k]);
+    writeLabelPng((dir / (name + "_nearest.png")).string(), labels.data(), frame, {});
+}
+
+void runSdm(const SdmArgs& args, const GlobalOptions& global) {
+    const auto start = std::chrono::steady_clock::now();
+    if (args.inputs.size() < 2)
+        throw std::invalid_argument("sdm needs at least two meshes (distances are to the others)");
+    const std::vector<std::string> names = objectNames(args.inputs);
+    std::vector<TriangleSoup> soups;
+    for (const std::string& input : args.inputs) {
+        TriangleSoup soup = readTriangleSoup(input);
+        if (soup.triangles.empty()) throw InputError(input, 0, "mesh has no triangles");
+        soups.push_back(std::move(soup));
+    }
+    const SurfaceScene scene(std::move(soups), names);
+
+    AtlasOptions atlasOptions;
+    atlasOptions.sizeTexels = args.sizeTexels;
+    atlasOptions.maxErrorMm = args.maxErrorMm;
+    std::vector<ObjectSamples> samples;
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        try {
+            samples.push_back(sampleObject(scene, o, atlasOptions));
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(args.inputs[o] + ": " + e.what());
+        }
+    }
+
+    ocl::Runtime runtime(global.device);
+    ClosestPrimitiveKernel kernel(runtime, scene);
+    const ClosestPrimitivesFn closest = [&](const std::vector<SurfaceSample>& s,
+                                            const DistanceQuery& q) { return kernel.run(s, q); };
+    DistanceQuery query;
+    if (args.maxDistanceMm > 0) query.maxDistanceMm = args.maxDistanceMm;
+    Progress progress("distance maps", !global.quiet);
+    const auto mapsStart = std::chrono::steady_clock::now();
+    const std::vector<ObjectDistanceMap> maps = surfaceDistanceMaps(scene, samples, closest, query);
+    const double mapSeconds = secondsSince(mapsStart);
+    progress.update(0.5);
+    std::vector<PairProximity> pairs;
+    if (!args.noPairs) pairs = proximityQueries(scene, samples, closest);
+    progress.finish();
+
+    std::filesystem::create_directories(args.outputDir);
+    const std::filesystem::path dir(args.outputDir);
+    // Colours span the band, or the scene's largest vertex clearance.
+    double colourFarMm = args.maxDistanceMm;
+    if (colourFarMm <= 0) {
+        for (const ObjectDistanceMap& m : maps)
+            for (const ClosestPrimitive& c : m.vertices)
+                if (c.object >= 0) colourFarMm = std::max(colourFarMm, c.distanceMm);
+        colourFarMm = std::max(colourFarMm, 1.0);
+    }
+    nlohmann::ordered_json objects = nlohmann::ordered_json::array();
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        writeObjectOutputs(dir, names[o], scene, o, samples[o], maps[o], colourFarMm,
+                           !args.noImages);
+        double nearestMm = INFINITY;
+        std::size_t inside = 0;
+        for (const ClosestPrimitive& c : maps[o].texels) {
+            if (c.object < 0) continue;
+            nearestMm = std::min(nearestMm, c.distanceMm);
+            inside += c.distanceMm < 0;
+        }
+        objects.push_back({{"name", names[o]},
+                           {"input", args.inputs[o]},
+                           {"triangles", scene.object(o).triangles.size()},
+                           {"closed", scene.closed(o)},
+                           {"atlas", {samples[o].atlas.width, samples[o].atlas.height}},
+                           {"texelMm", samples[o].atlas.texelMm},
+                           {"samplingBoundMm", samples[o].samplingBoundMm()},
+                           {"usedTexels", samples[o].texelCount()},
+                           {"minDistanceMm",
+                            std::isfinite(nearestMm) ? nlohmann::ordered_json(nearestMm) : nullptr},
+                           {"texelsInsideOthers", inside},
+                           {"outputs", {names[o] + ".ply", names[o] + ".vtk"}}});
+    }
+    nlohmann::ordered_json pairReport = nlohmann::ordered_json::array();
+    for (const PairProximity& p : pairs)
+        pairReport.push_back({{"first", names[p.first]},
+                              {"second", names[p.second]},
+                              {"separationMm", p.separationMm},
+                              {"separationBoundMm", p.boundMm},
+                              {"colliding", p.colliding()},
+                              {"surfacesIntersect", p.surfacesIntersect},
+                              {"firstInsideSecond", p.firstInsideSecond},
+                              {"secondInsideFirst", p.secondInsideFirst},
+                              {"deepestPointMm", p.deepestPointMm},
+                              {"depthBoundMm", p.depthBoundMm},
+                              {"pointOnFirst", vec(p.pointOnFirst)},
+                              {"pointOnSecond", vec(p.pointOnSecond)}});
+    nlohmann::ordered_json report{
+        {"command", "sdm"},
+        {"device", runtime.device().deviceName},
+        {"maxDistanceMm",
+         args.maxDistanceMm > 0 ? nlohmann::ordered_json(args.maxDistanceMm) : nullptr},
+        {"objects", objects},
+        {"pairs", pairReport},
+        {"mapSeconds", mapSeconds},
+        {"totalSeconds", secondsSince(start)}};
+    writeStreamAtomically((dir / "report.json").string(),
+                          [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+    if (args.json) {
+        std::cout << report.dump(2) << "\n";
+        return;
+    }
+    for (std::size_t o = 0; o < scene.objectCount(); ++o)
+        std::cout << names[o] << ": " << samples[o].texelCount() << " texels of "
+                  << samples[o].atlas.texelMm << " mm (bound " << samples[o].samplingBoundMm()
+                  << " mm), nearest other object at " << objects[o]["minDistanceMm"].dump()
+                  << " mm\n";
+    for (const PairProximity& p : pairs)
+        std::cout << names[p.first] << " - " << names[p.second] << ": "
+                  << (p.colliding() ? "COLLIDING, deepest point " +
+                                          std::to_string(p.deepestPointMm) + " mm inside"
+                                    : "separated by " + std::to_string(p.separationMm) + " mm (-" +
+                                          std::to_string(p.boundMm) + ")")
+                  << "\n";
+    std::cout << "-> " << args.outputDir << "\n";
+}
+
+}  // namespace
+
+void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
+    auto args = std::make_shared<SdmArgs>();
+    CLI::App* cmd = root.add_subcommand(
+        "sdm", "Surface distance maps: distance to and identity of the nearest other mesh");
+    cmd->footer(
+        "For every vertex and atlas texel of each mesh: the distance to the nearest OTHER mesh "
+        "(negative inside a closed one), which mesh that is, and the direction to its closest "
+        "point. Each mesh's atlas maps every triangle to its own texels; every point of the "
+        "surface is within the sampling bound (sqrt(2) x texel size) of a sample, so the maps "
+        "are exact at samples and within that bound everywhere. Writes into DIR: NAME.ply "
+        "(vertex properties distance, quality, nearest_object and colours: MeshLab, Blender), "
+        "NAME.vtk (the same as point arrays plus to_nearest vectors: ParaView, 3D Slicer), "
+        "NAME_distance.tif / NAME_nearest.tif / NAME_direction.tif (32-bit float atlas maps, NaN "
+        "or -1 at unused texels) with PNG previews, and report.json (per mesh and per pair: "
+        "separation with its bound, closest points, collision, deepest penetrating point). "
+        "Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure. See docs/cli.md.");
+    cmd->add_option("meshes", args->inputs, "Two or more meshes (.ply .stl .obj .off), in mm")
+        ->required();
+    cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
+        ->required();
+    cmd->add_option("--size", args->sizeTexels,
+                    "Atlas width and height in texels per mesh; the texel size is the smallest "
+                    "at which all triangles fit")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 8192));
+    cmd->add_option("--max-error", args->maxErrorMm,
+                    "Instead of --size: the sampling bound in mm (texel = bound / sqrt(2)); the "
+                    "atlas grows to fit")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--max-distance", args->maxDistanceMm,
+                    "Clearance band in mm: look no farther (faster); points with nothing "
+                    "closer get distance inf and nearest_object -1 (default: no limit)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--no-images", args->noImages, "Skip the atlas TIFF and PNG maps");
+    cmd->add_flag("--no-pairs", args->noPairs, "Skip the pairwise proximity queries");
+    cmd->add_flag("--json", args->json, "Print the JSON report to stdout too");
+    cmd->callback([args, &global] { runSdm(*args, global); });
+}
+
+}  // namespace dfrecon::app
