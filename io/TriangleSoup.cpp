@@ -3,7 +3,9 @@
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
@@ -81,12 +83,39 @@ class SoupImporter : public IO::BaseImporter {
     TriangleSoup& soup_;
 };
 
+// OpenMesh's ASCII OFF reader does not notice a file that ends before the
+// counts in its header are read, and then hands over uninitialised indices.
+// Checks that enough numbers follow the header: 3 per vertex, at least 4
+// per face. O(file size).
+void checkAsciiOffIsComplete(const std::string& path) {
+    std::ifstream in(path);
+    std::string magic;
+    // Only plain "OFF": its variants (COFF, NOFF, STOFF, nOFF) carry other
+    // numbers per vertex, and OpenMesh reads them as it sees fit.
+    if (!(in >> magic) || magic != "OFF") return;
+    long vertices = 0, faces = 0, edges = 0;
+    if (!(in >> vertices >> faces >> edges)) return;  // binary OFF or odd header: OpenMesh decides
+    if (vertices < 0 || faces < 0)
+        throw InputError(path, 2, "negative vertex or face count in the OFF header");
+    long numbers = 0;
+    std::string token;
+    const long needed = 3 * vertices + 4 * faces;
+    while (numbers < needed && in >> token) ++numbers;
+    if (numbers < needed)
+        throw InputError(path, 0,
+                         "truncated OFF file: the header promises " + std::to_string(vertices) +
+                             " vertices and " + std::to_string(faces) + " faces");
+}
+
 }  // namespace
 
 TriangleSoup readTriangleSoup(const std::string& path) {
     if (!isMeshExtension(path))
         throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".off") checkAsciiOffIsComplete(path);
     TriangleSoup soup;
     SoupImporter importer(soup);
     IO::Options options;
@@ -141,8 +170,12 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     std::size_t refused = 0;
     // OpenMesh reports each refused face on stderr; the count says it once.
     omerr().disable();
-    for (const auto& t : soup.triangles)
-        if (!mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid()) ++refused;
+    for (const auto& t : soup.triangles) {
+        // OpenMesh asserts on a face that repeats a vertex; it is refused too.
+        const bool repeats = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        if (repeats || !mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid())
+            ++refused;
+    }
     omerr().enable();
     if (refusedFaces) *refusedFaces = refused;
     return mesh;

@@ -29,23 +29,14 @@ void checkSizes(const TriangleSoup& soup, const VertexData& data) {
     if (!data.colours.empty()) checkSize("colours", data.colours, n);
 }
 
-// The soup as a half-edge mesh whose vertices are the soup's points in
-// order (toTriMesh keeps them), so per-point arrays line up.
-TriMesh meshOf(const TriangleSoup& soup) {
-    TriMesh mesh;
-    for (const Vec3& p : soup.points) mesh.add_vertex({p.x, p.y, p.z});
-    for (const auto& t : soup.triangles)
-        mesh.add_face(TriMesh::VertexHandle(int(t[0])), TriMesh::VertexHandle(int(t[1])),
-                      TriMesh::VertexHandle(int(t[2])));
-    return mesh;
-}
-
 }  // namespace
 
 void writePlyWithVertexData(const TriangleSoup& soup, const VertexData& data,
                             const std::string& path) {
     checkSizes(soup, data);
-    TriMesh mesh = meshOf(soup);
+    // toTriMesh keeps the points in order, so per-point arrays line up; faces
+    // OpenMesh refuses (non-manifold) are left out of the PLY.
+    TriMesh mesh = toTriMesh(soup);
     OpenMesh::IO::Options flags = OpenMesh::IO::Options::Binary;
     flags += OpenMesh::IO::Options::Custom;
     if (!data.colours.empty()) {

@@ -430,3 +430,68 @@ TEST(Cli, RasterizedSphereHasTheBallsVolume) {
     EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " -o " + out.string()).exitCode, 1);
     EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " --voxel-mm 1 -o x.vdb").exitCode, 1);
 }
+
+TEST(Cli, SdmWritesMapsMeshesAndAPairReport) {
+    // Two closed boxes 3 mm apart and a third far away.
+    const fs::path a = scratch() / "near.off", b = scratch() / "box.off", c = scratch() / "far.off";
+    std::ofstream(a) << "OFF\n8 12 0\n0 0 0\n10 0 0\n10 10 0\n0 10 0\n0 0 10\n10 0 10\n10 10 10\n"
+                        "0 10 10\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+                        "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+    std::string box = slurp(a);
+    auto shifted = [&](double dx) {
+        std::istringstream in(box);
+        std::ostringstream out;
+        std::string line;
+        std::getline(in, line);
+        out << line << "\n";
+        std::getline(in, line);
+        out << line << "\n";
+        for (int k = 0; k < 8; ++k) {
+            double x, y, z;
+            in >> x >> y >> z;
+            out << x + dx << " " << y << " " << z << "\n";
+        }
+        in.get();
+        out << in.rdbuf();
+        return out.str();
+    };
+    std::ofstream(b) << shifted(13);
+    std::ofstream(c) << shifted(100);
+    const fs::path dir = scratch() / "sdm";
+    const Result run = runDfrecon("sdm " + a.string() + " " + b.string() + " " + c.string() +
+                                  " --size 64 --json -o " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["objects"].size(), 3u);
+    EXPECT_TRUE(report["objects"][0]["closed"].get<bool>());
+    const auto& pair = report["pairs"][0];  // near - box
+    EXPECT_EQ(pair["second"], "box");
+    EXPECT_FALSE(pair["colliding"].get<bool>());
+    const double gap = pair["separationMm"], bound = pair["separationBoundMm"];
+    EXPECT_GE(gap, 3 - 1e-9);
+    EXPECT_LE(gap, 3 + bound);
+    EXPECT_NEAR(report["objects"][0]["minDistanceMm"].get<double>(), 3, bound);
+    for (const char* file : {"near.ply", "near.vtk", "near_distance.tif", "near_nearest.tif",
+                             "near_direction.tif", "near_distance.png", "far.ply", "report.json"})
+        EXPECT_TRUE(fs::exists(dir / file)) << file;
+    const std::string ply = slurp(dir / "near.ply");
+    EXPECT_NE(ply.find("property float distance"), std::string::npos);
+    EXPECT_NE(ply.find("property int nearest_object"), std::string::npos);
+    EXPECT_NE(ply.find("property uchar red"), std::string::npos);
+    const std::string vtk = slurp(dir / "near.vtk");
+    EXPECT_NE(vtk.find("SCALARS distance float 1"), std::string::npos);
+    // The near box's vertices facing the other box (x = 10) are 3 mm from it.
+    EXPECT_NE(vtk.find("\n3\n"), std::string::npos);
+
+    // One mesh is a usage error; an unreadable one bad input; neither
+    // leaves outputs behind.
+    const fs::path none = scratch() / "sdm-none";
+    EXPECT_EQ(runDfrecon("sdm " + a.string() + " -o " + none.string()).exitCode, 1);
+    const fs::path broken = scratch() / "broken.off";
+    std::ofstream(broken) << "OFF\n3 1 0\n0 0 0\n";
+    const Result bad =
+        runDfrecon("sdm " + a.string() + " " + broken.string() + " -o " + none.string());
+    EXPECT_EQ(bad.exitCode, 2) << bad.err;
+    EXPECT_NE(bad.err.find("broken.off"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(none));
+}

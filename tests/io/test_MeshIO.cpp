@@ -7,6 +7,7 @@
 
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
+#include "io/TriangleSoup.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;
@@ -81,4 +82,20 @@ TEST(MeshIO, UnreadableInputsAreInputErrors) {
     EXPECT_THROW(readMesh((dir / "x.txt").string()), InputError);
     std::ofstream((dir / "garbage.ply").string()) << "ply\nformat nonsense\n";
     EXPECT_THROW(readMesh((dir / "garbage.ply").string()), InputError);
+}
+
+TEST(MeshIO, TruncatedOffIsAnInputErrorNotGarbage) {
+    // OpenMesh's OFF reader would hand over uninitialised indices here.
+    const fs::path dir = scratchDir("mesh-truncated");
+    const std::string path = (dir / "cut.off").string();
+    std::ofstream(path) << "OFF\n3 1 0\n0 0 0\n";
+    try {
+        readTriangleSoup(path);
+        FAIL() << "a truncated OFF file was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("truncated OFF"), std::string::npos) << e.what();
+    }
+    // Complete files still read, also with the faces on one line.
+    std::ofstream(path) << "OFF\n3 1 0\n0 0 0 1 0 0 0 1 0 3 0 1 2\n";
+    EXPECT_EQ(readTriangleSoup(path).triangles.size(), 1u);
 }
