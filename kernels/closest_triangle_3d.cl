@@ -93,13 +93,16 @@ typedef struct {
 // nearer to p than sqrt(*best2); subtrees whose boxes are no nearer are
 // skipped, so a good starting bound (a hint) prunes most of the tree.
 void search_nearest_triangle(const Surface* s, int root, REAL4 p, REAL* best2, uint* nearest) {
+    // Each entry keeps its box's distance, computed once when pushed.
     int stack[BVH_STACK];
+    REAL stack_d2[BVH_STACK];
     int size = 0;
-    stack[size++] = root;
+    stack[size] = root;
+    stack_d2[size++] = box_distance2(p, s->node_lo[root], s->node_hi[root]);
     while (size > 0) {
-        const int node = stack[--size];
-        if (box_distance2(p, s->node_lo[node], s->node_hi[node]) >= *best2) continue;
-        const int4 link = s->node_links[node];
+        --size;
+        if (stack_d2[size] >= *best2) continue;
+        const int4 link = s->node_links[stack[size]];
         if (link.x < 0) {
             for (int k = 0; k < link.w; ++k) {
                 const uint t = s->order[link.z + k];
@@ -115,10 +118,13 @@ void search_nearest_triangle(const Surface* s, int root, REAL4 p, REAL* best2, u
             continue;
         }
         // Nearer child last, so it is searched first.
-        const bool left_nearer = box_distance2(p, s->node_lo[link.x], s->node_hi[link.x]) <
-                                 box_distance2(p, s->node_lo[link.y], s->node_hi[link.y]);
-        stack[size++] = left_nearer ? link.y : link.x;
-        stack[size++] = left_nearer ? link.x : link.y;
+        const REAL left = box_distance2(p, s->node_lo[link.x], s->node_hi[link.x]);
+        const REAL right = box_distance2(p, s->node_lo[link.y], s->node_hi[link.y]);
+        const bool left_nearer = left < right;
+        stack[size] = left_nearer ? link.y : link.x;
+        stack_d2[size++] = left_nearer ? right : left;
+        stack[size] = left_nearer ? link.x : link.y;
+        stack_d2[size++] = left_nearer ? left : right;
     }
 }
 

@@ -103,12 +103,14 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
     }
     // Median splits keep the depth near log2(T/4), and each pop pushes at
     // most two children, so a fixed stack suffices (no allocation per query).
-    std::array<int, 128> stack;
+    // Each entry keeps its box's distance, computed once when pushed.
+    std::array<std::pair<int, double>, 128> stack;
     std::size_t size = 0;
-    stack[size++] = 0;
+    stack[size++] = {0, nodes_[0].box.distance2(p)};
     while (size > 0) {
-        const Node& node = nodes_[std::size_t(stack[--size])];
-        if (node.box.distance2(p) >= best2) continue;
+        const auto [index, boxDistance2] = stack[--size];
+        if (boxDistance2 >= best2) continue;
+        const Node& node = nodes_[std::size_t(index)];
         if (node.left < 0) {
             for (std::size_t k = 0; k < node.count; ++k) {
                 const std::size_t t = order_[node.first + k];
@@ -124,10 +126,11 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
             continue;
         }
         // Nearer child last, so it is searched first.
-        const Node &l = nodes_[std::size_t(node.left)], &r = nodes_[std::size_t(node.right)];
-        const bool leftNearer = l.box.distance2(p) < r.box.distance2(p);
-        stack[size++] = leftNearer ? node.right : node.left;
-        stack[size++] = leftNearer ? node.left : node.right;
+        const double left = nodes_[std::size_t(node.left)].box.distance2(p),
+                     right = nodes_[std::size_t(node.right)].box.distance2(p);
+        const bool leftNearer = left < right;
+        stack[size++] = leftNearer ? std::pair{node.right, right} : std::pair{node.left, left};
+        stack[size++] = leftNearer ? std::pair{node.left, left} : std::pair{node.right, right};
     }
     if (best.triangle != SIZE_MAX) {
         best.distance = std::sqrt(best2);

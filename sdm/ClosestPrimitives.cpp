@@ -75,15 +75,41 @@ Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, const Hi
     return best;
 }
 
-// Where the hints of a triangle's samples are looked for: its centre and
-// its corners.
-std::array<Vec3, kHints> hintPoints(const TriangleSoup& soup, std::size_t t) {
-    const auto& tri = soup.triangles[t];
-    return {centroid(soup, t), soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]};
-}
-
 std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
     return (std::uint64_t(object) << 32) | std::uint64_t(triangle);
+}
+
+// Where the hints are looked for: the centre of every triangle that holds a
+// sample and each of its corners, every point once (corners are shared by
+// about six triangles), and which four of them serve each sample.
+struct HintPlan {
+    std::vector<SurfaceSample> points;
+    std::vector<std::array<std::uint32_t, kHints>> ofSample;
+};
+
+HintPlan planHints(const SurfaceScene& scene, const std::vector<SurfaceSample>& samples) {
+    HintPlan plan;
+    std::unordered_map<std::uint64_t, std::array<std::uint32_t, kHints>> ofTriangle;
+    std::unordered_map<std::uint64_t, std::uint32_t> ofCorner;
+    plan.ofSample.reserve(samples.size());
+    for (const SurfaceSample& s : samples) {
+        const auto [it, fresh] = ofTriangle.emplace(triangleKey(s.object, s.triangle),
+                                                    std::array<std::uint32_t, kHints>{});
+        if (fresh) {
+            const TriangleSoup& soup = scene.object(s.object);
+            it->second[0] = std::uint32_t(plan.points.size());
+            plan.points.push_back({centroid(soup, s.triangle), s.object, s.triangle});
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = soup.triangles[s.triangle][std::size_t(k)];
+                const auto [corner, first] =
+                    ofCorner.emplace(triangleKey(s.object, v), std::uint32_t(plan.points.size()));
+                if (first) plan.points.push_back({soup.points[v], s.object, s.triangle});
+                it->second[std::size_t(k) + 1] = corner->second;
+            }
+        }
+        plan.ofSample.push_back(it->second);
+    }
+    return plan;
 }
 
 }  // namespace
@@ -91,21 +117,18 @@ std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
 std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& scene,
                                                          const std::vector<SurfaceSample>& samples,
                                                          const DistanceQuery& query) {
-    std::unordered_map<std::uint64_t, Hints> hints;
-    for (const SurfaceSample& s : samples) {
-        const std::uint64_t key = triangleKey(s.object, s.triangle);
-        if (hints.count(key)) continue;
-        Hints& h = hints[key];
-        const auto points = hintPoints(scene.object(s.object), s.triangle);
-        for (int k = 0; k < kHints; ++k)
-            h[std::size_t(k)] =
-                searchObjects(scene, points[std::size_t(k)], s.object, Hints{}, query);
-    }
+    const HintPlan plan = planHints(scene, samples);
+    std::vector<Found> hintAnswers(plan.points.size());
+    for (std::size_t k = 0; k < plan.points.size(); ++k)
+        hintAnswers[k] =
+            searchObjects(scene, plan.points[k].point, plan.points[k].object, Hints{}, query);
     std::vector<ClosestPrimitive> answers(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
         const SurfaceSample& s = samples[k];
-        const Found best = searchObjects(scene, s.point, s.object,
-                                         hints[triangleKey(s.object, s.triangle)], query);
+        Hints hints;
+        for (int h = 0; h < kHints; ++h)
+            hints[std::size_t(h)] = hintAnswers[plan.ofSample[k][std::size_t(h)]];
+        const Found best = searchObjects(scene, s.point, s.object, hints, query);
         if (best.object != SIZE_MAX)
             answers[k] = describe(scene, best.object, best.triangle, s.point);
     }
@@ -183,27 +206,16 @@ class DeviceSceneT final : public DeviceScene {
 
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query) override {
-        // Pass 1: the nearest triangles to each distinct sample triangle's
-        // centre and corners, the hints that bound pass 2 from its start.
-        std::unordered_map<std::uint64_t, std::size_t> slot;
-        std::vector<SurfaceSample> hintSamples;
-        std::vector<std::size_t> slotOfSample(samples.size());
-        for (std::size_t k = 0; k < samples.size(); ++k) {
-            const SurfaceSample& s = samples[k];
-            const auto [it, fresh] =
-                slot.emplace(triangleKey(s.object, s.triangle), hintSamples.size() / kHints);
-            if (fresh)
-                for (const Vec3& p : hintPoints(scene_.object(s.object), s.triangle))
-                    hintSamples.push_back({p, s.object, 0});
-            slotOfSample[k] = it->second;
-        }
+        // Pass 1: the nearest triangles to the centres and corners of the
+        // samples' triangles, the hints that bound pass 2 from its start.
+        const HintPlan plan = planHints(scene_, samples);
         const cl_uint4 none{{CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX}};
         const Launch hints =
-            launch(hintSamples, std::vector<cl_uint4>(hintSamples.size(), none), query);
+            launch(plan.points, std::vector<cl_uint4>(plan.points.size(), none), query);
         std::vector<cl_uint4> sampleHints(samples.size());
         for (std::size_t k = 0; k < samples.size(); ++k)
             for (int h = 0; h < kHints; ++h)
-                sampleHints[k].s[h] = hints.nearest[slotOfSample[k] * kHints + std::size_t(h)];
+                sampleHints[k].s[h] = hints.nearest[plan.ofSample[k][std::size_t(h)]];
         const Launch found = launch(samples, sampleHints, query);
 
         std::vector<ClosestPrimitive> answers(samples.size());
