@@ -78,7 +78,8 @@ inline REAL box_distance2(REAL4 p, REAL4 lo, REAL4 hi) {
 // recon/TriangleBvhArrays.hpp lays them out. Node k has box
 // [node_lo[k], node_hi[k]]; node_links[k] = (left, right, first, count),
 // left < 0 for a leaf whose triangles are order[first .. first+count).
-// triangles[t] = (a, b, c, tag); several hierarchies may share the arrays,
+// triangles[t] = (a, b, c, tag), balls[t] a ball around it (centre, radius
+// in w); several hierarchies may share the arrays,
 // each from its own root node, with the tag naming the object.
 typedef struct {
     __global const REAL4* points;
@@ -87,6 +88,7 @@ typedef struct {
     __global const REAL4* node_hi;
     __global const int4* node_links;
     __global const uint* order;
+    __global const REAL4* balls;  // per triangle: centroid, radius in w
 } Surface;
 
 // Narrows (*best2, *nearest) to the triangles under node `root` that are
@@ -106,6 +108,11 @@ void search_nearest_triangle(const Surface* s, int root, REAL4 p, REAL* best2, u
         if (link.x < 0) {
             for (int k = 0; k < link.w; ++k) {
                 const uint t = s->order[link.z + k];
+                // The triangle's ball: a cheap lower bound (TriangleBvh::Ball).
+                const REAL4 ball = s->balls[t];
+                const REAL4 to_centre = p - ball;
+                const REAL reach = sqrt(dot3(to_centre, to_centre)) - ball.w;
+                if (reach > 0 && reach * reach >= *best2) continue;
                 const int4 tri = s->triangles[t];
                 const REAL4 q = closest_point_on_triangle(p, s->points[tri.x], s->points[tri.y],
                                                           s->points[tri.z]);

@@ -85,11 +85,11 @@ __kernel void collapse_bound(__global const int2* halfedges, uint halfedge_count
                              __global const int4* ring_faces, __global const REAL4* points,
                              __global const int4* triangles, __global const REAL4* node_lo,
                              __global const REAL4* node_hi, __global const int4* node_links,
-                             __global const uint* order, REAL limit, REAL finest,
-                             REAL min_area_ratio, __global float* priority) {
+                             __global const uint* order, __global const REAL4* balls, REAL limit,
+                             REAL finest, REAL min_area_ratio, __global float* priority) {
     const uint h = get_global_id(0);
     if (h >= halfedge_count) return;
-    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order};
+    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
     const int v0 = halfedges[h].x, v1 = halfedges[h].y;
     const REAL4 kept = mesh_points[v1];
     REAL deviation = 0;

@@ -13,13 +13,13 @@ __kernel void closest_primitive(
     __global const REAL4* sample_points, __global const uint* sample_object,
     __global const uint4* sample_hint, uint sample_count, __global const REAL4* points,
     __global const int4* triangles, __global const REAL4* node_lo, __global const REAL4* node_hi,
-    __global const int4* node_links, __global const uint* order, __global const int* object_root,
-    uint object_count, __global const REAL4* pseudo_normals, __global const uchar* object_closed,
-    int target, REAL max_distance2, __global REAL* distance, __global uint* nearest,
-    __global uchar* feature, __global REAL4* closest) {
+    __global const int4* node_links, __global const uint* order, __global const REAL4* balls,
+    __global const int* object_root, uint object_count, __global const REAL4* pseudo_normals,
+    __global const uchar* object_closed, int target, REAL max_distance2, __global REAL* distance,
+    __global uint* nearest, __global uchar* feature, __global REAL4* closest) {
     const uint k = get_global_id(0);
     if (k >= sample_count) return;
-    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order};
+    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
     const REAL4 p = sample_points[k];
     const uint own = sample_object[k];
     REAL best2 = max_distance2;

@@ -46,9 +46,21 @@ Vec3 closestPointOnTriangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, TriangleFeature* fea
 }
 
 TriangleBvh::TriangleBvh(const TriangleSoup& soup)
-    : soup_(soup), boxes_(soup.triangles.size()), order_(soup.triangles.size()) {
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
-        for (std::uint32_t v : soup.triangles[t]) boxes_[t].add(soup.points[v]);
+    : soup_(soup),
+      boxes_(soup.triangles.size()),
+      balls_(soup.triangles.size()),
+      order_(soup.triangles.size()) {
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
+        for (std::uint32_t v : tri) boxes_[t].add(soup.points[v]);
+        Ball& ball = balls_[t];
+        ball.centre =
+            (1.0 / 3.0) * (soup.points[tri[0]] + soup.points[tri[1]] + soup.points[tri[2]]);
+        for (std::uint32_t v : tri)
+            ball.radius = std::max(ball.radius, length(soup.points[v] - ball.centre));
+        // Rounding must never make the bound exceed the true distance.
+        ball.radius = ball.radius * (1 + 1e-12) + 1e-300;
+    }
     std::iota(order_.begin(), order_.end(), 0);
     if (!boxes_.empty()) build(0, boxes_.size());
 }
@@ -114,6 +126,8 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
         if (node.left < 0) {
             for (std::size_t k = 0; k < node.count; ++k) {
                 const std::size_t t = order_[node.first + k];
+                const double reach = length(p - balls_[t].centre) - balls_[t].radius;
+                if (reach > 0 && reach * reach >= best2) continue;
                 const auto& tri = soup_.triangles[t];
                 const Vec3 q = closestPointOnTriangle(p, soup_.points[tri[0]], soup_.points[tri[1]],
                                                       soup_.points[tri[2]]);

@@ -78,6 +78,15 @@ class TriangleBvh {
         std::size_t first = 0, count = 0;  // leaf range in order_
     };
     const std::vector<Node>& nodes() const { return nodes_; }
+    /// Per triangle, a ball around it: its centroid and (slightly more than)
+    /// its farthest corner's distance. |p - centre| - radius is a lower bound
+    /// of p's distance to the triangle, tighter than a leaf's box for points
+    /// far away, so most of a visited leaf's triangles are never measured.
+    struct Ball {
+        Vec3 centre;
+        double radius = 0;
+    };
+    const std::vector<Ball>& balls() const { return balls_; }
     const std::vector<std::size_t>& order() const { return order_; }
     const TriangleSoup& soup() const { return soup_; }
 
@@ -86,6 +95,7 @@ class TriangleBvh {
 
     const TriangleSoup& soup_;
     std::vector<Box3> boxes_;
+    std::vector<Ball> balls_;
     std::vector<Node> nodes_;
     std::vector<std::size_t> order_;
 };

@@ -19,6 +19,7 @@ struct TriangleBvhArrays {
     std::vector<Real4> nodeLo, nodeHi;
     std::vector<cl_int4> nodeLinks;  // (left, right, first, count); left < 0 for a leaf
     std::vector<cl_uint> order;      // leaf ranges, as global triangle indices
+    std::vector<Real4> balls;        // per triangle: centroid, radius in w
 
     static Real4 real4(Vec3 p) {
         using Real = std::remove_reference_t<decltype(Real4{}.s[0])>;
@@ -49,6 +50,11 @@ struct TriangleBvhArrays {
                                   orderBase + int(n.first), int(n.count)}});
         }
         for (std::size_t t : bvh.order()) order.push_back(cl_uint(triangleBase + int(t)));
+        for (const TriangleBvh::Ball& b : bvh.balls()) {
+            Real4 r = real4(b.centre);
+            r.s[3] = std::remove_reference_t<decltype(r.s[3])>(b.radius);
+            balls.push_back(r);
+        }
         return bvh.nodes().empty() ? -1 : nodeBase;
     }
 };

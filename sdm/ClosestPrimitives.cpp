@@ -196,6 +196,7 @@ class DeviceSceneT final : public DeviceScene {
         nodeHi_ = ocl::DeviceBuffer<Real4>(runtime, arrays.nodeHi);
         nodeLinks_ = ocl::DeviceBuffer<cl_int4>(runtime, arrays.nodeLinks);
         order_ = ocl::DeviceBuffer<cl_uint>(runtime, arrays.order);
+        balls_ = ocl::DeviceBuffer<Real4>(runtime, arrays.balls);
         objectRoot_ = ocl::DeviceBuffer<cl_int>(runtime, roots_);
         normals_ = ocl::DeviceBuffer<Real4>(runtime, normals);
         closed_ = ocl::DeviceBuffer<cl_uchar>(runtime, closed);
@@ -271,6 +272,7 @@ class DeviceSceneT final : public DeviceScene {
             kernel.setArg(a++, nodeHi_.get());
             kernel.setArg(a++, nodeLinks_.get());
             kernel.setArg(a++, order_.get());
+            kernel.setArg(a++, balls_.get());
             kernel.setArg(a++, objectRoot_.get());
             kernel.setArg(a++, cl_uint(roots_.size()));
             kernel.setArg(a++, normals_.get());
@@ -298,7 +300,7 @@ class DeviceSceneT final : public DeviceScene {
     const cl::Program* program_ = nullptr;
     std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
     std::vector<cl_int> roots_;
-    ocl::DeviceBuffer<Real4> points_, nodeLo_, nodeHi_, normals_;
+    ocl::DeviceBuffer<Real4> points_, nodeLo_, nodeHi_, balls_, normals_;
     ocl::DeviceBuffer<cl_int4> triangles_, nodeLinks_;
     ocl::DeviceBuffer<cl_uint> order_;
     ocl::DeviceBuffer<cl_int> objectRoot_;

@@ -36,7 +36,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
 
     ocl::DeviceBuffer<cl_int2> dHalfedges(runtime, halfedges);
     ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints), dPoints(runtime, surface.points),
-        dLo(runtime, surface.nodeLo), dHi(runtime, surface.nodeHi);
+        dLo(runtime, surface.nodeLo), dHi(runtime, surface.nodeHi), dBalls(runtime, surface.balls);
     ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst), dOrder(runtime, surface.order);
     ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces),
         dTriangles(runtime, surface.triangles), dLinks(runtime, surface.nodeLinks);
@@ -60,6 +60,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         kernel.setArg(a++, dHi.get());
         kernel.setArg(a++, dLinks.get());
         kernel.setArg(a++, dOrder.get());
+        kernel.setArg(a++, dBalls.get());
         kernel.setArg(a++, Real(limits.limitMm));
         kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
         kernel.setArg(a++, Real(kSliverAreaRatio));
