@@ -26,6 +26,9 @@ echo
 echo "\$ dfrecon rasterize out/demo/two-rois.dcm --roi 1 --voxel-mm 1 -o out/demo/roi1.nrrd   # a label map for 3D Slicer"
 "$dfrecon" rasterize out/demo/two-rois.dcm --roi 1 --voxel-mm 1 -o out/demo/roi1.nrrd
 echo
+echo "\$ dfrecon sdm out/demo/two-rois/*.ply -o out/demo/sdm   # how close are the two ROIs, everywhere"
+"$dfrecon" sdm out/demo/two-rois/*.ply -o out/demo/sdm --size 256
+echo
 echo "\$ dfrecon check out/demo/y.ply"
 "$dfrecon" check out/demo/y.ply
 echo
