@@ -88,16 +88,28 @@ Frame computeFrame(const std::vector<ObjectSamples>& samples, const ClosestPrimi
 }
 
 // Largest |value - brute| over the subset, where the brute force found an
-// object (within the band); `value(o, k)` is the system's distance.
+// object (within the band) and the system a finite value; `missed` counts
+// those where the system found none.
+struct Error {
+    double maxMm = 0;
+    std::size_t missed = 0;
+};
+
 template <class Value>
-double maxError(const std::vector<std::vector<std::size_t>>& subset, const Frame& brute,
-                Value&& value) {
-    double worst = 0;
+Error errorAgainst(const std::vector<std::vector<std::size_t>>& subset, const Frame& brute,
+                   Value&& value) {
+    Error e;
     for (std::size_t o = 0; o < subset.size(); ++o)
-        for (std::size_t i = 0; i < subset[o].size(); ++i)
-            if (brute[o][i].object >= 0)
-                worst = std::max(worst, std::abs(value(o, subset[o][i]) - brute[o][i].distanceMm));
-    return worst;
+        for (std::size_t i = 0; i < subset[o].size(); ++i) {
+            if (brute[o][i].object < 0) continue;
+            const double v = value(o, subset[o][i]);
+            if (!std::isfinite(v)) {
+                ++e.missed;
+                continue;
+            }
+            e.maxMm = std::max(e.maxMm, std::abs(v - brute[o][i].distanceMm));
+        }
+    return e;
 }
 
 // The volumetric baseline: one narrow-band level set per object.
@@ -205,13 +217,14 @@ int benchSdm(const std::string& device) {
         Frame frame;
         const double seconds =
             bestSeconds(3, [&] { frame = computeFrame(samples, onDevice, query); });
-        const double kernelError = maxError(
+        const Error kernelError = errorAgainst(
             subset, brute, [&](std::size_t o, std::size_t k) { return frame[o][k].distanceMm; });
         double volumeSeconds = 0;
         nlohmann::json out = line(caseName, "dfrecon");
         out.update(nlohmann::json{{"seconds", seconds},
                                   {"setup_seconds", setupSeconds},
-                                  {"max_err_mm", kernelError},
+                                  {"max_err_mm", kernelError.maxMm},
+                                  {"missed_samples", kernelError.missed},
                                   {"bound_mm", boundMm},
                                   {"device", runtime.device().deviceName}});
         std::vector<nlohmann::json> lines{out};
@@ -221,12 +234,13 @@ int benchSdm(const std::string& device) {
             const double cpuSeconds =
                 bestSeconds(1, [&] { cpu = computeFrame(samples, reference, query); });
             out = line(caseName, "dfrecon-cpu");
-            out.update(nlohmann::json{{"seconds", cpuSeconds},
-                                      {"max_err_mm", maxError(subset, brute,
-                                                              [&](std::size_t o, std::size_t k) {
-                                                                  return cpu[o][k].distanceMm;
-                                                              })},
-                                      {"bound_mm", boundMm}});
+            out.update(nlohmann::json{
+                {"seconds", cpuSeconds},
+                {"max_err_mm",
+                 errorAgainst(subset, brute,
+                              [&](std::size_t o, std::size_t k) { return cpu[o][k].distanceMm; })
+                     .maxMm},
+                {"bound_mm", boundMm}});
             lines.push_back(out);
         } else {
             // The volumetric baseline at dfrecon's accuracy: voxel = bound.
@@ -243,15 +257,16 @@ int benchSdm(const std::string& device) {
                         .count() -
                     buildSeconds;
             });
+            const Error volumeError = errorAgainst(
+                subset, brute,
+                [&](std::size_t o, std::size_t k) { return volumetric[o][k].distanceMm; });
             out = line(caseName, "openvdb-meshToVolume");
-            out.update(nlohmann::json{
-                {"seconds", volumeSeconds},
-                {"build_seconds", buildSeconds},
-                {"sample_seconds", sampleSeconds},
-                {"voxel_mm", boundMm},
-                {"max_err_mm", maxError(subset, brute, [&](std::size_t o, std::size_t k) {
-                     return volumetric[o][k].distanceMm;
-                 })}});
+            out.update(nlohmann::json{{"seconds", volumeSeconds},
+                                      {"build_seconds", buildSeconds},
+                                      {"sample_seconds", sampleSeconds},
+                                      {"voxel_mm", boundMm},
+                                      {"max_err_mm", volumeError.maxMm},
+                                      {"missed_samples", volumeError.missed}});
             lines.push_back(out);
             lines[0]["speedup_vs_volumetric"] = volumeSeconds / seconds;
         }
