@@ -15,7 +15,10 @@
 //                       dense grid of the whole scene
 // max_err_mm: the largest |distance - brute force| at the subset's samples
 // (for dfrecon: the kernel's error at its samples; the map's error between
-// samples is at most bound_mm, the atlas's Lemma 2 bound).
+// samples is at most bound_mm, the atlas's Lemma 2 bound). For the
+// volumetric baseline also max_unsigned_err_mm (of |distance|) and
+// wrong_sign_samples: OpenVDB's sign comes from flooding the band's
+// topology, which can take an exterior pocket for interior.
 #include <iostream>
 
 #include <openvdb/tools/Interpolation.h>
@@ -92,7 +95,8 @@ Frame computeFrame(const std::vector<ObjectSamples>& samples, const ClosestPrimi
 // those where the system found none.
 struct Error {
     double maxMm = 0;
-    std::size_t missed = 0;
+    double maxUnsignedMm = 0;  // of |distance|: leaves out sign errors
+    std::size_t missed = 0, wrongSign = 0;
 };
 
 template <class Value>
@@ -108,6 +112,10 @@ Error errorAgainst(const std::vector<std::vector<std::size_t>>& subset, const Fr
                 continue;
             }
             e.maxMm = std::max(e.maxMm, std::abs(v - brute[o][i].distanceMm));
+            e.maxUnsignedMm =
+                std::max(e.maxUnsignedMm, std::abs(std::abs(v) - std::abs(brute[o][i].distanceMm)));
+            e.wrongSign +=
+                (v < 0) != (brute[o][i].distanceMm < 0) && std::abs(brute[o][i].distanceMm) > 1e-9;
         }
     return e;
 }
@@ -266,6 +274,8 @@ int benchSdm(const std::string& device) {
                                       {"sample_seconds", sampleSeconds},
                                       {"voxel_mm", boundMm},
                                       {"max_err_mm", volumeError.maxMm},
+                                      {"max_unsigned_err_mm", volumeError.maxUnsignedMm},
+                                      {"wrong_sign_samples", volumeError.wrongSign},
                                       {"missed_samples", volumeError.missed}});
             lines.push_back(out);
             lines[0]["speedup_vs_volumetric"] = volumeSeconds / seconds;
