@@ -3,7 +3,11 @@
 // into C++ (fast marching, and the C++ reference of the fast iterative
 // method), and kernels/eikonal_fim.cl is built after it. One text, so the
 // solvers compute the same thing step for step. Plain C: needs REAL
-// (double or float) and EIKONAL_FN (a function specifier) defined.
+// (double or float) defined; EIKONAL_FN is the function specifier.
+
+#ifndef EIKONAL_FN
+#define EIKONAL_FN inline
+#endif
 
 #ifdef __OPENCL_VERSION__
 // No fused multiply-adds: the C++ build has none either (ISO C++ mode,
@@ -21,12 +25,11 @@
 // lb = |CB|, cos_c = cosine of the angle at C: the triangle lives in its own
 // plane, so an unfolded ("virtual") triangle works as well as a real one.
 //
-// Across the face (only when across_face is set: both times known and from
-// the same front): T linear on the triangle with |grad T| = slowness gives a
-// quadratic in T(C); its larger root counts only if the characteristic
-// reaching C comes from inside the angle at C (upwind condition), i.e. from
-// a point of segment AB. Otherwise, or when it is slower, the front comes
-// along an edge (Dijkstra-like): ta + la·slowness or tb + lb·slowness.
+// Across the face (only when across_face is set: both times known): T
+// linear on the triangle with |grad T| = slowness gives a quadratic in T(C);
+// its larger root counts only if the characteristic reaching C comes from
+// inside the angle at C (upwind condition), i.e. from a point of segment AB.
+// Otherwise, or when it is slower, the front comes along an edge (Dijkstra-like): ta + la·slowness or tb + lb·slowness.
 //
 // Writes which way won to *upwind and, for EIKONAL_VIA_FACE, where the
 // characteristic crosses AB to *weight_b (0 at A, 1 at B; 0 or 1 for the
@@ -73,8 +76,12 @@ EIKONAL_FN REAL eikonal_triangle_update(REAL ta, REAL tb, REAL la, REAL lb, REAL
     return best;
 }
 
-// The label a vertex takes from an update: that of the vertex the front came
-// from (across the face both corners carry the same label).
-EIKONAL_FN int eikonal_upwind_label(int upwind, int label_a, int label_b) {
+// The label a vertex takes from an update: that of the corner the front came
+// from; across the face, of the corner nearer to where the characteristic
+// crosses AB. Labels never change times (fronts of different sources combine
+// like one front), so the discrete solution is unique and both solvers reach
+// the same one.
+EIKONAL_FN int eikonal_upwind_label(int upwind, REAL weight_b, int label_a, int label_b) {
+    if (upwind == EIKONAL_VIA_FACE) return weight_b > (REAL)0.5 ? label_b : label_a;
     return upwind == EIKONAL_VIA_B ? label_b : label_a;
 }

@@ -11,20 +11,23 @@
 
 namespace dfrecon {
 
-FastMarching::FastMarching(const UpdateStencils& stencils, const std::vector<double>& speed)
-    : stencils_(stencils), slowness_(std::size_t(stencils.vertexCount()), 1.0) {
-    if (speed.empty()) return;
-    if (speed.size() != slowness_.size())
+std::vector<double> slownessFromSpeed(const std::vector<double>& speed, int vertexCount) {
+    std::vector<double> slowness(std::size_t(vertexCount), 1.0);
+    if (speed.empty()) return slowness;
+    if (speed.size() != slowness.size())
         throw std::invalid_argument("speed has " + std::to_string(speed.size()) +
-                                    " values for " + std::to_string(slowness_.size()) +
-                                    " vertices");
+                                    " values for " + std::to_string(vertexCount) + " vertices");
     for (std::size_t v = 0; v < speed.size(); ++v) {
         if (!(speed[v] > 0) || !std::isfinite(speed[v]))
             throw std::invalid_argument("speed at vertex " + std::to_string(v) +
                                         " is not a positive number");
-        slowness_[v] = 1.0 / speed[v];
+        slowness[v] = 1.0 / speed[v];
     }
+    return slowness;
 }
+
+FastMarching::FastMarching(const UpdateStencils& stencils, const std::vector<double>& speed)
+    : stencils_(stencils), slowness_(slownessFromSpeed(speed, stencils.vertexCount())) {}
 
 GeodesicField FastMarching::solve(const std::vector<GeodesicSource>& sources,
                                   const MarchOptions& options) const {
@@ -40,7 +43,7 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
         throw std::invalid_argument("field does not match the mesh");
     std::vector<double>& time = field.time;
     std::vector<int>& label = field.label;
-    // Settled: final in this march; only settled times enter updates.
+    // Settled: final in this march (no longer updated).
     std::vector<char> settled(n, 0);
     using Entry = std::pair<double, int>;
     std::vector<Entry> heap;
@@ -84,13 +87,16 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
             if (settled[c]) continue;
             const UpdateStencil& s = stencils[std::size_t(use.stencil)];
             const std::size_t a = std::size_t(s.a), b = std::size_t(s.b);
-            const bool knownA = settled[a], knownB = settled[b];
+            // Known: no later than v, so final (in a march over an older
+            // field too, whose untouched times are final where they are
+            // earlier than the front).
+            const bool knownA = time[a] <= t, knownB = time[b] <= t;
             const TriangleUpdate u = triangleUpdate(
                 knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached, s.lengthA,
-                s.lengthB, s.cosAngle, slowness_[c], knownA && knownB && label[a] == label[b]);
+                s.lengthB, s.cosAngle, slowness_[c], knownA && knownB);
             if (!(u.time < time[c])) continue;
             time[c] = u.time;
-            label[c] = upwindLabel(u.upwind, label[a], label[b]);
+            label[c] = upwindLabel(u, label[a], label[b]);
             if (options.upwind) {
                 UpwindRecord& r = (*options.upwind)[c];
                 r.a = u.upwind == Upwind::AlongB ? s.b : s.a;

@@ -12,9 +12,10 @@
 //
 // The local update is kernels/eikonal_update.cl (shared with the OpenCL
 // solver) on the stencils of UpdateStencils, so obtuse angles are unfolded
-// there. Fronts with different labels do not combine across a triangle
-// (each crosses it along its own edges), so times near cell borders are
-// those of the front that owns the vertex.
+// there. Fronts of different sources combine like one front (T is the
+// distance to the nearest source); labels follow the upwind corner and never
+// change times, so the discrete solution is unique and the fast iterative
+// method (EikonalFim) reaches the same one.
 //
 // Complexity: O(S log N) for S stencils (≈ 3 per triangle, 4 per unfolded
 // obtuse corner) and N vertices: each stencil is evaluated twice, each
@@ -74,6 +75,8 @@ class FastMarching {
 
     const UpdateStencils& stencils() const { return stencils_; }
     int vertexCount() const { return stencils_.vertexCount(); }
+    /// 1/F per vertex.
+    const std::vector<double>& slowness() const { return slowness_; }
 
     /// A fresh field from `sources` (vertex indices must be valid; a vertex
     /// may appear once).
@@ -91,6 +94,10 @@ class FastMarching {
     const UpdateStencils& stencils_;
     std::vector<double> slowness_;
 };
+
+/// 1/F per vertex for `speed` (empty: all 1). Throws std::invalid_argument
+/// for a wrong size or a speed that is not a positive finite number.
+std::vector<double> slownessFromSpeed(const std::vector<double>& speed, int vertexCount);
 
 /// The vertex with the largest finite time (ties: the lowest index), or -1.
 int farthestVertex(const GeodesicField& field);

@@ -40,8 +40,8 @@ inline TriangleUpdate triangleUpdate(double ta, double tb, double la, double lb,
     return result;
 }
 
-inline int upwindLabel(Upwind upwind, int labelA, int labelB) {
-    return eikonal::eikonal_upwind_label(int(upwind), labelA, labelB);
+inline int upwindLabel(const TriangleUpdate& update, int labelA, int labelB) {
+    return eikonal::eikonal_upwind_label(int(update.upwind), update.weightB, labelA, labelB);
 }
 
 }  // namespace dfrecon
