@@ -16,7 +16,8 @@
 //                    next list becomes the active one
 
 // The best time at v from all its stencils with the current times, and the
-// label that comes with it. Across a face when both corners are reached.
+// label that comes with it. Across a face when both corners are reached
+// and carry the same label (as in fast marching).
 inline REAL fim_solve(int v, __global const int* stencil_first, __global const int2* stencil_corners,
                       __global const REAL4* stencil_shape, __global const REAL* slowness,
                       __global const REAL* time, __global const int* label, int* best_label) {
@@ -31,10 +32,11 @@ inline REAL fim_solve(int v, __global const int* stencil_first, __global const i
         int via;
         REAL weight;
         const REAL t = eikonal_triangle_update(ta, tb, shape.x, shape.y, shape.z, p,
-                                               ta < INFINITY && tb < INFINITY, &via, &weight);
+                                               ta < INFINITY && tb < INFINITY && la == lb, &via,
+                                               &weight);
         if (t < best) {
             best = t;
-            best_l = eikonal_upwind_label(via, weight, la, lb);
+            best_l = eikonal_upwind_label(via, la, lb);
         }
     }
     *best_label = best_l;

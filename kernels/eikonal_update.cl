@@ -25,7 +25,8 @@
 // lb = |CB|, cos_c = cosine of the angle at C: the triangle lives in its own
 // plane, so an unfolded ("virtual") triangle works as well as a real one.
 //
-// Across the face (only when across_face is set: both times known): T
+// Across the face (only when across_face is set: both times known and from
+// the same front, see eikonal_upwind_label): T
 // linear on the triangle with |grad T| = slowness gives a quadratic in T(C);
 // its larger root counts only if the characteristic reaching C comes from
 // inside the angle at C (upwind condition), i.e. from a point of segment AB.
@@ -77,11 +78,12 @@ EIKONAL_FN REAL eikonal_triangle_update(REAL ta, REAL tb, REAL la, REAL lb, REAL
 }
 
 // The label a vertex takes from an update: that of the corner the front came
-// from; across the face, of the corner nearer to where the characteristic
-// crosses AB. Labels never change times (fronts of different sources combine
-// like one front), so the discrete solution is unique and both solvers reach
-// the same one.
-EIKONAL_FN int eikonal_upwind_label(int upwind, REAL weight_b, int label_a, int label_b) {
-    if (upwind == EIKONAL_VIA_FACE) return weight_b > (REAL)0.5 ? label_b : label_a;
+// from. Callers combine corners across a face only when they carry the same
+// label: where fronts of different sources collide, a plane through one
+// corner of each would describe the collision point moving along the
+// border, faster than either front (two fronts meeting at 90° give a plane
+// wave of speed √2 along the diagonal), and distances near the farthest
+// points from all sources would come out far too small.
+EIKONAL_FN int eikonal_upwind_label(int upwind, int label_a, int label_b) {
     return upwind == EIKONAL_VIA_B ? label_b : label_a;
 }

@@ -43,8 +43,14 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
         throw std::invalid_argument("field does not match the mesh");
     std::vector<double>& time = field.time;
     std::vector<int>& label = field.label;
-    // Settled: final in this march (no longer updated).
-    std::vector<char> settled(n, 0);
+    // Untouched: a time this march has not changed (unreached, or from an
+    // older march); Improved: lowered by this march, in the heap; Revisit: an
+    // untouched vertex next to an improved one, queued at its own time so
+    // that the stencils joining it to the improved one are evaluated once
+    // both are known (the march over an older field needs this; a fresh
+    // field has no finite untouched times); Settled: final in this march.
+    enum State : char { Untouched, Improved, Revisit, Settled };
+    std::vector<char> state(n, Untouched);
     using Entry = std::pair<double, int>;
     std::vector<Entry> heap;
     heap.reserve(1024);
@@ -61,6 +67,7 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
         time[std::size_t(s.vertex)] = s.time;
         label[std::size_t(s.vertex)] = s.label;
         if (options.upwind) (*options.upwind)[std::size_t(s.vertex)] = UpwindRecord{};
+        state[std::size_t(s.vertex)] = Improved;
         push(s.time, s.vertex);
     }
     std::size_t stopRemaining = 0;
@@ -76,24 +83,31 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
         const auto [t, v] = heap.back();
         heap.pop_back();
         const std::size_t vi = std::size_t(v);
-        if (settled[vi] || t > time[vi]) continue;  // stale entry
+        if (state[vi] == Settled || t > time[vi]) continue;  // stale entry
         if (t > options.maxTime) break;
-        settled[vi] = 1;
+        const bool improved = state[vi] == Improved;
+        state[vi] = Settled;
         if (options.finalOrder) options.finalOrder->push_back(v);
         if (options.stopWhenFinal && (*options.stopWhenFinal)[vi] && --stopRemaining == 0) break;
         for (int k = useFirst[vi]; k < useFirst[vi + 1]; ++k) {
             const StencilUse use = uses[std::size_t(k)];
             const std::size_t c = std::size_t(use.target);
-            if (settled[c]) continue;
+            if (state[c] == Settled) continue;
             const UpdateStencil& s = stencils[std::size_t(use.stencil)];
             const std::size_t a = std::size_t(s.a), b = std::size_t(s.b);
+            const std::size_t other = a == vi ? b : a;
+            if (improved && state[other] == Untouched && time[other] > t &&
+                time[other] < kUnreached) {
+                state[other] = Revisit;
+                push(time[other], int(other));
+            }
             // Known: no later than v, so final (in a march over an older
             // field too, whose untouched times are final where they are
             // earlier than the front).
             const bool knownA = time[a] <= t, knownB = time[b] <= t;
             const TriangleUpdate u = triangleUpdate(
                 knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached, s.lengthA,
-                s.lengthB, s.cosAngle, slowness_[c], knownA && knownB);
+                s.lengthB, s.cosAngle, slowness_[c], knownA && knownB && label[a] == label[b]);
             if (!(u.time < time[c])) continue;
             time[c] = u.time;
             label[c] = upwindLabel(u, label[a], label[b]);
@@ -103,6 +117,7 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
                 r.b = u.upwind == Upwind::AlongA ? s.a : s.b;
                 r.weightB = u.upwind == Upwind::AcrossFace ? u.weightB : 0.0;
             }
+            state[c] = Improved;
             push(u.time, use.target);
         }
     }

@@ -12,10 +12,10 @@
 //
 // The local update is kernels/eikonal_update.cl (shared with the OpenCL
 // solver) on the stencils of UpdateStencils, so obtuse angles are unfolded
-// there. Fronts of different sources combine like one front (T is the
-// distance to the nearest source); labels follow the upwind corner and never
-// change times, so the discrete solution is unique and the fast iterative
-// method (EikonalFim) reaches the same one.
+// there. Labels follow the upwind corner, and fronts of different labels
+// never combine across a triangle (each crosses it along its own edges;
+// kernels/eikonal_update.cl says why), so T is the distance to the nearest
+// source without the collapse that mixing colliding fronts causes.
 //
 // Complexity: O(S log N) for S stencils (≈ 3 per triangle, 4 per unfolded
 // obtuse corner) and N vertices: each stencil is evaluated twice, each

@@ -31,9 +31,10 @@ struct VoronoiRegions {
     /// Total length of the interpolated borders between regions, mm.
     double borderLength = 0;
 
-    /// 4π·area / perimeter² (1 for a flat disk, smaller for elongated or
-    /// ragged regions); 0 for a region with no perimeter (a closed surface
-    /// in one region).
+    /// 4π·area / perimeter²: 1 for a flat disk, smaller for elongated or
+    /// ragged regions (on positively curved surfaces a cap exceeds 1 a
+    /// little); 0 for a region with no perimeter (a closed surface in one
+    /// region).
     double compactness(int region) const;
 };
 

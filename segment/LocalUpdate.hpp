@@ -41,7 +41,7 @@ inline TriangleUpdate triangleUpdate(double ta, double tb, double la, double lb,
 }
 
 inline int upwindLabel(const TriangleUpdate& update, int labelA, int labelB) {
-    return eikonal::eikonal_upwind_label(int(update.upwind), update.weightB, labelA, labelB);
+    return eikonal::eikonal_upwind_label(int(update.upwind), labelA, labelB);
 }
 
 }  // namespace dfrecon

@@ -1,0 +1,43 @@
+#pragma once
+// Helpers the segment tests share: meshes with their reference distances.
+#include <cmath>
+#include <vector>
+
+#include "segment/MeshGraph.hpp"
+#include "segment/SampleSurfaces.hpp"
+
+namespace dfrecon::testing {
+
+/// Great-circle distance on the sphere of radius r centred at the origin.
+inline double greatCircle(Vec3 a, Vec3 b, double r) {
+    const double c = dot(a, b) / (r * r);
+    return r * std::acos(std::max(-1.0, std::min(1.0, c)));
+}
+
+/// The vertex nearest to p.
+inline int nearestVertex(const MeshGraph& graph, Vec3 p) {
+    int best = 0;
+    for (int v = 1; v < graph.vertexCount(); ++v)
+        if (length(graph.point(v) - p) < length(graph.point(best) - p)) best = v;
+    return best;
+}
+
+struct ErrorStats {
+    double mean = 0, max = 0;
+};
+
+/// |time − reference| over the vertices, mean and max.
+template <class Reference>
+ErrorStats errorAgainst(const MeshGraph& graph, const std::vector<double>& time,
+                        Reference&& reference) {
+    ErrorStats e;
+    for (int v = 0; v < graph.vertexCount(); ++v) {
+        const double d = std::abs(time[std::size_t(v)] - reference(graph.point(v)));
+        e.mean += d;
+        e.max = std::max(e.max, d);
+    }
+    e.mean /= graph.vertexCount();
+    return e;
+}
+
+}  // namespace dfrecon::testing
