@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
     addSimplifyCommand(root, global);
     addConvertCommand(root, global);
     addRasterizeCommand(root, global);
+    addSegmentCommand(root, global);
+    addGeodesicCommand(root, global);
     addCheckCommand(root, global);
 
     try {

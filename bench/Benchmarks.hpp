@@ -13,6 +13,7 @@ int benchSlicesIO();
 int benchRecon(const std::string& device);
 int benchSimplify(const std::string& device);
 int benchRtStruct();
+int benchSegment(const std::string& device);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

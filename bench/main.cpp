@@ -9,14 +9,16 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|segment|all [--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
         "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"
         "  simplify   error-bounded simplification vs OpenMesh's ModQuadric+ModHausdorff\n"
         "  slices-io  .slices reading and writing vs a bare iostream read\n"
         "  rtstruct   RTSTRUCT reading and writing (plastimatch fixtures) vs DCMTK's dcmrt "
-        "parse\n";
+        "parse\n"
+        "  segment    geodesic distances (fast marching, OpenCL fast iterative method) on spheres "
+        "and libcgal-demo meshes; geodesic Lloyd segmentation\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -30,9 +32,10 @@ int main(int argc, char** argv) {
     if (suite == "recon") return benchRecon(device);
     if (suite == "simplify") return benchSimplify(device);
     if (suite == "rtstruct") return benchRtStruct();
+    if (suite == "segment") return benchSegment(device);
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
-               benchSimplify(device);
+               benchSimplify(device) | benchSegment(device);
     std::cerr << usage;
     return 1;
 }

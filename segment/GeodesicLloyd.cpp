@@ -184,6 +184,7 @@ LloydResult geodesicLloyd(const MeshGraph& graph, const FastMarching& marching,
         regionsWithDisks();
         result.energy.push_back(fieldEnergy(result.field, vertexAreas));
         result.iterations = iteration;
+        if (options.onIteration) options.onIteration(iteration, options.maxIterations);
         if (result.field.label == labelsBefore) {
             result.converged = true;
             break;

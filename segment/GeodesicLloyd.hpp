@@ -28,6 +28,7 @@
 // two) gets a new seed at its vertex farthest from its seed (where the front
 // collapsed onto itself), and the regions are recomputed; at most
 // maxAddedSeeds seeds are added in all.
+#include <functional>
 #include <vector>
 
 #include "segment/FastMarching.hpp"
@@ -41,6 +42,8 @@ struct LloydOptions {
     int centerSteps = 8;        // gradient-descent steps per region and iteration
     bool diskConstraint = true;
     int maxAddedSeeds = -1;     // seeds the disk constraint may add; -1: the initial count
+    /// Called after each iteration with (iteration, maxIterations).
+    std::function<void(int, int)> onIteration;
 };
 
 struct LloydResult {

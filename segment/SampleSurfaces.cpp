@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -69,6 +70,19 @@ TriangleSoup geodesicSphere(int frequency, double radius) {
                 soup.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
                 if (i + j + 1 < n) soup.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
             }
+    }
+    return soup;
+}
+
+TriangleSoup jitteredGeodesicSphere(int frequency, double jitter, unsigned seed, double radius) {
+    TriangleSoup soup = geodesicSphere(frequency, radius);
+    // The icosahedron's edge is 1.05 radii; the sphere's edges about that / frequency.
+    const double edge = 1.1 * radius / frequency;
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> offset(-jitter * edge, jitter * edge);
+    for (Vec3& p : soup.points) {
+        p = p + Vec3{offset(random), offset(random), offset(random)};
+        p = (radius / length(p)) * p;
     }
     return soup;
 }

@@ -13,6 +13,13 @@ namespace dfrecon {
 /// (no obtuse angles), consistently oriented outwards. frequency ≥ 1.
 TriangleSoup geodesicSphere(int frequency, double radius = 1.0);
 
+/// geodesicSphere with every vertex moved by a uniform random offset of up
+/// to `jitter` × the mean edge length along each axis, then put back on the
+/// sphere: irregular, with obtuse triangles (7.5 % of the corners for
+/// jitter 0.35), like a scanned surface. Same `seed`, same mesh.
+TriangleSoup jitteredGeodesicSphere(int frequency, double jitter, unsigned seed = 1,
+                                    double radius = 1.0);
+
 /// The surface of the cube [-size/2, size/2]³ with each face an n × n grid of
 /// squares, each cut into two right triangles along the same diagonal:
 /// 6n² + 2 vertices. n ≥ 1.

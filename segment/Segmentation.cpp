@@ -1,5 +1,6 @@
 #include "segment/Segmentation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -27,8 +28,14 @@ Segmentation segmentMesh(const MeshGraph& graph, const SegmentOptions& options) 
         const FastMarching sampling(stencils, curvatureSpeed(graph, samplingKind, weight));
         result.initialSeeds = farthestPointSampling(sampling, options.regions).vertices;
     }
+    if (options.progress) options.progress(0.1);
     const FastMarching regionMetric(stencils, curvatureSpeed(graph, options.speed, weight));
-    LloydResult lloyd = geodesicLloyd(graph, regionMetric, result.initialSeeds, options.lloyd);
+    LloydOptions lloydOptions = options.lloyd;
+    if (options.progress)
+        lloydOptions.onIteration = [&](int iteration, int most) {
+            options.progress(0.1 + 0.9 * iteration / std::max(most, 1));
+        };
+    LloydResult lloyd = geodesicLloyd(graph, regionMetric, result.initialSeeds, lloydOptions);
     const std::vector<RegionTopology> topology =
         regionTopology(graph, lloyd.regions.faceRegion, int(lloyd.seeds.size()));
     for (std::size_t i = 0; i < lloyd.seeds.size(); ++i) {

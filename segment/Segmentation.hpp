@@ -4,6 +4,7 @@
 // speed (§3.1: "edge repulsive", so seeds do not crowd on creases), regions
 // and geodesic Lloyd iterations with the region speed ("edge attractive",
 // so borders settle on creases), topological-disk constraint throughout.
+#include <functional>
 #include <vector>
 
 #include "segment/GeodesicLloyd.hpp"
@@ -22,6 +23,8 @@ struct SegmentOptions {
     double curvatureWeightMm = 0;  // e and m of eq. 3; ≤ 0: defaultCurvatureWeight(regions)
     LloydOptions lloyd;
     UnfoldOptions unfold;
+    /// Called with the fraction done (0..1) after sampling and each iteration.
+    std::function<void(double)> progress;
 };
 
 struct RegionReport {

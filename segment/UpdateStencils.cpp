@@ -111,6 +111,13 @@ UpdateStencils::UpdateStencils(const MeshGraph& graph, const UnfoldOptions& opti
                         continue;
                     }
                     ++unfoldFailures_;
+                    // No virtual vertex: update along the two edges only
+                    // (cosAngle 1, an empty angle, has no face update). An
+                    // obtuse face update would make the scheme order-
+                    // dependent (FIM and fast marching would then disagree
+                    // downstream of it); edges keep it causal.
+                    stencils_.push_back({a, b, la, lb, 1.0});
+                    continue;
                 }
             }
             stencils_.push_back({a, b, la, lb, cosC});

@@ -10,8 +10,11 @@
 // it reaches a vertex W inside the cone at C where both angles ACW and WCB
 // are acute; (C; A, W) and (C; W, B) — a "virtual" edge CW through the
 // unfolded strip — then replace (C; A, B). If the walk meets the mesh
-// boundary, comes back to C or takes more than maxUnfoldSteps triangles,
-// the obtuse triangle is kept as it is (counted in unfoldFailures).
+// boundary, comes back to C or takes more than maxUnfoldSteps triangles
+// (counted in unfoldFailures), C is updated from A and B along the edges
+// only: the stencil gets cosAngle = 1, an empty angle with no face update.
+// With unfoldObtuse off, obtuse triangles are used as they are (for
+// comparison: the scheme is then no longer monotone).
 //
 // The unfolding depends on geometry only, so it is done once per mesh; the
 // solvers then need no mesh topology at all.
@@ -22,7 +25,8 @@
 namespace dfrecon {
 
 /// Update C (the target) from A and B: |CA| = lengthA, |CB| = lengthB, the
-/// angle ACB has cosine cosAngle (measured in the unfolded plane).
+/// angle ACB has cosine cosAngle (measured in the unfolded plane; 1 for
+/// edge-only updates).
 struct UpdateStencil {
     int a = 0, b = 0;
     double lengthA = 0, lengthB = 0, cosAngle = 0;
@@ -59,7 +63,7 @@ class UpdateStencils {
     const std::vector<int>& dependents() const { return dependents_; }
 
     int obtuseCorners() const { return obtuseCorners_; }    // triangle corners over 90°
-    int unfoldFailures() const { return unfoldFailures_; }  // of those, kept unsplit
+    int unfoldFailures() const { return unfoldFailures_; }  // of those, edges only
     double meanEdgeLength() const { return meanEdgeLength_; }
 
   private:

@@ -53,6 +53,10 @@ std::vector<Case> cases() {
         all.push_back({"cube, attractive speed", std::move(g), speed, {{5, 0, 0}, {700, 0, 1}}, 1.0});
     }
     {
+        MeshGraph g = MeshGraph::fromSoup(jitteredGeodesicSphere(24, 0.35));
+        all.push_back({"jittered sphere, one source", std::move(g), {}, {{0, 0, 0}}, 1.0});
+    }
+    {
         MeshGraph g = MeshGraph::fromSoup(staggeredGrid(30, 120, 1.0 / 30, 0.2 / 30));
         all.push_back({"obtuse grid, unfolded", std::move(g), {}, {{1500, 0, 0}}, 1.0});
     }

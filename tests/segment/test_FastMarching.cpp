@@ -98,6 +98,25 @@ TEST(FastMarching, UnfoldingObtuseTrianglesIsMuchMoreAccurate) {
     EXPECT_GT(without.max, 10 * with.max);
 }
 
+TEST(FastMarching, UnfoldingHelpsOnAnIrregularSphere) {
+    // A sphere with jittered vertices: 7.5 % of the corners obtuse.
+    // Measured (frequency 40): mean error 1.14 % of the radius with
+    // unfolding, 1.36 % without (max 2.09 % and 2.40 %); at frequency 100
+    // 0.46 % and 0.74 %.
+    const MeshGraph graph = MeshGraph::fromSoup(jitteredGeodesicSphere(40, 0.35));
+    const Vec3 s = graph.point(0);
+    const auto exact = [&](Vec3 p) { return greatCircle(s, p, 1.0); };
+    const UpdateStencils unfolded(graph);
+    UnfoldOptions plain;
+    plain.unfoldObtuse = false;
+    const UpdateStencils obtuse(graph, plain);
+    EXPECT_GT(unfolded.obtuseCorners(), 3 * graph.triangleCount() / 20);
+    const auto with = errorAgainst(graph, FastMarching(unfolded).solve({{0, 0, 0}}).time, exact);
+    const auto without = errorAgainst(graph, FastMarching(obtuse).solve({{0, 0, 0}}).time, exact);
+    EXPECT_LT(with.mean, 0.9 * without.mean);
+    EXPECT_LT(with.max, 0.95 * without.max);
+}
+
 TEST(FastMarching, LabelsAreTheNearestSource) {
     const MeshGraph graph = MeshGraph::fromSoup(squareGrid(40, 40, 0.025));
     const std::vector<Vec3> sites{{0.2, 0.3, 0}, {0.8, 0.25, 0}, {0.45, 0.8, 0}};
