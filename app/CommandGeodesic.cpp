@@ -61,8 +61,9 @@ void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
     std::vector<GeodesicSource> sources;
     for (int v : from) {
         if (v < 0 || v >= n)
-            throw std::invalid_argument("--from vertex " + std::to_string(v) + " is not a vertex of " +
-                                        args.input + " (it has " + std::to_string(n) + ")");
+            throw std::invalid_argument("--from vertex " + std::to_string(v) +
+                                        " is not a vertex of " + args.input + " (it has " +
+                                        std::to_string(n) + ")");
         sources.push_back({v, 0.0, int(sources.size())});
     }
     const SpeedKind kind = parseSpeedKind(args.speed);

@@ -49,10 +49,10 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
     double variance = 0;
     for (double a : areas) variance += (a - mean) * (a - mean) / double(areas.size());
     if (!args.json) {
-        std::cout << args.input << ": " << s.regions.size() << " regions ("
-                  << s.seedsAdded << " added for disks), area " << mean << " ± "
-                  << std::sqrt(variance) << " mm², " << s.iterations << " Lloyd iterations"
-                  << (s.converged ? "" : " (not converged)") << " -> " << args.output << "\n";
+        std::cout << args.input << ": " << s.regions.size() << " regions (" << s.seedsAdded
+                  << " added for disks), area " << mean << " ± " << std::sqrt(variance) << " mm², "
+                  << s.iterations << " Lloyd iterations" << (s.converged ? "" : " (not converged)")
+                  << " -> " << args.output << "\n";
         return;
     }
     nlohmann::ordered_json regions = nlohmann::ordered_json::array();
@@ -66,26 +66,25 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                            {"faces", r.faces},
                            {"disk", r.disk}});
     }
-    const nlohmann::ordered_json out{
-        {"command", "segment"},
-        {"input", args.input},
-        {"output", args.output},
-        {"vertices", input.graph.vertexCount()},
-        {"faces", input.graph.triangleCount()},
-        {"speed", toString(args.options.speed)},
-        {"curvatureWeightMm", s.curvatureWeightMm},
-        {"requestedRegions", args.regions},
-        {"regionCount", s.regions.size()},
-        {"seedsAddedForDisks", s.seedsAdded},
-        {"iterations", s.iterations},
-        {"converged", s.converged},
-        {"lloydEnergy", s.energy},
-        {"areaMeanMm2", mean},
-        {"areaStdDevMm2", std::sqrt(variance)},
-        {"areaVarianceMm4", variance},
-        {"regions", regions},
-        {"seconds", s.seconds},
-        {"totalSeconds", secondsSince(start)}};
+    const nlohmann::ordered_json out{{"command", "segment"},
+                                     {"input", args.input},
+                                     {"output", args.output},
+                                     {"vertices", input.graph.vertexCount()},
+                                     {"faces", input.graph.triangleCount()},
+                                     {"speed", toString(args.options.speed)},
+                                     {"curvatureWeightMm", s.curvatureWeightMm},
+                                     {"requestedRegions", args.regions},
+                                     {"regionCount", s.regions.size()},
+                                     {"seedsAddedForDisks", s.seedsAdded},
+                                     {"iterations", s.iterations},
+                                     {"converged", s.converged},
+                                     {"lloydEnergy", s.energy},
+                                     {"areaMeanMm2", mean},
+                                     {"areaStdDevMm2", std::sqrt(variance)},
+                                     {"areaVarianceMm4", variance},
+                                     {"regions", regions},
+                                     {"seconds", s.seconds},
+                                     {"totalSeconds", secondsSince(start)}};
     std::cout << out.dump(2) << "\n";
 }
 

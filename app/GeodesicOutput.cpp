@@ -34,12 +34,24 @@ TriMesh::Color regionColour(int region) {
     const double c = value * saturation, x = c * (1 - std::abs(std::fmod(hue, 2) - 1));
     double r = 0, g = 0, b = 0;
     switch (int(hue)) {
-        case 0: r = c, g = x; break;
-        case 1: r = x, g = c; break;
-        case 2: g = c, b = x; break;
-        case 3: g = x, b = c; break;
-        case 4: r = x, b = c; break;
-        default: r = c, b = x; break;
+        case 0:
+            r = c, g = x;
+            break;
+        case 1:
+            r = x, g = c;
+            break;
+        case 2:
+            g = c, b = x;
+            break;
+        case 3:
+            g = x, b = c;
+            break;
+        case 4:
+            r = x, b = c;
+            break;
+        default:
+            r = c, b = x;
+            break;
     }
     const double m = value - c;
     return {static_cast<unsigned char>(255 * (r + m)), static_cast<unsigned char>(255 * (g + m)),
@@ -60,7 +72,8 @@ GeodesicInput readGeodesicInput(const std::string& path) {
 
 void requirePlyOutput(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     if (ext != ".ply")
         throw std::invalid_argument("output '" + path +
                                     "' must be .ply (the only mesh format here that carries "
@@ -102,7 +115,8 @@ void writeDistancePly(TriMesh mesh, const std::vector<double>& distance,
             continue;
         }
         const double s = largest > 0 ? d / largest : 0;  // blue → cyan → yellow → red
-        const double r = std::clamp(2 * s - 0.5, 0.0, 1.0), g = std::clamp(1.5 - std::abs(4 * s - 2), 0.0, 1.0),
+        const double r = std::clamp(2 * s - 0.5, 0.0, 1.0),
+                     g = std::clamp(1.5 - std::abs(4 * s - 2), 0.0, 1.0),
                      b = std::clamp(1.5 - 2 * s, 0.0, 1.0);
         mesh.set_color(v, {static_cast<unsigned char>(255 * r), static_cast<unsigned char>(255 * g),
                            static_cast<unsigned char>(255 * b)});

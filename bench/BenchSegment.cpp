@@ -36,8 +36,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-void printRow(const std::string& caseName, const std::string& system, double seconds,
-              int vertices, double meanErrPct, double maxErrPct, const std::string& reference,
+void printRow(const std::string& caseName, const std::string& system, double seconds, int vertices,
+              double meanErrPct, double maxErrPct, const std::string& reference,
               Json extra = Json::object()) {
     Json row{{"bench", "segment"},
              {"case", caseName},
@@ -80,8 +80,8 @@ double seconds(std::chrono::steady_clock::time_point start) {
 /// reference) from vertex `source`, errors against `reference`.
 template <class Reference>
 void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGraph& graph,
-                int source, double scale, const std::string& referenceName,
-                Reference&& reference, bool runFim) {
+                int source, double scale, const std::string& referenceName, Reference&& reference,
+                bool runFim) {
     const int n = graph.vertexCount();
     const std::vector<GeodesicSource> sources{{source, 0.0, 0}};
     auto start = std::chrono::steady_clock::now();
@@ -111,7 +111,8 @@ void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGr
 
     FimStats stats;
     GeodesicField iterated;
-    t = bestSeconds(runs, [&] { iterated = eikonalFimReference(stencils, sources, {}, {}, &stats); });
+    t = bestSeconds(runs,
+                    [&] { iterated = eikonalFimReference(stencils, sources, {}, {}, &stats); });
     const Errors ref = errorsPct(iterated.time, scale, reference);
     const Errors refVsFm =
         errorsPct(iterated.time, scale, [&](std::size_t v) { return marched.time[v]; });
@@ -171,12 +172,13 @@ int benchSegment(const std::string& device) {
     for (int frequency : {32, 100, 316}) {
         const MeshGraph graph = MeshGraph::fromSoup(geodesicSphere(frequency));
         const Vec3 s = graph.point(0);
-        solverRows(runtime, "sphere " + std::to_string(graph.vertexCount()) + " vertices", graph,
-                   0, 1.0, "great-circle distance, % of radius",
-                   [&](std::size_t v) {
-                       return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
-                   },
-                   true);
+        solverRows(
+            runtime, "sphere " + std::to_string(graph.vertexCount()) + " vertices", graph, 0, 1.0,
+            "great-circle distance, % of radius",
+            [&](std::size_t v) {
+                return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
+            },
+            true);
     }
     {
         // The same sphere with every vertex moved at random by up to 0.35 of
@@ -185,12 +187,13 @@ int benchSegment(const std::string& device) {
         const TriangleSoup soup = jitteredGeodesicSphere(100, 0.35);
         const MeshGraph graph = MeshGraph::fromSoup(soup);
         const Vec3 s = graph.point(0);
-        solverRows(runtime, "jittered sphere " + std::to_string(graph.vertexCount()) + " vertices",
-                   graph, 0, 1.0, "great-circle distance, % of radius",
-                   [&](std::size_t v) {
-                       return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
-                   },
-                   true);
+        solverRows(
+            runtime, "jittered sphere " + std::to_string(graph.vertexCount()) + " vertices", graph,
+            0, 1.0, "great-circle distance, % of radius",
+            [&](std::size_t v) {
+                return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
+            },
+            true);
     }
     {
         const int columns = 160, rows = 640;
@@ -198,9 +201,10 @@ int benchSegment(const std::string& device) {
         const MeshGraph graph = MeshGraph::fromSoup(staggeredGrid(columns, rows, dx, dy));
         const int source = (rows / 2) * (columns + 1) + columns / 2;
         const Vec3 s = graph.point(source);
-        solverRows(runtime, "flat grid of 136-degree triangles", graph, source, 1.0,
-                   "euclidean distance, % of grid width",
-                   [&](std::size_t v) { return length(graph.point(int(v)) - s); }, false);
+        solverRows(
+            runtime, "flat grid of 136-degree triangles", graph, source, 1.0,
+            "euclidean distance, % of grid width",
+            [&](std::size_t v) { return length(graph.point(int(v)) - s); }, false);
     }
     for (const std::string name : {"bunny00", "armadillo", "refined_elephant"}) {
         const std::filesystem::path path =
@@ -219,13 +223,14 @@ int benchSegment(const std::string& device) {
         // Reference: fast marching itself (computed in solverRows' first row).
         const UpdateStencils stencils(graph);
         const GeodesicField marched = FastMarching(stencils).solve({{0, 0.0, 0}});
-        solverRows(runtime, name, graph, 0, length(hi - lo),
-                   "fast marching with unfolding, % of bounding-box diagonal",
-                   [&](std::size_t v) { return marched.time[v]; }, true);
+        solverRows(
+            runtime, name, graph, 0, length(hi - lo),
+            "fast marching with unfolding, % of bounding-box diagonal",
+            [&](std::size_t v) { return marched.time[v]; }, true);
         if (name == "bunny00") segmentationRow("lloyd bunny00, 20 seeds", graph, 20);
     }
-    segmentationRow("lloyd cube 5402 vertices, 10 seeds",
-                    MeshGraph::fromSoup(tessellatedCube(30)), 10);
+    segmentationRow("lloyd cube 5402 vertices, 10 seeds", MeshGraph::fromSoup(tessellatedCube(30)),
+                    10);
     return status;
 }
 

@@ -9,7 +9,8 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|segment|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|segment|all [--device "
+        "SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
         "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"

@@ -18,9 +18,10 @@
 // The best time at v from all its stencils with the current times, and the
 // label that comes with it. Across a face when both corners are reached
 // and carry the same label (as in fast marching).
-inline REAL fim_solve(int v, __global const int* stencil_first, __global const int2* stencil_corners,
-                      __global const REAL4* stencil_shape, __global const REAL* slowness,
-                      __global const REAL* time, __global const int* label, int* best_label) {
+inline REAL fim_solve(int v, __global const int* stencil_first,
+                      __global const int2* stencil_corners, __global const REAL4* stencil_shape,
+                      __global const REAL* slowness, __global const REAL* time,
+                      __global const int* label, int* best_label) {
     REAL best = INFINITY;
     int best_l = -1;
     const REAL p = slowness[v];
@@ -31,9 +32,9 @@ inline REAL fim_solve(int v, __global const int* stencil_first, __global const i
         const int la = label[ab.x], lb = label[ab.y];
         int via;
         REAL weight;
-        const REAL t = eikonal_triangle_update(ta, tb, shape.x, shape.y, shape.z, p,
-                                               ta < INFINITY && tb < INFINITY && la == lb, &via,
-                                               &weight);
+        const REAL t =
+            eikonal_triangle_update(ta, tb, shape.x, shape.y, shape.z, p,
+                                    ta < INFINITY && tb < INFINITY && la == lb, &via, &weight);
         if (t < best) {
             best = t;
             best_l = eikonal_upwind_label(via, la, lb);
@@ -52,8 +53,8 @@ __kernel void fim_update(__global const int* list, uint count, __global const in
     if (i >= count) return;
     const int v = list[i];
     int l;
-    const REAL t = fim_solve(v, stencil_first, stencil_corners, stencil_shape, slowness, time,
-                             label, &l);
+    const REAL t =
+        fim_solve(v, stencil_first, stencil_corners, stencil_shape, slowness, time, label, &l);
     const REAL old = time[v];
     if (t < old) {
         slot_time[i] = t;
@@ -67,8 +68,7 @@ __kernel void fim_update(__global const int* list, uint count, __global const in
 }
 
 __kernel void fim_commit(__global const int* list, uint count, __global const REAL* slot_time,
-                         __global const int* slot_label, __global REAL* time,
-                         __global int* label) {
+                         __global const int* slot_label, __global REAL* time, __global int* label) {
     const uint i = get_global_id(0);
     if (i >= count) return;
     time[list[i]] = slot_time[i];
@@ -102,8 +102,8 @@ __kernel void fim_expand(__global const int* list, uint count, __global const uc
         if (seen == iteration + 1 || atomic_cmpxchg(&claimed[n], seen, iteration + 1) != seen)
             continue;
         int l;
-        const REAL t = fim_solve(n, stencil_first, stencil_corners, stencil_shape, slowness, time,
-                                 label, &l);
+        const REAL t =
+            fim_solve(n, stencil_first, stencil_corners, stencil_shape, slowness, time, label, &l);
         if (t < time[n] - tolerance) {
             const uint slot = atomic_inc(next_count);
             next_list[slot] = n;

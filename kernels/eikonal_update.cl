@@ -30,7 +30,8 @@
 // linear on the triangle with |grad T| = slowness gives a quadratic in T(C);
 // its larger root counts only if the characteristic reaching C comes from
 // inside the angle at C (upwind condition), i.e. from a point of segment AB.
-// Otherwise, or when it is slower, the front comes along an edge (Dijkstra-like): ta + la·slowness or tb + lb·slowness.
+// Otherwise, or when it is slower, the front comes along an edge
+// (Dijkstra-like): ta + la·slowness or tb + lb·slowness.
 //
 // Writes which way won to *upwind and, for EIKONAL_VIA_FACE, where the
 // characteristic crosses AB to *weight_b (0 at A, 1 at B; 0 or 1 for the

@@ -18,9 +18,9 @@ namespace {
 double absoluteTolerance(const UpdateStencils& stencils, const std::vector<double>& slowness,
                          const FimOptions& options) {
     const double meanSlowness =
-        slowness.empty() ? 1.0
-                         : std::accumulate(slowness.begin(), slowness.end(), 0.0) /
-                               double(slowness.size());
+        slowness.empty()
+            ? 1.0
+            : std::accumulate(slowness.begin(), slowness.end(), 0.0) / double(slowness.size());
     return options.tolerance * stencils.meanEdgeLength() * meanSlowness;
 }
 
@@ -101,8 +101,8 @@ GeodesicField eikonalFimReference(const UpdateStencils& stencils,
             int label = -1;
             const double t = solveAt(list[i], stencils, slowness, field, label);
             const double old = field.time[v];
-            slots[i] = t < old ? Slot{t, label, old - t <= tolerance}
-                               : Slot{old, field.label[v], true};
+            slots[i] =
+                t < old ? Slot{t, label, old - t <= tolerance} : Slot{old, field.label[v], true};
         }
         for (std::size_t i = 0; i < list.size(); ++i) {  // fim_commit
             field.time[std::size_t(list[i])] = slots[i].time;
@@ -185,7 +185,8 @@ class FimDevice final : public EikonalFim::Device {
         shapes_ = ocl::DeviceBuffer<Real4>(runtime, shapes);
         dependentFirst_ = ocl::DeviceBuffer<cl_int>(runtime, stencils.dependentFirst());
         dependents_ = ocl::DeviceBuffer<cl_int>(runtime, stencils.dependents());
-        slowness_ = ocl::DeviceBuffer<Real>(runtime, std::vector<Real>(slowness.begin(), slowness.end()));
+        slowness_ =
+            ocl::DeviceBuffer<Real>(runtime, std::vector<Real>(slowness.begin(), slowness.end()));
         time_ = ocl::DeviceBuffer<Real>(runtime, n_);
         label_ = ocl::DeviceBuffer<cl_int>(runtime, n_);
         member_ = ocl::DeviceBuffer<cl_uint>(runtime, n_);
@@ -197,8 +198,8 @@ class FimDevice final : public EikonalFim::Device {
         nextLabel_ = ocl::DeviceBuffer<cl_int>(runtime, n_);
         slotSettled_ = ocl::DeviceBuffer<cl_uchar>(runtime, n_);
         nextCount_ = ocl::DeviceBuffer<cl_uint>(runtime, 1);
-        const std::string build = sizeof(Real) == 8 ? "-DREAL=double -DREAL4=double4"
-                                                    : "-DREAL=float -DREAL4=float4";
+        const std::string build =
+            sizeof(Real) == 8 ? "-DREAL=double -DREAL4=double4" : "-DREAL=float -DREAL4=float4";
         const cl::Program& program =
             runtime.program({"eikonal_update.cl", "eikonal_fim.cl"}, build);
         try {
@@ -236,8 +237,8 @@ class FimDevice final : public EikonalFim::Device {
                         shapes_.get(), slowness_.get(), time_.get(), label_.get(), tolerance_,
                         slotTime_.get(), slotLabel_.get(), slotSettled_.get());
                 queue.enqueueNDRangeKernel(update_, cl::NullRange, global);
-                setArgs(commit_, list_.get(), count, slotTime_.get(), slotLabel_.get(),
-                        time_.get(), label_.get());
+                setArgs(commit_, list_.get(), count, slotTime_.get(), slotLabel_.get(), time_.get(),
+                        label_.get());
                 queue.enqueueNDRangeKernel(commit_, cl::NullRange, global);
                 queue.enqueueFillBuffer(nextCount_.get(), cl_uint(0), 0, sizeof(cl_uint));
                 setArgs(expand_, list_.get(), count, slotSettled_.get(), dependentFirst_.get(),
@@ -248,9 +249,8 @@ class FimDevice final : public EikonalFim::Device {
                 queue.enqueueNDRangeKernel(expand_, cl::NullRange, global);
                 queue.enqueueReadBuffer(nextCount_.get(), CL_TRUE, 0, sizeof(cl_uint), &count);
                 if (count > 0) {
-                    setArgs(commitNext_, nextList_.get(), count, nextTime_.get(),
-                            nextLabel_.get(), cl_uint(iteration + 1), time_.get(), label_.get(),
-                            member_.get());
+                    setArgs(commitNext_, nextList_.get(), count, nextTime_.get(), nextLabel_.get(),
+                            cl_uint(iteration + 1), time_.get(), label_.get(), member_.get());
                     queue.enqueueNDRangeKernel(commitNext_, cl::NullRange,
                                                cl::NDRange(ocl::roundUp(count, 64)));
                 }
@@ -297,8 +297,8 @@ class FimDevice final : public EikonalFim::Device {
 EikonalFim::EikonalFim(ocl::Runtime& runtime, const UpdateStencils& stencils,
                        const std::vector<double>& speed, const FimOptions& options) {
     if (runtime.device().doublePrecision)
-        device_ = std::make_unique<FimDevice<cl_double, cl_double4>>(runtime, stencils, speed,
-                                                                       options);
+        device_ =
+            std::make_unique<FimDevice<cl_double, cl_double4>>(runtime, stencils, speed, options);
     else
         device_ =
             std::make_unique<FimDevice<cl_float, cl_float4>>(runtime, stencils, speed, options);

@@ -15,8 +15,8 @@ std::vector<double> slownessFromSpeed(const std::vector<double>& speed, int vert
     std::vector<double> slowness(std::size_t(vertexCount), 1.0);
     if (speed.empty()) return slowness;
     if (speed.size() != slowness.size())
-        throw std::invalid_argument("speed has " + std::to_string(speed.size()) +
-                                    " values for " + std::to_string(vertexCount) + " vertices");
+        throw std::invalid_argument("speed has " + std::to_string(speed.size()) + " values for " +
+                                    std::to_string(vertexCount) + " vertices");
     for (std::size_t v = 0; v < speed.size(); ++v) {
         if (!(speed[v] > 0) || !std::isfinite(speed[v]))
             throw std::invalid_argument("speed at vertex " + std::to_string(v) +
@@ -106,8 +106,8 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
             // earlier than the front).
             const bool knownA = time[a] <= t, knownB = time[b] <= t;
             const TriangleUpdate u = triangleUpdate(
-                knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached, s.lengthA,
-                s.lengthB, s.cosAngle, slowness_[c], knownA && knownB && label[a] == label[b]);
+                knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached, s.lengthA, s.lengthB,
+                s.cosAngle, slowness_[c], knownA && knownB && label[a] == label[b]);
             if (!(u.time < time[c])) continue;
             time[c] = u.time;
             label[c] = upwindLabel(u, label[a], label[b]);
@@ -126,7 +126,8 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
 int farthestVertex(const GeodesicField& field) {
     int best = -1;
     for (std::size_t v = 0; v < field.time.size(); ++v)
-        if (std::isfinite(field.time[v]) && (best < 0 || field.time[v] > field.time[std::size_t(best)]))
+        if (std::isfinite(field.time[v]) &&
+            (best < 0 || field.time[v] > field.time[std::size_t(best)]))
             best = int(v);
     return best;
 }

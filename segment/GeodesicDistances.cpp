@@ -8,9 +8,12 @@ namespace dfrecon {
 
 const char* toString(GeodesicSolver solver) {
     switch (solver) {
-        case GeodesicSolver::Automatic: return "automatic";
-        case GeodesicSolver::FastMarching: return "fast-marching";
-        case GeodesicSolver::FastIterative: return "fast-iterative-opencl";
+        case GeodesicSolver::Automatic:
+            return "automatic";
+        case GeodesicSolver::FastMarching:
+            return "fast-marching";
+        case GeodesicSolver::FastIterative:
+            return "fast-iterative-opencl";
     }
     return "?";
 }
@@ -30,7 +33,8 @@ GeodesicField geodesicDistances(const UpdateStencils& stencils,
         solver = chooseGeodesicSolver(stencils.vertexCount(), runtime);
     if (used) *used = solver;
     if (solver == GeodesicSolver::FastIterative) {
-        if (!runtime) throw std::invalid_argument("the fast iterative method needs an OpenCL device");
+        if (!runtime)
+            throw std::invalid_argument("the fast iterative method needs an OpenCL device");
         EikonalFim fim(*runtime, stencils, speed);
         return fim.solve(sources);
     }

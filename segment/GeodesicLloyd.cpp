@@ -147,8 +147,8 @@ LloydResult geodesicLloyd(const MeshGraph& graph, const FastMarching& marching,
                 int farthest = -1;
                 for (int v = 0; v < graph.vertexCount(); ++v)
                     if (result.field.label[std::size_t(v)] == r &&
-                        (farthest < 0 ||
-                         result.field.time[std::size_t(v)] > result.field.time[std::size_t(farthest)]))
+                        (farthest < 0 || result.field.time[std::size_t(v)] >
+                                             result.field.time[std::size_t(farthest)]))
                         farthest = v;
                 if (farthest >= 0 && result.field.time[std::size_t(farthest)] > 0)
                     added.push_back(farthest);

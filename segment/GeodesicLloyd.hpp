@@ -39,9 +39,9 @@ namespace dfrecon {
 
 struct LloydOptions {
     int maxIterations = 10;
-    int centerSteps = 8;        // gradient-descent steps per region and iteration
+    int centerSteps = 8;  // gradient-descent steps per region and iteration
     bool diskConstraint = true;
-    int maxAddedSeeds = -1;     // seeds the disk constraint may add; -1: the initial count
+    int maxAddedSeeds = -1;  // seeds the disk constraint may add; -1: the initial count
     /// Called after each iteration with (iteration, maxIterations).
     std::function<void(int, int)> onIteration;
 };

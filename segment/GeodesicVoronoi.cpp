@@ -24,10 +24,10 @@ double overlapTime(int v, int region, const FastMarching& marching, const Geodes
         const bool inA = field.label[std::size_t(s.a)] == region;
         const bool inB = field.label[std::size_t(s.b)] == region;
         if (!inA && !inB) continue;
-        const TriangleUpdate u = triangleUpdate(
-            inA ? field.time[std::size_t(s.a)] : kUnreached,
-            inB ? field.time[std::size_t(s.b)] : kUnreached, s.lengthA, s.lengthB, s.cosAngle,
-            marching.slowness()[std::size_t(v)], inA && inB);
+        const TriangleUpdate u =
+            triangleUpdate(inA ? field.time[std::size_t(s.a)] : kUnreached,
+                           inB ? field.time[std::size_t(s.b)] : kUnreached, s.lengthA, s.lengthB,
+                           s.cosAngle, marching.slowness()[std::size_t(v)], inA && inB);
         best = std::min(best, u.time);
     }
     return best;
@@ -114,10 +114,9 @@ VoronoiRegions geodesicVoronoi(const MeshGraph& graph, const FastMarching& march
             std::array<Vec3, 3> m{};  // m[k] on edge (k, k+1)
             for (int k = 0; k < 3; ++k) {
                 const int j = (k + 1) % 3;
-                m[std::size_t(k)] =
-                    between(p[std::size_t(k)], p[std::size_t(j)],
-                            crossing(tri[std::size_t(k)], r[std::size_t(k)], tri[std::size_t(j)],
-                                     r[std::size_t(j)]));
+                m[std::size_t(k)] = between(p[std::size_t(k)], p[std::size_t(j)],
+                                            crossing(tri[std::size_t(k)], r[std::size_t(k)],
+                                                     tri[std::size_t(j)], r[std::size_t(j)]));
             }
             const Vec3 centre = (1.0 / 3) * (m[0] + m[1] + m[2]);
             for (int k = 0; k < 3; ++k) {

@@ -13,9 +13,8 @@ MeshGraph::MeshGraph(std::vector<Vec3> points, std::vector<std::array<int, 3>> t
         const auto& tri = triangles_[t];
         for (int v : tri)
             if (v < 0 || v >= n)
-                throw std::invalid_argument("triangle " + std::to_string(t) +
-                                            " has vertex index " + std::to_string(v) +
-                                            " out of range");
+                throw std::invalid_argument("triangle " + std::to_string(t) + " has vertex index " +
+                                            std::to_string(v) + " out of range");
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
             throw std::invalid_argument("triangle " + std::to_string(t) + " repeats a vertex");
         for (int v : tri) ++vertexTriangleFirst_[std::size_t(v) + 1];
@@ -33,7 +32,8 @@ MeshGraph::MeshGraph(std::vector<Vec3> points, std::vector<std::array<int, 3>> t
     for (int t = 0; t < triangleCount(); ++t) {
         const auto& tri = triangles_[std::size_t(t)];
         for (int corner = 0; corner < 3; ++corner) {
-            const int u = tri[std::size_t((corner + 1) % 3)], w = tri[std::size_t((corner + 2) % 3)];
+            const int u = tri[std::size_t((corner + 1) % 3)],
+                      w = tri[std::size_t((corner + 2) % 3)];
             int found = -1;
             for (int other : trianglesAround(u)) {
                 if (other == t || cornerOf(other, w) < 0) continue;
@@ -65,8 +65,9 @@ MeshGraph MeshGraph::fromMesh(const TriMesh& mesh) {
     for (auto f : mesh.faces()) {
         int k = 0;
         for (auto v : mesh.fv_range(f)) {
-            if (k == 3) throw std::invalid_argument("face " + std::to_string(f.idx()) +
-                                                    " is not a triangle");
+            if (k == 3)
+                throw std::invalid_argument("face " + std::to_string(f.idx()) +
+                                            " is not a triangle");
             triangles[std::size_t(f.idx())][std::size_t(k++)] = v.idx();
         }
     }

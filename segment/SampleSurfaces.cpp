@@ -26,9 +26,9 @@ TriangleSoup geodesicSphere(int frequency, double radius) {
                                         {-phi, 0, -1},
                                         {-phi, 0, 1}}};
     const std::array<std::array<int, 3>, 20> faces{
-        {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
          {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-         {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
+         {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
     const int n = frequency;
     TriangleSoup soup;
     // A point is the combination Σ w_i corner_i / n of at most three
@@ -64,11 +64,14 @@ TriangleSoup geodesicSphere(int frequency, double radius) {
             for (int j = 0; i + j <= n; ++j)
                 grid.push_back(pointIndex({{{f[0], n - i - j}, {f[1], i}, {f[2], j}}}));
         }
-        const auto at = [&](int i, int j) { return grid[rowStart[std::size_t(i)] + std::size_t(j)]; };
+        const auto at = [&](int i, int j) {
+            return grid[rowStart[std::size_t(i)] + std::size_t(j)];
+        };
         for (int i = 0; i < n; ++i)
             for (int j = 0; i + j < n; ++j) {
                 soup.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
-                if (i + j + 1 < n) soup.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+                if (i + j + 1 < n)
+                    soup.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
             }
     }
     return soup;

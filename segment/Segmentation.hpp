@@ -42,11 +42,11 @@ struct Segmentation {
     std::vector<int> vertexRegion;  // per vertex (-1: unreached component)
     std::vector<int> faceRegion;    // per face (-1: unreached component)
     std::vector<RegionReport> regions;
-    std::vector<double> energy;     // Lloyd energy, [0] before the first iteration
+    std::vector<double> energy;  // Lloyd energy, [0] before the first iteration
     int iterations = 0;
     bool converged = false;
     int seedsAdded = 0;
-    double curvatureWeightMm = 0;   // the weight used (0 for uniform speed)
+    double curvatureWeightMm = 0;  // the weight used (0 for uniform speed)
     double seconds = 0;
 };
 

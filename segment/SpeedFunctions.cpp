@@ -10,9 +10,12 @@ namespace dfrecon {
 
 const char* toString(SpeedKind kind) {
     switch (kind) {
-        case SpeedKind::Uniform: return "uniform";
-        case SpeedKind::EdgeRepulsive: return "repulsive";
-        case SpeedKind::EdgeAttractive: return "attractive";
+        case SpeedKind::Uniform:
+            return "uniform";
+        case SpeedKind::EdgeRepulsive:
+            return "repulsive";
+        case SpeedKind::EdgeAttractive:
+            return "attractive";
     }
     return "?";
 }
@@ -57,9 +60,8 @@ std::vector<double> totalCurvature(const MeshGraph& graph) {
             laplacian[i] = laplacian[i] + cot[std::size_t(l)] * eij + cot[std::size_t(j)] * eil;
             angleSum[i] += angle[std::size_t(k)];
             if (!obtuse)
-                mixedArea[i] += (dot(eij, eij) * cot[std::size_t(l)] +
-                                 dot(eil, eil) * cot[std::size_t(j)]) /
-                                8;
+                mixedArea[i] +=
+                    (dot(eij, eij) * cot[std::size_t(l)] + dot(eil, eil) * cot[std::size_t(j)]) / 8;
             else
                 mixedArea[i] += angle[std::size_t(k)] > M_PI / 2 ? area / 2 : area / 4;
             if (graph.neighbour(t, j) < 0 || graph.neighbour(t, l) < 0) onBoundary[i] = 1;
@@ -90,8 +92,8 @@ std::vector<double> scalarGradientSpeed(const MeshGraph& graph, const std::vecto
                                         double weight) {
     const std::size_t n = std::size_t(graph.vertexCount());
     if (values.size() != n)
-        throw std::invalid_argument("scalar has " + std::to_string(values.size()) +
-                                    " values for " + std::to_string(n) + " vertices");
+        throw std::invalid_argument("scalar has " + std::to_string(values.size()) + " values for " +
+                                    std::to_string(n) + " vertices");
     if (!(weight >= 0)) throw std::invalid_argument("scalar speed weight must be ≥ 0");
     std::vector<double> gradientSum(n, 0.0), areaSum(n, 0.0);
     for (int t = 0; t < graph.triangleCount(); ++t) {

@@ -45,8 +45,8 @@ struct VirtualVertex {
 /// The walk of Kimmel & Sethian from triangle t, obtuse at corner `corner`
 /// (C): across the edge opposite C, then across whichever edge of each
 /// unfolded triangle the cone at C still passes through.
-std::optional<VirtualVertex> findVirtualVertex(const MeshGraph& graph, int t, int corner,
-                                               Vec2 pa, Vec2 pb, int maxSteps) {
+std::optional<VirtualVertex> findVirtualVertex(const MeshGraph& graph, int t, int corner, Vec2 pa,
+                                               Vec2 pb, int maxSteps) {
     const auto& tri = graph.triangle(t);
     const int c = tri[std::size_t(corner)];
     int p = tri[std::size_t((corner + 1) % 3)], q = tri[std::size_t((corner + 2) % 3)];
@@ -95,7 +95,8 @@ UpdateStencils::UpdateStencils(const MeshGraph& graph, const UnfoldOptions& opti
         for (int t : graph.trianglesAround(c)) {
             const int corner = graph.cornerOf(t, c);
             const auto& tri = graph.triangle(t);
-            const int a = tri[std::size_t((corner + 1) % 3)], b = tri[std::size_t((corner + 2) % 3)];
+            const int a = tri[std::size_t((corner + 1) % 3)],
+                      b = tri[std::size_t((corner + 2) % 3)];
             const Vec3 pc = graph.point(c);
             const Vec3 ea = graph.point(a) - pc, eb = graph.point(b) - pc;
             const double la = length(ea), lb = length(eb);
@@ -105,7 +106,8 @@ UpdateStencils::UpdateStencils(const MeshGraph& graph, const UnfoldOptions& opti
             if (cosC < 0) {
                 ++obtuseCorners_;
                 if (options.unfoldObtuse) {
-                    if (auto w = findVirtualVertex(graph, t, corner, pa, pb, options.maxUnfoldSteps)) {
+                    if (auto w =
+                            findVirtualVertex(graph, t, corner, pa, pb, options.maxUnfoldSteps)) {
                         stencils_.push_back(stencil(a, w->vertex, pa, w->position));
                         stencils_.push_back(stencil(w->vertex, b, w->position, pb));
                         continue;

@@ -114,8 +114,8 @@ TEST(CliSegment, WritesRegionIdsAndReportsEachRegion) {
 TEST(CliSegment, GeodesicWritesDistancesFromTheSources) {
     TempDir dir("cli-geodesic");
     dfrecon::writeMesh(dfrecon::toTriMesh(dfrecon::geodesicSphere(16, 5.0)), dir / "sphere.ply");
-    const Result r = run(dir, "geodesic " + (dir / "sphere.ply") +
-                                  " --from 0 --json --ascii -o " + (dir / "distance.ply"));
+    const Result r = run(dir, "geodesic " + (dir / "sphere.ply") + " --from 0 --json --ascii -o " +
+                                  (dir / "distance.ply"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto report = nlohmann::json::parse(r.out);
     EXPECT_EQ(report["solver"], "fast-marching");
@@ -142,7 +142,8 @@ TEST(CliSegment, BadInputExitsTwoNamingTheFile) {
         const Result missing = run(dir, command + " /nonexistent/mesh.off -o " + (dir / "o.ply"));
         EXPECT_EQ(missing.exitCode, 2) << command;
         EXPECT_NE(missing.err.find("/nonexistent/mesh.off"), std::string::npos) << missing.err;
-        const Result broken = run(dir, command + " " + (dir / "broken.ply") + " -o " + (dir / "o.ply"));
+        const Result broken =
+            run(dir, command + " " + (dir / "broken.ply") + " -o " + (dir / "o.ply"));
         EXPECT_EQ(broken.exitCode, 2) << command << ": " << broken.err;
         EXPECT_NE(broken.err.find(dir / "broken.ply"), std::string::npos) << broken.err;
         EXPECT_FALSE(fs::exists(dir / "o.ply"));

@@ -50,7 +50,8 @@ std::vector<Case> cases() {
     {
         MeshGraph g = MeshGraph::fromSoup(tessellatedCube(16));
         std::vector<double> speed = curvatureSpeed(g, SpeedKind::EdgeAttractive);
-        all.push_back({"cube, attractive speed", std::move(g), speed, {{5, 0, 0}, {700, 0, 1}}, 1.0});
+        all.push_back(
+            {"cube, attractive speed", std::move(g), speed, {{5, 0, 0}, {700, 0, 1}}, 1.0});
     }
     {
         MeshGraph g = MeshGraph::fromSoup(jitteredGeodesicSphere(24, 0.35));
@@ -71,7 +72,8 @@ TEST(EikonalFim, ReferenceConvergesToFastMarching) {
         const UpdateStencils stencils(c.graph);
         const GeodesicField marched = FastMarching(stencils, c.speed).solve(c.sources);
         FimStats stats;
-        const GeodesicField iterated = eikonalFimReference(stencils, c.sources, c.speed, {}, &stats);
+        const GeodesicField iterated =
+            eikonalFimReference(stencils, c.sources, c.speed, {}, &stats);
         EXPECT_TRUE(stats.converged);
         // With one source the discrete equations have one solution, which
         // both reach: measured ≤ 2e-10 (the settling tolerance, 1e-9 of an
@@ -91,7 +93,8 @@ TEST(EikonalFim, ReferenceConvergesToFastMarching) {
         double interior = 0;
         for (int v = 0; v < c.graph.vertexCount(); ++v) {
             bool inside = true;
-            for (int k = stencils.first()[std::size_t(v)]; k < stencils.first()[std::size_t(v) + 1]; ++k) {
+            for (int k = stencils.first()[std::size_t(v)]; k < stencils.first()[std::size_t(v) + 1];
+                 ++k) {
                 const UpdateStencil& s = stencils.stencils()[std::size_t(k)];
                 for (int corner : {s.a, s.b})
                     inside &= marched.label[std::size_t(corner)] == marched.label[std::size_t(v)] &&
@@ -118,7 +121,8 @@ TEST(EikonalFim, DeviceRunsTheReferenceIteration) {
         SCOPED_TRACE(c.name);
         const UpdateStencils stencils(c.graph);
         FimStats hostStats, deviceStats;
-        const GeodesicField host = eikonalFimReference(stencils, c.sources, c.speed, {}, &hostStats);
+        const GeodesicField host =
+            eikonalFimReference(stencils, c.sources, c.speed, {}, &hostStats);
         EikonalFim fim(runtime, stencils, c.speed);
         const GeodesicField device = fim.solve(c.sources, &deviceStats);
         EXPECT_TRUE(deviceStats.converged);
@@ -143,7 +147,8 @@ TEST(EikonalFim, UnreachedVerticesStayUnreachedOnTheDevice) {
     const TriangleSoup other = squareGrid(2, 2, 1.0);
     const std::uint32_t offset = std::uint32_t(two.points.size());
     for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
-    for (auto t : other.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (auto t : other.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     const MeshGraph graph = MeshGraph::fromSoup(two);
     const UpdateStencils stencils(graph);
     ocl::Runtime runtime;

@@ -37,7 +37,8 @@ TEST(FarthestPointSampling, EachSampleIsTheFarthestFromThoseBefore) {
     }
     // The kept field is the solve from all samples.
     std::vector<GeodesicSource> all;
-    for (std::size_t j = 0; j < samples.vertices.size(); ++j) all.push_back({samples.vertices[j], 0, int(j)});
+    for (std::size_t j = 0; j < samples.vertices.size(); ++j)
+        all.push_back({samples.vertices[j], 0, int(j)});
     const GeodesicField together = marching.solve(all);
     for (int v = 0; v < graph.vertexCount(); ++v) {
         EXPECT_NEAR(samples.field.time[std::size_t(v)], together.time[std::size_t(v)], 1e-12);

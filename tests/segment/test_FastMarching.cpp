@@ -89,10 +89,10 @@ TEST(FastMarching, UnfoldingObtuseTrianglesIsMuchMoreAccurate) {
     UnfoldOptions plain;
     plain.unfoldObtuse = false;
     const UpdateStencils obtuse(graph, plain);
-    const auto with = errorAgainst(graph, FastMarching(unfolded).solve({{source, 0, 0}}).time,
-                                   euclidean);
-    const auto without = errorAgainst(graph, FastMarching(obtuse).solve({{source, 0, 0}}).time,
-                                      euclidean);
+    const auto with =
+        errorAgainst(graph, FastMarching(unfolded).solve({{source, 0, 0}}).time, euclidean);
+    const auto without =
+        errorAgainst(graph, FastMarching(obtuse).solve({{source, 0, 0}}).time, euclidean);
     EXPECT_LT(with.mean, 0.005);
     EXPECT_GT(without.mean, 10 * with.mean);
     EXPECT_GT(without.max, 10 * with.max);
@@ -121,7 +121,8 @@ TEST(FastMarching, LabelsAreTheNearestSource) {
     const MeshGraph graph = MeshGraph::fromSoup(squareGrid(40, 40, 0.025));
     const std::vector<Vec3> sites{{0.2, 0.3, 0}, {0.8, 0.25, 0}, {0.45, 0.8, 0}};
     std::vector<GeodesicSource> sources;
-    for (int i = 0; i < 3; ++i) sources.push_back({nearestVertex(graph, sites[std::size_t(i)]), 0.0, i});
+    for (int i = 0; i < 3; ++i)
+        sources.push_back({nearestVertex(graph, sites[std::size_t(i)]), 0.0, i});
     const GeodesicField field = FastMarching(UpdateStencils(graph)).solve(sources);
     int wrong = 0;
     for (int v = 0; v < graph.vertexCount(); ++v) {
@@ -166,7 +167,8 @@ TEST(FastMarching, MarchingOverAFieldMatchesSolvingAtOnce) {
     double worst = 0;
     int labels = 0;
     for (int v = 0; v < graph.vertexCount(); ++v) {
-        worst = std::max(worst, std::abs(incremental.time[std::size_t(v)] - together.time[std::size_t(v)]));
+        worst = std::max(
+            worst, std::abs(incremental.time[std::size_t(v)] - together.time[std::size_t(v)]));
         labels += incremental.label[std::size_t(v)] != together.label[std::size_t(v)];
     }
     EXPECT_LT(worst, 1e-12);
@@ -202,7 +204,8 @@ TEST(FastMarching, UnreachedComponentStaysUnreached) {
     const TriangleSoup other = squareGrid(2, 2, 1.0);
     const std::uint32_t offset = std::uint32_t(two.points.size());
     for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
-    for (auto t : other.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (auto t : other.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     const MeshGraph graph = MeshGraph::fromSoup(two);
     const GeodesicField field = FastMarching(UpdateStencils(graph)).solve({{0, 0, 0}});
     for (int v = int(offset); v < graph.vertexCount(); ++v) {

@@ -23,16 +23,16 @@ TEST(GeodesicDistances, BothSolversGiveTheSameField) {
     const UpdateStencils stencils(graph);
     ocl::Runtime runtime;
     GeodesicSolver used = GeodesicSolver::Automatic;
-    const GeodesicField marched = geodesicDistances(stencils, {{0, 0, 0}}, {}, &runtime,
-                                                    GeodesicSolver::FastMarching, &used);
+    const GeodesicField marched =
+        geodesicDistances(stencils, {{0, 0, 0}}, {}, &runtime, GeodesicSolver::FastMarching, &used);
     EXPECT_EQ(used, GeodesicSolver::FastMarching);
     const GeodesicField iterated = geodesicDistances(stencils, {{0, 0, 0}}, {}, &runtime,
                                                      GeodesicSolver::FastIterative, &used);
     EXPECT_EQ(used, GeodesicSolver::FastIterative);
     for (int v = 0; v < graph.vertexCount(); ++v)
         EXPECT_NEAR(marched.time[std::size_t(v)], iterated.time[std::size_t(v)], 1e-6);
-    EXPECT_THROW(geodesicDistances(stencils, {{0, 0, 0}}, {}, nullptr,
-                                   GeodesicSolver::FastIterative),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        geodesicDistances(stencils, {{0, 0, 0}}, {}, nullptr, GeodesicSolver::FastIterative),
+        std::invalid_argument);
     EXPECT_STREQ(toString(GeodesicSolver::FastMarching), "fast-marching");
 }

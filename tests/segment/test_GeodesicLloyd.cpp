@@ -132,7 +132,8 @@ TEST(GeodesicLloyd, TenSeedsOnACubeFollowItsEdges) {
     std::vector<std::map<int, double>> areaByFace(result.seeds.size());
     for (int t = 0; t < graph.triangleCount(); ++t) {
         const auto& tri = graph.triangle(t);
-        const Vec3 c = (1.0 / 3) * (graph.point(tri[0]) + graph.point(tri[1]) + graph.point(tri[2]));
+        const Vec3 c =
+            (1.0 / 3) * (graph.point(tri[0]) + graph.point(tri[1]) + graph.point(tri[2]));
         areaByFace[std::size_t(result.faceRegion[std::size_t(t)])][cubeFace(c)] +=
             graph.triangleArea(t);
     }

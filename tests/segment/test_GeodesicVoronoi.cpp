@@ -45,7 +45,8 @@ TEST(GeodesicVoronoi, InterpolatedBordersSplitASquareExactly) {
     EXPECT_EQ(s.regions.neighbours[0], std::vector<int>{1});
     for (int t = 0; t < s.graph.triangleCount(); ++t) {
         const auto& tri = s.graph.triangle(t);
-        const double cx = (s.graph.point(tri[0]).x + s.graph.point(tri[1]).x + s.graph.point(tri[2]).x) / 3;
+        const double cx =
+            (s.graph.point(tri[0]).x + s.graph.point(tri[1]).x + s.graph.point(tri[2]).x) / 3;
         if (std::abs(cx - 0.5) > 0.05) {
             EXPECT_EQ(s.regions.faceRegion[std::size_t(t)], cx < 0.5 ? 0 : 1);
         }
@@ -53,9 +54,9 @@ TEST(GeodesicVoronoi, InterpolatedBordersSplitASquareExactly) {
 }
 
 TEST(GeodesicVoronoi, AreasAddUpToTheSurfaceAndAdjacencyIsMutual) {
-    const Solved s(MeshGraph::fromSoup(geodesicSphere(20)),
-                   {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1},
-                    {0.6, 0.6, 0.5}});
+    const Solved s(
+        MeshGraph::fromSoup(geodesicSphere(20)),
+        {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {0.6, 0.6, 0.5}});
     const double total = std::accumulate(s.regions.area.begin(), s.regions.area.end(), 0.0);
     EXPECT_NEAR(total, s.graph.totalArea(), 1e-9 * total);
     for (int r = 0; r < 7; ++r) {
@@ -87,7 +88,8 @@ TEST(GeodesicVoronoi, TopologyTellsDisksFromSpheresAndAnnuli) {
     std::vector<int> bands(sphere.triangles().size());
     for (int t = 0; t < sphere.triangleCount(); ++t) {
         const auto& tri = sphere.triangle(t);
-        const double z = (sphere.point(tri[0]).z + sphere.point(tri[1]).z + sphere.point(tri[2]).z) / 3;
+        const double z =
+            (sphere.point(tri[0]).z + sphere.point(tri[1]).z + sphere.point(tri[2]).z) / 3;
         bands[std::size_t(t)] = z > 0.4 ? 0 : z < -0.4 ? 2 : 1;
     }
     const auto topology = regionTopology(sphere, bands, 3);

@@ -42,7 +42,8 @@ TEST(LocalUpdate, PlaneWaveThroughTheTriangleIsExact) {
         if (u.upwind == Upwind::AcrossFace) {
             ++across;
             // The characteristic crosses AB at A + w(B − A), on the ray from C along −n.
-            const double px = t.ax + u.weightB * (t.bx - t.ax), py = t.ay + u.weightB * (t.by - t.ay);
+            const double px = t.ax + u.weightB * (t.bx - t.ax),
+                         py = t.ay + u.weightB * (t.by - t.ay);
             EXPECT_NEAR(std::atan2(py, px), phi, 1e-9);
         }
         EXPECT_LE(u.time, ta + t.la() * slowness + 1e-12);
@@ -54,7 +55,7 @@ TEST(LocalUpdate, WaveFromOutsideTheAngleTravelsAlongAnEdge) {
     // Right angle at C; a wave moving along +x+y... arriving from below the x axis.
     const double la = 1, lb = 1, cosC = 0;
     const double nx = -std::cos(-0.5), ny = -std::sin(-0.5);  // from direction −0.5 rad
-    const double ta = nx * la, tb = ny * lb;                     // T(C) = 0
+    const double ta = nx * la, tb = ny * lb;                  // T(C) = 0
     const TriangleUpdate u = triangleUpdate(ta, tb, la, lb, cosC, 1.0, true);
     EXPECT_EQ(u.upwind, Upwind::AlongA);
     EXPECT_NEAR(u.time, ta + la, 1e-15);

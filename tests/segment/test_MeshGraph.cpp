@@ -35,8 +35,9 @@ TEST(MeshGraph, AreasAndEdgeLengthsOfAUnitCube) {
     const std::vector<double> areas = graph.vertexAreas();
     EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 6.0, 1e-12);
     // Edges of 0.25: 48 on the cube's edges, 24 inside each face; 96 diagonals.
-    const double expected = (12 * 4 * 0.25 + 6 * (2 * 4 * 3) * 0.25 + 6 * 16 * 0.25 * std::sqrt(2.0)) /
-                            (12 * 4 + 6 * 2 * 4 * 3 + 6 * 16);
+    const double expected =
+        (12 * 4 * 0.25 + 6 * (2 * 4 * 3) * 0.25 + 6 * 16 * 0.25 * std::sqrt(2.0)) /
+        (12 * 4 + 6 * 2 * 4 * 3 + 6 * 16);
     EXPECT_NEAR(graph.meanEdgeLength(), expected, 1e-12);
 }
 

@@ -72,15 +72,17 @@ TEST(UpdateStencils, UsesAndDependentsMirrorTheStencils) {
     const UpdateStencils stencils(graph);
     std::size_t uses = 0;
     for (int s = 0; s < graph.vertexCount(); ++s)
-        for (int k = stencils.useFirst()[std::size_t(s)]; k < stencils.useFirst()[std::size_t(s) + 1];
-             ++k) {
+        for (int k = stencils.useFirst()[std::size_t(s)];
+             k < stencils.useFirst()[std::size_t(s) + 1]; ++k) {
             const StencilUse use = stencils.uses()[std::size_t(k)];
             const UpdateStencil& st = stencils.stencils()[std::size_t(use.stencil)];
             EXPECT_TRUE(st.a == s || st.b == s);
             EXPECT_GE(use.stencil, stencils.first()[std::size_t(use.target)]);
             EXPECT_LT(use.stencil, stencils.first()[std::size_t(use.target) + 1]);
-            const auto first = stencils.dependents().begin() + stencils.dependentFirst()[std::size_t(s)];
-            const auto last = stencils.dependents().begin() + stencils.dependentFirst()[std::size_t(s) + 1];
+            const auto first =
+                stencils.dependents().begin() + stencils.dependentFirst()[std::size_t(s)];
+            const auto last =
+                stencils.dependents().begin() + stencils.dependentFirst()[std::size_t(s) + 1];
             EXPECT_TRUE(std::binary_search(first, last, use.target));
             ++uses;
         }
