@@ -1,6 +1,7 @@
 #pragma once
 // Helpers the segment tests share: meshes with their reference distances.
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "segment/MeshGraph.hpp"
@@ -20,6 +21,18 @@ inline int nearestVertex(const MeshGraph& graph, Vec3 p) {
     for (int v = 1; v < graph.vertexCount(); ++v)
         if (length(graph.point(v) - p) < length(graph.point(best) - p)) best = v;
     return best;
+}
+
+/// A 3×3 grid of unit squares and, 10 mm away, a separate 2×2 one (its
+/// vertices from index 16 on): a front from the first never reaches it.
+inline TriangleSoup twoComponents() {
+    TriangleSoup two = squareGrid(3, 3, 1.0);
+    const TriangleSoup other = squareGrid(2, 2, 1.0);
+    const std::uint32_t offset = std::uint32_t(two.points.size());
+    for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
+    for (auto t : other.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    return two;
 }
 
 struct ErrorStats {

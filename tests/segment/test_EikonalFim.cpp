@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 
+#include "io/MeshIO.hpp"
 #include "segment/SpeedFunctions.hpp"
 #include "tests/segment/SegmentTestMeshes.hpp"
 
@@ -142,19 +144,31 @@ TEST(EikonalFim, DeviceRunsTheReferenceIteration) {
     }
 }
 
+TEST(EikonalFim, AgreesWithFastMarchingOnAScannedMesh) {
+    // libcgal-demo's bunny (make setup): irregular, 14K obtuse corners.
+    const std::string path = std::string(DFRECON_FIXTURES) + "/meshes/bunny00.off";
+    if (!std::ifstream(path)) GTEST_SKIP() << path << " missing (make setup)";
+    const MeshGraph graph = MeshGraph::fromMesh(readMesh(path));
+    const UpdateStencils stencils(graph);
+    EXPECT_GT(stencils.obtuseCorners(), 1000);
+    ocl::Runtime runtime;
+    const GeodesicField marched = FastMarching(stencils).solve({{0, 0, 0}});
+    const GeodesicField device = EikonalFim(runtime, stencils).solve({{0, 0, 0}});
+    double largest = 0;
+    for (double t : marched.time) largest = std::max(largest, t);
+    // Measured: 5e-9 % of the bounding-box diagonal.
+    EXPECT_LT(compare(marched, device).maxTime, 1e-8 * largest);
+    EXPECT_EQ(compare(marched, device).labels, 0);
+}
+
 TEST(EikonalFim, UnreachedVerticesStayUnreachedOnTheDevice) {
-    TriangleSoup two = squareGrid(3, 3, 1.0);
-    const TriangleSoup other = squareGrid(2, 2, 1.0);
-    const std::uint32_t offset = std::uint32_t(two.points.size());
-    for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
-    for (auto t : other.triangles)
-        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    const MeshGraph graph = MeshGraph::fromSoup(two);
+    const int otherComponent = 16;  // twoComponents(): the second grid's first vertex
+    const MeshGraph graph = MeshGraph::fromSoup(dfrecon::testing::twoComponents());
     const UpdateStencils stencils(graph);
     ocl::Runtime runtime;
     const GeodesicField device = EikonalFim(runtime, stencils).solve({{0, 0, 0}});
     const GeodesicField host = eikonalFimReference(stencils, {{0, 0, 0}});
-    for (int v = int(offset); v < graph.vertexCount(); ++v) {
+    for (int v = otherComponent; v < graph.vertexCount(); ++v) {
         EXPECT_EQ(device.time[std::size_t(v)], kUnreached);
         EXPECT_EQ(device.label[std::size_t(v)], -1);
     }

@@ -200,15 +200,10 @@ TEST(FastMarching, SpeedScalesTimesAndStopsWork) {
 }
 
 TEST(FastMarching, UnreachedComponentStaysUnreached) {
-    TriangleSoup two = squareGrid(3, 3, 1.0);
-    const TriangleSoup other = squareGrid(2, 2, 1.0);
-    const std::uint32_t offset = std::uint32_t(two.points.size());
-    for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
-    for (auto t : other.triangles)
-        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    const MeshGraph graph = MeshGraph::fromSoup(two);
+    const int otherComponent = 16;  // twoComponents(): the second grid's first vertex
+    const MeshGraph graph = MeshGraph::fromSoup(dfrecon::testing::twoComponents());
     const GeodesicField field = FastMarching(UpdateStencils(graph)).solve({{0, 0, 0}});
-    for (int v = int(offset); v < graph.vertexCount(); ++v) {
+    for (int v = otherComponent; v < graph.vertexCount(); ++v) {
         EXPECT_EQ(field.time[std::size_t(v)], kUnreached);
         EXPECT_EQ(field.label[std::size_t(v)], -1);
     }
