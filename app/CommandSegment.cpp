@@ -76,6 +76,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                                      {"requestedRegions", args.regions},
                                      {"regionCount", s.regions.size()},
                                      {"seedsAddedForDisks", s.seedsAdded},
+                                     {"seedsAddedForComponents", s.componentSeeds},
                                      {"iterations", s.iterations},
                                      {"converged", s.converged},
                                      {"lloydEnergy", s.energy},

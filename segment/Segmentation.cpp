@@ -26,7 +26,19 @@ Segmentation segmentMesh(const MeshGraph& graph, const SegmentOptions& options) 
     const UpdateStencils stencils(graph, options.unfold);
     {
         const FastMarching sampling(stencils, curvatureSpeed(graph, samplingKind, weight));
-        result.initialSeeds = farthestPointSampling(sampling, options.regions).vertices;
+        FarthestPoints samples = farthestPointSampling(sampling, options.regions);
+        // Sampling only reaches the first sample's component: every other
+        // component gets a seed of its own (the disk constraint and the
+        // iterations refine it from there).
+        for (int v = 0; v < graph.vertexCount(); ++v) {
+            if (samples.field.time[std::size_t(v)] != kUnreached ||
+                graph.trianglesAround(v).size() == 0)
+                continue;
+            sampling.march(samples.field, {{v, 0.0, int(samples.vertices.size())}});
+            samples.vertices.push_back(v);
+            ++result.componentSeeds;
+        }
+        result.initialSeeds = samples.vertices;
     }
     if (options.progress) options.progress(0.1);
     const FastMarching regionMetric(stencils, curvatureSpeed(graph, options.speed, weight));

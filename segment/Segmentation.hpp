@@ -37,15 +37,16 @@ struct RegionReport {
 };
 
 struct Segmentation {
-    std::vector<int> initialSeeds;  // from farthest-point sampling
+    std::vector<int> initialSeeds;  // from farthest-point sampling (+ componentSeeds)
     std::vector<int> seeds;         // after the Lloyd iterations
-    std::vector<int> vertexRegion;  // per vertex (-1: unreached component)
-    std::vector<int> faceRegion;    // per face (-1: unreached component)
+    std::vector<int> vertexRegion;  // per vertex (-1: a vertex in no triangle)
+    std::vector<int> faceRegion;    // per face
     std::vector<RegionReport> regions;
     std::vector<double> energy;  // Lloyd energy, [0] before the first iteration
     int iterations = 0;
     bool converged = false;
-    int seedsAdded = 0;
+    int seedsAdded = 0;            // by the disk constraint
+    int componentSeeds = 0;        // one per component the sampling did not reach
     double curvatureWeightMm = 0;  // the weight used (0 for uniform speed)
     double seconds = 0;
 };

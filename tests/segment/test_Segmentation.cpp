@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 #include "segment/SampleSurfaces.hpp"
@@ -34,6 +35,26 @@ TEST(Segmentation, UniformSphereGetsEqualCompactRegions) {
     EXPECT_EQ(s.vertexRegion.size(), std::size_t(graph.vertexCount()));
     for (int r : s.faceRegion) EXPECT_GE(r, 0);
     EXPECT_GE(s.energy.size(), 1u);
+}
+
+TEST(Segmentation, EveryComponentGetsRegions) {
+    // Two spheres 10 radii apart: sampling from one never reaches the other.
+    TriangleSoup two = geodesicSphere(8);
+    const TriangleSoup other = geodesicSphere(6);
+    const std::uint32_t offset = std::uint32_t(two.points.size());
+    for (Vec3 p : other.points) two.points.push_back(p + Vec3{10, 0, 0});
+    for (auto t : other.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    const MeshGraph graph = MeshGraph::fromSoup(two);
+    SegmentOptions options;
+    options.regions = 6;
+    options.speed = SpeedKind::Uniform;
+    const Segmentation s = segmentMesh(graph, options);
+    EXPECT_EQ(s.componentSeeds, 1);
+    for (int r : s.faceRegion) EXPECT_GE(r, 0);
+    for (const RegionReport& r : s.regions) EXPECT_TRUE(r.disk);
+    // The second sphere, one seed, is split by the disk constraint.
+    EXPECT_GE(s.seedsAdded, 1);
 }
 
 TEST(Segmentation, RejectsImpossibleRequests) {
