@@ -6,13 +6,14 @@
 // Measured on this project's reference machine (2 shared cores, PoCL's CPU
 // device, double precision; `dfrecon-bench segment` and best-of-3 runs):
 // on geodesic spheres, whose regular triangles let a settled vertex stay
-// settled (≈1.2 vertex updates per vertex), PoCL's FIM is 1.5–1.8× slower
-// than fast marching up to 100K vertices and 0.75–0.95× its time from 225K
-// to 1M; on irregular meshes (scans, or the same spheres with jittered
-// vertices: 5–13 updates per vertex) it is 3–9× slower at every size tried,
-// up to 1M. The gain on regular meshes is within the run-to-run noise of a
-// shared machine and the loss elsewhere is large, so on a CPU device the
-// choice is always fast marching. On a GPU the FIM's parallelism should pay
+// settled (≈1.2 vertex updates per vertex), PoCL's FIM took about the same
+// time as fast marching up to 1.8× more up to 100K vertices, and 0.6×–1.3×
+// fast marching's time from 225K to 1M (varying from run to run); on
+// irregular meshes (scans, or the same spheres with jittered vertices: 5–13
+// updates per vertex) it is 3–9× slower at every size tried, up to 1M. The
+// gain on regular meshes is within the run-to-run noise of a shared machine
+// and the loss elsewhere is large, so on a CPU device the choice is always
+// fast marching. On a GPU the FIM's parallelism should pay
 // for large meshes; kFimMinVerticesOnGpu is where we switch, an estimate
 // that has not been measured on a GPU.
 #include <string>
