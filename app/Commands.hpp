@@ -23,5 +23,7 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 void addConvertCommand(CLI::App& root, const GlobalOptions& global);
 void addRasterizeCommand(CLI::App& root, const GlobalOptions& global);
 void addSdmCommand(CLI::App& root, const GlobalOptions& global);
+void addSegmentCommand(CLI::App& root, const GlobalOptions& global);
+void addGeodesicCommand(CLI::App& root, const GlobalOptions& global);
 
 }  // namespace dfrecon::app

@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     addConvertCommand(root, global);
     addRasterizeCommand(root, global);
     addSdmCommand(root, global);
+    addSegmentCommand(root, global);
+    addGeodesicCommand(root, global);
     addCheckCommand(root, global);
 
     try {

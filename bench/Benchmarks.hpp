@@ -14,6 +14,7 @@ int benchRecon(const std::string& device);
 int benchSimplify(const std::string& device);
 int benchRtStruct();
 int benchSdm(const std::string& device);
+int benchSegment(const std::string& device);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

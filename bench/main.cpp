@@ -9,7 +9,8 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|sdm|all [--device SPEC]\n"
+        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|sdm|segment|all "
+        "[--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
         "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"
@@ -18,7 +19,9 @@ int main(int argc, char** argv) {
         "  rtstruct   RTSTRUCT reading and writing (plastimatch fixtures) vs DCMTK's dcmrt "
         "parse\n"
         "  sdm        surface distance maps, 512x512 per object, 6K-triangle scene, vs brute "
-        "force and OpenVDB meshToVolume\n";
+        "force and OpenVDB meshToVolume\n"
+        "  segment    geodesic distances (fast marching, OpenCL fast iterative method) on spheres "
+        "and libcgal-demo meshes; geodesic Lloyd segmentation\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -33,9 +36,10 @@ int main(int argc, char** argv) {
     if (suite == "simplify") return benchSimplify(device);
     if (suite == "rtstruct") return benchRtStruct();
     if (suite == "sdm") return benchSdm(device);
+    if (suite == "segment") return benchSegment(device);
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
-               benchSimplify(device) | benchSdm(device);
+               benchSimplify(device) | benchSdm(device) | benchSegment(device);
     std::cerr << usage;
     return 1;
 }

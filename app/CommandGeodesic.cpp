@@ -1,0 +1,161 @@
+// dfrecon geodesic MESH --from V[,V...] -o OUT.ply: geodesic distance on a
+// surface from source vertices (fast marching, or the OpenCL fast
+// iterative method where that is faster), per vertex in the PLY.
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/GeodesicOutput.hpp"
+#include "app/Stopwatch.hpp"
+#include "segment/GeodesicDistances.hpp"
+#include "segment/SpeedFunctions.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+struct GeodesicArgs {
+    std::string input, output, speed = "uniform", solver = "auto", from;
+    double curvatureWeightMm = 0;
+    bool json = false, ascii = false, noUnfold = false;
+};
+
+/// "3,17,42" → {3, 17, 42}; std::invalid_argument (exit 1) otherwise. A
+/// string, not a CLI11 vector option, so that `--from 0 MESH` does not take
+/// the mesh as a second vertex.
+std::vector<int> parseVertexList(const std::string& text) {
+    std::vector<int> vertices;
+    std::stringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+        std::size_t used = 0;
+        int v = -1;
+        try {
+            v = std::stoi(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || v < 0)
+            throw std::invalid_argument("--from: '" + item + "' is not a vertex index");
+        vertices.push_back(v);
+    }
+    if (vertices.empty()) throw std::invalid_argument("--from: no vertices given");
+    return vertices;
+}
+
+GeodesicSolver parseSolver(const std::string& name) {
+    if (name == "fm") return GeodesicSolver::FastMarching;
+    if (name == "fim") return GeodesicSolver::FastIterative;
+    return GeodesicSolver::Automatic;
+}
+
+void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
+    const auto start = Clock::now();
+    requirePlyOutput(args.output);
+    GeodesicInput input = readGeodesicInput(args.input);
+    const int n = input.graph.vertexCount();
+    const std::vector<int> from = parseVertexList(args.from);
+    std::vector<GeodesicSource> sources;
+    for (int v : from) {
+        if (v < 0 || v >= n)
+            throw std::invalid_argument("--from vertex " + std::to_string(v) +
+                                        " is not a vertex of " + args.input + " (it has " +
+                                        std::to_string(n) + ")");
+        sources.push_back({v, 0.0, int(sources.size())});
+    }
+    const SpeedKind kind = parseSpeedKind(args.speed);
+    const double weight =
+        args.curvatureWeightMm > 0 ? args.curvatureWeightMm : defaultCurvatureWeight(input.graph);
+    UnfoldOptions unfold;
+    unfold.unfoldObtuse = !args.noUnfold;
+    const UpdateStencils stencils(input.graph, unfold);
+    const std::vector<double> speed = curvatureSpeed(input.graph, kind, weight);
+    // Only open a device when the FIM may run: fast marching needs none.
+    std::unique_ptr<ocl::Runtime> runtime;
+    const GeodesicSolver requested = parseSolver(args.solver);
+    if (requested != GeodesicSolver::FastMarching)
+        runtime = std::make_unique<ocl::Runtime>(global.device);
+    const auto solveStart = Clock::now();
+    GeodesicSolver used = requested;
+    const GeodesicField field =
+        geodesicDistances(stencils, sources, speed, runtime.get(), requested, &used);
+    const double solveSeconds = secondsSince(solveStart);
+    writeDistancePly(std::move(input.mesh), field.time, field.label, args.output, !args.ascii);
+
+    double largest = 0, sum = 0;
+    int reached = 0;
+    for (double t : field.time)
+        if (std::isfinite(t)) {
+            largest = std::max(largest, t);
+            sum += t;
+            ++reached;
+        }
+    if (!args.json) {
+        std::cout << args.input << ": distances from " << sources.size() << " vertices, largest "
+                  << largest << (kind == SpeedKind::Uniform ? " mm" : " (weighted)") << ", "
+                  << n - reached << " vertices unreached (" << toString(used) << ") -> "
+                  << args.output << "\n";
+        return;
+    }
+    const nlohmann::ordered_json out{
+        {"command", "geodesic"},
+        {"input", args.input},
+        {"output", args.output},
+        {"vertices", n},
+        {"faces", input.graph.triangleCount()},
+        {"sources", from},
+        {"speed", toString(kind)},
+        {"curvatureWeightMm", kind == SpeedKind::Uniform ? 0.0 : weight},
+        {"solver", toString(used)},
+        {"device", runtime ? nlohmann::ordered_json(runtime->device().deviceName) : nullptr},
+        {"obtuseCorners", stencils.obtuseCorners()},
+        {"unfoldFailures", stencils.unfoldFailures()},
+        {"maxDistance", largest},
+        {"meanDistance", reached > 0 ? sum / reached : 0.0},
+        {"unreachedVertices", n - reached},
+        {"seconds", solveSeconds},
+        {"totalSeconds", secondsSince(start)}};
+    std::cout << out.dump(2) << "\n";
+}
+
+}  // namespace
+
+void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
+    auto args = std::make_shared<GeodesicArgs>();
+    CLI::App* cmd =
+        root.add_subcommand("geodesic", "Geodesic distance on a surface from source vertices");
+    cmd->footer(
+        "Fast marching on the triangles with obtuse angles unfolded, or the OpenCL fast "
+        "iterative method where it is faster (on a GPU, large meshes; both give the same "
+        "distances). Writes a PLY with vertex properties 'distance' (mm; the weighted distance "
+        "∫ds/F for a non-uniform speed; -1 where unreached) and 'source' (index into --from), "
+        "and colours. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
+    cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply)")->required();
+    cmd->add_option("--from", args->from, "Source vertex indices (0-based), comma-separated")
+        ->required();
+    cmd->add_option("--speed", args->speed,
+                    "Front speed F: uniform (distance in mm), repulsive (1+e·κ) or attractive "
+                    "(1/(1+m·κ)), κ the total curvature")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"uniform", "repulsive", "attractive"}));
+    cmd->add_option("--curvature-weight", args->curvatureWeightMm,
+                    "e or m of the curvature speeds, in mm (default: √(area/10))")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--solver", args->solver,
+                    "auto (the faster for this mesh and device), fm (fast marching) or fim "
+                    "(OpenCL fast iterative method)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "fm", "fim"}));
+    cmd->add_flag("--no-unfold", args->noUnfold,
+                  "Use obtuse triangles as they are (less accurate; for comparison)");
+    cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    cmd->callback([args, &global] { runGeodesic(*args, global); });
+}
+
+}  // namespace dfrecon::app
