@@ -26,8 +26,8 @@
 
 #include "bench/Benchmarks.hpp"
 #include "io/MeshIO.hpp"
+#include "io/MeshShapes.hpp"
 #include "segment/EikonalFim.hpp"
-#include "segment/SampleSurfaces.hpp"
 #include "segment/Segmentation.hpp"
 
 namespace dfrecon::bench {

@@ -1,46 +1,134 @@
 #include "io/MeshShapes.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <random>
+#include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 namespace dfrecon {
 
-TriangleSoup icosphere(Vec3 centre, double radiusMm, int subdivisions) {
-    const double g = (1 + std::sqrt(5.0)) / 2;
-    std::vector<Vec3> unit = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
-                              {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
-                              {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    for (Vec3& p : unit) p = (1 / length(p)) * p;
-    std::vector<std::array<std::uint32_t, 3>> faces = {
-        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-        {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (int s = 0; s < subdivisions; ++s) {
-        // Edge midpoints shared by both triangles of an edge keep it closed.
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoint;
-        auto middle = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto found = midpoint.find(key);
-            if (found != midpoint.end()) return found->second;
-            const Vec3 m = 0.5 * (unit[a] + unit[b]);
-            unit.push_back((1 / length(m)) * m);
-            return midpoint[key] = std::uint32_t(unit.size() - 1);
-        };
-        std::vector<std::array<std::uint32_t, 3>> finer;
-        for (const auto& f : faces) {
-            const std::uint32_t ab = middle(f[0], f[1]), bc = middle(f[1], f[2]),
-                                ca = middle(f[2], f[0]);
-            finer.push_back({f[0], ab, ca});
-            finer.push_back({f[1], bc, ab});
-            finer.push_back({f[2], ca, bc});
-            finer.push_back({ab, bc, ca});
-        }
-        faces = std::move(finer);
-    }
+TriangleSoup geodesicSphere(int frequency, double radius) {
+    if (frequency < 1) throw std::invalid_argument("geodesicSphere: frequency < 1");
+    const double phi = (1 + std::sqrt(5.0)) / 2;
+    const std::array<Vec3, 12> corners{{{-1, phi, 0},
+                                        {1, phi, 0},
+                                        {-1, -phi, 0},
+                                        {1, -phi, 0},
+                                        {0, -1, phi},
+                                        {0, 1, phi},
+                                        {0, -1, -phi},
+                                        {0, 1, -phi},
+                                        {phi, 0, -1},
+                                        {phi, 0, 1},
+                                        {-phi, 0, -1},
+                                        {-phi, 0, 1}}};
+    const std::array<std::array<int, 3>, 20> faces{
+        {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+         {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
+    const int n = frequency;
     TriangleSoup soup;
-    for (const Vec3& p : unit) soup.points.push_back(centre + radiusMm * p);
-    soup.triangles = std::move(faces);
+    // A point is the combination Σ w_i corner_i / n of at most three
+    // icosahedron corners; points on shared edges are keyed by their sorted
+    // (corner, weight) pairs so that every face finds the same one, and are
+    // computed from that sorted combination so that they are bit-identical.
+    std::unordered_map<std::uint64_t, std::uint32_t> shared;
+    const auto pointIndex = [&](std::array<std::pair<int, int>, 3> terms) {
+        std::sort(terms.begin(), terms.end());
+        Vec3 p{};
+        std::uint64_t key = 0;
+        int used = 0;
+        for (const auto& [corner, weight] : terms) {
+            if (weight == 0) continue;
+            p = p + (double(weight) / n) * corners[std::size_t(corner)];
+            key = key << 24 | std::uint64_t(corner) << 20 | std::uint64_t(weight);
+            ++used;
+        }
+        const auto make = [&] {
+            soup.points.push_back((radius / length(p)) * p);
+            return std::uint32_t(soup.points.size() - 1);
+        };
+        if (used == 3) return make();  // inside a face: nobody else has it
+        auto [it, inserted] = shared.try_emplace(key, 0);
+        if (inserted) it->second = make();
+        return it->second;
+    };
+    for (const auto& f : faces) {
+        std::vector<std::uint32_t> grid;  // (i, j) with i + j ≤ n, row by row
+        std::vector<std::size_t> rowStart;
+        for (int i = 0; i <= n; ++i) {
+            rowStart.push_back(grid.size());
+            for (int j = 0; i + j <= n; ++j)
+                grid.push_back(pointIndex({{{f[0], n - i - j}, {f[1], i}, {f[2], j}}}));
+        }
+        const auto at = [&](int i, int j) {
+            return grid[rowStart[std::size_t(i)] + std::size_t(j)];
+        };
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; i + j < n; ++j) {
+                soup.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+                if (i + j + 1 < n)
+                    soup.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            }
+    }
+    return soup;
+}
+
+TriangleSoup jitteredGeodesicSphere(int frequency, double jitter, unsigned seed, double radius) {
+    TriangleSoup soup = geodesicSphere(frequency, radius);
+    // The icosahedron's edge is 1.05 radii; the sphere's edges about that / frequency.
+    const double edge = 1.1 * radius / frequency;
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> offset(-jitter * edge, jitter * edge);
+    for (Vec3& p : soup.points) {
+        p = p + Vec3{offset(random), offset(random), offset(random)};
+        p = (radius / length(p)) * p;
+    }
+    return soup;
+}
+
+TriangleSoup tessellatedCube(int n, double size) {
+    if (n < 1) throw std::invalid_argument("tessellatedCube: n < 1");
+    return boxMesh({-0.5 * size, -0.5 * size, -0.5 * size}, {0.5 * size, 0.5 * size, 0.5 * size},
+                   n);
+}
+
+TriangleSoup staggeredGrid(int columns, int rows, double dx, double dy) {
+    if (columns < 1 || rows < 1) throw std::invalid_argument("staggeredGrid: empty grid");
+    TriangleSoup soup;
+    const auto at = [columns](int i, int j) { return std::uint32_t(j * (columns + 1) + i); };
+    for (int j = 0; j <= rows; ++j)
+        for (int i = 0; i <= columns; ++i)
+            soup.points.push_back({i * dx + (j % 2 ? dx / 2 : 0.0), j * dy, 0});
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            if (j % 2 == 0) {  // upper row shifted right
+                soup.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+                soup.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            } else {  // this row shifted right
+                soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+                soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            }
+        }
+    return soup;
+}
+
+TriangleSoup squareGrid(int columns, int rows, double spacing) {
+    if (columns < 1 || rows < 1) throw std::invalid_argument("squareGrid: empty grid");
+    TriangleSoup soup;
+    const auto at = [columns](int i, int j) { return std::uint32_t(j * (columns + 1) + i); };
+    for (int j = 0; j <= rows; ++j)
+        for (int i = 0; i <= columns; ++i) soup.points.push_back({i * spacing, j * spacing, 0});
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            soup.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            soup.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
     return soup;
 }
 

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/MeshIO.hpp"
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 #include "tests/TempDir.hpp"
 
 namespace fs = std::filesystem;

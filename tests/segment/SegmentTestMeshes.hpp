@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "io/MeshShapes.hpp"
 #include "segment/MeshGraph.hpp"
-#include "segment/SampleSurfaces.hpp"
 
 namespace dfrecon::testing {
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 
 using namespace dfrecon;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 
 using namespace dfrecon;
 

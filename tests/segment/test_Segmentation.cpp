@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <numeric>
 
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 
 using namespace dfrecon;
 

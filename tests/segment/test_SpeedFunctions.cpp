@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 
 using namespace dfrecon;
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "segment/SampleSurfaces.hpp"
+#include "io/MeshShapes.hpp"
 
 using namespace dfrecon;
 
