@@ -12,7 +12,7 @@
 
 namespace dfrecon {
 
-TriangleSoup geodesicSphere(int frequency, double radius) {
+TriangleSoup geodesicSphere(int frequency, double radius, Vec3 centre) {
     if (frequency < 1) throw std::invalid_argument("geodesicSphere: frequency < 1");
     const double phi = (1 + std::sqrt(5.0)) / 2;
     const std::array<Vec3, 12> corners{{{-1, phi, 0},
@@ -50,7 +50,7 @@ TriangleSoup geodesicSphere(int frequency, double radius) {
             ++used;
         }
         const auto make = [&] {
-            soup.points.push_back((radius / length(p)) * p);
+            soup.points.push_back(centre + (radius / length(p)) * p);
             return std::uint32_t(soup.points.size() - 1);
         };
         if (used == 3) return make();  // inside a face: nobody else has it

@@ -9,10 +9,10 @@
 namespace dfrecon {
 
 /// The icosahedron with each face cut into frequency² triangles, vertices
-/// pushed onto the sphere of `radius` centred at the origin:
+/// pushed onto the sphere of `radius` centred at `centre`:
 /// 10·frequency² + 2 vertices, 20·frequency² triangles, all near-equilateral
 /// (no obtuse angles), consistently oriented outwards. frequency ≥ 1.
-TriangleSoup geodesicSphere(int frequency, double radius = 1.0);
+TriangleSoup geodesicSphere(int frequency, double radius = 1.0, Vec3 centre = {});
 
 /// geodesicSphere with every vertex moved by a uniform random offset of up
 /// to `jitter` × the mean edge length along each axis, then put back on the

@@ -13,17 +13,6 @@ using namespace dfrecon;
 
 namespace {
 
-// A geodesic sphere (20·frequency² triangles) centred at `centre`.
-TriangleSoup sphereAt(Vec3 centre, double radiusMm, int frequency) {
-    TriangleSoup sphere = geodesicSphere(frequency, radiusMm);
-    for (Vec3& p : sphere.points) p = centre + p;
-    return sphere;
-}
-
-}  // namespace
-
-namespace {
-
 // The farthest any of `probes` random points per triangle is from the
 // nearest sample of its own triangle (brute force over that triangle's
 // samples).
@@ -53,7 +42,7 @@ double largestGapToSamples(const TriangleSoup& soup, const AtlasSamples& samples
 }  // namespace
 
 TEST(Atlas, FixedSizeChartsAreDisjointAndEveryTriangleIsSampled) {
-    const TriangleSoup sphere = sphereAt({0, 0, 0}, 20, 8);  // 1280 triangles
+    const TriangleSoup sphere = geodesicSphere(8, 20);  // 1280 triangles
     const Atlas atlas = buildAtlas(sphere, {128});
     EXPECT_EQ(atlas.width, 128);
     EXPECT_EQ(atlas.height, 128);
@@ -76,8 +65,7 @@ TEST(Atlas, FixedSizeChartsAreDisjointAndEveryTriangleIsSampled) {
 }
 
 TEST(Atlas, EveryPointIsWithinTheLemma2BoundOfASample) {
-    for (const TriangleSoup& soup :
-         {sphereAt({0, 0, 0}, 20, 4), boxMesh({0, 0, 0}, {30, 10, 5}, 3)}) {
+    for (const TriangleSoup& soup : {geodesicSphere(4, 20), boxMesh({0, 0, 0}, {30, 10, 5}, 3)}) {
         for (const AtlasOptions& options : {AtlasOptions{64}, AtlasOptions{0, 0.8}}) {
             const Atlas atlas = buildAtlas(soup, options);
             const AtlasSamples samples = atlasSamples(atlas, soup);
@@ -101,7 +89,7 @@ TEST(Atlas, EveryPointIsWithinTheLemma2BoundOfASample) {
 }
 
 TEST(Atlas, RefusesWhatCannotFit) {
-    const TriangleSoup sphere = sphereAt({0, 0, 0}, 20, 8);         // 1280 triangles
+    const TriangleSoup sphere = geodesicSphere(8, 20);              // 1280 triangles
     EXPECT_THROW(buildAtlas(sphere, {32}), std::invalid_argument);  // 1024 texels
     AtlasOptions tiny;
     tiny.maxErrorMm = 1e-4;

@@ -16,17 +16,6 @@ using namespace dfrecon;
 
 namespace {
 
-// A geodesic sphere (20·frequency² triangles) centred at `centre`.
-TriangleSoup sphereAt(Vec3 centre, double radiusMm, int frequency) {
-    TriangleSoup sphere = geodesicSphere(frequency, radiusMm);
-    for (Vec3& p : sphere.points) p = centre + p;
-    return sphere;
-}
-
-}  // namespace
-
-namespace {
-
 ocl::Runtime& runtime() {
     static ocl::Runtime r;
     return r;
@@ -104,7 +93,7 @@ TEST(ClosestPrimitives, RandomSoupsAgreeWithBruteForce) {
 TEST(ClosestPrimitives, SignsAndDistancesOfOverlappingSpheres) {
     // Sphere B (r = 10) overlaps sphere A (r = 8) by 4 mm along x.
     const Vec3 ca{0, 0, 0}, cb{14, 0, 0};
-    SurfaceScene scene({sphereAt(ca, 8, 16), sphereAt(cb, 10, 16)});
+    SurfaceScene scene({geodesicSphere(16, 8, ca), geodesicSphere(16, 10, cb)});
     ASSERT_TRUE(scene.closed(0));
     ASSERT_TRUE(scene.closed(1));
     const std::vector<SurfaceSample> samples = allSamples(scene, 256);
@@ -131,7 +120,7 @@ TEST(ClosestPrimitives, SignsAndDistancesOfOverlappingSpheres) {
 
 TEST(ClosestPrimitives, BandAndTargetQueriesAgreeWithBruteForce) {
     std::mt19937 random(5);
-    SurfaceScene scene({sphereAt({0, 0, 0}, 6, 8), boxMesh({9, -4, -4}, {15, 4, 4}, 4),
+    SurfaceScene scene({geodesicSphere(8, 6), boxMesh({9, -4, -4}, {15, 4, 4}, 4),
                         randomSoup(random, {0, 14, 0}, 100)});
     const std::vector<SurfaceSample> samples = allSamples(scene, 64);
     ClosestPrimitiveKernel kernel(runtime(), scene);
