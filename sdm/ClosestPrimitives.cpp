@@ -1,7 +1,6 @@
 #include "sdm/ClosestPrimitives.hpp"
 
 #include <array>
-#include <map>
 #include <unordered_map>
 
 #include "cl/DeviceBuffer.hpp"
