@@ -8,7 +8,8 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "io/InputError.hpp"
-#include "recon/MeshCheck.hpp"
+#include "io/MeshIO.hpp"
+#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon::app {
 

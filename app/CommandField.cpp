@@ -10,7 +10,7 @@
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/LevelSetVdb.hpp"
-#include "simplify/FieldVolume.hpp"
+#include "field/FieldVolume.hpp"
 
 namespace dfrecon::app {
 

@@ -17,7 +17,7 @@
 #include "io/RawVolume.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/MedialAxis.hpp"
-#include "recon/SliceFields.hpp"
+#include "field/SliceFields.hpp"
 
 namespace dfrecon::app {
 

@@ -12,7 +12,7 @@
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/LabelVolume.hpp"
-#include "simplify/DistanceField3D.hpp"
+#include "field/DistanceField3D.hpp"
 
 namespace dfrecon::app {
 

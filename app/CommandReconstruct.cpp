@@ -12,7 +12,7 @@
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/MeshIO.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon::app {

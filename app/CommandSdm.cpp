@@ -17,6 +17,7 @@
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
 #include "io/InputError.hpp"
+#include "io/MeshIO.hpp"
 #include "io/VertexDataMesh.hpp"
 #include "sdm/ProximityQueries.hpp"
 

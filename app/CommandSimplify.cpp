@@ -13,7 +13,7 @@
 #include "app/Stopwatch.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon::app {
 

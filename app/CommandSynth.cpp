@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::app {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/TriMesh.hpp"
+#include "geometry/TriMesh.hpp"
 #include "segment/MeshGraph.hpp"
 
 namespace dfrecon::app {

@@ -1,6 +1,6 @@
 // 2D signed distance fields on a 512×512 grid for a contour with a hole, at
 // 100, 1 000 and 10 000 segments. Systems, same run and machine:
-//   dfrecon     the tile-culled OpenCL kernel (recon/SliceFields)
+//   dfrecon     the tile-culled OpenCL kernel (field/SliceFields)
 //   bruteforce  its C++ reference: every segment at every pixel
 //   opencv      cv::distanceTransform(DIST_L2, DIST_MASK_PRECISE) on the
 //               rasterised mask, inside and outside, giving a signed field
@@ -13,7 +13,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "recon/SliceFields.hpp"
+#include "field/SliceFields.hpp"
 
 namespace dfrecon::bench {
 

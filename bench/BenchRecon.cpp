@@ -14,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/LevinBaseline.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleBvh.hpp"
 #include "simplify/SurfaceDistance.hpp"
 
 namespace dfrecon::bench {

@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
+#include "io/MeshIO.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 
 namespace dfrecon::bench {

@@ -26,7 +26,7 @@
 
 #include "bench/Benchmarks.hpp"
 #include "io/MeshIO.hpp"
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "segment/EikonalFim.hpp"
 #include "segment/Segmentation.hpp"
 

@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/AnalyticShapes.hpp"
-#include "recon/MeshCheck.hpp"
+#include "shapes/AnalyticShapes.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/Simplification.hpp"
 #include "simplify/SurfaceDistance.hpp"

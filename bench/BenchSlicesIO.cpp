@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::bench {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/PlaneFrame.hpp"
-#include "io/Polygon.hpp"
+#include "geometry/PlaneFrame.hpp"
+#include "geometry/Polygon.hpp"
 
 namespace dfrecon {
 

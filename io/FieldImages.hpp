@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/Polygon.hpp"
+#include "geometry/Polygon.hpp"
 
 namespace dfrecon {
 

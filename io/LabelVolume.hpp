@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/Vec3.hpp"
+#include "geometry/Vec3.hpp"
 
 namespace dfrecon {
 

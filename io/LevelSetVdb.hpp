@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/PlaneFrame.hpp"
-#include "io/Vec3.hpp"
+#include "geometry/PlaneFrame.hpp"
+#include "geometry/Vec3.hpp"
 
 namespace dfrecon {
 

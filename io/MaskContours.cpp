@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "io/InputError.hpp"
-#include "io/IsoLines.hpp"
+#include "geometry/IsoLines.hpp"
 
 namespace dfrecon {
 

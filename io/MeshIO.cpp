@@ -1,10 +1,13 @@
 #include "io/MeshIO.hpp"
 
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
@@ -55,5 +58,125 @@ void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOpti
         return OpenMesh::IO::write_mesh(copy, temporary, flags);
     });
 }
+
+namespace {
+
+using namespace OpenMesh;
+
+// Receives what OpenMesh's readers parse and keeps vertices and faces as
+// they come; everything else (colours, normals, texture data) is ignored.
+class SoupImporter : public IO::BaseImporter {
+  public:
+    explicit SoupImporter(TriangleSoup& soup) : soup_(soup) {}
+
+    VertexHandle add_vertex(const Vec3f& p) override { return add_vertex(Vec3d(p)); }
+    VertexHandle add_vertex(const Vec3d& p) override {
+        soup_.points.push_back({p[0], p[1], p[2]});
+        return VertexHandle(int(soup_.points.size()) - 1);
+    }
+    VertexHandle add_vertex() override { return add_vertex(Vec3d(0, 0, 0)); }
+    HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+    FaceHandle add_face(const VHandles& indices) override {
+        for (std::size_t k = 1; k + 1 < indices.size(); ++k)
+            soup_.triangles.push_back({std::uint32_t(indices[0].idx()),
+                                       std::uint32_t(indices[k].idx()),
+                                       std::uint32_t(indices[k + 1].idx())});
+        return FaceHandle(int(soup_.triangles.size()) - 1);
+    }
+    FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
+    void set_point(VertexHandle v, const Vec3f& p) override {
+        if (v.is_valid() && std::size_t(v.idx()) < soup_.points.size())
+            soup_.points[std::size_t(v.idx())] = {p[0], p[1], p[2]};
+    }
+    size_t n_vertices() const override { return soup_.points.size(); }
+    size_t n_faces() const override { return soup_.triangles.size(); }
+    size_t n_edges() const override { return 0; }
+
+    // Attributes dfrecon does not read.
+    void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<Vec2f>&) override {}
+    void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<Vec3f>&) override {}
+    void set_face_texindex(FaceHandle, int) override {}
+    void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+    void set_normal(VertexHandle, const Vec3f&) override {}
+    void set_normal(VertexHandle, const Vec3d&) override {}
+    void set_color(VertexHandle, const Vec3uc&) override {}
+    void set_color(VertexHandle, const Vec4uc&) override {}
+    void set_color(VertexHandle, const Vec3f&) override {}
+    void set_color(VertexHandle, const Vec4f&) override {}
+    void set_texcoord(VertexHandle, const Vec2f&) override {}
+    void set_status(VertexHandle, const Attributes::StatusInfo&) override {}
+    void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+    void set_face(HalfedgeHandle, FaceHandle) override {}
+    void request_face_texcoords2D() override {}
+    void set_texcoord(HalfedgeHandle, const Vec2f&) override {}
+    void set_texcoord(VertexHandle, const Vec3f&) override {}
+    void set_texcoord(HalfedgeHandle, const Vec3f&) override {}
+    void set_status(HalfedgeHandle, const Attributes::StatusInfo&) override {}
+    void set_color(EdgeHandle, const Vec3uc&) override {}
+    void set_color(EdgeHandle, const Vec4uc&) override {}
+    void set_color(EdgeHandle, const Vec3f&) override {}
+    void set_color(EdgeHandle, const Vec4f&) override {}
+    void set_status(EdgeHandle, const Attributes::StatusInfo&) override {}
+    void set_normal(FaceHandle, const Vec3f&) override {}
+    void set_normal(FaceHandle, const Vec3d&) override {}
+    void set_color(FaceHandle, const Vec3uc&) override {}
+    void set_color(FaceHandle, const Vec4uc&) override {}
+    void set_color(FaceHandle, const Vec3f&) override {}
+    void set_color(FaceHandle, const Vec4f&) override {}
+    void set_status(FaceHandle, const Attributes::StatusInfo&) override {}
+    void add_texture_information(int, std::string) override {}
+
+  private:
+    TriangleSoup& soup_;
+};
+
+// OpenMesh's ASCII OFF reader does not notice a file that ends before the
+// counts in its header are read, and then hands over uninitialised indices.
+// Checks that enough numbers follow the header: 3 per vertex, at least 4
+// per face. O(file size).
+void checkAsciiOffIsComplete(const std::string& path) {
+    std::ifstream in(path);
+    std::string magic;
+    // Only plain "OFF": its variants (COFF, NOFF, STOFF, nOFF) carry other
+    // numbers per vertex, and OpenMesh reads them as it sees fit.
+    if (!(in >> magic) || magic != "OFF") return;
+    long vertices = 0, faces = 0, edges = 0;
+    if (!(in >> vertices >> faces >> edges)) return;  // binary OFF or odd header: OpenMesh decides
+    if (vertices < 0 || faces < 0)
+        throw InputError(path, 2, "negative vertex or face count in the OFF header");
+    long numbers = 0;
+    std::string token;
+    const long needed = 3 * vertices + 4 * faces;
+    while (numbers < needed && in >> token) ++numbers;
+    if (numbers < needed)
+        throw InputError(path, 0,
+                         "truncated OFF file: the header promises " + std::to_string(vertices) +
+                             " vertices and " + std::to_string(faces) + " faces");
+}
+
+}  // namespace
+
+TriangleSoup readTriangleSoup(const std::string& path) {
+    if (!isMeshExtension(path))
+        throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
+    if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".off") checkAsciiOffIsComplete(path);
+    TriangleSoup soup;
+    SoupImporter importer(soup);
+    IO::Options options;
+    if (!IO::IOManager().read(path, importer, options))
+        throw InputError(path, 0, "not a readable mesh (OpenMesh could not parse it)");
+    for (const auto& t : soup.triangles)
+        for (std::uint32_t v : t)
+            if (v >= soup.points.size())
+                throw InputError(path, 0,
+                                 "a face refers to vertex " + std::to_string(v) + " of " +
+                                     std::to_string(soup.points.size()));
+    if (soup.triangles.empty()) throw InputError(path, 0, "mesh has no triangles");
+    return soup;
+}
+
 
 }  // namespace dfrecon

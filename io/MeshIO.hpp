@@ -3,7 +3,8 @@
 // their files: PLY (binary or ASCII), OBJ, OFF, STL, chosen by extension.
 #include <string>
 
-#include "io/TriMesh.hpp"
+#include "geometry/TriMesh.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 
@@ -18,6 +19,12 @@ bool isMeshExtension(const std::string& path);
 /// Reads a mesh; throws InputError naming the file when it cannot be read,
 /// has an unsupported extension, or holds no triangles.
 TriMesh readMesh(const std::string& path);
+
+/// Reads any mesh file OpenMesh reads (.ply .obj .off .stl) as a soup:
+/// polygons are split into triangle fans, nothing is dropped or merged
+/// (STL's corners are merged by position, as OpenMesh's STL reader does).
+/// Throws InputError naming the file when it cannot be read.
+TriangleSoup readTriangleSoup(const std::string& path);
 
 /// Writes `mesh` by extension through a temporary file and a rename, so a
 /// failure leaves no partial file. Throws std::runtime_error on failure,

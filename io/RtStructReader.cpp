@@ -10,9 +10,9 @@
 #include <map>
 #include <sstream>
 
-#include "io/ContourValidation.hpp"
-#include "io/KeyholeSplit.hpp"
-#include "io/PolygonXor.hpp"
+#include "geometry/ContourValidation.hpp"
+#include "geometry/KeyholeSplit.hpp"
+#include "geometry/PolygonXor.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {

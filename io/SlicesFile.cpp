@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "io/AtomicWrite.hpp"
-#include "io/ContourValidation.hpp"
+#include "geometry/ContourValidation.hpp"
 
 namespace dfrecon {
 

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/TriangleSoup.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -1,11 +1,10 @@
 // Closest-primitive fields in the plane: for every pixel of a slice grid, the
 // signed distance to the nearest contour segment or vertex and that
-// primitive's id (recon/PrimitiveId.hpp). One launch covers a batch of slices
+// primitive's id (field/PrimitiveId.hpp). One launch covers a batch of slices
 // (the third global dimension).
 //
-// REAL is double when the device has fp64 (the host passes -DREAL=double
-// -DREAL_IS_DOUBLE), else float. Coordinates are millimetres relative to the
-// grid origin, so magnitudes stay small. Pixel (i, j) has its centre at
+// Needs real.cl and closest_point.cl first. Coordinates are millimetres
+// relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its centre at
 // ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the fine tile and
 // work-group side) and LANES come from the host too.
 //
@@ -16,13 +15,6 @@
 // Only segments with d(c, s) <= min_s d(c, s) + 2h can be nearest to any
 // pixel of the tile. The candidate list keeps segment order, so ties resolve
 // as in a brute-force scan.
-#ifndef REAL
-#define REAL float
-#endif
-#define REAL2 CONCAT(REAL, 2)
-#define REAL4 CONCAT(REAL, 4)
-#define CONCAT(a, b) CONCAT_(a, b)
-#define CONCAT_(a, b) a##b
 #ifndef TILE
 #define TILE 8
 #endif
@@ -30,9 +22,6 @@
 // devices (explicit SIMD), 1 suits GPUs (many small work-items).
 #ifndef LANES
 #define LANES 1
-#endif
-#if defined(REAL_IS_DOUBLE)
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
 #if LANES == 1
 #define REALV REAL
@@ -70,9 +59,7 @@
 // clamped parameter of the nearest point (0 = start vertex, 1 = end vertex).
 inline REAL segmentDistance2(REAL2 p, REAL4 s, REAL* t) {
     const REAL2 a = s.xy, ab = s.zw - s.xy, ap = p - a;
-    const REAL len2 = dot(ab, ab);
-    REAL u = len2 > 0 ? dot(ap, ab) / len2 : 0;
-    u = clamp(u, (REAL)0, (REAL)1);
+    const REAL u = segment_parameter(ap.x, ap.y, ab.x, ab.y);
     *t = u;
     const REAL2 q = ap - u * ab;
     return dot(q, q);

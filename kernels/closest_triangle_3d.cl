@@ -1,72 +1,14 @@
-// Closest-primitive queries in space: the point of a triangle nearest to a
-// point, and the nearest triangle of a surface through a bounding volume
-// hierarchy laid out as recon/TriangleBvh exports it. The 3D member of the
-// closest-primitive family (closest_segment_2d.cl is the planar one); the
-// same Voronoi-region walk as closestPointOnTriangle in recon/TriangleBvh.cpp.
-//
-// REAL is double when the device has fp64 (the host passes -DREAL=double
-// -DREAL_IS_DOUBLE), else float. Vectors are REAL4 with w unused.
-#ifndef REAL
-#define REAL float
-#endif
-#define CONCAT(a, b) CONCAT_(a, b)
-#define CONCAT_(a, b) a##b
-#define REAL4 CONCAT(REAL, 4)
-#if defined(REAL_IS_DOUBLE)
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-#endif
+// The nearest triangle of a surface through a bounding volume hierarchy,
+// laid out as field/DeviceSurface uploads it: the 3D member of the
+// closest-primitive family (closest_segment_2d.cl is the planar one), the
+// same search as TriangleBvh::nearestWithin in geometry/TriangleBvh.cpp.
+// Needs real.cl and closest_point.cl first; vectors are REAL4 with w unused.
 // No fused multiply-adds: the C++ reference (built without contraction)
 // must see the same roundings, or near-ties pick different triangles.
 #pragma OPENCL FP_CONTRACT OFF
 #ifndef BVH_STACK
 #define BVH_STACK 64
 #endif
-
-inline REAL dot3(REAL4 a, REAL4 b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-// Features of a triangle, as TriangleFeature in recon/TriangleBvh.hpp: the
-// corners, the edges' interiors (edge k runs from corner k to k+1), the face.
-#define FEATURE_VERTEX_A 0
-#define FEATURE_VERTEX_B 1
-#define FEATURE_VERTEX_C 2
-#define FEATURE_EDGE_AB 3
-#define FEATURE_EDGE_BC 4
-#define FEATURE_EDGE_CA 5
-#define FEATURE_FACE 6
-
-REAL4 closest_point_on_triangle_feature(REAL4 p, REAL4 a, REAL4 b, REAL4 c, int* feature) {
-    const REAL4 ab = b - a, ac = c - a, ap = p - a;
-    const REAL d1 = dot3(ab, ap), d2 = dot3(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return *feature = FEATURE_VERTEX_A, a;
-    const REAL4 bp = p - b;
-    const REAL d3 = dot3(ab, bp), d4 = dot3(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return *feature = FEATURE_VERTEX_B, b;
-    const REAL vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return *feature = FEATURE_EDGE_AB, a + (d1 / (d1 - d3)) * ab;
-    const REAL4 cp = p - c;
-    const REAL d5 = dot3(ab, cp), d6 = dot3(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return *feature = FEATURE_VERTEX_C, c;
-    const REAL vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return *feature = FEATURE_EDGE_CA, a + (d2 / (d2 - d6)) * ac;
-    const REAL va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return *feature = FEATURE_EDGE_BC, b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-    const REAL denominator = 1 / (va + vb + vc);
-    *feature = FEATURE_FACE;
-    return a + (vb * denominator) * ab + (vc * denominator) * ac;
-}
-
-inline REAL4 closest_point_on_triangle(REAL4 p, REAL4 a, REAL4 b, REAL4 c) {
-    int feature;
-    return closest_point_on_triangle_feature(p, a, b, c, &feature);
-}
-
-inline REAL point_triangle_distance(REAL4 p, REAL4 a, REAL4 b, REAL4 c) {
-    const REAL4 d = p - closest_point_on_triangle(p, a, b, c);
-    return sqrt(dot3(d, d));
-}
 
 // Squared distance from p to the box [lo, hi] (0 inside).
 inline REAL box_distance2(REAL4 p, REAL4 lo, REAL4 hi) {
@@ -75,7 +17,7 @@ inline REAL box_distance2(REAL4 p, REAL4 lo, REAL4 hi) {
 }
 
 // The surface's triangles and the hierarchy over them, as
-// recon/TriangleBvhArrays.hpp lays them out. Node k has box
+// field/DeviceSurface.hpp lays them out. Node k has box
 // [node_lo[k], node_hi[k]]; node_links[k] = (left, right, first, count),
 // left < 0 for a leaf whose triangles are order[first .. first+count).
 // triangles[t] = (a, b, c, tag), balls[t] a ball around it (centre, radius

@@ -7,7 +7,7 @@
 //
 // layers: layer-major fields (layer k, pixel p at k·pixels + p), updated in
 // place; gapsMm[k]: z distance from layer k to k+1. One work-item per pixel
-// column. The C++ reference is simplify/DistanceField3D.cpp.
+// column. The C++ reference is field/DistanceField3D.cpp.
 
 // Relaxes `next` from `from` across `gap` (both values may change when the
 // sign does).

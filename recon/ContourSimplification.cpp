@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "io/ContourValidation.hpp"
+#include "geometry/ContourValidation.hpp"
 
 namespace dfrecon {
 

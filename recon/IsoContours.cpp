@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "io/IsoLines.hpp"
+#include "geometry/IsoLines.hpp"
 
 namespace dfrecon {
 

@@ -1,13 +1,13 @@
 #pragma once
 // Zero isolines of a field sampled at pixel centres, as closed polygons in
-// millimetres: io/IsoLines.hpp's marching squares mapped onto a SliceGrid.
+// millimetres: geometry/IsoLines.hpp's marching squares mapped onto a SliceGrid.
 // Used for the intermediate contours of the recursion: the zero set of
 // D_lower + D_upper is the contour half-way between two slices
 // (reconstruction paper Fig. 7).
 #include <vector>
 
-#include "io/Polygon.hpp"
-#include "recon/SliceGrid.hpp"
+#include "geometry/Polygon.hpp"
+#include "field/SliceGrid.hpp"
 
 namespace dfrecon {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
-#include "recon/SliceFields.hpp"
+#include "field/SliceFields.hpp"
 
 namespace dfrecon {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/Polygon.hpp"
+#include "geometry/Polygon.hpp"
 
 namespace dfrecon {
 

@@ -11,11 +11,11 @@
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/MedialAxis.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
-#include "recon/UnionFind.hpp"
+#include "geometry/UnionFind.hpp"
 
 namespace dfrecon {
 

@@ -10,8 +10,8 @@
 
 #include "cl/Runtime.hpp"
 #include "io/ContourSet.hpp"
-#include "io/TriangleSoup.hpp"
-#include "recon/SliceFields.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "field/SliceFields.hpp"
 
 namespace dfrecon {
 

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/Polygon.hpp"
-#include "io/TriangleSoup.hpp"
+#include "geometry/Polygon.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

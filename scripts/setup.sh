@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages dfrecon needs (see DESIGN.md), only those
+# Installs the Debian 12 packages dfrecon needs (docs/building.md), only those
 # that are missing, and says which; then makes the RTSTRUCT test fixtures in
 # build/fixtures (scripts/fixtures.sh). Idempotent: a second run installs and
 # regenerates nothing.

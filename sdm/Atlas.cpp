@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 

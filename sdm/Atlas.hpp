@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/Polygon.hpp"
-#include "io/TriangleSoup.hpp"
+#include "geometry/Polygon.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -4,7 +4,8 @@
 #include <unordered_map>
 
 #include "cl/DeviceBuffer.hpp"
-#include "recon/TriangleBvhArrays.hpp"
+#include "cl/Precision.hpp"
+#include "field/DeviceSurface.hpp"
 
 namespace dfrecon {
 
@@ -175,7 +176,7 @@ class DeviceSceneT final : public DeviceScene {
   public:
     DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene)
         : runtime_(runtime), scene_(scene) {
-        TriangleBvhArrays<Real4> arrays;
+        SurfaceArrays<Real4> arrays;
         std::vector<Real4> normals;
         std::vector<cl_uchar> closed;
         for (std::size_t o = 0; o < scene.objectCount(); ++o) {
@@ -184,24 +185,17 @@ class DeviceSceneT final : public DeviceScene {
             closed.push_back(scene.closed(o) ? 1 : 0);
             for (std::size_t t = 0; t < scene.object(o).triangles.size(); ++t)
                 for (int f = 0; f < 7; ++f)
-                    normals.push_back(TriangleBvhArrays<Real4>::real4(
+                    normals.push_back(SurfaceArrays<Real4>::real4(
                         scene.pseudoNormal(o, t, TriangleFeature(f))));
         }
         objectOfTriangle_.reserve(arrays.triangles.size());
         for (const cl_int4& t : arrays.triangles) objectOfTriangle_.push_back(std::size_t(t.s[3]));
-        points_ = ocl::DeviceBuffer<Real4>(runtime, arrays.points);
-        triangles_ = ocl::DeviceBuffer<cl_int4>(runtime, arrays.triangles);
-        nodeLo_ = ocl::DeviceBuffer<Real4>(runtime, arrays.nodeLo);
-        nodeHi_ = ocl::DeviceBuffer<Real4>(runtime, arrays.nodeHi);
-        nodeLinks_ = ocl::DeviceBuffer<cl_int4>(runtime, arrays.nodeLinks);
-        order_ = ocl::DeviceBuffer<cl_uint>(runtime, arrays.order);
-        balls_ = ocl::DeviceBuffer<Real4>(runtime, arrays.balls);
+        surface_ = DeviceSurface<Real4>(runtime, arrays);
         objectRoot_ = ocl::DeviceBuffer<cl_int>(runtime, roots_);
         normals_ = ocl::DeviceBuffer<Real4>(runtime, normals);
         closed_ = ocl::DeviceBuffer<cl_uchar>(runtime, closed);
-        const std::string options =
-            sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float";
-        program_ = &runtime.program({"closest_triangle_3d.cl", "surface_distance.cl"}, options);
+        program_ = &runtime.program(surfaceProgramSources("surface_distance.cl"),
+                                    ocl::realOptions<Real>());
     }
 
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
@@ -248,7 +242,7 @@ class DeviceSceneT final : public DeviceScene {
         std::vector<Real4> points(samples.size());
         std::vector<cl_uint> objects(samples.size());
         for (std::size_t k = 0; k < samples.size(); ++k) {
-            points[k] = TriangleBvhArrays<Real4>::real4(samples[k].point);
+            points[k] = SurfaceArrays<Real4>::real4(samples[k].point);
             objects[k] = samples[k].object;
         }
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
@@ -260,18 +254,12 @@ class DeviceSceneT final : public DeviceScene {
         ocl::DeviceBuffer<Real4> dClosest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
         try {
             cl::Kernel kernel(*program_, "closest_primitive");
-            int a = 0;
+            cl_uint a = 0;
             kernel.setArg(a++, dPoints.get());
             kernel.setArg(a++, dObjects.get());
             kernel.setArg(a++, dHints.get());
             kernel.setArg(a++, cl_uint(samples.size()));
-            kernel.setArg(a++, points_.get());
-            kernel.setArg(a++, triangles_.get());
-            kernel.setArg(a++, nodeLo_.get());
-            kernel.setArg(a++, nodeHi_.get());
-            kernel.setArg(a++, nodeLinks_.get());
-            kernel.setArg(a++, order_.get());
-            kernel.setArg(a++, balls_.get());
+            a = surface_.setArgs(kernel, a);
             kernel.setArg(a++, objectRoot_.get());
             kernel.setArg(a++, cl_uint(roots_.size()));
             kernel.setArg(a++, normals_.get());
@@ -299,9 +287,8 @@ class DeviceSceneT final : public DeviceScene {
     const cl::Program* program_ = nullptr;
     std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
     std::vector<cl_int> roots_;
-    ocl::DeviceBuffer<Real4> points_, nodeLo_, nodeHi_, balls_, normals_;
-    ocl::DeviceBuffer<cl_int4> triangles_, nodeLinks_;
-    ocl::DeviceBuffer<cl_uint> order_;
+    DeviceSurface<Real4> surface_;
+    ocl::DeviceBuffer<Real4> normals_;
     ocl::DeviceBuffer<cl_int> objectRoot_;
     ocl::DeviceBuffer<cl_uchar> closed_;
 };
@@ -317,10 +304,10 @@ struct ClosestPrimitiveKernel::Impl {
 ClosestPrimitiveKernel::ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene)
     : impl_(std::make_unique<Impl>()) {
     impl_->doublePrecision = runtime.device().doublePrecision;
-    if (impl_->doublePrecision)
-        impl_->device = std::make_unique<DeviceSceneT<cl_double, cl_double4>>(runtime, scene);
-    else
-        impl_->device = std::make_unique<DeviceSceneT<cl_float, cl_float4>>(runtime, scene);
+    impl_->device = ocl::withRealTypes(
+        impl_->doublePrecision, [&](auto real, auto real4) -> std::unique_ptr<DeviceScene> {
+            return std::make_unique<DeviceSceneT<decltype(real), decltype(real4)>>(runtime, scene);
+        });
     Box3 box;
     for (std::size_t o = 0; o < scene.objectCount(); ++o)
         for (const Vec3& p : scene.object(o).points) box.add(p);

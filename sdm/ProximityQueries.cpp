@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "io/TriangleSoup.hpp"
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 

@@ -7,6 +7,7 @@
 
 #include "cl/ClError.hpp"
 #include "cl/DeviceBuffer.hpp"
+#include "cl/Precision.hpp"
 #include "segment/LocalUpdate.hpp"
 
 namespace dfrecon {
@@ -198,10 +199,8 @@ class FimDevice final : public EikonalFim::Device {
         nextLabel_ = ocl::DeviceBuffer<cl_int>(runtime, n_);
         slotSettled_ = ocl::DeviceBuffer<cl_uchar>(runtime, n_);
         nextCount_ = ocl::DeviceBuffer<cl_uint>(runtime, 1);
-        const std::string build =
-            sizeof(Real) == 8 ? "-DREAL=double -DREAL4=double4" : "-DREAL=float -DREAL4=float4";
-        const cl::Program& program =
-            runtime.program({"eikonal_update.cl", "eikonal_fim.cl"}, build);
+        const cl::Program& program = runtime.program(
+            {"real.cl", "eikonal_update.cl", "eikonal_fim.cl"}, ocl::realOptions<Real>());
         try {
             update_ = cl::Kernel(program, "fim_update");
             commit_ = cl::Kernel(program, "fim_commit");
@@ -296,12 +295,11 @@ class FimDevice final : public EikonalFim::Device {
 
 EikonalFim::EikonalFim(ocl::Runtime& runtime, const UpdateStencils& stencils,
                        const std::vector<double>& speed, const FimOptions& options) {
-    if (runtime.device().doublePrecision)
-        device_ =
-            std::make_unique<FimDevice<cl_double, cl_double4>>(runtime, stencils, speed, options);
-    else
-        device_ =
-            std::make_unique<FimDevice<cl_float, cl_float4>>(runtime, stencils, speed, options);
+    device_ = ocl::withRealTypes(
+        runtime.device().doublePrecision, [&](auto real, auto real4) -> std::unique_ptr<Device> {
+            return std::make_unique<FimDevice<decltype(real), decltype(real4)>>(runtime, stencils,
+                                                                               speed, options);
+        });
 }
 
 EikonalFim::~EikonalFim() = default;

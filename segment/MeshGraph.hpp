@@ -8,9 +8,9 @@
 #include <array>
 #include <vector>
 
-#include "io/TriMesh.hpp"
-#include "io/TriangleSoup.hpp"
-#include "io/Vec3.hpp"
+#include "geometry/TriMesh.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "geometry/Vec3.hpp"
 
 namespace dfrecon {
 

@@ -12,7 +12,7 @@
 #endif
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 
-#include "io/TriMesh.hpp"
+#include "geometry/TriMesh.hpp"
 
 namespace dfrecon {
 

@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "io/TriMesh.hpp"
+#include "geometry/TriMesh.hpp"
 #include "simplify/DeviationBound.hpp"
 
 namespace dfrecon {

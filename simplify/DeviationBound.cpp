@@ -12,10 +12,6 @@ int longestEdge(const Vec3 p[3]) {
     return l0 >= l1 && l0 >= l2 ? 0 : (l1 >= l2 ? 1 : 2);
 }
 
-double pointTriangleDistance(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
-    return length(p - closestPointOnTriangle(p, a, b, c));
-}
-
 double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits) {
     const double limit = limits.limitMm;

@@ -1,7 +1,7 @@
 #pragma once
 // How far a triangle strays from a surface, as a certified upper bound: the
 // direction "simplified → original" of the simplifier's two-sided error.
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 
@@ -31,8 +31,5 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
 /// Which edge of p is longest: k for the edge p[k] → p[(k+1) % 3] (the
 /// first of equal ones).
 int longestEdge(const Vec3 p[3]);
-
-/// The distance from p to triangle abc (exact up to rounding).
-double pointTriangleDistance(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 
 }  // namespace dfrecon

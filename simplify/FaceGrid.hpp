@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 

@@ -3,7 +3,8 @@
 #include <algorithm>
 
 #include "cl/DeviceBuffer.hpp"
-#include "recon/TriangleBvhArrays.hpp"
+#include "cl/Precision.hpp"
+#include "field/DeviceSurface.hpp"
 #include "simplify/CollapseBound.hpp"
 
 namespace dfrecon {
@@ -17,7 +18,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     for (auto h : mesh.halfedges())
         halfedges[std::size_t(h.idx())] = {
             {mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()}};
-    using Arrays = TriangleBvhArrays<Real4>;
+    using Arrays = SurfaceArrays<Real4>;
     std::vector<Real4> meshPoints(mesh.n_vertices());
     std::vector<cl_uint> ringFirst{0};
     std::vector<cl_int4> ringFaces;
@@ -31,36 +32,27 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         }
         ringFirst.push_back(cl_uint(ringFaces.size()));
     }
-    Arrays surface;
-    surface.append(original);
+    Arrays arrays;
+    arrays.append(original);
+    const DeviceSurface<Real4> surface(runtime, arrays);
 
     ocl::DeviceBuffer<cl_int2> dHalfedges(runtime, halfedges);
-    ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints), dPoints(runtime, surface.points),
-        dLo(runtime, surface.nodeLo), dHi(runtime, surface.nodeHi), dBalls(runtime, surface.balls);
-    ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst), dOrder(runtime, surface.order);
-    ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces),
-        dTriangles(runtime, surface.triangles), dLinks(runtime, surface.nodeLinks);
+    ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints);
+    ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst);
+    ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces);
     ocl::DeviceBuffer<cl_float> priority(runtime, halfedges.size(), CL_MEM_WRITE_ONLY);
-    const std::string options =
-        sizeof(Real) == 8 ? "-DREAL=double -DREAL_IS_DOUBLE" : "-DREAL=float";
     const cl::Program& program =
-        runtime.program({"closest_triangle_3d.cl", "collapse_bound.cl"}, options);
+        runtime.program(surfaceProgramSources("collapse_bound.cl"), ocl::realOptions<Real>());
     const DeviationLimits limits{maxErrorMm};
     try {
         cl::Kernel kernel(program, "collapse_bound");
-        int a = 0;
+        cl_uint a = 0;
         kernel.setArg(a++, dHalfedges.get());
         kernel.setArg(a++, cl_uint(halfedges.size()));
         kernel.setArg(a++, dMeshPoints.get());
         kernel.setArg(a++, dRingFirst.get());
         kernel.setArg(a++, dRingFaces.get());
-        kernel.setArg(a++, dPoints.get());
-        kernel.setArg(a++, dTriangles.get());
-        kernel.setArg(a++, dLo.get());
-        kernel.setArg(a++, dHi.get());
-        kernel.setArg(a++, dLinks.get());
-        kernel.setArg(a++, dOrder.get());
-        kernel.setArg(a++, dBalls.get());
+        a = surface.setArgs(kernel, a);
         kernel.setArg(a++, Real(limits.limitMm));
         kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
         kernel.setArg(a++, Real(kSliverAreaRatio));
@@ -86,9 +78,9 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
                                      const TriangleBvh& original, double maxErrorMm) {
     if (mesh.n_halfedges() == 0) return {};
-    return runtime.device().doublePrecision
-               ? runBatch<cl_double, cl_double4>(runtime, mesh, original, maxErrorMm)
-               : runBatch<cl_float, cl_float4>(runtime, mesh, original, maxErrorMm);
+    return ocl::withRealTypes(runtime.device().doublePrecision, [&](auto real, auto real4) {
+        return runBatch<decltype(real), decltype(real4)>(runtime, mesh, original, maxErrorMm);
+    });
 }
 
 std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,

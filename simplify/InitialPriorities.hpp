@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
-#include "io/TriMesh.hpp"
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriMesh.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon {
 

@@ -20,7 +20,7 @@
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
-#include "io/TriMesh.hpp"
+#include "geometry/TriMesh.hpp"
 #include "simplify/CollapseBound.hpp"
 #include "simplify/Coverage.hpp"
 #include "simplify/FaceGrid.hpp"

@@ -5,7 +5,7 @@
 
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "simplify/CheckedDecimater.hpp"
 #include "simplify/InitialPriorities.hpp"
 #include "simplify/ModErrorBound.hpp"

@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "cl/Runtime.hpp"
-#include "io/TriangleSoup.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "recon/TriangleBvh.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "io/ContourSet.hpp"
-#include "io/TriangleSoup.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/MeshIO.hpp"
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "tests/TempDir.hpp"
 
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/InputError.hpp"
 #include "io/MaskContours.hpp"
 

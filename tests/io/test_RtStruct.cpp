@@ -10,7 +10,7 @@
 #include <fstream>
 #include <random>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/RtStruct.hpp"
 
 using namespace dfrecon;

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
 #include "tests/BadSlicesInputs.hpp"
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "io/ContourSet.hpp"
-#include "io/ContourValidation.hpp"
+#include "geometry/ContourValidation.hpp"
 #include "recon/ContourSimplification.hpp"
 
 using namespace dfrecon;

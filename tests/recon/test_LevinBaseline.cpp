@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "recon/LevinBaseline.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 
 using namespace dfrecon;
 

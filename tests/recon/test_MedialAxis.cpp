@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "recon/MedialAxis.hpp"
 
 using namespace dfrecon;

@@ -7,9 +7,9 @@
 #include <set>
 #include <tuple>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon {

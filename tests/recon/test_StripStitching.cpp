@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/StripStitching.hpp"
 
 namespace dfrecon {

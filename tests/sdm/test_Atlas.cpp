@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "sdm/Atlas.hpp"
 
 using namespace dfrecon;

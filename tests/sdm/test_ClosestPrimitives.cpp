@@ -8,7 +8,8 @@
 #include <filesystem>
 #include <random>
 
-#include "io/MeshShapes.hpp"
+#include "io/MeshIO.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "sdm/ClosestPrimitives.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 

@@ -3,7 +3,7 @@
 // deepest point's depth within its bound.
 #include <gtest/gtest.h>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "sdm/ProximityQueries.hpp"
 
 using namespace dfrecon;

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "segment/MeshGraph.hpp"
 
 namespace dfrecon::testing {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

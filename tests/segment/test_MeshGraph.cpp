@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

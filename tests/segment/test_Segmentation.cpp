@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <numeric>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

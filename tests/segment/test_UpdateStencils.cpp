@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/MeshShapes.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

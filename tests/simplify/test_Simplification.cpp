@@ -7,9 +7,9 @@
 #include <cctype>
 #include <random>
 
-#include "io/AnalyticShapes.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
-#include "recon/MeshCheck.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/DeviationBound.hpp"
 #include "simplify/InitialPriorities.hpp"

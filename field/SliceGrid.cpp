@@ -1,0 +1,38 @@
+#include "field/SliceGrid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace dfrecon {
+
+SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
+    if (!(pixelMm > 0) || box.empty())
+        throw std::invalid_argument("gridAround: empty box or pixel");
+    SliceGrid grid;
+    grid.pixelMm = pixelMm;
+    grid.originMm = {box.min.x - marginPx * pixelMm, box.min.y - marginPx * pixelMm};
+    grid.width = int(std::ceil((box.max.x - box.min.x) / pixelMm)) + 2 * marginPx + 1;
+    grid.height = int(std::ceil((box.max.y - box.min.y) / pixelMm)) + 2 * marginPx + 1;
+    return grid;
+}
+
+SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gridPixels) {
+    Box2 box;
+    for (const Slice& slice : slices)
+        for (const Polygon& contour : slice.contours)
+            for (Point2 p : contour) box.add(p);
+    if (box.empty()) throw std::invalid_argument("no contours to place a grid around");
+    const double extent = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
+    if (!(pixelMm > 0)) {
+        // Longest side: extent/pixel + 1 + 2·margin pixels = gridPixels.
+        pixelMm = extent > 0 ? extent / std::max(1, gridPixels - 1 - 2 * kGridMarginPx) : 1.0;
+    }
+    if (extent / pixelMm > 16384)
+        throw std::invalid_argument("pixel size " + std::to_string(pixelMm) +
+                                    " mm gives a grid over 16384 pixels a side");
+    return gridAround(box, pixelMm, kGridMarginPx);
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,299 @@
+#include "geometry/MeshCheck.hpp"
+
+#include "geometry/Polygon.hpp"
+#include "geometry/TriangleBvh.hpp"
+#include "geometry/UnionFind.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+namespace dfrecon {
+
+namespace {
+
+// Orientations within this fraction of the product of the edge lengths
+// (angles below about 1e-10 rad) count as zero. Reconstructed surfaces are
+// full of configurations that are exactly coplanar or collinear in exact
+// arithmetic (strips between straight contour runs, vertical walls, slices
+// repeating the same outline) but only nearly so in doubles, where the plain
+// determinant's sign is noise.
+constexpr double kDegenerate = 1e-10;
+
+// Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc.
+double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const double det = dot(cross(u, v), w);
+    return std::abs(det) <= kDegenerate * length(u) * length(v) * length(w) ? 0.0 : det;
+}
+
+// 2D orientation in the plane that drops `axis`.
+double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const double bu = b[u] - a[u], bv = b[v] - a[v], cu = c[u] - a[u], cv = c[v] - a[v];
+    const double det = bu * cv - bv * cu;
+    return std::abs(det) <= kDegenerate * std::hypot(bu, bv) * std::hypot(cu, cv) ? 0.0 : det;
+}
+
+// p in the plane that drops `axis`.
+Point2 project(Vec3 p, int axis) {
+    return {p[(axis + 1) % 3], p[(axis + 2) % 3]};
+}
+
+// Closed 2D segment intersection in the plane dropping `axis`.
+bool segmentsMeet2(Vec3 p, Vec3 q, Vec3 a, Vec3 b, int axis) {
+    return segmentContact(project(p, axis), project(q, axis), project(a, axis), project(b, axis)) !=
+           SegmentContact::None;
+}
+
+// Closed point-in-triangle in the plane dropping `axis`.
+bool insideTriangle2(Vec3 p, const Vec3 t[3], int axis) {
+    const double d0 = orient2(t[0], t[1], p, axis), d1 = orient2(t[1], t[2], p, axis),
+                 d2 = orient2(t[2], t[0], p, axis);
+    return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+}
+
+int dominantAxis(Vec3 n) {
+    const double x = std::abs(n.x), y = std::abs(n.y), z = std::abs(n.z);
+    return x >= y && x >= z ? 0 : (y >= z ? 1 : 2);
+}
+
+bool coplanarTrianglesMeet(const Vec3 a[3], const Vec3 b[3], int axis) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (segmentsMeet2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], axis)) return true;
+    return insideTriangle2(a[0], b, axis) || insideTriangle2(b[0], a, axis);
+}
+
+// Does the closed segment pq meet the closed triangle t (non-degenerate)?
+bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
+    const double dp = orient(t[0], t[1], t[2], p), dq = orient(t[0], t[1], t[2], q);
+    if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0)) return false;
+    if (dp == 0 && dq == 0) {
+        const int axis = dominantAxis(cross(t[1] - t[0], t[2] - t[0]));
+        return insideTriangle2(p, t, axis) || insideTriangle2(q, t, axis) ||
+               segmentsMeet2(p, q, t[0], t[1], axis) || segmentsMeet2(p, q, t[1], t[2], axis) ||
+               segmentsMeet2(p, q, t[2], t[0], axis);
+    }
+    // The line pq passes inside iff it turns the same way around all edges.
+    const double s0 = orient(p, q, t[0], t[1]), s1 = orient(p, q, t[1], t[2]),
+                 s2 = orient(p, q, t[2], t[0]);
+    return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+}
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+bool isDegenerate(const TriangleSoup& soup, const Triangle& t) {
+    const Vec3 p0 = soup.points[t[0]], p1 = soup.points[t[1]], p2 = soup.points[t[2]];
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || length(cross(p1 - p0, p2 - p0)) == 0;
+}
+
+// Do triangles s and t (of the soup, non-degenerate) meet anywhere they
+// should not? Shared vertices are allowed contact: sharing an edge, they
+// meet wrongly only when folded onto each other; sharing one vertex, only
+// when they overlap beyond it.
+bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangle& t) {
+    Vec3 a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = soup.points[s[std::size_t(k)]];
+        b[k] = soup.points[t[std::size_t(k)]];
+    }
+    return trianglesCollide(s, a, t, b);
+}
+
+}  // namespace
+
+bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+                      const std::array<std::uint32_t, 3>& t, const Vec3 b[3]) {
+    int shared = 0, sa[3] = {-1, -1, -1};  // sa[k]: index in t of s[k], or -1
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (s[std::size_t(i)] == t[std::size_t(j)]) {
+                sa[i] = j;
+                ++shared;
+            }
+    if (shared == 0) return trianglesIntersect(a, b);
+    if (shared == 3) return true;  // the same triangle twice
+    const Vec3 normal = cross(a[1] - a[0], a[2] - a[0]);
+    if (shared == 2) {
+        int oa = 0, ob = 0;
+        while (sa[oa] >= 0) ++oa;  // s's vertex off the shared edge
+        while (ob == sa[0] || ob == sa[1] || ob == sa[2]) ++ob;
+        const Vec3 u = a[(oa + 1) % 3], v = a[(oa + 2) % 3];
+        if (orient(u, v, a[oa], b[ob]) != 0)
+            return false;  // different planes: meet on the edge only
+        // Coplanar: folded onto each other when both lie on the same side.
+        const double sideA = dot(cross(v - u, a[oa] - u), normal);
+        const double sideB = dot(cross(v - u, b[ob] - u), normal);
+        return sideA * sideB > 0;
+    }
+    // One shared vertex: compare what lies opposite it.
+    int ka = 0;
+    while (sa[ka] < 0) ++ka;
+    const int kb = sa[ka];
+    const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3],
+               b2 = b[(kb + 2) % 3];
+    const Vec3 v = a[ka];
+    const Vec3 nA = cross(a1 - v, a2 - v), nB = cross(b1 - v, b2 - v);
+    if (orient(v, a1, a2, b1) == 0 && orient(v, a1, a2, b2) == 0) {
+        // Coplanar wedges at v overlap iff a direction of one lies strictly
+        // inside the other, or they coincide.
+        const int axis = dominantAxis(normal);
+        auto strictlyInside = [&](Vec3 x, Vec3 p, Vec3 q) {
+            const double w = orient2(v, p, q, axis);
+            return orient2(v, p, x, axis) * w > 0 && orient2(v, x, q, axis) * w > 0;
+        };
+        auto sameDirection = [&](Vec3 x, Vec3 y) {
+            return orient2(v, x, y, axis) == 0 && dot(x - v, y - v) > 0;
+        };
+        return strictlyInside(b1, a1, a2) || strictlyInside(b2, a1, a2) ||
+               strictlyInside(a1, b1, b2) || strictlyInside(a2, b1, b2) ||
+               (sameDirection(a1, b1) && sameDirection(a2, b2)) ||
+               (sameDirection(a1, b2) && sameDirection(a2, b1));
+    }
+    // Different planes: both triangles meet their planes' common line in a
+    // segment starting at v; they overlap beyond v iff one direction of that
+    // line points into both wedges.
+    const Vec3 line = cross(nA, nB);
+    auto intoWedge = [&](Vec3 d, Vec3 p, Vec3 q, Vec3 n) {
+        return dot(cross(p - v, d), n) > 0 && dot(cross(d, q - v), n) > 0;
+    };
+    for (const Vec3 d : {line, -1.0 * line})
+        if (intoWedge(d, a1, a2, nA) && intoWedge(d, b1, b2, nB)) return true;
+    return false;
+}
+
+namespace {
+
+// Visits the pairs of non-degenerate triangles that collide.
+template <class Visit>
+void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenerate, Visit&& visit) {
+    const TriangleBvh bvh(soup);
+    bvh.selfPairs([&](std::size_t i, std::size_t j) {
+        if (degenerate[i] || degenerate[j]) return;
+        if (trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) visit(i, j);
+    });
+}
+
+}  // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const TriangleSoup& soup) {
+    std::vector<bool> degenerate(soup.triangles.size());
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        degenerate[t] = isDegenerate(soup, soup.triangles[t]);
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
+        pairs.emplace_back(std::min(i, j), std::max(i, j));
+    });
+    return pairs;
+}
+
+std::size_t countSelfIntersections(const TriangleSoup& soup) {
+    return selfIntersectingPairs(soup).size();
+}
+
+bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
+    const double da[3] = {orient(b[0], b[1], b[2], a[0]), orient(b[0], b[1], b[2], a[1]),
+                          orient(b[0], b[1], b[2], a[2])};
+    if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0))
+        return false;
+    const double db[3] = {orient(a[0], a[1], a[2], b[0]), orient(a[0], a[1], a[2], b[1]),
+                          orient(a[0], a[1], a[2], b[2])};
+    if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0))
+        return false;
+    if (da[0] == 0 && da[1] == 0 && da[2] == 0)
+        return coplanarTrianglesMeet(a, b, dominantAxis(cross(b[1] - b[0], b[2] - b[0])));
+    // The intersection, if any, is a segment whose ends lie on edges.
+    for (int k = 0; k < 3; ++k)
+        if (segmentMeetsTriangle(a[k], a[(k + 1) % 3], b) ||
+            segmentMeetsTriangle(b[k], b[(k + 1) % 3], a))
+            return true;
+    return false;
+}
+
+MeshCheckReport checkMesh(const TriangleSoup& soup) {
+    MeshCheckReport report;
+    report.triangles = soup.triangles.size();
+    const std::size_t n = soup.points.size();
+
+    // Edges: (lo, hi, triangle, forward) sorted, so each edge's uses are adjacent.
+    struct EdgeUse {
+        std::uint32_t lo, hi;
+        std::uint32_t triangle;
+        bool forward;
+    };
+    std::vector<EdgeUse> uses;
+    std::vector<bool> used(n, false), degenerate(soup.triangles.size(), false);
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
+        const Triangle& tri = soup.triangles[t];
+        const Vec3 p0 = soup.points[tri[0]], p1 = soup.points[tri[1]], p2 = soup.points[tri[2]];
+        if (isDegenerate(soup, tri)) {
+            degenerate[t] = true;
+            ++report.degenerateTriangles;
+        }
+        report.areaMm2 += 0.5 * length(cross(p1 - p0, p2 - p0));
+        report.volumeMm3 += dot(p0, cross(p1, p2)) / 6;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
+            used[a] = true;
+            if (a != b) uses.push_back({std::min(a, b), std::max(a, b), t, a < b});
+        }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.triangle < y.triangle);
+    });
+
+    UnionFind parts(n);
+    for (std::size_t begin = 0; begin < uses.size();) {
+        std::size_t end = begin;
+        while (end < uses.size() && uses[end].lo == uses[begin].lo &&
+               uses[end].hi == uses[begin].hi)
+            ++end;
+        ++report.edges;
+        const std::size_t count = end - begin;
+        if (count == 1) ++report.boundaryEdges;
+        if (count > 2) ++report.nonManifoldEdges;
+        if (count == 2) {
+            if (uses[begin].forward == uses[begin + 1].forward) ++report.misorientedEdges;
+        }
+        parts.join(uses[begin].lo, uses[begin].hi);
+        begin = end;
+    }
+    std::vector<std::vector<std::uint32_t>> around(n);
+    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
+        for (std::uint32_t v : soup.triangles[t]) around[v].push_back(t);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!used[v]) continue;
+        ++report.vertices;
+        // The triangles around v must form one fan: join those sharing an
+        // edge at v and count the groups.
+        UnionFind local(around[v].size());
+        for (std::size_t p = 0; p < around[v].size(); ++p)
+            for (std::size_t q = p + 1; q < around[v].size(); ++q) {
+                const Triangle &s = soup.triangles[around[v][p]], &t = soup.triangles[around[v][q]];
+                int common = 0;
+                for (std::uint32_t x : s)
+                    for (std::uint32_t y : t) common += x == y && x != v;
+                if (common > 0) local.join(p, q);
+            }
+        std::size_t groups = 0;
+        for (std::size_t p = 0; p < around[v].size(); ++p) groups += local.find(p) == p;
+        if (groups > 1) ++report.nonManifoldVertices;
+    }
+    for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
+    report.eulerCharacteristic =
+        long(report.vertices) - long(report.edges) + long(report.triangles);
+    if (report.watertight())
+        report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
+
+    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
+        ++report.intersectingPairs;
+        if (report.intersectingExamples.size() < 10)
+            report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
+    });
+    return report;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,65 @@
+#pragma once
+// Is a triangle mesh a valid closed surface? Every edge shared by exactly two
+// triangles, every vertex's triangles one fan, consistent orientation, no
+// self-intersections (triangle–triangle tests over a bounding volume
+// hierarchy), plus the topology figures (components, Euler characteristic,
+// genus) and enclosed volume. Works on a triangle soup so that broken input
+// can be described rather than refused.
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "geometry/TriangleSoup.hpp"
+
+namespace dfrecon {
+
+struct MeshCheckReport {
+    std::size_t vertices = 0;  // referenced by some triangle
+    std::size_t triangles = 0;
+    std::size_t edges = 0;
+    std::size_t degenerateTriangles = 0;  // repeated vertex or zero area
+    std::size_t boundaryEdges = 0;        // used by one triangle
+    std::size_t nonManifoldEdges = 0;     // used by three or more
+    std::size_t nonManifoldVertices = 0;  // triangles around it form several fans
+    std::size_t misorientedEdges = 0;     // two triangles traverse it the same way
+    std::size_t intersectingPairs = 0;    // pairs of triangles that cross or touch wrongly
+    std::vector<std::pair<std::size_t, std::size_t>> intersectingExamples;  // first few
+    std::size_t components = 0;
+    long eulerCharacteristic = 0;  // V - E + F
+    long genus = -1;               // total over components; -1 unless closed and manifold
+    double volumeMm3 = 0;          // signed: > 0 when normals point outward
+    double areaMm2 = 0;
+
+    /// Closed, manifold and consistently oriented.
+    bool watertight() const {
+        return boundaryEdges == 0 && nonManifoldEdges == 0 && nonManifoldVertices == 0 &&
+               misorientedEdges == 0 && degenerateTriangles == 0;
+    }
+    /// Watertight, free of self-intersections, and enclosing positive volume.
+    bool validSolid() const { return watertight() && intersectingPairs == 0 && volumeMm3 > 0; }
+};
+
+/// Checks `soup`. O(T log T) for the topology; the self-intersection search
+/// visits only triangle pairs whose bounding boxes overlap.
+MeshCheckReport checkMesh(const TriangleSoup& soup);
+
+/// The self-intersecting pairs checkMesh would count, without the topology
+/// checks (e.g. for a piece of surface, which has a boundary).
+std::size_t countSelfIntersections(const TriangleSoup& soup);
+
+/// The pairs of triangles countSelfIntersections counts (indices, i < j).
+std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const TriangleSoup& soup);
+
+/// Do two triangles share a point? Exposed for tests. Triangles sharing
+/// vertices (by index) are handled by checkMesh; this is the plain test.
+bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]);
+
+/// Do triangles s (corners a) and t (corners b), given by vertex ids, meet
+/// where they should not? Shared vertices are allowed contact: sharing an
+/// edge they collide only when folded onto each other, sharing one vertex
+/// only when they overlap beyond it. Both must be non-degenerate.
+bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+                      const std::array<std::uint32_t, 3>& t, const Vec3 b[3]);
+
+}  // namespace dfrecon

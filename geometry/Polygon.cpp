@@ -1,0 +1,98 @@
+#include "geometry/Polygon.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "geometry/ClosestPoint.hpp"
+
+namespace dfrecon {
+
+double signedArea(const Polygon& polygon) {
+    if (polygon.size() < 3) return 0;
+    // Relative to the first point: keeps cancellation small far from the origin.
+    const Point2 o = polygon.front();
+    double twice = 0;
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+        twice += cross(polygon[i] - o, polygon[i + 1] - o);
+    return 0.5 * twice;
+}
+
+int windingNumber(Point2 p, const Polygon& polygon) {
+    // Sunday's crossing rule: count upward crossings left of p minus
+    // downward crossings right of p; no trigonometry, no division.
+    int winding = 0;
+    const std::size_t n = polygon.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Point2 a = polygon[i], b = polygon[(i + 1) % n];
+        const double side = cross(b - a, p - a);
+        if (a.y <= p.y) {
+            if (b.y > p.y && side > 0) ++winding;
+        } else if (b.y <= p.y && side < 0) {
+            --winding;
+        }
+    }
+    return winding;
+}
+
+double nearestSegmentParameter(Point2 p, Point2 a, Point2 b) {
+    return nearestSegmentParameter(p.x - a.x, p.y - a.y, b.x - a.x, b.y - a.y);
+}
+
+double distanceToSegment(Point2 p, Point2 a, Point2 b) {
+    return length(p - (a + nearestSegmentParameter(p, a, b) * (b - a)));
+}
+
+double distanceToBoundary(Point2 p, const Polygon& polygon) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+        best = std::min(best, distanceToSegment(p, polygon[i], polygon[(i + 1) % polygon.size()]));
+    return best;
+}
+
+static int sign(double v) {
+    return (v > 0) - (v < 0);
+}
+
+// Is c within the bounding box of ab (used once c is known collinear with ab)?
+static bool withinSpan(Point2 a, Point2 b, Point2 c) {
+    return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
+           c.y <= std::max(a.y, b.y);
+}
+
+SegmentContact segmentContact(Point2 a, Point2 b, Point2 c, Point2 d) {
+    const int o1 = sign(cross(b - a, c - a)), o2 = sign(cross(b - a, d - a));
+    const int o3 = sign(cross(d - c, a - c)), o4 = sign(cross(d - c, b - c));
+
+    if (o1 == 0 && o2 == 0) {
+        // Collinear: project on the dominant axis and compare the overlap.
+        const bool useX = std::abs(b.x - a.x) >= std::abs(b.y - a.y);
+        auto coord = [useX](Point2 p) { return useX ? p.x : p.y; };
+        const double lo = std::max(std::min(coord(a), coord(b)), std::min(coord(c), coord(d)));
+        const double hi = std::min(std::max(coord(a), coord(b)), std::max(coord(c), coord(d)));
+        if (lo > hi) return SegmentContact::None;
+        return lo == hi ? SegmentContact::Touch : SegmentContact::Overlap;
+    }
+    if (o1 * o2 < 0 && o3 * o4 < 0) return SegmentContact::Cross;
+    if ((o1 == 0 && withinSpan(a, b, c)) || (o2 == 0 && withinSpan(a, b, d)) ||
+        (o3 == 0 && withinSpan(c, d, a)) || (o4 == 0 && withinSpan(c, d, b)))
+        return SegmentContact::Touch;
+    return SegmentContact::None;
+}
+
+Box2 boundingBox(const Polygon& polygon) {
+    Box2 box;
+    for (Point2 p : polygon) box.add(p);
+    return box;
+}
+
+Polygon circlePolygon(Point2 centre, double radius, int points, bool clockwise) {
+    constexpr double kPi = 3.14159265358979323846;
+    Polygon polygon;
+    for (int i = 0; i < points; ++i) {
+        const double t = 2 * kPi * (clockwise ? -i : i) / points;
+        polygon.push_back({centre.x + radius * std::cos(t), centre.y + radius * std::sin(t)});
+    }
+    return polygon;
+}
+
+}  // namespace dfrecon

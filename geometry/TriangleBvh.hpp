@@ -1,0 +1,103 @@
+#pragma once
+// A bounding volume hierarchy over the triangles of a soup: median splits
+// along the longest axis, leaves of up to 4 triangles. Answers the two
+// queries dfrecon needs: pairs of triangles whose boxes overlap (self-
+// intersection checks) and the nearest triangle to a point (exact distances
+// for verifiers and benchmarks).
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "geometry/Box3.hpp"
+#include "geometry/ClosestPoint.hpp"
+#include "geometry/TriangleSoup.hpp"
+
+namespace dfrecon {
+
+class TriangleBvh {
+  public:
+    /// Builds over `soup`, which must outlive the hierarchy. O(T log T).
+    explicit TriangleBvh(const TriangleSoup& soup);
+
+    /// Calls visit(i, j) once for every pair of distinct triangles whose
+    /// bounding boxes overlap.
+    template <class Visit>
+    void selfPairs(Visit&& visit) const;
+
+    struct Nearest {
+        std::size_t triangle = 0;
+        double distance = INFINITY;
+        Vec3 point;                   // on the triangle
+        double distance2 = INFINITY;  // distance squared, as compared in the search
+    };
+    /// The triangle nearest to p and the distance; O(log T) typically.
+    /// A `hint` (a triangle likely near p, e.g. the answer for a point close
+    /// by) prunes the search from the start; the answer is the same.
+    Nearest nearest(Vec3 p, std::size_t hint = SIZE_MAX) const;
+    /// The same, among triangles nearer than sqrt(maxDistance2) (strictly):
+    /// a search bounded by a distance already found elsewhere. When none is
+    /// that near, triangle is SIZE_MAX and distance infinite.
+    Nearest nearestWithin(Vec3 p, double maxDistance2, std::size_t hint = SIZE_MAX) const;
+
+    /// The hierarchy as flat arrays, for device kernels that walk it:
+    /// node 0 is the root; a leaf's triangles are order()[first, first+count).
+    struct Node {
+        Box3 box;
+        int left = -1, right = -1;         // children, or -1 for a leaf
+        std::size_t first = 0, count = 0;  // leaf range in order_
+    };
+    const std::vector<Node>& nodes() const { return nodes_; }
+    /// Per triangle, a ball around it: its centroid and (slightly more than)
+    /// its farthest corner's distance. |p - centre| - radius is a lower bound
+    /// of p's distance to the triangle, tighter than a leaf's box for points
+    /// far away, so most of a visited leaf's triangles are never measured.
+    struct Ball {
+        Vec3 centre;
+        double radius = 0;
+    };
+    const std::vector<Ball>& balls() const { return balls_; }
+    const std::vector<std::size_t>& order() const { return order_; }
+    const TriangleSoup& soup() const { return soup_; }
+
+  private:
+    int build(std::size_t first, std::size_t last);
+
+    const TriangleSoup& soup_;
+    std::vector<Box3> boxes_;
+    std::vector<Ball> balls_;
+    std::vector<Node> nodes_;
+    std::vector<std::size_t> order_;
+};
+
+template <class Visit>
+void TriangleBvh::selfPairs(Visit&& visit) const {
+    if (nodes_.empty()) return;
+    std::vector<std::pair<int, int>> stack{{0, 0}};
+    while (!stack.empty()) {
+        const auto [a, b] = stack.back();
+        stack.pop_back();
+        const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
+        if (!na.box.overlaps(nb.box)) continue;
+        const bool leafA = na.left < 0, leafB = nb.left < 0;
+        if (leafA && leafB) {
+            for (std::size_t p = 0; p < na.count; ++p)
+                for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
+                    const std::size_t i = order_[na.first + p], j = order_[nb.first + q];
+                    if (boxes_[i].overlaps(boxes_[j])) visit(i, j);
+                }
+        } else if (a == b) {
+            stack.push_back({na.left, na.left});
+            stack.push_back({na.right, na.right});
+            stack.push_back({na.left, na.right});
+        } else if (!leafA && (leafB || na.count >= nb.count)) {
+            stack.push_back({na.left, b});
+            stack.push_back({na.right, b});
+        } else {
+            stack.push_back({a, nb.left});
+            stack.push_back({a, nb.right});
+        }
+    }
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,60 @@
+#include "geometry/TriangleSoup.hpp"
+
+namespace dfrecon {
+
+TriangleSoup toTriangleSoup(const TriMesh& mesh) {
+    TriangleSoup soup;
+    for (auto v : mesh.vertices()) {
+        const auto p = mesh.point(v);
+        soup.points.push_back({p[0], p[1], p[2]});
+    }
+    for (auto f : mesh.faces()) {
+        std::array<std::uint32_t, 3> t{};
+        int k = 0;
+        for (auto v : mesh.fv_range(f))
+            if (k < 3) t[std::size_t(k++)] = std::uint32_t(v.idx());
+        soup.triangles.push_back(t);
+    }
+    return soup;
+}
+
+void removeUnusedPoints(TriangleSoup& soup) {
+    constexpr std::uint32_t kUnused = 0xffffffffu;
+    std::vector<std::uint32_t> index(soup.points.size(), kUnused);
+    std::vector<Vec3> kept;
+    for (auto& t : soup.triangles)
+        for (std::uint32_t& v : t) {
+            if (index[v] == kUnused) {
+                index[v] = std::uint32_t(kept.size());
+                kept.push_back(soup.points[v]);
+            }
+            v = index[v];
+        }
+    soup.points = std::move(kept);
+}
+
+TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
+    TriMesh mesh;
+    std::vector<TriMesh::VertexHandle> vertices;
+    vertices.reserve(soup.points.size());
+    for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
+    std::size_t refused = 0;
+    // OpenMesh reports each refused face on stderr; the count says it once.
+    omerr().disable();
+    for (const auto& t : soup.triangles) {
+        // OpenMesh asserts on a face that repeats a vertex; it is refused too.
+        const bool repeats = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        if (repeats || !mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid())
+            ++refused;
+    }
+    omerr().enable();
+    if (refusedFaces) *refusedFaces = refused;
+    return mesh;
+}
+
+void toPatient(TriangleSoup& soup, const PlaneFrame& frame) {
+    if (frame.isIdentity()) return;
+    for (Vec3& p : soup.points) p = frame.toPatient(p);
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,36 @@
+#pragma once
+// Triangles as a plain indexed list, with no topological assumptions, so
+// that non-manifold or inconsistently oriented input can be inspected
+// (OpenMesh's half-edge mesh refuses such faces when reading).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/PlaneFrame.hpp"
+#include "geometry/TriMesh.hpp"
+#include "geometry/Vec3.hpp"
+
+namespace dfrecon {
+
+struct TriangleSoup {
+    std::vector<Vec3> points;
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into points
+};
+
+/// The triangles of a half-edge mesh.
+TriangleSoup toTriangleSoup(const TriMesh& mesh);
+
+/// Drops the points no triangle uses and renumbers the triangles. O(n).
+void removeUnusedPoints(TriangleSoup& soup);
+
+/// Maps every point from `frame`'s plane coordinates to patient
+/// coordinates; the frame is a rotation, so orientation is kept. O(n).
+void toPatient(TriangleSoup& soup, const PlaneFrame& frame);
+
+/// The half-edge mesh of a soup (writeMesh adds normals). OpenMesh refuses
+/// faces that would make an edge non-manifold; how many it refused is
+/// returned in `refusedFaces` (0 for any valid surface).
+TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces = nullptr);
+
+}  // namespace dfrecon

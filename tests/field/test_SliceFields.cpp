@@ -1,0 +1,187 @@
+// The 2D field kernel against the brute-force reference on the PoCL CPU
+// device. Agreement (double precision): distance within 1e-4 px, sign exact,
+// and the id the kernel reports names a primitive at the nearest distance
+// (within 1e-5 px), which is the id itself except at ties. Sign is not
+// compared at pixel centres within 1e-6 px of a contour, where it is a
+// matter of rounding. Float variants get 1e-6 of the coordinates' size more.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "shapes/AnalyticShapes.hpp"
+#include "geometry/ContourValidation.hpp"
+#include "field/SliceFields.hpp"
+
+using namespace dfrecon;
+
+namespace {
+
+ocl::Runtime& runtime() {
+    static ocl::Runtime instance("cpu");
+    return instance;
+}
+
+double distanceToPrimitive(Point2 p, const std::vector<Polygon>& contours, std::uint32_t id) {
+    const PrimitiveId prim = PrimitiveId::decode(id);
+    const Polygon& c = contours.at(prim.contour);
+    const Point2 a = c.at(prim.index);
+    if (prim.isVertex) return length(p - a);
+    return distanceToSegment(p, a, c[(prim.index + 1) % c.size()]);
+}
+
+void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid,
+                         const SliceFields& reference, const FieldKernelOptions& options) {
+    const SliceFields kernel = computeSliceFields(runtime(), slices, grid, {}, options);
+    ASSERT_EQ(kernel.distanceMm.size(), reference.distanceMm.size());
+    const double pixel = grid.pixelMm;
+    // Float carries about 1e-6 of the coordinates' magnitude on top.
+    const double relative = options.singlePrecision ? 1e-6 : 0;
+    int worst = 0;
+    for (std::size_t s = 0; s < slices.size(); ++s)
+        for (int j = 0; j < grid.height; ++j)
+            for (int i = 0; i < grid.width; ++i) {
+                const std::size_t k = kernel.index(s, i, j);
+                const float dk = kernel.distanceMm[k], dr = reference.distanceMm[k];
+                if (slices[s].contours.empty()) {
+                    EXPECT_EQ(kernel.nearestId[k], kNoPrimitive);
+                    continue;
+                }
+                const double slackPx = relative * (std::abs(dr) / pixel + grid.width + grid.height);
+                const double error = std::abs(double(dk) - double(dr)) / pixel;
+                if (error > 1e-4 + slackPx && worst++ < 5)
+                    ADD_FAILURE() << "slice " << s << " pixel " << i << "," << j << ": " << dk
+                                  << " vs " << dr;
+                // Pixel centres on a contour (to rounding) have no meaningful sign.
+                const bool onContour = std::abs(dr) <= (1e-6 + slackPx) * pixel;
+                if (!onContour && (dk < 0) != (dr < 0) && worst++ < 5)
+                    ADD_FAILURE() << "sign at slice " << s << " pixel " << i << "," << j;
+                const double named = distanceToPrimitive(grid.pixelCentre(i, j), slices[s].contours,
+                                                         kernel.nearestId[k]);
+                if (std::abs(named - std::abs(double(dr))) > (1e-5 + 2 * slackPx) * pixel &&
+                    worst++ < 5)
+                    ADD_FAILURE() << "id at slice " << s << " pixel " << i << "," << j << " names "
+                                  << named << " mm away, nearest is " << dr;
+            }
+    EXPECT_EQ(worst, 0);
+}
+
+// Every kernel variant: 8, 4 and 1 pixels per work-item (CPU and GPU
+// shapes) in double precision, and float (devices without fp64).
+void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
+    const SliceFields reference = computeSliceFieldsReference(slices, grid);
+    for (const FieldKernelOptions options :
+         {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
+          FieldKernelOptions{8, true}}) {
+        SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
+                     (options.singlePrecision ? ", float" : ", double"));
+        expectVariantAgrees(slices, grid, reference, options);
+    }
+}
+
+Polygon star(std::mt19937& random, Point2 centre, int n, double rMin, double rMax, bool ccw) {
+    std::uniform_real_distribution<double> radius(rMin, rMax);
+    Polygon p;
+    for (int k = 0; k < n; ++k) {
+        const double t = 2 * M_PI * (ccw ? k : -k) / n;
+        const double r = radius(random);
+        p.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
+    }
+    return p;
+}
+
+}  // namespace
+
+TEST(SliceFields, RandomPolygonsWithHolesAndIslands) {
+    std::mt19937 random(11);
+    std::vector<Slice> slices;
+    for (int s = 0; s < 6; ++s) {
+        Slice slice;
+        slice.zMm = s * 2.5;
+        slice.contours = {star(random, {100, -50}, 40 + 13 * s, 30, 40, true),
+                          star(random, {100, -50}, 25, 15, 22, false),  // hole
+                          star(random, {100, -50}, 9, 4, 8, true),      // island in the hole
+                          star(random, {160, -50}, 17, 6, 12, true)};   // separate blob
+        ASSERT_FALSE(findContourDefect(slice.contours).has_value());
+        slices.push_back(slice);
+    }
+    expectAgreement(slices, gridForSlices(slices, 0.7));
+}
+
+TEST(SliceFields, TouchingContoursKeepTheirSigns) {
+    // Two squares meeting at a corner, and a hole touching its outer contour.
+    Slice slice;
+    slice.contours = {{{0, 0}, {10, 0}, {10, 10}, {0, 10}},
+                      {{10, 10}, {20, 10}, {20, 20}, {10, 20}},
+                      {{30, 0}, {50, 0}, {50, 20}, {30, 20}},
+                      {{30, 0}, {35, 10}, {40, 5}}};
+    normaliseOrientation(slice);
+    const std::vector<Slice> slices{slice};
+    expectAgreement(slices, gridForSlices(slices, 0.25));
+    const SliceFields f = computeSliceFields(runtime(), slices, gridForSlices(slices, 0.25));
+    // Just inside square 2 near the shared corner, and inside the hole.
+    const SliceGrid& g = f.grid;
+    const int i = int((10.3 - g.originMm.x) / g.pixelMm),
+              j = int((10.3 - g.originMm.y) / g.pixelMm);
+    EXPECT_LT(f.distanceMm[f.index(0, i, j)], 0);
+    const int hi = int((36 - g.originMm.x) / g.pixelMm), hj = int((6 - g.originMm.y) / g.pixelMm);
+    EXPECT_GT(f.distanceMm[f.index(0, hi, hj)], 0);
+}
+
+TEST(SliceFields, SpikesAndCollinearRuns) {
+    Slice slice;
+    Polygon spiky{{0, 0},   {5, 0},     {10, 0},  {15, 0},     {20, 0},  // collinear run
+                  {20, 10}, {12, 10.2}, {10, 30}, {9.9, 10.2},           // thin spike
+                  {0, 10}};
+    slice.contours = {spiky};
+    normaliseOrientation(slice);
+    const std::vector<Slice> slices{slice};
+    expectAgreement(slices, gridForSlices(slices, 0.13));
+}
+
+TEST(SliceFields, ContoursFarOutsideTheGrid) {
+    Slice slice;
+    slice.contours = {{{1000, 1000}, {1010, 1000}, {1005, 1008}},
+                      {{-900, 0}, {-800, 0}, {-800, 50}, {-900, 50}}};
+    normaliseOrientation(slice);
+    SliceGrid grid;
+    grid.originMm = {0, 0};
+    grid.pixelMm = 1;
+    grid.width = 40;
+    grid.height = 33;
+    expectAgreement({slice}, grid);
+}
+
+TEST(SliceFields, OneContourOfThreePointsAndEmptySlices) {
+    Slice empty, triangle;
+    empty.zMm = 0;
+    triangle.zMm = 1;
+    triangle.contours = {{{0, 0}, {4, 0}, {1, 3}}};
+    const std::vector<Slice> slices{empty, triangle, empty};
+    const SliceGrid grid = gridForSlices(slices, 0.05);
+    expectAgreement(slices, grid);
+}
+
+TEST(SliceFields, CircleDistancesAreExactToThePolygon) {
+    const ContourSet set = sliceShape(*makeShape("torus"), {});
+    const std::vector<Slice>& slices = set.rois[0].slices;
+    const SliceGrid grid = gridForSlices(slices, 0);
+    EXPECT_LE(std::max(grid.width, grid.height), kDefaultGridPixels);
+    EXPECT_GE(std::max(grid.width, grid.height), kDefaultGridPixels - 2);
+    expectAgreement(slices, grid);
+}
+
+TEST(SliceFields, RejectsIdsThatDoNotFit) {
+    Slice slice;
+    slice.contours.assign(kMaxContoursPerSlice, Polygon{{0, 0}, {1, 0}, {0, 1}});
+    SliceGrid grid;
+    grid.width = grid.height = 4;
+    EXPECT_THROW(computeSliceFieldsReference({slice}, grid), std::invalid_argument);
+}
+
+TEST(PrimitiveId, RoundTrips) {
+    const PrimitiveId id{kMaxContoursPerSlice - 1, kMaxPrimitivesPerContour - 1, true};
+    EXPECT_EQ(PrimitiveId::decode(id.encode()), id);
+    EXPECT_NE(id.encode(), kNoPrimitive);  // the largest valid id is not the sentinel
+    EXPECT_EQ(PrimitiveId::decode(PrimitiveId{3, 7, false}.encode()).index, 7u);
+}

@@ -1,0 +1,187 @@
+// The mesh checker on meshes whose answers are known by construction:
+// closed genus-0 and genus-1 surfaces, and each kind of defect on purpose.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "io/MeshIO.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "tests/geometry/RandomSoup.hpp"
+
+using namespace dfrecon;
+
+namespace {
+
+TriangleSoup octahedron(Vec3 c = {}, double r = 1) {
+    TriangleSoup s;
+    s.points = {{c.x + r, c.y, c.z}, {c.x - r, c.y, c.z}, {c.x, c.y + r, c.z},
+                {c.x, c.y - r, c.z}, {c.x, c.y, c.z + r}, {c.x, c.y, c.z - r}};
+    s.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    return s;
+}
+
+// A torus (major R, minor r) as an n × m grid of quads, outward normals.
+TriangleSoup torus(double R, double r, int n, int m) {
+    TriangleSoup s;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+            s.points.push_back({(R + r * std::cos(v)) * std::cos(u),
+                                (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+        }
+    auto at = [&](int i, int j) { return std::uint32_t(((i + n) % n) * m + (j + m) % m); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            s.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            s.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return s;
+}
+
+TriangleSoup merged(TriangleSoup a, const TriangleSoup& b) {
+    const auto offset = std::uint32_t(a.points.size());
+    a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+    for (auto t : b.triangles) a.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    return a;
+}
+
+}  // namespace
+
+TEST(MeshCheck, OctahedronIsAValidGenusZeroSolid) {
+    const MeshCheckReport r = checkMesh(octahedron());
+    EXPECT_TRUE(r.validSolid());
+    EXPECT_EQ(r.vertices, 6u);
+    EXPECT_EQ(r.edges, 12u);
+    EXPECT_EQ(r.eulerCharacteristic, 2);
+    EXPECT_EQ(r.genus, 0);
+    EXPECT_EQ(r.components, 1u);
+    EXPECT_NEAR(r.volumeMm3, 4.0 / 3.0, 1e-12);
+    EXPECT_NEAR(r.areaMm2, 8 * std::sqrt(3.0) / 2, 1e-12);
+}
+
+TEST(MeshCheck, TorusHasGenusOne) {
+    const MeshCheckReport r = checkMesh(torus(10, 3, 48, 24));
+    EXPECT_TRUE(r.validSolid()) << r.intersectingPairs;
+    EXPECT_EQ(r.eulerCharacteristic, 0);
+    EXPECT_EQ(r.genus, 1);
+    EXPECT_NEAR(r.volumeMm3, 2 * M_PI * M_PI * 10 * 9, 0.02 * 2 * M_PI * M_PI * 90);
+}
+
+TEST(MeshCheck, TwoSeparateSolidsAreTwoComponents) {
+    const MeshCheckReport r = checkMesh(merged(octahedron(), octahedron({5, 0, 0})));
+    EXPECT_TRUE(r.validSolid());
+    EXPECT_EQ(r.components, 2u);
+    EXPECT_EQ(r.genus, 0);
+}
+
+TEST(MeshCheck, MissingTriangleLeavesABoundary) {
+    TriangleSoup s = octahedron();
+    s.triangles.pop_back();
+    const MeshCheckReport r = checkMesh(s);
+    EXPECT_EQ(r.boundaryEdges, 3u);
+    EXPECT_FALSE(r.watertight());
+    EXPECT_EQ(r.genus, -1);
+}
+
+TEST(MeshCheck, FlippedTriangleIsMisoriented) {
+    TriangleSoup s = octahedron();
+    std::swap(s.triangles[3][0], s.triangles[3][1]);
+    const MeshCheckReport r = checkMesh(s);
+    EXPECT_EQ(r.misorientedEdges, 3u);
+    EXPECT_FALSE(r.watertight());
+}
+
+TEST(MeshCheck, ThirdTriangleOnAnEdgeIsNonManifold) {
+    TriangleSoup s = octahedron();
+    s.points.push_back({2, 2, 0});
+    s.triangles.push_back({0, 2, 6});
+    const MeshCheckReport r = checkMesh(s);
+    EXPECT_EQ(r.nonManifoldEdges, 1u);
+    EXPECT_FALSE(r.watertight());
+}
+
+TEST(MeshCheck, SolidsSharingOnlyAVertexAreNonManifoldThere) {
+    // Two octahedra tip to tip: vertex 0 of the first is vertex 1 of the second.
+    TriangleSoup s = merged(octahedron(), octahedron({2, 0, 0}));
+    for (auto& t : s.triangles)
+        for (auto& v : t)
+            if (v == 7) v = 0;
+    const MeshCheckReport r = checkMesh(s);
+    EXPECT_EQ(r.nonManifoldVertices, 1u);
+    EXPECT_EQ(r.intersectingPairs, 0u);  // they only touch at the shared vertex
+}
+
+TEST(MeshCheck, OverlappingSolidsIntersect) {
+    const MeshCheckReport r = checkMesh(merged(octahedron(), octahedron({0.5, 0.3, 0.2})));
+    EXPECT_TRUE(r.watertight());
+    EXPECT_GT(r.intersectingPairs, 0u);
+    EXPECT_FALSE(r.validSolid());
+    EXPECT_FALSE(r.intersectingExamples.empty());
+}
+
+TEST(MeshCheck, FoldedNeighboursIntersect) {
+    // Two coplanar triangles on one edge, on the same side of it.
+    TriangleSoup s;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, 0.5, 0}};
+    s.triangles = {{0, 1, 2}, {1, 0, 3}};
+    EXPECT_EQ(checkMesh(s).intersectingPairs, 1u);
+    s.points[3] = {0.5, -1, 0};  // now on the other side: a flat, valid pair
+    EXPECT_EQ(checkMesh(s).intersectingPairs, 0u);
+}
+
+TEST(MeshCheck, TriangleTriangleCases) {
+    const Vec3 t[3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+    const Vec3 crossing[3] = {{0.5, 0.5, -1}, {0.5, 0.5, 1}, {3, 3, 0.5}};
+    const Vec3 above[3] = {{0, 0, 1}, {2, 0, 1}, {0, 2, 1}};
+    const Vec3 touching[3] = {{2, 0, 0}, {3, 0, 1}, {3, 1, -1}};
+    const Vec3 coplanarOverlap[3] = {{1, 1, 0}, {3, 1, 0}, {1, 3, 0}};
+    const Vec3 coplanarApart[3] = {{3, 3, 0}, {4, 3, 0}, {3, 4, 0}};
+    EXPECT_TRUE(trianglesIntersect(t, crossing));
+    EXPECT_FALSE(trianglesIntersect(t, above));
+    EXPECT_TRUE(trianglesIntersect(t, touching));
+    EXPECT_TRUE(trianglesIntersect(t, coplanarOverlap));
+    EXPECT_FALSE(trianglesIntersect(t, coplanarApart));
+}
+
+TEST(MeshCheck, ReadsBrokenFilesWithoutDroppingFaces) {
+    // An edge shared by three triangles: OpenMesh's half-edge reader drops
+    // one, the soup keeps all three.
+    const auto path = std::filesystem::temp_directory_path() / "dfrecon-test-nonmanifold.obj";
+    std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                        << "f 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    const TriangleSoup soup = readTriangleSoup(path.string());
+    EXPECT_EQ(soup.triangles.size(), 3u);
+    EXPECT_EQ(checkMesh(soup).nonManifoldEdges, 1u);
+}
+
+TEST(MeshCheck, WrittenMeshesReadBackValid) {
+    TriMesh mesh;
+    const TriangleSoup s = octahedron({1, 2, 3}, 4);
+    std::vector<TriMesh::VertexHandle> v;
+    for (Vec3 p : s.points) v.push_back(mesh.add_vertex({p.x, p.y, p.z}));
+    for (auto t : s.triangles) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+    EXPECT_TRUE(checkMesh(toTriangleSoup(mesh)).validSolid());
+    const auto path = std::filesystem::temp_directory_path() / "dfrecon-test-octa.ply";
+    writeMesh(mesh, path.string());
+    const MeshCheckReport r = checkMesh(readTriangleSoup(path.string()));
+    EXPECT_TRUE(r.validSolid());
+    EXPECT_NEAR(r.volumeMm3, 4.0 / 3.0 * 64, 1e-9);
+}
+
+TEST(MeshCheck, BvhFindsEveryIntersectingPairOfARandomSoup) {
+    // Independent triangles (no shared vertices): the checker's count must
+    // equal the all-pairs count.
+    const TriangleSoup s = dfrecon::testing::randomTriangles(9, 400, 20, 1.5);
+    std::size_t expected = 0;
+    for (std::size_t i = 0; i < s.triangles.size(); ++i)
+        for (std::size_t j = i + 1; j < s.triangles.size(); ++j) {
+            const Vec3 a[3] = {s.points[3 * i], s.points[3 * i + 1], s.points[3 * i + 2]};
+            const Vec3 b[3] = {s.points[3 * j], s.points[3 * j + 1], s.points[3 * j + 2]};
+            expected += trianglesIntersect(a, b);
+        }
+    EXPECT_GT(expected, 10u);
+    EXPECT_EQ(checkMesh(s).intersectingPairs, expected);
+}
