@@ -7,9 +7,9 @@
 
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
-#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon::app {
 

@@ -9,8 +9,8 @@
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
-#include "io/LevelSetVdb.hpp"
 #include "field/FieldVolume.hpp"
+#include "io/LevelSetVdb.hpp"
 
 namespace dfrecon::app {
 

@@ -12,12 +12,12 @@
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
+#include "field/SliceFields.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
 #include "io/RawVolume.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/MedialAxis.hpp"
-#include "field/SliceFields.hpp"
 
 namespace dfrecon::app {
 

@@ -11,8 +11,8 @@
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
-#include "io/LabelVolume.hpp"
 #include "field/DistanceField3D.hpp"
+#include "io/LabelVolume.hpp"
 
 namespace dfrecon::app {
 

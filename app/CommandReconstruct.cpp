@@ -11,8 +11,8 @@
 #include "app/Progress.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
-#include "io/MeshIO.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "io/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon::app {

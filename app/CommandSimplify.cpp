@@ -11,9 +11,9 @@
 #include "app/Inputs.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
-#include "geometry/MeshCheck.hpp"
 
 namespace dfrecon::app {
 

@@ -14,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "shapes/AnalyticShapes.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/LevinBaseline.hpp"
-#include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
-#include "geometry/TriangleBvh.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "simplify/SurfaceDistance.hpp"
 
 namespace dfrecon::bench {

@@ -26,9 +26,9 @@
 
 #include "bench/Benchmarks.hpp"
 #include "io/MeshIO.hpp"
-#include "shapes/MeshShapes.hpp"
 #include "segment/EikonalFim.hpp"
 #include "segment/Segmentation.hpp"
+#include "shapes/MeshShapes.hpp"
 
 namespace dfrecon::bench {
 

@@ -15,9 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "shapes/AnalyticShapes.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "simplify/Simplification.hpp"
 #include "simplify/SurfaceDistance.hpp"
 

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon::bench {
 

@@ -2,8 +2,8 @@
 // The 3D field as a dense volume for export: x and y on the field's pixels,
 // z resampled to even steps (linear between layers), covering the virtual
 // end layers so caps are inside.
-#include "io/LevelSetVdb.hpp"
 #include "field/DistanceField3D.hpp"
+#include "io/LevelSetVdb.hpp"
 
 namespace dfrecon {
 

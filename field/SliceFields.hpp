@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
-#include "io/ContourSet.hpp"
 #include "field/PrimitiveId.hpp"
 #include "field/SliceGrid.hpp"
+#include "io/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/InputError.hpp"
 #include "geometry/IsoLines.hpp"
+#include "io/InputError.hpp"
 
 namespace dfrecon {
 

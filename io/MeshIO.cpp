@@ -178,5 +178,4 @@ TriangleSoup readTriangleSoup(const std::string& path) {
     return soup;
 }
 
-
 }  // namespace dfrecon

@@ -10,8 +10,8 @@
 #include <ostream>
 #include <sstream>
 
-#include "io/AtomicWrite.hpp"
 #include "geometry/ContourValidation.hpp"
+#include "io/AtomicWrite.hpp"
 
 namespace dfrecon {
 

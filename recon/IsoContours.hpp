@@ -6,8 +6,8 @@
 // (reconstruction paper Fig. 7).
 #include <vector>
 
-#include "geometry/Polygon.hpp"
 #include "field/SliceGrid.hpp"
+#include "geometry/Polygon.hpp"
 
 namespace dfrecon {
 

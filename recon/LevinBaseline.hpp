@@ -4,8 +4,8 @@
 // vtkVoxelContoursToSurfaceFilter and planning systems work alike) — the
 // slices' 2D signed fields interpolated linearly in z and isosurfaced by
 // marching cubes (OpenVDB's volumeToMesh).
-#include "geometry/TriMesh.hpp"
 #include "field/SliceFields.hpp"
+#include "geometry/TriMesh.hpp"
 
 namespace dfrecon {
 

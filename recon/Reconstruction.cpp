@@ -8,14 +8,14 @@
 #include <optional>
 #include <stdexcept>
 
+#include "geometry/MeshCheck.hpp"
+#include "geometry/UnionFind.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/MedialAxis.hpp"
-#include "geometry/MeshCheck.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
-#include "geometry/UnionFind.hpp"
 
 namespace dfrecon {
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cl/Runtime.hpp"
-#include "io/ContourSet.hpp"
-#include "geometry/TriangleSoup.hpp"
 #include "field/SliceFields.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "io/ContourSet.hpp"
 
 namespace dfrecon {
 

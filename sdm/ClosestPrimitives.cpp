@@ -185,8 +185,8 @@ class DeviceSceneT final : public DeviceScene {
             closed.push_back(scene.closed(o) ? 1 : 0);
             for (std::size_t t = 0; t < scene.object(o).triangles.size(); ++t)
                 for (int f = 0; f < 7; ++f)
-                    normals.push_back(SurfaceArrays<Real4>::real4(
-                        scene.pseudoNormal(o, t, TriangleFeature(f))));
+                    normals.push_back(
+                        SurfaceArrays<Real4>::real4(scene.pseudoNormal(o, t, TriangleFeature(f))));
         }
         objectOfTriangle_.reserve(arrays.triangles.size());
         for (const cl_int4& t : arrays.triangles) objectOfTriangle_.push_back(std::size_t(t.s[3]));

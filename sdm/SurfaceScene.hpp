@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/TriangleSoup.hpp"
 #include "geometry/TriangleBvh.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -298,7 +298,7 @@ EikonalFim::EikonalFim(ocl::Runtime& runtime, const UpdateStencils& stencils,
     device_ = ocl::withRealTypes(
         runtime.device().doublePrecision, [&](auto real, auto real4) -> std::unique_ptr<Device> {
             return std::make_unique<FimDevice<decltype(real), decltype(real4)>>(runtime, stencils,
-                                                                               speed, options);
+                                                                                speed, options);
         });
 }
 

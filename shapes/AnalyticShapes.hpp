@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/ContourSet.hpp"
 #include "geometry/Vec3.hpp"
+#include "io/ContourSet.hpp"
 
 namespace dfrecon {
 

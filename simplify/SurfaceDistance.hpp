@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "io/ContourSet.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "io/ContourSet.hpp"
 
 namespace dfrecon {
 

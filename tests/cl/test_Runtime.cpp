@@ -18,11 +18,13 @@ TEST(Runtime, KernelSourcesAreEmbedded) {
 
 TEST(Runtime, BuildsAndCachesPrograms) {
     Runtime runtime("cpu");
-    const cl::Program& first = runtime.program({"closest_segment_2d.cl"});
-    const cl::Program& second = runtime.program({"closest_segment_2d.cl"});
+    // The planar field program: its shared prelude and closest-point text first.
+    const std::vector<std::string> sources{"real.cl", "closest_point.cl", "closest_segment_2d.cl"};
+    const cl::Program& first = runtime.program(sources);
+    const cl::Program& second = runtime.program(sources);
     EXPECT_EQ(first(), second());
-    EXPECT_NO_THROW(runtime.kernel({"closest_segment_2d.cl"}, "signed_distance_2d"));
-    EXPECT_THROW(runtime.kernel({"closest_segment_2d.cl"}, "no_such_kernel"), ClError);
+    EXPECT_NO_THROW(runtime.kernel(sources, "signed_distance_2d"));
+    EXPECT_THROW(runtime.kernel(sources, "no_such_kernel"), ClError);
     EXPECT_THROW(runtime.program({"missing.cl"}), ClError);
 }
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "field/DistanceField3D.hpp"
 #include "field/FieldVolume.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon {
 namespace {

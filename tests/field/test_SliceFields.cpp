@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
-#include "shapes/AnalyticShapes.hpp"
-#include "geometry/ContourValidation.hpp"
 #include "field/SliceFields.hpp"
+#include "geometry/ContourValidation.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/MeshIO.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "io/MeshIO.hpp"
 #include "tests/geometry/RandomSoup.hpp"
 
 using namespace dfrecon;

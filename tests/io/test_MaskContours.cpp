@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "io/InputError.hpp"
 #include "io/MaskContours.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon {
 namespace {

@@ -11,10 +11,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "io/InputError.hpp"
 #include "io/MaskContours.hpp"
 #include "io/MaskStack.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

@@ -7,7 +7,6 @@
 
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
-#include "io/MeshIO.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;

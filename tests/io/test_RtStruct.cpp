@@ -10,8 +10,8 @@
 #include <fstream>
 #include <random>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "io/RtStruct.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;

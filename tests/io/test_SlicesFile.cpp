@@ -4,8 +4,8 @@
 
 #include <sstream>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "tests/BadSlicesInputs.hpp"
 
 using namespace dfrecon;

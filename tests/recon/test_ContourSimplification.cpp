@@ -7,8 +7,8 @@
 #include <iostream>
 #include <random>
 
-#include "io/ContourSet.hpp"
 #include "geometry/ContourValidation.hpp"
+#include "io/ContourSet.hpp"
 #include "recon/ContourSimplification.hpp"
 
 using namespace dfrecon;

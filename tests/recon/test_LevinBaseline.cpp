@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "shapes/AnalyticShapes.hpp"
-#include "recon/LevinBaseline.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "recon/LevinBaseline.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
 

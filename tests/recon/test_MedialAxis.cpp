@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "shapes/AnalyticShapes.hpp"
 #include "recon/MedialAxis.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
 

@@ -7,10 +7,10 @@
 #include <set>
 #include <tuple>
 
-#include "shapes/AnalyticShapes.hpp"
-#include "io/SlicesFile.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "io/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon {
 namespace {

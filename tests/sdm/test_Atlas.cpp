@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "shapes/MeshShapes.hpp"
 #include "sdm/Atlas.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

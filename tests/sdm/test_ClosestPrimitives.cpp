@@ -9,9 +9,9 @@
 #include <random>
 
 #include "io/MeshIO.hpp"
-#include "shapes/MeshShapes.hpp"
 #include "sdm/ClosestPrimitives.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

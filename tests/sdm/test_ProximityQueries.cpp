@@ -3,8 +3,8 @@
 // deepest point's depth within its bound.
 #include <gtest/gtest.h>
 
-#include "shapes/MeshShapes.hpp"
 #include "sdm/ProximityQueries.hpp"
+#include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "shapes/MeshShapes.hpp"
 #include "segment/MeshGraph.hpp"
+#include "shapes/MeshShapes.hpp"
 
 namespace dfrecon::testing {
 

@@ -7,10 +7,10 @@
 #include <cctype>
 #include <random>
 
-#include "shapes/AnalyticShapes.hpp"
-#include "io/SlicesFile.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "io/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
+#include "shapes/AnalyticShapes.hpp"
 #include "simplify/DeviationBound.hpp"
 #include "simplify/InitialPriorities.hpp"
 #include "simplify/Simplification.hpp"
