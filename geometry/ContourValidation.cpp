@@ -109,20 +109,14 @@ Point2 touchPoint(const Segment& s, const Segment& t) {
     return best;
 }
 
-}  // namespace
-
-std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& contours,
-                                               std::size_t pairBudget) {
-    std::vector<Segment> segments;
-    for (std::size_t c = 0; c < contours.size(); ++c)
-        for (std::size_t i = 0; i < contours[c].size(); ++i)
-            segments.push_back({c, i, contours[c][i], contours[c][(i + 1) % contours[c].size()]});
-    if (segments.size() < 2) return std::nullopt;
-
+// Calls visit(s, t, contact) for every pair of segments that meet
+// (contact != None), until it returns true; returns false when the budget
+// ran out first.
+template <class Visit>
+bool visitContacts(const std::vector<Segment>& segments, std::size_t pairBudget, Visit&& visit) {
+    if (segments.size() < 2) return true;
     const Grid grid = makeGrid(segments);
     std::size_t work = 0;
-    auto overBudget = [&] { return ContourDefect{ContourDefect::Kind::TooComplex}; };
-
     // (cell, segment) entries sorted by cell: each cell's segments contiguous.
     // Segments much longer than a cell visit many cells; the cap bounds
     // memory on layouts such as combs of long teeth.
@@ -131,42 +125,77 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
     for (std::size_t i = 0; i < segments.size(); ++i) {
         visitCells(grid, segments[i],
                    [&](std::size_t cell) { entries.emplace_back(cell, std::uint32_t(i)); });
-        if (entries.size() > maxEntries) return overBudget();
+        if (entries.size() > maxEntries) return false;
     }
     std::sort(entries.begin(), entries.end());
-
     for (std::size_t begin = 0; begin < entries.size();) {
         std::size_t end = begin;
         while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
         for (std::size_t p = begin; p < end; ++p)
             for (std::size_t q = p + 1; q < end; ++q) {
-                if (++work > pairBudget) return overBudget();
+                if (++work > pairBudget) return false;
                 const Segment& s = segments[entries[p].second];
                 const Segment& t = segments[entries[q].second];
                 const SegmentContact contact = segmentContact(s.a, s.b, t.a, t.b);
-                if (contact == SegmentContact::None) continue;
-                ContourDefect defect{
-                    ContourDefect::Kind::Crossing, s.contour, s.index, t.contour, t.index, contact};
-                if (s.contour == t.contour) {
-                    // Neighbours share a vertex; only folding back onto each other is wrong.
-                    if (adjacent(s, t, contours[s.contour].size()) &&
-                        contact != SegmentContact::Overlap)
-                        continue;
-                    defect.kind = ContourDefect::Kind::SelfIntersection;
-                    return defect;
-                }
-                // Contours may touch at isolated points, but not cross there.
-                if (contact == SegmentContact::Touch) {
-                    if (!crossAtPoint(contours[s.contour], s.index, contours[t.contour], t.index,
-                                      touchPoint(s, t)))
-                        continue;
-                    defect.contact = SegmentContact::Cross;
-                }
-                return defect;
+                if (contact != SegmentContact::None && visit(s, t, contact)) return true;
             }
         begin = end;
     }
-    return std::nullopt;
+    return true;
+}
+
+std::vector<Segment> segmentsOf(const std::vector<Polygon>& contours) {
+    std::vector<Segment> segments;
+    for (std::size_t c = 0; c < contours.size(); ++c)
+        for (std::size_t i = 0; i < contours[c].size(); ++i)
+            segments.push_back({c, i, contours[c][i], contours[c][(i + 1) % contours[c].size()]});
+    return segments;
+}
+
+}  // namespace
+
+std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& contours,
+                                               std::size_t pairBudget) {
+    std::optional<ContourDefect> found;
+    const bool complete = visitContacts(
+        segmentsOf(contours), pairBudget,
+        [&](const Segment& s, const Segment& t, SegmentContact contact) {
+            ContourDefect defect{
+                ContourDefect::Kind::Crossing, s.contour, s.index, t.contour, t.index, contact};
+            if (s.contour == t.contour) {
+                // Neighbours share a vertex; only folding back onto each other is wrong.
+                if (adjacent(s, t, contours[s.contour].size()) &&
+                    contact != SegmentContact::Overlap)
+                    return false;
+                defect.kind = ContourDefect::Kind::SelfIntersection;
+                found = defect;
+                return true;
+            }
+            // Contours may touch at isolated points, but not cross there.
+            if (contact == SegmentContact::Touch) {
+                if (!crossAtPoint(contours[s.contour], s.index, contours[t.contour], t.index,
+                                  touchPoint(s, t)))
+                    return false;
+                defect.contact = SegmentContact::Cross;
+            }
+            found = defect;
+            return true;
+        });
+    if (!complete) return ContourDefect{ContourDefect::Kind::TooComplex};
+    return found;
+}
+
+std::vector<ContourTouch> findContourTouches(const std::vector<Polygon>& contours,
+                                             std::size_t pairBudget) {
+    std::vector<ContourTouch> touches;
+    visitContacts(segmentsOf(contours), pairBudget,
+                  [&](const Segment& s, const Segment& t, SegmentContact contact) {
+                      if (s.contour != t.contour && contact == SegmentContact::Touch)
+                          touches.push_back(
+                              {s.contour, s.index, t.contour, t.index, touchPoint(s, t)});
+                      return false;
+                  });
+    return touches;
 }
 
 }  // namespace dfrecon

@@ -4,6 +4,7 @@
 // touch at isolated points (planning systems draw such outlines).
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "geometry/Polygon.hpp"
 
@@ -33,5 +34,19 @@ inline constexpr std::size_t kDefaultPairBudget = 400'000'000;
 /// about O(n) for contours sampled finer than the grid.
 std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& contours,
                                                std::size_t pairBudget = kDefaultPairBudget);
+
+/// A point where two different contours of one slice touch (share one point
+/// without crossing); segment k joins point k and point k+1 of its contour.
+struct ContourTouch {
+    std::size_t contourA = 0, segmentA = 0, contourB = 0, segmentB = 0;
+    Point2 at;
+};
+
+/// Every touch between two different contours, found as findContourDefect
+/// finds contacts (a pair of segments may report the same point as another
+/// pair). Crossings are not listed: findContourDefect reports those. Stops
+/// early, with what it found so far, past `pairBudget` segment pairs.
+std::vector<ContourTouch> findContourTouches(const std::vector<Polygon>& contours,
+                                             std::size_t pairBudget = kDefaultPairBudget);
 
 }  // namespace dfrecon

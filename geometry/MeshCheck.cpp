@@ -80,7 +80,13 @@ bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
     // The line pq passes inside iff it turns the same way around all edges.
     const double s0 = orient(p, q, t[0], t[1]), s1 = orient(p, q, t[1], t[2]),
                  s2 = orient(p, q, t[2], t[0]);
-    return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+    if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return true;
+    if (!((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0))) return false;
+    // Zeros: on an edge of t, or a segment lying almost in t's plane, where
+    // the orientations are noise (a wall's triangle beside another of the
+    // same wall). Where the segment meets the plane decides.
+    const Vec3 x = p + (dp / (dp - dq)) * (q - p);
+    return insideTriangle2(x, t, dominantAxis(cross(t[1] - t[0], t[2] - t[0])));
 }
 
 using Triangle = std::array<std::uint32_t, 3>;
@@ -232,6 +238,7 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         if (isDegenerate(soup, tri)) {
             degenerate[t] = true;
             ++report.degenerateTriangles;
+            report.defectiveTriangles.push_back(t);
         }
         report.areaMm2 += 0.5 * length(cross(p1 - p0, p2 - p0));
         report.volumeMm3 += dot(p0, cross(p1, p2)) / 6;
@@ -253,11 +260,14 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
             ++end;
         ++report.edges;
         const std::size_t count = end - begin;
-        if (count == 1) ++report.boundaryEdges;
-        if (count > 2) ++report.nonManifoldEdges;
-        if (count == 2) {
-            if (uses[begin].forward == uses[begin + 1].forward) ++report.misorientedEdges;
-        }
+        bool defective = false;
+        if (count == 1) ++report.boundaryEdges, defective = true;
+        if (count > 2) ++report.nonManifoldEdges, defective = true;
+        if (count == 2 && uses[begin].forward == uses[begin + 1].forward)
+            ++report.misorientedEdges, defective = true;
+        if (defective)
+            for (std::size_t k = begin; k < end; ++k)
+                report.defectiveTriangles.push_back(uses[k].triangle);
         parts.join(uses[begin].lo, uses[begin].hi);
         begin = end;
     }
@@ -280,7 +290,11 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
             }
         std::size_t groups = 0;
         for (std::size_t p = 0; p < around[v].size(); ++p) groups += local.find(p) == p;
-        if (groups > 1) ++report.nonManifoldVertices;
+        if (groups > 1) {
+            ++report.nonManifoldVertices;
+            report.defectiveTriangles.insert(report.defectiveTriangles.end(), around[v].begin(),
+                                             around[v].end());
+        }
     }
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
     report.eulerCharacteristic =
@@ -292,7 +306,12 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         ++report.intersectingPairs;
         if (report.intersectingExamples.size() < 10)
             report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
+        report.defectiveTriangles.push_back(i);
+        report.defectiveTriangles.push_back(j);
     });
+    std::vector<std::size_t>& defective = report.defectiveTriangles;
+    std::sort(defective.begin(), defective.end());
+    defective.erase(std::unique(defective.begin(), defective.end()), defective.end());
     return report;
 }
 

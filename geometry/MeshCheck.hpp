@@ -25,6 +25,11 @@ struct MeshCheckReport {
     std::size_t misorientedEdges = 0;     // two triangles traverse it the same way
     std::size_t intersectingPairs = 0;    // pairs of triangles that cross or touch wrongly
     std::vector<std::pair<std::size_t, std::size_t>> intersectingExamples;  // first few
+    /// Every triangle that takes part in a defect: degenerate, on a
+    /// boundary, non-manifold or misoriented edge, around a non-manifold
+    /// vertex, or in an intersecting pair. Sorted, no repeats. Lets a caller
+    /// find where a surface is broken (and rebuild just that part).
+    std::vector<std::size_t> defectiveTriangles;
     std::size_t components = 0;
     long eulerCharacteristic = 0;  // V - E + F
     long genus = -1;               // total over components; -1 unless closed and manifold

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 #include "recon/PlanarRegion.hpp"
@@ -21,6 +22,30 @@ std::size_t contourCount(const LayerPart& part) {
     return part.layer ? part.contours.size() : 0;
 }
 
+// Do the lower and upper contours meet other than by crossing: a vertex of
+// one on the other (a shared corner, a corner on an edge, a shared run)?
+// Then the lid's walls and lids would meet along a shared edge or point, and
+// the closing would not be a manifold. Crossing points are new vertices of
+// the triangulation, corners of neither side, so they do not count.
+bool sidesCoincide(const PlanarRegion& region, std::size_t lowerCount) {
+    std::vector<std::uint8_t> on(region.points.size(), 0);  // bit 1: on a lower chain, 2: upper
+    for (std::size_t c = 0; c < region.edgeChains.size(); ++c)
+        for (const std::vector<std::uint32_t>& chain : region.edgeChains[c])
+            for (std::uint32_t p : chain) on[p] |= c < lowerCount ? 1 : 2;
+    for (std::size_t c = 0; c < region.edgeChains.size(); ++c) {
+        const std::uint8_t other = c < lowerCount ? 2 : 1;
+        for (const std::vector<std::uint32_t>& chain : region.edgeChains[c])
+            if (on[chain.front()] & other) return true;
+    }
+    return false;
+}
+
+// The tiny shifts tried in turn for the upper contours' side of the lid when
+// the two sides coincide: a fraction of a micrometre, enough to survive
+// float coordinates in the output, in directions no pixel grid shares.
+constexpr double kShiftMm = 5e-4;
+constexpr Point2 kShiftDirections[] = {{0.6, 0.8}, {-0.8, 0.6}, {0.28, -0.96}, {-0.96, -0.28}};
+
 }  // namespace
 
 void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
@@ -29,7 +54,24 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
     const std::size_t lowerCount = contours.size();
     for (const WeightedContour& c : weighted(upper, -1)) contours.push_back(c);
     if (contours.empty()) return;
-    const PlanarRegion region = triangulateRegion(contours);
+    PlanarRegion region = triangulateRegion(contours);
+    // Where the sides coincide, the upper side's lid outline is shifted
+    // sideways by a hair: the upper walls lean by that much, and what was a
+    // shared edge becomes two parallel ones (symbolic perturbation, the same
+    // rule everywhere). Crossings are fine as they are.
+    const std::vector<WeightedContour> unshifted = contours;
+    std::vector<Polygon> shifted(contours.size() - lowerCount);
+    if (lowerCount > 0 && lowerCount < contours.size())
+        for (const Point2 direction : kShiftDirections) {
+            if (!sidesCoincide(region, lowerCount)) break;
+            for (std::size_t c = lowerCount; c < contours.size(); ++c) {
+                Polygon& moved = shifted[c - lowerCount];
+                moved = *unshifted[c].polygon;
+                for (Point2& p : moved) p = p + kShiftMm * direction;
+                contours[c].polygon = &moved;
+            }
+            region = triangulateRegion(contours);
+        }
     std::vector<std::uint32_t> lid;
     lid.reserve(region.points.size());
     for (Point2 p : region.points) lid.push_back(builder.addVertex(p, middleZMm));

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/TouchSeparation.hpp"
 #include "geometry/UnionFind.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
@@ -79,6 +80,11 @@ std::vector<Component> connectByAxes(const std::vector<MedialAxis>& axes, std::s
     return components;
 }
 
+// How far apart the points where contours of one plane touch are opened: a
+// couple of micrometres, far below any contouring accuracy, yet many float
+// steps at patient coordinates, so the opening survives a float mesh file.
+constexpr double kTouchGapMm = 2e-3;
+
 class SurfaceReconstructor {
   public:
     SurfaceReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
@@ -96,16 +102,40 @@ class SurfaceReconstructor {
         slab(x, y, fields, lowerSlice, upperSlice, 0);
         // Pieces are built one connected part at a time; parts that lie close
         // in projection (an ending contour's lid under a neighbour's
-        // intermediate strips, say) can still meet. The slab is then closed
-        // as one prism piece instead, which cannot meet itself and stays
-        // within the slab.
-        const MeshCheckReport piece = checkMesh(builder_.trianglesSince(before));
-        if (piece.intersectingPairs > 0 || piece.nonManifoldEdges > 0 ||
-            piece.misorientedEdges > 0 || piece.degenerateTriangles > 0) {
+        // intermediate strips, say) can still meet, and coincidences can
+        // leave a piece torn. The slab is then closed as one prism piece
+        // instead, which is valid by construction and stays within the slab.
+        if (!isCleanPiece(before, {&x, &y})) {
             builder_.truncateTriangles(before);
-            closeByPrisms(builder_, x, y, 0.5 * (lower.zMm + upper.zMm));
+            closeSlabByPrisms(lower, upper);
             ++stats_.fallbackSlabs;
         }
+    }
+
+    /// The guaranteed closing of the slab between two layers: one prism
+    /// piece over all their contours.
+    void closeSlabByPrisms(const Layer& lower, const Layer& upper) {
+        closeByPrisms(builder_, part(lower, all(lower)), part(upper, all(upper)),
+                      0.5 * (lower.zMm + upper.zMm));
+    }
+
+    /// Caps every contour of `end` (up or down from its plane) by `offsetMm`,
+    /// falling back to a flat prism cap when the chosen cap is not a clean
+    /// piece.
+    void capLayer(const Layer& end, bool up, double offsetMm, const SliceFields& fields,
+                  std::size_t slice) {
+        const std::size_t before = builder_.triangleCount();
+        const LayerPart whole = part(end, all(end));
+        cap(whole, up, offsetMm, fields, slice);
+        if (options_.cap != CapMode::None && !isCleanPiece(before, {&whole})) {
+            builder_.truncateTriangles(before);
+            prismCap(whole, up, offsetMm);
+        }
+    }
+
+    /// The guaranteed cap: the end contours extruded under a flat lid.
+    void prismCapLayer(const Layer& end, bool up, double offsetMm) {
+        prismCap(part(end, all(end)), up, offsetMm);
     }
 
     /// Caps the contours of `part` that end, up or down from its plane.
@@ -126,6 +156,22 @@ class SurfaceReconstructor {
     }
 
   private:
+    /// Are the triangles added since `before` a clean piece: no two meeting,
+    /// every edge used once or twice and consistently, every vertex one fan,
+    /// nothing degenerate, and (unless ends stay open) the only border the
+    /// contours of `sides`?
+    bool isCleanPiece(std::size_t before, std::initializer_list<const LayerPart*> sides) const {
+        const MeshCheckReport piece = checkMesh(builder_.trianglesSince(before));
+        std::size_t contourEdges = 0;
+        for (const LayerPart* side : sides)
+            for (std::uint32_t c : side->contours) contourEdges += side->layer->contours[c].size();
+        const bool borderRight =
+            options_.cap == CapMode::None || piece.boundaryEdges == contourEdges;
+        return piece.intersectingPairs == 0 && piece.nonManifoldEdges == 0 &&
+               piece.nonManifoldVertices == 0 && piece.misorientedEdges == 0 &&
+               piece.degenerateTriangles == 0 && borderRight;
+    }
+
     static std::vector<std::uint32_t> all(const Layer& layer) {
         std::vector<std::uint32_t> ids(layer.contours.size());
         std::iota(ids.begin(), ids.end(), 0u);
@@ -463,6 +509,7 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         } else {
             slice.contours = s.contours;
         }
+        stats.touchesOpened += separateTouchingContours(slice.contours, kTouchGapMm);
         for (const Polygon& c : slice.contours) stats.contourPoints += c.size();
         slices.push_back(std::move(slice));
     }
@@ -489,26 +536,73 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         layers.push_back(makeLayer(reconstructor.builder(), s.zMm, s.contours));
     const SpacingStats spacing = spacingOf(roi);
     const double endSpacing = spacing.meanMm > 0 ? spacing.meanMm : 1.0;
-    auto capEnd = [&](std::size_t s, bool up) {
+    auto capOffset = [&](std::size_t s, bool up) {
         const std::size_t neighbour = up ? s - 1 : s + 1;
         const double gap =
             slices.size() > 1 ? std::fabs(slices[s].zMm - slices[neighbour].zMm) : endSpacing;
-        const Layer& layer = layers[s];
-        std::vector<std::uint32_t> ids(layer.contours.size());
-        std::iota(ids.begin(), ids.end(), 0u);
-        const double offset = options.capOffsetMm < 0 ? 0.5 * gap : options.capOffsetMm;
-        reconstructor.cap({&layer, ids}, up, offset, fields, s);
+        return options.capOffsetMm < 0 ? 0.5 * gap : options.capOffsetMm;
     };
-    capEnd(0, false);
+    // Pieces: 0 the bottom cap, s + 1 the slab above slice s, the last the
+    // top cap. Each lies between its planes and meets them only in their
+    // contours, so the surface is valid when every piece is.
+    SurfaceBuilder& builder = reconstructor.builder();
+    const std::uint32_t topCap = std::uint32_t(slices.size());
+    builder.setPiece(0);
+    reconstructor.capLayer(layers[0], false, capOffset(0, false), fields, 0);
     for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
+        builder.setPiece(std::uint32_t(s + 1));
         reconstructor.originalSlab(layers[s], layers[s + 1], fields, s, s + 1);
         if (progress) progress(0.5 + 0.5 * double(s + 1) / double(slices.size()));
     }
-    capEnd(slices.size() - 1, true);
+    builder.setPiece(topCap);
+    reconstructor.capLayer(layers.back(), true, capOffset(slices.size() - 1, true), fields,
+                           slices.size() - 1);
     // Time spent on fields and axes inside the recursion is counted there.
     stats.triangulationSeconds =
         secondsSince(start) - (stats.fieldsSeconds - fieldsAndMedialBefore) - stats.medialSeconds;
-    result.surface = reconstructor.builder().release();
+
+    // Whatever the pieces' own checks missed (pieces of neighbouring slabs
+    // meeting) is found on the whole surface, and those pieces are closed
+    // again the guaranteed way.
+    // Checked as a mesh file will hold it: mesh files store floats, and a
+    // gap of a few nanometres between pieces can close in rounding.
+    start = Clock::now();
+    builder.roundPointsToFloat();
+    result.check = checkMesh(builder.soup());
+    if (!result.check.validSolid() && options.cap != CapMode::None) {
+        std::vector<bool> broken(slices.size() + 1, false);
+        for (std::size_t t : result.check.defectiveTriangles) broken[builder.pieceOf(t)] = true;
+        builder.dropPieces(broken);
+        for (std::uint32_t p = 0; p < broken.size(); ++p) {
+            if (!broken[p]) continue;
+            ++stats.repairedPieces;
+            builder.setPiece(p);
+            if (p == 0)
+                reconstructor.prismCapLayer(layers[0], false, capOffset(0, false));
+            else if (p == topCap)
+                reconstructor.prismCapLayer(layers.back(), true,
+                                            capOffset(slices.size() - 1, true));
+            else
+                reconstructor.closeSlabByPrisms(layers[p - 1], layers[p]);
+        }
+        builder.roundPointsToFloat();
+        result.check = checkMesh(builder.soup());
+    }
+    // Where it is still broken, say between which planes (open ends are
+    // what CapMode::None asks for).
+    std::vector<bool> reported(slices.size() + 1, options.cap == CapMode::None);
+    for (std::size_t t : result.check.defectiveTriangles) {
+        const std::uint32_t p = builder.pieceOf(t);
+        if (reported[p]) continue;
+        reported[p] = true;
+        const double below = p == 0 ? slices[0].zMm - capOffset(0, false) : slices[p - 1].zMm;
+        const double above = p == topCap ? slices.back().zMm + capOffset(slices.size() - 1, true)
+                                         : slices[p].zMm;
+        result.brokenPieces.push_back({below, above});
+    }
+    std::sort(result.brokenPieces.begin(), result.brokenPieces.end());
+    stats.checkSeconds = secondsSince(start);
+    result.surface = builder.release();
     // Intermediate contours of discarded pieces leave points behind.
     removeUnusedPoints(result.surface);
     return result;

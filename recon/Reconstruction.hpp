@@ -7,9 +7,12 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cl/Runtime.hpp"
 #include "field/SliceFields.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
 #include "io/ContourSet.hpp"
 
@@ -53,12 +56,19 @@ struct ReconstructionStats {
     std::size_t limitClosings = 0;   // regions closed by prisms at the recursion limit
     std::size_t caps = 0;            // end contours capped (or left open with CapMode::None)
     std::size_t fallbackSlabs = 0;   // slabs whose pieces met, closed as one prism piece
-    double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0;
+    std::size_t touchesOpened = 0;   // points where contours of one plane touched, opened
+    std::size_t repairedPieces = 0;  // slabs or caps closed again after the whole-surface check
+    double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0,
+           checkSeconds = 0;
 };
 
 struct Reconstruction {
     TriangleSoup surface;  // outward-oriented triangles
     ReconstructionStats stats;
+    MeshCheckReport check;  // of `surface`
+    /// The z ranges (mm, in the contours' plane frame) of the slabs and caps
+    /// that are still not valid (empty when check.validSolid()).
+    std::vector<std::pair<double, double>> brokenPieces;
 };
 
 /// Reconstructs one ROI. With CapMode::Flat or Dome the result is closed and

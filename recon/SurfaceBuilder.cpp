@@ -20,6 +20,16 @@ TriangleSoup SurfaceBuilder::trianglesSince(std::size_t first) const {
     return piece;
 }
 
+void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < soup_.triangles.size(); ++t) {
+        if (pieces_[t] < drop.size() && drop[pieces_[t]]) continue;
+        soup_.triangles[kept] = soup_.triangles[t];
+        pieces_[kept++] = pieces_[t];
+    }
+    truncateTriangles(kept);
+}
+
 Layer makeLayer(SurfaceBuilder& builder, double zMm, std::vector<Polygon> contours) {
     Layer layer;
     layer.zMm = zMm;

@@ -21,11 +21,26 @@ class SurfaceBuilder {
     /// Counter-clockwise seen from outside the solid.
     void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         soup_.triangles.push_back({a, b, c});
+        pieces_.push_back(piece_);
     }
     const Vec3& point(std::uint32_t v) const { return soup_.points[v]; }
     std::size_t triangleCount() const { return soup_.triangles.size(); }
     /// Drops the triangles added after the first `count`.
-    void truncateTriangles(std::size_t count) { soup_.triangles.resize(count); }
+    void truncateTriangles(std::size_t count) {
+        soup_.triangles.resize(count);
+        pieces_.resize(count);
+    }
+    /// Tags the triangles added from now on with `piece` (the slab or cap
+    /// they close), so that a broken piece can be found and built again.
+    void setPiece(std::uint32_t piece) { piece_ = piece; }
+    std::uint32_t pieceOf(std::size_t triangle) const { return pieces_[triangle]; }
+    /// Drops the triangles of every piece p with drop[p] set. O(triangles).
+    void dropPieces(const std::vector<bool>& drop);
+    /// Rounds every point to the nearest float, as mesh files store them, so
+    /// that a check sees the surface a file will hold. O(points).
+    void roundPointsToFloat() {
+        for (Vec3& p : soup_.points) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
+    }
     /// The triangles from `first` on, as a soup of just their vertices.
     TriangleSoup trianglesSince(std::size_t first) const;
     const TriangleSoup& soup() const { return soup_; }
@@ -33,6 +48,8 @@ class SurfaceBuilder {
 
   private:
     TriangleSoup soup_;
+    std::vector<std::uint32_t> pieces_;  // per triangle
+    std::uint32_t piece_ = 0;
 };
 
 /// Contours on one plane and the mesh vertex of each contour point.

@@ -146,6 +146,22 @@ TEST(MeshCheck, TriangleTriangleCases) {
     EXPECT_FALSE(trianglesIntersect(t, coplanarApart));
 }
 
+TEST(MeshCheck, TrianglesOfOneWallMeetOnlyWhereTheyOverlap) {
+    // Two triangles of one vertical wall (the plane y = x + 44.5) from
+    // neighbouring slabs, coplanar up to the rounding of a computed lid
+    // point: 0.5 mm apart, they must not count as meeting (the orientation
+    // signs of a segment lying in the other's plane are noise).
+    const Vec3 lower[3] = {{-53.763598326359826, -9.2635583610257584, 20},
+                           {-52.081589958158986, -7.581589958964976, 20},
+                           {-52.5, -8, 21}};
+    const Vec3 apart[3] = {{-53, -8.5, 21}, {-52.5, -8, 22}, {-53, -8.5, 22}};
+    const Vec3 overlapping[3] = {{-52.5, -8, 20.5}, {-52, -7.5, 21.5}, {-53, -8.5, 21.5}};
+    EXPECT_FALSE(trianglesIntersect(lower, apart));
+    EXPECT_FALSE(trianglesIntersect(apart, lower));
+    EXPECT_TRUE(trianglesIntersect(lower, overlapping));
+    EXPECT_TRUE(trianglesIntersect(overlapping, lower));
+}
+
 TEST(MeshCheck, ReadsBrokenFilesWithoutDroppingFaces) {
     // An edge shared by three triangles: OpenMesh's half-edge reader drops
     // one, the soup keeps all three.
