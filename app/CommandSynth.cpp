@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "shapes/AnalyticShapes.hpp"
 #include "io/SlicesFile.hpp"
+#include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon::app {
 

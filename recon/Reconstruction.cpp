@@ -8,26 +8,20 @@
 #include <optional>
 #include <stdexcept>
 
+#include "geometry/MeshCheck.hpp"
+#include "geometry/UnionFind.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/MedialAxis.hpp"
-#include "geometry/MeshCheck.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
-#include "geometry/UnionFind.hpp"
 
 namespace dfrecon {
 
 const char* capModeName(CapMode mode) {
-    switch (mode) {
-        case CapMode::Flat:
-            return "flat";
-        case CapMode::Dome:
-            return "dome";
-        case CapMode::None:
-            return "none";
-    }
+    for (const auto& [name, value] : kCapModeNames)
+        if (value == mode) return name;
     return "?";
 }
 
