@@ -7,6 +7,7 @@
 
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
+#include "app/Reports.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
@@ -18,31 +19,9 @@ namespace {
 void runCheck(const std::string& path, bool json) {
     const MeshCheckReport r = checkMesh(readTriangleSoup(path));
     if (json) {
-        nlohmann::ordered_json examples = nlohmann::ordered_json::array();
-        for (const auto& [a, b] : r.intersectingExamples) examples.push_back({a, b});
-        std::cout << nlohmann::ordered_json{{"command", "check"},
-                                            {"file", path},
-                                            {"validSolid", r.validSolid()},
-                                            {"watertight", r.watertight()},
-                                            {"vertices", r.vertices},
-                                            {"triangles", r.triangles},
-                                            {"edges", r.edges},
-                                            {"components", r.components},
-                                            {"eulerCharacteristic", r.eulerCharacteristic},
-                                            {"genus", r.genus >= 0 ? nlohmann::ordered_json(r.genus)
-                                                                   : nullptr},
-                                            {"volumeMm3", r.volumeMm3},
-                                            {"volumeCc", r.volumeMm3 / 1000},
-                                            {"areaMm2", r.areaMm2},
-                                            {"boundaryEdges", r.boundaryEdges},
-                                            {"nonManifoldEdges", r.nonManifoldEdges},
-                                            {"nonManifoldVertices", r.nonManifoldVertices},
-                                            {"misorientedEdges", r.misorientedEdges},
-                                            {"degenerateTriangles", r.degenerateTriangles},
-                                            {"intersectingPairs", r.intersectingPairs},
-                                            {"intersectingExamples", examples}}
-                         .dump(2)
-                  << "\n";
+        nlohmann::ordered_json report{{"command", "check"}, {"file", path}};
+        appendItems(report, meshCheckJson(r));
+        std::cout << report.dump(2) << "\n";
     } else {
         std::cout << path << ": " << r.vertices << " vertices, " << r.triangles << " triangles, "
                   << r.components << " component(s)\n"

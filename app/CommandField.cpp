@@ -1,6 +1,5 @@
 // dfrecon field IN.slices -o OUT.vdb: the ROI's 3D signed distance field
 // (reconstruction paper §6.1) as an OpenVDB level set.
-#include <chrono>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +7,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/FieldVolume.hpp"
 #include "io/LevelSetVdb.hpp"
@@ -23,7 +23,7 @@ struct FieldArgs {
 };
 
 void runField(const FieldArgs& args, const GlobalOptions& global) {
-    const auto start = std::chrono::steady_clock::now();
+    Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const Roi& roi = *selectRois(load.contours, args.roi, false).front();
     std::vector<Slice> slices;
@@ -33,25 +33,24 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     const SpacingStats spacing = spacingOf(roi);
 
     ocl::Runtime runtime(global.device);
-    auto stage = std::chrono::steady_clock::now();
+    watch.restartLap();
     SliceFields fields;
     {
         Progress progress("fields of " + roi.name, !global.quiet);
         fields = computeSliceFields(runtime, slices, gridForSlices(slices, args.pixelMm),
                                     [&](double f) { progress.update(f); });
     }
-    const double fieldsSeconds = secondsSince(stage);
-    stage = std::chrono::steady_clock::now();
+    const double fieldsSeconds = watch.lap();
     // A single slice has no spacing: its virtual neighbours sit 1 mm away.
     DistanceField3D field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
     propagateAlongZ(runtime, field);
-    const double propagateSeconds = secondsSince(stage);
+    const double propagateSeconds = watch.lap();
 
     // Uneven gaps cannot be a scale map: resample at the smallest one.
     const double zStep = args.isotropic      ? fields.grid.pixelMm
                          : spacing.minMm > 0 ? spacing.minMm
                                              : 1.0;
-    stage = std::chrono::steady_clock::now();
+    watch.restartLap();
     const DenseDistanceVolume volume = resampleAlongZ(field, zStep);
     LevelSetWriteOptions options;
     options.gridName = roi.name;
@@ -65,7 +64,7 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                         {"slice_spacing_mm", std::to_string(spacing.meanMm)},
                         {"program", std::string("dfrecon ") + DFRECON_VERSION}};
     writeLevelSetVdb(volume, args.output, options);
-    const double writeSeconds = secondsSince(stage);
+    const double writeSeconds = watch.lap();
 
     if (args.json) {
         std::cout << nlohmann::ordered_json{{"command", "field"},
@@ -73,16 +72,12 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                                             {"roi", roi.name},
                                             {"output", args.output},
                                             {"voxels", {volume.nx, volume.ny, volume.nz}},
-                                            {"voxelMm",
-                                             {volume.voxelMm[0], volume.voxelMm[1],
-                                              volume.voxelMm[2]}},
-                                            {"originMm",
-                                             {volume.originMm[0], volume.originMm[1],
-                                              volume.originMm[2]}},
+                                            {"voxelMm", xyzJson(volume.voxelMm)},
+                                            {"originMm", xyzJson(volume.originMm)},
                                             {"bandVoxels", args.bandVoxels},
                                             {"device", runtime.device().deviceName},
                                             {"seconds",
-                                             {{"total", secondsSince(start)},
+                                             {{"total", watch.total()},
                                               {"fields", fieldsSeconds},
                                               {"propagate", propagateSeconds},
                                               {"write", writeSeconds}}}}

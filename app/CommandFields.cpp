@@ -1,7 +1,6 @@
 // dfrecon fields IN.slices -o DIR: each slice's exact 2D signed distance
 // field and nearest-primitive ids (docs/fields.md), as NRRD volumes and,
 // with --png, pictures.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -142,10 +141,10 @@ nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,
 }
 
 void runFields(const FieldsArgs& args, const GlobalOptions& global) {
-    const auto start = std::chrono::steady_clock::now();
+    Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
-    const double loadSeconds = secondsSince(start);
+    const double loadSeconds = watch.lap();
     std::filesystem::create_directories(args.outputDir);
 
     ocl::Runtime runtime(global.device);
@@ -153,25 +152,23 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
     for (const Roi* roi : rois) {
         if (roi->slices.empty())
             throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
-        auto stage = std::chrono::steady_clock::now();
+        watch.restartLap();
         nlohmann::ordered_json simplification = nullptr;
         const std::vector<Slice> slices =
             args.contourErrorMm > 0 ? simplifiedSlices(*roi, args.contourErrorMm, simplification)
                                     : roi->slices;
-        const double simplifySeconds = secondsSince(stage);
         const SliceGrid grid = gridForSlices(slices, args.pixelMm);
-        stage = std::chrono::steady_clock::now();
+        const double simplifySeconds = watch.lap();
         SliceFields fields;
         {
             Progress progress("fields of " + roi->name, !global.quiet);
             fields =
                 computeSliceFields(runtime, slices, grid, [&](double f) { progress.update(f); });
         }
-        const double fieldSeconds = secondsSince(stage);
-        stage = std::chrono::steady_clock::now();
+        const double fieldSeconds = watch.lap();
         const nlohmann::ordered_json files =
             writeRoiFields(runtime, *roi, slices, fields, args, global);
-        const double writeSeconds = secondsSince(stage);
+        const double writeSeconds = watch.lap();
         reports.push_back(
             {{"roi", roi->name},
              {"slices", fields.sliceCount()},

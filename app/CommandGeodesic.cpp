@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
+#include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"
@@ -18,8 +20,18 @@ namespace dfrecon::app {
 
 namespace {
 
+// The --solver names. Reports print segment's toString(GeodesicSolver), the
+// longer names a reader of the JSON needs no manual for.
+constexpr EnumNames<GeodesicSolver, 3> kSolverOptionNames{{
+    {"auto", GeodesicSolver::Automatic},
+    {"fm", GeodesicSolver::FastMarching},
+    {"fim", GeodesicSolver::FastIterative},
+}};
+
 struct GeodesicArgs {
-    std::string input, output, speed = "uniform", solver = "auto", from;
+    std::string input, output, from;
+    std::string speed = nameOf(kSpeedKindNames, SpeedKind::Uniform);
+    std::string solver = nameOf(kSolverOptionNames, GeodesicSolver::Automatic);
     double curvatureWeightMm = 0;
     bool json = false, ascii = false, noUnfold = false;
 };
@@ -46,15 +58,9 @@ std::vector<int> parseVertexList(const std::string& text) {
     return vertices;
 }
 
-GeodesicSolver parseSolver(const std::string& name) {
-    if (name == "fm") return GeodesicSolver::FastMarching;
-    if (name == "fim") return GeodesicSolver::FastIterative;
-    return GeodesicSolver::Automatic;
-}
-
 void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
-    const auto start = Clock::now();
-    requirePlyOutput(args.output);
+    Stopwatch watch;
+    requireAttributedMeshOutput(args.output);
     GeodesicInput input = readGeodesicInput(args.input);
     const int n = input.graph.vertexCount();
     const std::vector<int> from = parseVertexList(args.from);
@@ -66,7 +72,7 @@ void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
                                         std::to_string(n) + ")");
         sources.push_back({v, 0.0, int(sources.size())});
     }
-    const SpeedKind kind = parseSpeedKind(args.speed);
+    const SpeedKind kind = parseEnum(kSpeedKindNames, args.speed, "--speed");
     const double weight =
         args.curvatureWeightMm > 0 ? args.curvatureWeightMm : defaultCurvatureWeight(input.graph);
     UnfoldOptions unfold;
@@ -75,15 +81,15 @@ void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
     const std::vector<double> speed = curvatureSpeed(input.graph, kind, weight);
     // Only open a device when the FIM may run: fast marching needs none.
     std::unique_ptr<ocl::Runtime> runtime;
-    const GeodesicSolver requested = parseSolver(args.solver);
+    const GeodesicSolver requested = parseEnum(kSolverOptionNames, args.solver, "--solver");
     if (requested != GeodesicSolver::FastMarching)
         runtime = std::make_unique<ocl::Runtime>(global.device);
-    const auto solveStart = Clock::now();
+    watch.restartLap();
     GeodesicSolver used = requested;
     const GeodesicField field =
         geodesicDistances(stencils, sources, speed, runtime.get(), requested, &used);
-    const double solveSeconds = secondsSince(solveStart);
-    writeDistancePly(std::move(input.mesh), field.time, field.label, args.output, !args.ascii);
+    const double solveSeconds = watch.lap();
+    writeDistances(std::move(input.mesh), field.time, field.label, args.output, !args.ascii);
 
     double largest = 0, sum = 0;
     int reached = 0;
@@ -107,17 +113,17 @@ void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
         {"vertices", n},
         {"faces", input.graph.triangleCount()},
         {"sources", from},
-        {"speed", toString(kind)},
+        {"speed", nameOf(kSpeedKindNames, kind)},
         {"curvatureWeightMm", kind == SpeedKind::Uniform ? 0.0 : weight},
         {"solver", toString(used)},
-        {"device", runtime ? nlohmann::ordered_json(runtime->device().deviceName) : nullptr},
+        {"device", valueOrNull(runtime != nullptr, runtime ? runtime->device().deviceName : "")},
         {"obtuseCorners", stencils.obtuseCorners()},
         {"unfoldFailures", stencils.unfoldFailures()},
         {"maxDistance", largest},
         {"meanDistance", reached > 0 ? sum / reached : 0.0},
         {"unreachedVertices", n - reached},
         {"seconds", solveSeconds},
-        {"totalSeconds", secondsSince(start)}};
+        {"totalSeconds", watch.total()}};
     std::cout << out.dump(2) << "\n";
 }
 
@@ -130,19 +136,20 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->footer(
         "Fast marching on the triangles with obtuse angles unfolded, or the OpenCL fast "
         "iterative method where it is faster (on a GPU, large meshes; both give the same "
-        "distances). Writes a PLY with vertex properties 'distance' (mm; the weighted distance "
-        "∫ds/F for a non-uniform speed; -1 where unreached) and 'source' (index into --from), "
-        "and colours. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
+        "distances). Writes a PLY (or VTK) with vertex properties 'distance' (mm; the weighted "
+        "distance ∫ds/F for a non-uniform speed; -1 where unreached) and 'source' (index into "
+        "--from), and colours. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply)")->required();
+    cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply or .vtk)")
+        ->required();
     cmd->add_option("--from", args->from, "Source vertex indices (0-based), comma-separated")
         ->required();
     cmd->add_option("--speed", args->speed,
                     "Front speed F: uniform (distance in mm), repulsive (1+e·κ) or attractive "
                     "(1/(1+m·κ)), κ the total curvature")
         ->capture_default_str()
-        ->check(CLI::IsMember({"uniform", "repulsive", "attractive"}));
+        ->check(CLI::IsMember(namesOf(kSpeedKindNames)));
     cmd->add_option("--curvature-weight", args->curvatureWeightMm,
                     "e or m of the curvature speeds, in mm (default: √(area/10))")
         ->check(CLI::PositiveNumber);
@@ -150,7 +157,7 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
                     "auto (the faster for this mesh and device), fm (fast marching) or fim "
                     "(OpenCL fast iterative method)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"auto", "fm", "fim"}));
+        ->check(CLI::IsMember(namesOf(kSolverOptionNames)));
     cmd->add_flag("--no-unfold", args->noUnfold,
                   "Use obtuse triangles as they are (less accurate; for comparison)");
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");

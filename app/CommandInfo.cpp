@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/EnumNames.hpp"
 #include "app/Inputs.hpp"
+#include "app/Reports.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::app {
@@ -34,32 +36,28 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
         for (const auto& contour : slices.back()["contours"])
             holes += contour["depth"].get<int>() % 2;
     }
-    nlohmann::ordered_json j = {
-        {"name", roi.name},
-        {"number", roi.number ? nlohmann::ordered_json(*roi.number) : nullptr},
-        {"slices", roi.slices.size()},
-        {"contours", roi.contourCount()},
-        {"holes", holes},
-        {"points", roi.pointCount()},
-        {"spacingMm",
-         {{"min", spacing.minMm},
-          {"max", spacing.maxMm},
-          {"mean", spacing.meanMm},
-          {"uniform", spacing.uniform}}},
-        {"planes", roi.frame.orientationName()},
-        {"perSlice", slices}};
+    nlohmann::ordered_json j = {{"name", roi.name},
+                                {"number", valueOrNull(roi.number)},
+                                {"slices", roi.slices.size()},
+                                {"contours", roi.contourCount()},
+                                {"holes", holes},
+                                {"points", roi.pointCount()},
+                                {"spacingMm",
+                                 {{"min", spacing.minMm},
+                                  {"max", spacing.maxMm},
+                                  {"mean", spacing.meanMm},
+                                  {"uniform", spacing.uniform}}},
+                                {"planes", roi.frame.orientationName()},
+                                {"perSlice", slices}};
     if (dicom) {
-        j["holeConvention"] = holeConventionName(dicom->holes);
+        j["holeConvention"] = nameOf(kHoleConventionNames, dicom->holes);
         j["keyholeCuts"] = dicom->keyholeCuts;
         j["contoursSkipped"] = dicom->contoursSkipped;
-        j["slabThicknessMm"] =
-            roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm) : nullptr;
+        j["slabThicknessMm"] = valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm);
     }
     j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
                              : nlohmann::ordered_json(nullptr);
-    if (!extent.empty)
-        j["extentMm"] = {{"min", {extent.min[0], extent.min[1], extent.min[2]}},
-                         {"max", {extent.max[0], extent.max[1], extent.max[2]}}};
+    if (!extent.empty) j["extentMm"] = {{"min", xyzJson(extent.min)}, {"max", xyzJson(extent.max)}};
     return j;
 }
 
@@ -81,7 +79,7 @@ void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
               << counted(roi.pointCount(), "point");
     if (dicom) {
         if (dicom->holes != HoleConvention::None)
-            std::cout << ", holes drawn " << holeConventionName(dicom->holes);
+            std::cout << ", holes drawn " << nameOf(kHoleConventionNames, dicom->holes);
         if (dicom->contoursSkipped > 0)
             std::cout << ", " << counted(dicom->contoursSkipped, "contour") << " skipped";
         if (!dicom->hasContourSequence) std::cout << " (no ContourSequence: empty)";

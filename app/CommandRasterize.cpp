@@ -1,7 +1,6 @@
 // dfrecon rasterize IN --roi NAME --like REF -o OUT.nrrd: an ROI as a binary
 // label map on a reference grid, read from its 3D distance field (inside
 // where the field is negative), for 3D Slicer and other label-map tools.
-#include <chrono>
 #include <cmath>
 #include <iostream>
 
@@ -10,6 +9,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
 #include "io/LabelVolume.hpp"
@@ -49,7 +49,7 @@ VolumeGeometry gridAroundRoi(const Roi& roi, double voxelMm) {
 }
 
 void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     if (args.like.empty() == (args.voxelMm <= 0))
         throw std::invalid_argument(
             "give the grid with exactly one of --like REF or --voxel-mm MM");
@@ -94,20 +94,19 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     writeMaskNrrd(args.output, grid, mask);
     const double voxelMm3 = grid.spacingMm[0] * grid.spacingMm[1] * grid.spacingMm[2];
     if (args.json)
-        std::cout
-            << nlohmann::ordered_json{{"command", "rasterize"},
-                                      {"input", args.input},
-                                      {"roi", roi.name},
-                                      {"output", args.output},
-                                      {"grid", args.like.empty() ? "around the ROI" : args.like},
-                                      {"size", {grid.size[0], grid.size[1], grid.size[2]}},
-                                      {"spacingMm",
-                                       {grid.spacingMm[0], grid.spacingMm[1], grid.spacingMm[2]}},
-                                      {"insideVoxels", inside},
-                                      {"volumeCc", double(inside) * voxelMm3 / 1000},
-                                      {"seconds", secondsSince(start)}}
-                   .dump(2)
-            << "\n";
+        std::cout << nlohmann::ordered_json{{"command", "rasterize"},
+                                            {"input", args.input},
+                                            {"roi", roi.name},
+                                            {"output", args.output},
+                                            {"grid",
+                                             args.like.empty() ? "around the ROI" : args.like},
+                                            {"size", xyzJson(grid.size)},
+                                            {"spacingMm", xyzJson(grid.spacingMm)},
+                                            {"insideVoxels", inside},
+                                            {"volumeCc", double(inside) * voxelMm3 / 1000},
+                                            {"seconds", watch.total()}}
+                         .dump(2)
+                  << "\n";
     else
         std::cout << roi.name << ": " << inside << " voxels inside ("
                   << double(inside) * voxelMm3 / 1000 << " cc) -> " << args.output << "\n";

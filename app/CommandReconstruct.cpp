@@ -1,18 +1,21 @@
 // dfrecon reconstruct IN.slices -o OUT: contours to a closed surface
 // (docs/reconstruction.md), with a report of its size, volume and topology.
-#include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/EnumNames.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
+#include "io/RtStruct.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon::app {
@@ -20,7 +23,7 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi, capName = "flat";
+    std::string input, output, roi, capName = nameOf(kCapModeNames, CapMode::Flat);
     bool all = false, json = false, ascii = false;
     double maxErrorMm = 0;  // 0: no simplification
     ReconstructionOptions options;
@@ -53,16 +56,15 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         request.label = "simplifying " + roi.name;
         simplification = simplifyAndVerify(runtime, result.surface, request, global);
     }
-    auto stage = std::chrono::steady_clock::now();
+    Stopwatch watch;
     const MeshCheckReport check = checkMesh(result.surface);
-    const double checkSeconds = secondsSince(stage);
-    stage = std::chrono::steady_clock::now();
+    const double checkSeconds = watch.lap();
     std::size_t refused = 0;
     const TriMesh mesh = toTriMesh(result.surface, &refused);
     MeshWriteOptions write;
     write.binary = !args.ascii;
     writeMesh(mesh, path, write);
-    const double writeSeconds = secondsSince(stage);
+    const double writeSeconds = watch.lap();
 
     const ReconstructionStats& s = result.stats;
     if (!args.json) {
@@ -77,57 +79,41 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
                   << ": the surface is not a valid closed solid (run dfrecon check " << path
                   << ")\n";
     const RtStructRoiInfo* dicom = input.dicomInfo(roi);
-    return {{"roi", roi.name},
-            {"roiNumber", roi.number ? nlohmann::ordered_json(*roi.number) : nullptr},
-            {"output", path},
-            {"vertices", check.vertices},
-            {"triangles", check.triangles},
-            {"volumeMm3", check.volumeMm3},
-            {"volumeCc", check.volumeMm3 / 1000},
-            {"areaMm2", check.areaMm2},
-            {"watertight", check.watertight()},
-            {"selfIntersectingPairs", check.intersectingPairs},
-            {"validSolid", check.validSolid()},
-            {"components", check.components},
-            {"eulerCharacteristic", check.eulerCharacteristic},
-            {"genus", check.genus >= 0 ? nlohmann::ordered_json(check.genus) : nullptr},
-            {"boundaryEdges", check.boundaryEdges},
-            {"nonManifoldEdges", check.nonManifoldEdges},
-            {"nonManifoldVertices", check.nonManifoldVertices},
-            {"misorientedEdges", check.misorientedEdges},
-            {"degenerateTriangles", check.degenerateTriangles},
-            {"facesRefusedByOpenMesh", refused},
-            {"slices", s.slices},
-            {"planes", roi.frame.orientationName()},
-            // Both branches json: `cond ? const char* : nullptr` is a null
-            // const char*, which json turns into std::string(nullptr).
-            {"holeConvention", dicom ? nlohmann::ordered_json(holeConventionName(dicom->holes))
-                                     : nlohmann::ordered_json(nullptr)},
-            {"slabThicknessMm",
-             roi.slabThicknessMm > 0 ? nlohmann::ordered_json(roi.slabThicknessMm) : nullptr},
-            {"contourPoints", s.contourPoints},
-            {"pixelMm", s.pixelMm},
-            {"cap", capModeName(args.options.cap)},
-            {"strips", s.strips},
-            {"rejectedStrips", s.rejectedStrips},
-            {"intermediateLayers", s.recursions},
-            {"deepestLevel", s.deepestLevel},
-            {"closedAtDepthLimit", s.limitClosings},
-            {"endContours", s.caps},
-            {"slabsClosedAsPrisms", s.fallbackSlabs},
-            {"simplification", simplification},
-            {"seconds",
-             {{"simplify", s.simplifySeconds},
-              {"fields", s.fieldsSeconds},
-              {"medialAxes", s.medialSeconds},
-              {"triangulation", s.triangulationSeconds},
-              {"check", checkSeconds},
-              {"write", writeSeconds}}}};
+    const std::optional<const char*> holes =
+        dicom ? std::optional(nameOf(kHoleConventionNames, dicom->holes)) : std::nullopt;
+    nlohmann::ordered_json report{
+        {"roi", roi.name}, {"roiNumber", valueOrNull(roi.number)}, {"output", path}};
+    appendItems(report, meshCheckJson(check));
+    appendItems(report,
+                {{"facesRefusedByOpenMesh", refused},
+                 {"slices", s.slices},
+                 {"planes", roi.frame.orientationName()},
+                 {"holeConvention", valueOrNull(holes)},
+                 {"slabThicknessMm", valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm)},
+                 {"contourPoints", s.contourPoints},
+                 {"pixelMm", s.pixelMm},
+                 {"cap", nameOf(kCapModeNames, args.options.cap)},
+                 {"strips", s.strips},
+                 {"rejectedStrips", s.rejectedStrips},
+                 {"intermediateLayers", s.recursions},
+                 {"deepestLevel", s.deepestLevel},
+                 {"closedAtDepthLimit", s.limitClosings},
+                 {"endContours", s.caps},
+                 {"slabsClosedAsPrisms", s.fallbackSlabs},
+                 {"simplification", simplification},
+                 {"seconds",
+                  {{"simplify", s.simplifySeconds},
+                   {"fields", s.fieldsSeconds},
+                   {"medialAxes", s.medialSeconds},
+                   {"triangulation", s.triangulationSeconds},
+                   {"check", checkSeconds},
+                   {"write", writeSeconds}}}});
+    return report;
 }
 
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
     const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output));
@@ -153,7 +139,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                             {"device", runtime.device().deviceName},
                                             {"maxDepth", args.options.maxDepth},
                                             {"contourErrorMm", args.options.contourErrorMm},
-                                            {"seconds", secondsSince(start)},
+                                            {"seconds", watch.total()},
                                             {"rois", reports},
                                             {"emptyRois", empty}}
                          .dump(2)
@@ -200,7 +186,7 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::Range(0, 12));
     cmd->add_option("--cap", args->capName, "End caps: flat, dome or none")
         ->capture_default_str()
-        ->check(CLI::IsMember({"flat", "dome", "none"}));
+        ->check(CLI::IsMember(namesOf(kCapModeNames)));
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
                     "How far beyond an end contour its cap reaches, mm (default: half the DICOM "
                     "contour slab thickness if given, else half the slice spacing; at most half "
@@ -215,9 +201,7 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {
-        args->options.cap = args->capName == "dome"   ? CapMode::Dome
-                            : args->capName == "none" ? CapMode::None
-                                                      : CapMode::Flat;
+        args->options.cap = parseEnum(kCapModeNames, args->capName, "--cap");
         runReconstruct(*args, global);
     });
 }

@@ -2,7 +2,6 @@
 // (paper surface-distance-maps): at every vertex and atlas texel of each
 // mesh, the signed distance to the nearest other mesh and which one it is;
 // plus pairwise separation, collision and penetration with their bounds.
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,12 +12,14 @@
 
 #include "app/Commands.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/AtomicWrite.hpp"
+#include "io/AttributedMesh.hpp"
+#include "io/Colours.hpp"
 #include "io/FieldImages.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
-#include "io/VertexDataMesh.hpp"
 #include "sdm/ProximityQueries.hpp"
 
 namespace dfrecon::app {
@@ -47,26 +48,11 @@ std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
     return names;
 }
 
-// Distance → colour for the meshes: red inside another object, yellow at
-// contact, fading through green to blue at `farMm` and beyond; grey where
-// nothing is within the band.
-std::array<std::uint8_t, 3> distanceColour(double d, double farMm) {
-    if (!std::isfinite(d)) return {160, 160, 160};
-    if (d < 0) return {220, 30, 30};
-    const double t = std::min(1.0, d / farMm);
-    const double r = t < 0.5 ? 1 - 2 * t : 0, g = t < 0.5 ? 1 : 2 - 2 * t, b = t;
-    return {std::uint8_t(40 + 215 * r), std::uint8_t(40 + 215 * g), std::uint8_t(40 + 215 * b)};
-}
-
-nlohmann::ordered_json vec(Vec3 p) {
-    return {p.x, p.y, p.z};
-}
-
 void writeObjectOutputs(const std::filesystem::path& dir, const std::string& name,
                         const SurfaceScene& scene, std::size_t o, const ObjectSamples& samples,
                         const ObjectDistanceMap& map, double colourFarMm, bool images) {
     const TriangleSoup& soup = scene.object(o);
-    VertexData data;
+    MeshAttributes data;
     std::vector<float> distance(soup.points.size());
     std::vector<std::int32_t> nearest(soup.points.size());
     std::vector<Vec3> direction(soup.points.size());
@@ -75,14 +61,17 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
         distance[v] = c.object < 0 ? std::numeric_limits<float>::infinity() : float(c.distanceMm);
         nearest[v] = c.object;
         direction[v] = c.object < 0 ? Vec3{} : c.point - soup.points[v];
-        data.colours.push_back(distanceColour(c.object < 0 ? INFINITY : c.distanceMm, colourFarMm));
+        // Diverging: a clearance map is read first for its sign (inside
+        // another mesh or not), which a sequential ramp cannot show.
+        data.vertexColours.push_back(
+            divergingColour(c.object < 0 ? INFINITY : c.distanceMm, colourFarMm));
     }
-    data.scalars = {{"distance", distance}, {"quality", distance}};
-    data.labels = {{"nearest_object", nearest}};
-    writePlyWithVertexData(soup, data, (dir / (name + ".ply")).string());
-    data.scalars.pop_back();  // "quality" is for MeshLab only
-    data.vectors = {{"to_nearest", direction}};
-    writeVtkWithVertexData(soup, data, (dir / (name + ".vtk")).string());
+    data.vertexScalars = {{"distance", distance}, {"quality", distance}};
+    data.vertexLabels = {{"nearest_object", nearest}};
+    writeAttributedPly(soup, data, (dir / (name + ".ply")).string());
+    data.vertexScalars.pop_back();  // "quality" is for MeshLab only
+    data.vertexVectors = {{"to_nearest", direction}};
+    writeAttributedVtk(soup, data, (dir / (name + ".vtk")).string());
     if (!images) return;
     const int w = samples.atlas.width, h = samples.atlas.height;
     const std::vector<float> d = distanceImage(samples, map);
@@ -104,7 +93,7 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
 }
 
 void runSdm(const SdmArgs& args, const GlobalOptions& global) {
-    const auto start = std::chrono::steady_clock::now();
+    Stopwatch watch;
     if (args.inputs.size() < 2)
         throw std::invalid_argument("sdm needs at least two meshes (distances are to the others)");
     const std::vector<std::string> names = objectNames(args.inputs);
@@ -135,9 +124,9 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
     DistanceQuery query;
     if (args.maxDistanceMm > 0) query.maxDistanceMm = args.maxDistanceMm;
     Progress progress("distance maps", !global.quiet);
-    const auto mapsStart = std::chrono::steady_clock::now();
+    watch.restartLap();
     const std::vector<ObjectDistanceMap> maps = surfaceDistanceMaps(scene, samples, closest, query);
-    const double mapSeconds = secondsSince(mapsStart);
+    const double mapSeconds = watch.lap();
     progress.update(0.5);
     std::vector<PairProximity> pairs;
     if (!args.noPairs) pairs = proximityQueries(scene, samples, closest);
@@ -172,8 +161,7 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
                            {"texelMm", samples[o].atlas.texelMm},
                            {"samplingBoundMm", samples[o].samplingBoundMm()},
                            {"usedTexels", samples[o].texelCount()},
-                           {"minDistanceMm",
-                            std::isfinite(nearestMm) ? nlohmann::ordered_json(nearestMm) : nullptr},
+                           {"minDistanceMm", valueOrNull(std::isfinite(nearestMm), nearestMm)},
                            {"texelsInsideOthers", inside},
                            {"outputs", {names[o] + ".ply", names[o] + ".vtk"}}});
     }
@@ -189,17 +177,16 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
                               {"secondInsideFirst", p.secondInsideFirst},
                               {"deepestPointMm", p.deepestPointMm},
                               {"depthBoundMm", p.depthBoundMm},
-                              {"pointOnFirst", vec(p.pointOnFirst)},
-                              {"pointOnSecond", vec(p.pointOnSecond)}});
+                              {"pointOnFirst", xyzJson(p.pointOnFirst)},
+                              {"pointOnSecond", xyzJson(p.pointOnSecond)}});
     nlohmann::ordered_json report{
         {"command", "sdm"},
         {"device", runtime.device().deviceName},
-        {"maxDistanceMm",
-         args.maxDistanceMm > 0 ? nlohmann::ordered_json(args.maxDistanceMm) : nullptr},
+        {"maxDistanceMm", valueOrNull(args.maxDistanceMm > 0, args.maxDistanceMm)},
         {"objects", objects},
         {"pairs", pairReport},
         {"mapSeconds", mapSeconds},
-        {"totalSeconds", secondsSince(start)}};
+        {"totalSeconds", watch.total()}};
     writeStreamAtomically((dir / "report.json").string(),
                           [&](std::ostream& out) { out << report.dump(2) << "\n"; });
     if (args.json) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
@@ -20,16 +21,16 @@ namespace dfrecon::app {
 namespace {
 
 struct SegmentArgs {
-    std::string input, output, speed = "attractive";
+    std::string input, output, speed = nameOf(kSpeedKindNames, SpeedKind::EdgeAttractive);
     int regions = 10;
     bool json = false, ascii = false, noDisks = false;
     SegmentOptions options;
 };
 
 void runSegment(SegmentArgs args, const GlobalOptions& global) {
-    const auto start = Clock::now();
-    requirePlyOutput(args.output);
-    args.options.speed = parseSpeedKind(args.speed);
+    const Stopwatch watch;
+    requireAttributedMeshOutput(args.output);
+    args.options.speed = parseEnum(kSpeedKindNames, args.speed, "--speed");
     args.options.regions = args.regions;
     args.options.lloyd.diskConstraint = !args.noDisks;
     GeodesicInput input = readGeodesicInput(args.input);
@@ -41,7 +42,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
     args.options.progress = [&progress](double done) { progress.update(done); };
     const Segmentation s = segmentMesh(input.graph, args.options);
     progress.finish();
-    writeRegionsPly(std::move(input.mesh), s.faceRegion, args.output, !args.ascii);
+    writeRegions(std::move(input.mesh), s.faceRegion, args.output, !args.ascii);
 
     std::vector<double> areas;
     for (const RegionReport& r : s.regions) areas.push_back(r.areaMm2);
@@ -71,7 +72,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                                      {"output", args.output},
                                      {"vertices", input.graph.vertexCount()},
                                      {"faces", input.graph.triangleCount()},
-                                     {"speed", toString(args.options.speed)},
+                                     {"speed", nameOf(kSpeedKindNames, args.options.speed)},
                                      {"curvatureWeightMm", s.curvatureWeightMm},
                                      {"requestedRegions", args.regions},
                                      {"regionCount", s.regions.size()},
@@ -85,7 +86,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                                      {"areaVarianceMm4", variance},
                                      {"regions", regions},
                                      {"seconds", s.seconds},
-                                     {"totalSeconds", secondsSince(start)}};
+                                     {"totalSeconds", watch.total()}};
     std::cout << out.dump(2) << "\n";
 }
 
@@ -102,17 +103,19 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         "(default) seeds are sampled with the edge-repulsive speed and regions use the "
         "edge-attractive one, so borders settle on sharp creases; uniform and repulsive use that "
         "speed throughout. A region that is not a topological disk gets an extra seed. The PLY "
-        "holds a face property 'region' and face colours. Exit codes: 0 done, 1 usage, 2 bad "
+        "(or VTK) holds a face property 'region' and face colours. Exit codes: 0 done, 1 usage, 2 "
+        "bad "
         "input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output mesh with region ids (.ply)")->required();
+    cmd->add_option("-o,--output", args->output, "Output mesh with region ids (.ply or .vtk)")
+        ->required();
     cmd->add_option("-k,--regions", args->regions, "Number of regions (seeds) to start from")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     cmd->add_option("--speed", args->speed, "Front speed: uniform, repulsive or attractive")
         ->capture_default_str()
-        ->check(CLI::IsMember({"uniform", "repulsive", "attractive"}));
+        ->check(CLI::IsMember(namesOf(kSpeedKindNames)));
     cmd->add_option("--iterations", args->options.lloyd.maxIterations,
                     "Most Lloyd iterations (they stop earlier once no vertex changes region)")
         ->capture_default_str()

@@ -1,7 +1,6 @@
 // dfrecon simplify IN -o OUT --max-error MM: error-bounded edge collapse of a
 // closed surface (docs/simplification.md), with the bound it certifies and
 // the distance an independent check measures.
-#include <chrono>
 #include <iostream>
 #include <memory>
 
@@ -9,6 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -26,7 +26,7 @@ struct SimplifyArgs {
 };
 
 void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     if (!isMeshExtension(args.output))
         throw std::invalid_argument("output '" + args.output +
                                     "' needs a mesh extension (.ply .stl .obj .off)");
@@ -68,11 +68,11 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
                                {"input", args.input},
                                {"output", args.output},
                                {"device", runtime.device().deviceName}};
-    for (auto& [key, value] : report.items()) out[key] = value;
+    appendItems(out, report);
     out["validSolid"] = after.validSolid();
     out["genusBefore"] = before.genus;
     out["genus"] = after.genus;
-    out["totalSeconds"] = secondsSince(start);
+    out["totalSeconds"] = watch.total();
     std::cout << out.dump(2) << "\n";
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // What `dfrecon segment` and `dfrecon geodesic` share: reading the mesh
-// into the solvers' graph, and writing PLY files that carry results as
-// properties (per-face region ids, per-vertex distances) next to colours a
-// viewer shows.
+// into the solvers' graph, and writing the results as mesh attributes
+// (io/AttributedMesh: per-face region ids, per-vertex distances) next to
+// the colours a viewer shows (io/Colours).
 #include <string>
 #include <vector>
 
@@ -20,20 +20,22 @@ struct GeodesicInput {
 };
 GeodesicInput readGeodesicInput(const std::string& path);
 
-/// Throws std::invalid_argument (exit 1) unless `path` ends in .ply: only
-/// PLY carries the per-face and per-vertex properties.
-void requirePlyOutput(const std::string& path);
+/// Throws std::invalid_argument (exit 1) unless `path` ends in .ply or
+/// .vtk: the mesh formats that carry per-face and per-vertex values.
+void requireAttributedMeshOutput(const std::string& path);
 
-/// Writes `mesh` with an int face property "region" (-1: unreached) and
-/// face colours, one colour per region.
-void writeRegionsPly(TriMesh mesh, const std::vector<int>& faceRegion, const std::string& path,
-                     bool binary);
+/// Writes `mesh` (PLY or VTK by the extension; `binary` for PLY) with an
+/// int face property "region" (-1: unreached) and face colours, one
+/// categorical colour per region. O(V + F).
+void writeRegions(TriMesh mesh, const std::vector<int>& faceRegion, const std::string& path,
+                  bool binary);
 
-/// Writes `mesh` with float vertex properties "distance" (mm, or the
-/// weighted distance for a non-uniform speed; -1 where unreached) and int
-/// "source" (the index of the nearest source), and vertex colours from
-/// blue (0) to red (the largest distance).
-void writeDistancePly(TriMesh mesh, const std::vector<double>& distance,
-                      const std::vector<int>& source, const std::string& path, bool binary);
+/// Writes `mesh` (PLY or VTK by the extension; `binary` for PLY) with float
+/// vertex property "distance" (mm, or the weighted distance for a
+/// non-uniform speed; -1 where unreached), int "source" (the index of the
+/// nearest source), and vertex colours on the sequential ramp from 0 to the
+/// largest distance (grey where unreached). O(V + F).
+void writeDistances(TriMesh mesh, const std::vector<double>& distance,
+                    const std::vector<int>& source, const std::string& path, bool binary);
 
 }  // namespace dfrecon::app

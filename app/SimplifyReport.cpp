@@ -1,7 +1,6 @@
 #include "app/SimplifyReport.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "app/Progress.hpp"
@@ -28,7 +27,7 @@ nlohmann::ordered_json simplifyAndVerify(ocl::Runtime& runtime, TriangleSoup& su
         Progress progress(request.label, !global.quiet);
         result = simplifySurface(&runtime, surface, request.options);
     }
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     const SimplificationDistance verified = verifySimplification(
         surface, result.surface, request.contours, request.options.maxErrorMm / 8,
         verifySamples(surface, result.surface));
@@ -48,7 +47,7 @@ nlohmann::ordered_json simplifyAndVerify(ocl::Runtime& runtime, TriangleSoup& su
             worst = std::max(worst, std::abs((*request.field)(p)));
         distances["fieldAbsMaxMm"] = worst;
     }
-    const double verifySeconds = secondsSince(start);
+    const double verifySeconds = watch.total();
     const SimplifyStats& s = result.stats;
     surface = std::move(result.surface);
     return {

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/AtomicWrite.hpp"
+#include "io/Colours.hpp"
 
 namespace dfrecon {
 
@@ -35,6 +36,11 @@ void drawContours(cv::Mat& image, const ImageFrame& frame, const std::vector<Pol
     cv::polylines(image, lines, true, cv::Scalar(255, 255, 255), 1, cv::LINE_AA, kShift);
 }
 
+// OpenCV stores pixels blue first.
+cv::Vec3b toBgr(Rgb colour) {
+    return {colour[2], colour[1], colour[0]};
+}
+
 void writePng(const std::string& path, const cv::Mat& image) {
     writeAtomically(path,
                     [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
@@ -59,10 +65,7 @@ void writeSignedFieldPng(const std::string& path, const float* distanceMm, const
                 bgr = {0, 0, 0};
                 continue;
             }
-            // Brightness falls off with |d|; the hue says the side.
-            const double level = 1 - std::sqrt(std::abs(d) / maxAbs);
-            const auto strong = uchar(80 + 175 * level), weak = uchar(40 * level);
-            bgr = d < 0 ? cv::Vec3b(strong, weak, weak) : cv::Vec3b(weak, weak, strong);
+            bgr = toBgr(divergingColour(d, maxAbs));
             if (isoStepMm > 0) {
                 const double phase = std::abs(d) / isoStepMm;
                 if (phase - std::floor(phase) < 0.5 * frame.pixelMm / isoStepMm)
@@ -79,22 +82,14 @@ void writeSignedFieldPng(const std::string& path, const float* distanceMm, const
 void writeLabelPng(const std::string& path, const std::uint32_t* labels, const ImageFrame& frame,
                    const std::vector<Polygon>& contours) {
     if (frame.width <= 0 || frame.height <= 0) throw std::invalid_argument("empty image frame");
-    cv::Mat hsv(frame.height, frame.width, CV_8UC3);
+    cv::Mat image(frame.height, frame.width, CV_8UC3);
     for (int j = 0; j < frame.height; ++j)
         for (int i = 0; i < frame.width; ++i) {
             const std::uint32_t label =
                 labels[std::size_t(j) * std::size_t(frame.width) + std::size_t(i)];
-            cv::Vec3b& v = hsv.at<cv::Vec3b>(imageRow(frame, j), i);
-            if (label == 0xffffffffu) {
-                v = {0, 0, 0};
-                continue;
-            }
-            // Golden-ratio hue steps keep consecutive labels far apart.
-            const double hue = std::fmod(double(label) * 0.6180339887498949, 1.0);
-            v = cv::Vec3b(uchar(hue * 179), uchar(label & 1 ? 150 : 230), 230);
+            image.at<cv::Vec3b>(imageRow(frame, j), i) =
+                label == 0xffffffffu ? cv::Vec3b(0, 0, 0) : toBgr(categoricalColour(label));
         }
-    cv::Mat image;
-    cv::cvtColor(hsv, image, cv::COLOR_HSV2BGR);
     drawContours(image, frame, contours);
     writePng(path, image);
 }

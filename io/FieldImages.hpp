@@ -24,15 +24,17 @@ struct PixelMark {
 };
 
 /// A signed distance field (row-major, mm, negative inside) as a colour
-/// picture: blue inside, red outside, brighter near zero, thin iso-lines
+/// picture (io/Colours' diverging scheme: blue inside, red outside,
+/// brighter near zero, scaled to the largest |d|), thin iso-lines
 /// every `isoStepMm`, `marked` pixels in yellow, contours in white. Written
 /// atomically.
 void writeSignedFieldPng(const std::string& path, const float* distanceMm, const ImageFrame& frame,
                          const std::vector<Polygon>& contours, double isoStepMm,
                          const std::vector<PixelMark>& marked = {});
 
-/// Integer labels (row-major; 0xffffffff = none, black) as hues, with
-/// neighbouring labels spread apart, and the contours in white.
+/// Integer labels (row-major; 0xffffffff = none, black) in io/Colours'
+/// categorical colours, neighbouring labels spread apart, and the contours
+/// in white.
 void writeLabelPng(const std::string& path, const std::uint32_t* labels, const ImageFrame& frame,
                    const std::vector<Polygon>& contours);
 

@@ -2,7 +2,9 @@
 // DICOM RT Structure Sets (RTSTRUCT, docs/formats.md): reading into the
 // contour data model and writing it back. Coordinates are patient (LPS)
 // millimetres, as in the file.
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/ContourSet.hpp"
@@ -17,6 +19,15 @@ enum class HoleConvention {
     Keyhole,  // holes joined to their outer contour by a zero-width channel
     Xor,      // CLOSEDPLANAR_XOR contours, or contours sharing edges: exclusive or
 };
+/// The one list of the conventions' names, which reports print
+/// (app/EnumNames.hpp reads it); holeConventionName reads it too.
+inline constexpr std::array<std::pair<const char*, HoleConvention>, 4> kHoleConventionNames{{
+    {"none", HoleConvention::None},
+    {"nested", HoleConvention::Nested},
+    {"keyhole", HoleConvention::Keyhole},
+    {"xor", HoleConvention::Xor},
+}};
+/// The name of `convention` in kHoleConventionNames. O(1).
 const char* holeConventionName(HoleConvention convention);
 
 /// What reading found about one ROI beyond its contours.

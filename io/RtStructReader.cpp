@@ -18,16 +18,8 @@
 namespace dfrecon {
 
 const char* holeConventionName(HoleConvention convention) {
-    switch (convention) {
-        case HoleConvention::None:
-            return "none";
-        case HoleConvention::Nested:
-            return "nested";
-        case HoleConvention::Keyhole:
-            return "keyhole";
-        case HoleConvention::Xor:
-            return "xor";
-    }
+    for (const auto& [name, value] : kHoleConventionNames)
+        if (value == convention) return name;
     return "?";
 }
 

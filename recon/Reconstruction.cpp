@@ -21,14 +21,8 @@
 namespace dfrecon {
 
 const char* capModeName(CapMode mode) {
-    switch (mode) {
-        case CapMode::Flat:
-            return "flat";
-        case CapMode::Dome:
-            return "dome";
-        case CapMode::None:
-            return "none";
-    }
+    for (const auto& [name, value] : kCapModeNames)
+        if (value == mode) return name;
     return "?";
 }
 

@@ -4,6 +4,7 @@
 // each axis that joins one contour to one contour, recursion with the axis as
 // an intermediate contour wherever contours branch, merge or do not match,
 // prism closings at the recursion limit, and caps at the ends.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -26,7 +27,15 @@ enum class CapMode {
     None,  // left open (the surface has boundary loops there)
 };
 
-/// "flat", "dome", "none".
+/// The one list of the cap modes' names, which the command line parses and
+/// reports print (app/EnumNames.hpp reads it); capModeName reads it too.
+inline constexpr std::array<std::pair<const char*, CapMode>, 3> kCapModeNames{{
+    {"flat", CapMode::Flat},
+    {"dome", CapMode::Dome},
+    {"none", CapMode::None},
+}};
+
+/// The name of `mode` in kCapModeNames. O(1).
 const char* capModeName(CapMode mode);
 
 /// Default grid side of the reconstruction's fields. Mesh vertices are the

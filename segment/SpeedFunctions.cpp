@@ -9,22 +9,18 @@
 namespace dfrecon {
 
 const char* toString(SpeedKind kind) {
-    switch (kind) {
-        case SpeedKind::Uniform:
-            return "uniform";
-        case SpeedKind::EdgeRepulsive:
-            return "repulsive";
-        case SpeedKind::EdgeAttractive:
-            return "attractive";
-    }
+    for (const auto& [name, value] : kSpeedKindNames)
+        if (value == kind) return name;
     return "?";
 }
 
 SpeedKind parseSpeedKind(const std::string& name) {
-    for (SpeedKind kind : {SpeedKind::Uniform, SpeedKind::EdgeRepulsive, SpeedKind::EdgeAttractive})
-        if (name == toString(kind)) return kind;
-    throw std::invalid_argument("unknown speed '" + name +
-                                "' (use uniform, repulsive or attractive)");
+    std::string names;
+    for (const auto& [known, value] : kSpeedKindNames) {
+        if (name == known) return value;
+        names += std::string(names.empty() ? "" : ", ") + known;
+    }
+    throw std::invalid_argument("unknown speed '" + name + "' (use " + names + ")");
 }
 
 double defaultCurvatureWeight(const MeshGraph& graph, int regions) {

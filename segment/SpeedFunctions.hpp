@@ -18,7 +18,9 @@
 // as much as crossing one region of a k-region segmentation: enough for
 // borders to settle on creases (the cube test), while curvature much
 // gentler than the regions' size changes the speed little.
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "segment/MeshGraph.hpp"
@@ -26,8 +28,20 @@
 namespace dfrecon {
 
 enum class SpeedKind { Uniform, EdgeRepulsive, EdgeAttractive };
+
+/// The one list of the speeds' names, which the command line parses and
+/// reports print (app/EnumNames.hpp reads it); toString and parseSpeedKind
+/// read it too.
+inline constexpr std::array<std::pair<const char*, SpeedKind>, 3> kSpeedKindNames{{
+    {"uniform", SpeedKind::Uniform},
+    {"repulsive", SpeedKind::EdgeRepulsive},
+    {"attractive", SpeedKind::EdgeAttractive},
+}};
+
+/// The name of `kind` in kSpeedKindNames. O(1).
 const char* toString(SpeedKind kind);
-/// "uniform", "repulsive", "attractive"; throws std::invalid_argument.
+/// The kind named `name` in kSpeedKindNames; throws std::invalid_argument
+/// listing the names.
 SpeedKind parseSpeedKind(const std::string& name);
 
 /// √(area / regions) in mm: the size of one region if the surface were cut

@@ -208,6 +208,9 @@ TEST(Cli, CheckPassesSolidsAndFailsBrokenMeshesWithExitTwo) {
     EXPECT_TRUE(report["validSolid"].get<bool>());
     EXPECT_EQ(report["genus"], 0);
     EXPECT_NEAR(report["volumeMm3"].get<double>(), 1.0 / 6.0, 1e-12);
+    EXPECT_EQ(report["selfIntersectingPairs"], 0);
+    EXPECT_TRUE(report["selfIntersectingExamples"].is_array());
+    EXPECT_FALSE(report.contains("intersectingPairs"));
     const Result bad = runDfrecon("check " + open.string());
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.out.find("boundary edges 3"), std::string::npos) << bad.out;
@@ -230,7 +233,15 @@ TEST(Cli, ReconstructWritesACheckedSolidAndReportsIt) {
     // What was written is what was reported.
     const Result check = runDfrecon("check --json " + mesh.string());
     ASSERT_EQ(check.exitCode, 0) << check.out;
-    EXPECT_EQ(nlohmann::json::parse(check.out)["triangles"], report["triangles"]);
+    const auto checked = nlohmann::json::parse(check.out);
+    EXPECT_EQ(checked["triangles"], report["triangles"]);
+    // Both commands report the mesh check in one form, under the same keys.
+    for (const auto& [key, value] : checked.items()) {
+        if (key != "command" && key != "file") {
+            EXPECT_TRUE(report.contains(key)) << key;
+        }
+    }
+    EXPECT_EQ(report["selfIntersectingPairs"], 0);
 }
 
 TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {
@@ -245,7 +256,9 @@ TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {
 TEST(Cli, ReconstructRejectsBadOptionsAndLeavesNothing) {
     const std::string in = std::string(DFRECON_EXAMPLES) + "/y.slices";
     const fs::path mesh = scratch() / "never.ply";
-    EXPECT_EQ(runDfrecon("reconstruct " + in + " --cap round -o " + mesh.string()).exitCode, 1);
+    const Result badCap = runDfrecon("reconstruct " + in + " --cap round -o " + mesh.string());
+    EXPECT_EQ(badCap.exitCode, 1);
+    EXPECT_NE(badCap.err.find("flat"), std::string::npos) << badCap.err;  // the names to use
     EXPECT_EQ(runDfrecon("reconstruct " + in + " --max-depth -1 -o " + mesh.string()).exitCode, 1);
     const Result noExtension =
         runDfrecon("reconstruct " + in + " -o " + (scratch() / "mesh").string());

@@ -1,0 +1,47 @@
+#pragma once
+// The JSON form of each result that more than one command reports, written
+// once so that a key means the same in every report (docs/cli.md).
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/MeshCheck.hpp"
+#include "geometry/Vec3.hpp"
+
+namespace dfrecon::app {
+
+/// The mesh checker's findings as a flat object: validSolid, watertight,
+/// vertices, triangles, edges, components, eulerCharacteristic, genus (null
+/// unless closed and manifold), volumeMm3, volumeCc, areaMm2, boundaryEdges,
+/// nonManifoldEdges, nonManifoldVertices, misorientedEdges,
+/// degenerateTriangles, selfIntersectingPairs and selfIntersectingExamples
+/// (the first few pairs of triangle indices). O(examples).
+nlohmann::ordered_json meshCheckJson(const MeshCheckReport& report);
+
+/// Copies every item of `items` into `into`, after the keys it has. O(items).
+void appendItems(nlohmann::ordered_json& into, const nlohmann::ordered_json& items);
+
+/// A point or vector as [x, y, z]. O(1).
+nlohmann::ordered_json xyzJson(const Vec3& p);
+
+/// Any three indexable values (sizes, spacings, an origin) as [a, b, c]. O(1).
+template <class Triple>
+nlohmann::ordered_json xyzJson(const Triple& t) {
+    return {t[0], t[1], t[2]};
+}
+
+/// `value` when `present`, else null: the reports' one way of saying "not
+/// given" or "not defined". Always builds a json value first, so that a
+/// null `const char*` never reaches json's std::string constructor. O(1).
+template <class T>
+nlohmann::ordered_json valueOrNull(bool present, const T& value) {
+    return present ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+}
+
+/// The optional's value, else null. O(1).
+template <class T>
+nlohmann::ordered_json valueOrNull(const std::optional<T>& value) {
+    return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace dfrecon::app
