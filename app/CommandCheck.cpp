@@ -17,10 +17,13 @@ namespace dfrecon::app {
 namespace {
 
 void runCheck(const std::string& path, bool json) {
-    const MeshCheckReport r = checkMesh(readTriangleSoup(path));
+    const TriangleSoup soup = readTriangleSoup(path);
+    const MeshCheckReport r = checkMesh(soup);
+    const nlohmann::ordered_json where = defectLocationsJson(r, soup);
     if (json) {
         nlohmann::ordered_json report{{"command", "check"}, {"file", path}};
         appendItems(report, meshCheckJson(r));
+        appendItems(report, where);
         std::cout << report.dump(2) << "\n";
     } else {
         std::cout << path << ": " << r.vertices << " vertices, " << r.triangles << " triangles, "
@@ -32,8 +35,15 @@ void runCheck(const std::string& path, bool json) {
                   << "  self-intersecting triangle pairs " << r.intersectingPairs << "\n"
                   << "  Euler characteristic " << r.eulerCharacteristic;
         if (r.genus >= 0) std::cout << ", genus " << r.genus;
-        std::cout << "\n  volume " << r.volumeMm3 / 1000 << " cc, area " << r.areaMm2 << " mm2\n"
-                  << (r.validSolid() ? "valid closed solid\n" : "NOT a valid closed solid\n");
+        std::cout << "\n  volume " << r.volumeMm3 / 1000 << " cc, area " << r.areaMm2 << " mm2\n";
+        if (!where["defectBoxMm"].is_null())
+            std::cout << "  " << r.defectiveTriangles.size() << " triangle(s) in defects, within "
+                      << where["defectBoxMm"]["min"].dump() << " .. "
+                      << where["defectBoxMm"]["max"].dump() << " mm\n";
+        for (const auto& pair : where["selfIntersectingAt"])
+            std::cout << "  triangles " << pair["triangles"].dump()
+                      << " meet: " << pair["cornersMm"].dump() << "\n";
+        std::cout << (r.validSolid() ? "valid closed solid\n" : "NOT a valid closed solid\n");
     }
     if (!r.validSolid())
         throw InputError(path, 0,

@@ -8,6 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
+#include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
@@ -24,7 +25,7 @@ namespace {
 
 struct ReconstructArgs {
     std::string input, output, roi, capName = nameOf(kCapModeNames, CapMode::Flat);
-    bool all = false, json = false, ascii = false;
+    bool all = false, json = false, ascii = false, allowInvalid = false;
     double maxErrorMm = 0;  // 0: no simplification
     ReconstructionOptions options;
 };
@@ -56,34 +57,59 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         request.label = "simplifying " + roi.name;
         simplification = simplifyAndVerify(runtime, result.surface, request, global);
     }
+    // The reconstruction checked its surface as floats in the plane frame;
+    // a rotated frame or a simplified surface is checked again as written.
+    roundPointsToFloat(result.surface);
     Stopwatch watch;
-    const MeshCheckReport check = checkMesh(result.surface);
-    const double checkSeconds = watch.lap();
+    const MeshCheckReport check = simplification.is_null() && roi.frame.isIdentity()
+                                      ? result.check
+                                      : checkMesh(result.surface);
+    const double checkSeconds = watch.lap() + result.stats.checkSeconds;
+    // Open ends are what --cap none asks for; anything else broken is not a
+    // result (exit 4), and is written only when the user allows it.
+    const bool valid = check.validSolid() || args.options.cap == CapMode::None;
+    const bool written = valid || args.allowInvalid;
     std::size_t refused = 0;
-    const TriMesh mesh = toTriMesh(result.surface, &refused);
-    MeshWriteOptions write;
-    write.binary = !args.ascii;
-    writeMesh(mesh, path, write);
+    if (written) {
+        const TriMesh mesh = toTriMesh(result.surface, &refused);
+        MeshWriteOptions write;
+        write.binary = !args.ascii;
+        writeMesh(mesh, path, write);
+    }
     const double writeSeconds = watch.lap();
 
     const ReconstructionStats& s = result.stats;
+    const double contourVolume = contourVolumeMm3(roi);
     if (!args.json) {
         std::cout << roi.name << ": " << check.vertices << " vertices, " << check.triangles
-                  << " triangles, volume " << check.volumeMm3 / 1000 << " cc, "
+                  << " triangles, volume " << check.volumeMm3 / 1000 << " cc (contours "
+                  << contourVolume / 1000 << " cc), "
                   << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
         if (check.genus >= 0) std::cout << ", genus " << check.genus;
-        std::cout << " -> " << path << "\n";
+        std::cout << (written ? " -> " + path : std::string(", not written")) << "\n";
     }
-    if (!global.quiet && !check.validSolid() && args.options.cap != CapMode::None)
-        std::cerr << "warning: " << roi.name
-                  << ": the surface is not a valid closed solid (run dfrecon check " << path
-                  << ")\n";
+    if (!valid && !global.quiet) {
+        std::cerr << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
+        for (const auto& [below, above] : result.brokenPieces)
+            std::cerr << " [" << below << ", " << above << "]";
+        std::cerr << " mm (plane frame)"
+                  << (written ? "; written anyway (--allow-invalid)" : "; not written") << "\n";
+    }
     const RtStructRoiInfo* dicom = input.dicomInfo(roi);
     const std::optional<const char*> holes =
         dicom ? std::optional(nameOf(kHoleConventionNames, dicom->holes)) : std::nullopt;
-    nlohmann::ordered_json report{
-        {"roi", roi.name}, {"roiNumber", valueOrNull(roi.number)}, {"output", path}};
+    nlohmann::ordered_json broken = nlohmann::ordered_json::array();
+    for (const auto& [below, above] : result.brokenPieces) broken.push_back({below, above});
+    nlohmann::ordered_json report{{"roi", roi.name},
+                                  {"roiNumber", valueOrNull(roi.number)},
+                                  {"output", valueOrNull(written, path)},
+                                  {"written", written}};
     appendItems(report, meshCheckJson(check));
+    appendItems(report, {{"contourVolumeMm3", contourVolume},
+                         {"contourVolumeCc", contourVolume / 1000},
+                         {"brokenSlabsMm", broken},
+                         {"touchesOpened", s.touchesOpened},
+                         {"piecesClosedAgain", s.repairedPieces}});
     appendItems(report,
                 {{"facesRefusedByOpenMesh", refused},
                  {"slices", s.slices},
@@ -125,9 +151,13 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     ocl::Runtime runtime(global.device);
     const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
-    for (std::size_t i = 0; i < rois.size(); ++i)
+    std::string invalid;
+    for (std::size_t i = 0; i < rois.size(); ++i) {
         reports.push_back(reconstructRoi(runtime, *rois[i], outputPathFor(args, stems[i], several),
                                          load, args, global));
+        if (!reports.back()["validSolid"].get<bool>() && args.options.cap != CapMode::None)
+            invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
+    }
     nlohmann::ordered_json empty = nlohmann::ordered_json::array();
     if (args.all)
         for (const Roi& roi : load.contours.rois)
@@ -144,6 +174,10 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                             {"emptyRois", empty}}
                          .dump(2)
                   << "\n";
+    if (!invalid.empty())
+        throw InvalidResult("not a valid closed solid: " + invalid +
+                            (args.allowInvalid ? " (written anyway: --allow-invalid)"
+                                               : " (not written; --allow-invalid writes it)"));
 }
 
 }  // namespace
@@ -161,8 +195,11 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         "outward. Caps: 'flat' closes each end contour with a flat lid at the cap offset whose "
         "rim continues the side's slope from the last slab, so straight sides give exactly the "
         "volume planning systems count (area x spacing per slice); 'dome' rises from the contour "
-        "to the cap offset (less volume, rounder ends); 'none' leaves the ends open. Exit codes: "
-        "0 done, 1 usage, 2 bad input, 3 runtime failure. See docs/reconstruction.md.");
+        "to the cap offset (less volume, rounder ends); 'none' leaves the ends open. Every "
+        "surface is checked as the file will hold it (floats); one that is not a valid closed "
+        "solid is reported with the slabs where it fails and not written (unless "
+        "--allow-invalid). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure, 4 a "
+        "surface is not a valid closed solid. See docs/reconstruction.md.");
     cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
         ->required();
     cmd->add_option("-o,--output", args->output, "Output mesh file, or folder with --all")
@@ -198,6 +235,9 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "verified distance to the full surface and the contours")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--allow-invalid", args->allowInvalid,
+                  "Write a surface that is not a valid closed solid anyway (it is reported, "
+                  "and the exit code is still 4)");
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {

@@ -1,5 +1,8 @@
 #include "app/Reports.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace dfrecon::app {
 
 nlohmann::ordered_json meshCheckJson(const MeshCheckReport& r) {
@@ -23,6 +26,30 @@ nlohmann::ordered_json meshCheckJson(const MeshCheckReport& r) {
             {"degenerateTriangles", r.degenerateTriangles},
             {"selfIntersectingPairs", r.intersectingPairs},
             {"selfIntersectingExamples", examples}};
+}
+
+nlohmann::ordered_json defectLocationsJson(const MeshCheckReport& report,
+                                           const TriangleSoup& soup) {
+    auto corners = [&](std::size_t t) {
+        nlohmann::ordered_json out = nlohmann::ordered_json::array();
+        for (std::uint32_t v : soup.triangles[t]) out.push_back(xyzJson(soup.points[v]));
+        return out;
+    };
+    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t t : report.defectiveTriangles)
+        for (std::uint32_t v : soup.triangles[t]) {
+            const Vec3 p = soup.points[v];
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+        }
+    nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+    for (const auto& [a, b] : report.intersectingExamples)
+        pairs.push_back({{"triangles", {a, b}}, {"cornersMm", {corners(a), corners(b)}}});
+    const bool any = !report.defectiveTriangles.empty();
+    return {{"defectiveTriangles", report.defectiveTriangles.size()},
+            {"defectBoxMm", any ? nlohmann::ordered_json{{"min", xyzJson(lo)}, {"max", xyzJson(hi)}}
+                                : nlohmann::ordered_json(nullptr)},
+            {"selfIntersectingAt", pairs}};
 }
 
 void appendItems(nlohmann::ordered_json& into, const nlohmann::ordered_json& items) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/TriangleSoup.hpp"
 #include "geometry/Vec3.hpp"
 
 namespace dfrecon::app {
@@ -17,6 +18,13 @@ namespace dfrecon::app {
 /// degenerateTriangles, selfIntersectingPairs and selfIntersectingExamples
 /// (the first few pairs of triangle indices). O(examples).
 nlohmann::ordered_json meshCheckJson(const MeshCheckReport& report);
+
+/// Where `soup`'s defects are (its check `report`): `defectiveTriangles`
+/// (how many take part in a defect), `defectBoxMm` (the box around them,
+/// {min, max}, null when none) and `selfIntersectingAt` (the first few
+/// intersecting pairs with their corners in mm, to find them in a viewer).
+/// O(defective triangles).
+nlohmann::ordered_json defectLocationsJson(const MeshCheckReport& report, const TriangleSoup& soup);
 
 /// Copies every item of `items` into `into`, after the keys it has. O(items).
 void appendItems(nlohmann::ordered_json& into, const nlohmann::ordered_json& items);

@@ -16,7 +16,8 @@ using namespace dfrecon::app;
 int main(int argc, char** argv) {
     CLI::App root{
         "dfrecon: watertight, error-bounded triangle surfaces from planar contour slices.\n"
-        "Lengths are in millimetres. Exit codes: 0 ok, 1 usage, 2 bad input, 3 device/runtime.",
+        "Lengths are in millimetres. Exit codes: 0 ok, 1 usage, 2 bad input, 3 device/runtime, 4 "
+        "invalid result.",
         "dfrecon"};
     root.set_version_flag("--version", std::string(DFRECON_VERSION));
     root.require_subcommand(1);
@@ -53,6 +54,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         root.exit(e);
         return kExitUsage;
+    } catch (const InvalidResult& e) {
+        std::cerr << "dfrecon: " << e.what() << "\n";
+        return kExitInvalidResult;
     } catch (const InputError& e) {
         std::cerr << "dfrecon: " << e.what() << "\n";
         return kExitBadInput;

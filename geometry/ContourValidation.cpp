@@ -188,13 +188,13 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
 std::vector<ContourTouch> findContourTouches(const std::vector<Polygon>& contours,
                                              std::size_t pairBudget) {
     std::vector<ContourTouch> touches;
-    visitContacts(segmentsOf(contours), pairBudget,
-                  [&](const Segment& s, const Segment& t, SegmentContact contact) {
-                      if (s.contour != t.contour && contact == SegmentContact::Touch)
-                          touches.push_back(
-                              {s.contour, s.index, t.contour, t.index, touchPoint(s, t)});
-                      return false;
-                  });
+    visitContacts(
+        segmentsOf(contours), pairBudget,
+        [&](const Segment& s, const Segment& t, SegmentContact contact) {
+            if (s.contour != t.contour && contact == SegmentContact::Touch)
+                touches.push_back({s.contour, s.index, t.contour, t.index, touchPoint(s, t)});
+            return false;
+        });
     return touches;
 }
 

@@ -78,8 +78,8 @@ std::size_t separateTouchingContours(std::vector<Polygon>& contours, double gapM
                 intoA = -ccwA;  // a grows away from b inside it
             else if (enclosedBy(a, b, touch.at))
                 intoB = -ccwB;
-            for (auto [contour, segment, sign] : {std::tuple{&a, touch.segmentA, intoA},
-                                                  std::tuple{&b, touch.segmentB, intoB}}) {
+            for (auto [contour, segment, sign] :
+                 {std::tuple{&a, touch.segmentA, intoA}, std::tuple{&b, touch.segmentB, intoB}}) {
                 const std::size_t k = vertexAt(*contour, segment, touch.at);
                 const std::size_t n = contour->size();
                 const Point2 p = (*contour)[k];

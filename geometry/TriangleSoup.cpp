@@ -52,6 +52,10 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     return mesh;
 }
 
+void roundPointsToFloat(TriangleSoup& soup) {
+    for (Vec3& p : soup.points) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
+}
+
 void toPatient(TriangleSoup& soup, const PlaneFrame& frame) {
     if (frame.isIdentity()) return;
     for (Vec3& p : soup.points) p = frame.toPatient(p);

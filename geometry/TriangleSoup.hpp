@@ -24,6 +24,10 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh);
 /// Drops the points no triangle uses and renumbers the triangles. O(n).
 void removeUnusedPoints(TriangleSoup& soup);
 
+/// Rounds every point to the nearest float, as mesh files store them, so
+/// that a check sees the surface a file will hold. O(n).
+void roundPointsToFloat(TriangleSoup& soup);
+
 /// Maps every point from `frame`'s plane coordinates to patient
 /// coordinates; the frame is a rotation, so orientation is kept. O(n).
 void toPatient(TriangleSoup& soup, const PlaneFrame& frame);

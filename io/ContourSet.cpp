@@ -113,4 +113,21 @@ SpacingStats spacingOf(const Roi& roi) {
     return s;
 }
 
+double contourVolumeMm3(const Roi& roi) {
+    const std::vector<Slice>& slices = roi.slices;
+    double volume = 0;
+    for (std::size_t i = 0; i < slices.size(); ++i) {
+        double thickness = roi.slabThicknessMm;
+        if (thickness <= 0 && slices.size() > 1) {
+            const double below = i > 0 ? slices[i].zMm - slices[i - 1].zMm : -1;
+            const double above = i + 1 < slices.size() ? slices[i + 1].zMm - slices[i].zMm : -1;
+            thickness = below < 0 ? above : (above < 0 ? below : 0.5 * (below + above));
+        }
+        double area = 0;
+        for (const Polygon& contour : slices[i].contours) area += signedArea(contour);
+        volume += area * std::max(0.0, thickness);
+    }
+    return volume;
+}
+
 }  // namespace dfrecon

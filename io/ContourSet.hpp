@@ -71,4 +71,11 @@ struct SpacingStats {
 };
 SpacingStats spacingOf(const Roi& roi);
 
+/// The volume planning systems report for an ROI: the sum over its planes
+/// of the contours' net area (holes subtracted) times the plane's thickness
+/// — the DICOM slab thickness when given, else the mean of the gaps to the
+/// neighbouring planes (an end plane takes its one gap). 0 for a single
+/// plane without a slab thickness. O(points).
+double contourVolumeMm3(const Roi& roi);
+
 }  // namespace dfrecon

@@ -590,8 +590,8 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         if (reported[p]) continue;
         reported[p] = true;
         const double below = p == 0 ? slices[0].zMm - capOffset(0, false) : slices[p - 1].zMm;
-        const double above = p == topCap ? slices.back().zMm + capOffset(slices.size() - 1, true)
-                                         : slices[p].zMm;
+        const double above =
+            p == topCap ? slices.back().zMm + capOffset(slices.size() - 1, true) : slices[p].zMm;
         result.brokenPieces.push_back({below, above});
     }
     std::sort(result.brokenPieces.begin(), result.brokenPieces.end());

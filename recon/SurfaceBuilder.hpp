@@ -38,9 +38,7 @@ class SurfaceBuilder {
     void dropPieces(const std::vector<bool>& drop);
     /// Rounds every point to the nearest float, as mesh files store them, so
     /// that a check sees the surface a file will hold. O(points).
-    void roundPointsToFloat() {
-        for (Vec3& p : soup_.points) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
-    }
+    void roundPointsToFloat() { dfrecon::roundPointsToFloat(soup_); }
     /// The triangles from `first` on, as a soup of just their vertices.
     TriangleSoup trianglesSince(std::size_t first) const;
     const TriangleSoup& soup() const { return soup_; }

@@ -16,6 +16,7 @@
 #include "io/LabelVolume.hpp"
 #include "io/SlicesFile.hpp"
 #include "tests/BadSlicesInputs.hpp"
+#include "tests/recon/HostileStacks.hpp"
 
 namespace fs = std::filesystem;
 
@@ -235,13 +236,63 @@ TEST(Cli, ReconstructWritesACheckedSolidAndReportsIt) {
     ASSERT_EQ(check.exitCode, 0) << check.out;
     const auto checked = nlohmann::json::parse(check.out);
     EXPECT_EQ(checked["triangles"], report["triangles"]);
-    // Both commands report the mesh check in one form, under the same keys.
+    // Both commands report the mesh check in one form, under the same keys
+    // (check adds where the defects are; reconstruct says which slabs).
     for (const auto& [key, value] : checked.items()) {
-        if (key != "command" && key != "file") {
+        if (key != "command" && key != "file" && key != "defectiveTriangles" &&
+            key != "defectBoxMm" && key != "selfIntersectingAt") {
             EXPECT_TRUE(report.contains(key)) << key;
         }
     }
     EXPECT_EQ(report["selfIntersectingPairs"], 0);
+    EXPECT_TRUE(report["written"].get<bool>());
+    EXPECT_TRUE(report["brokenSlabsMm"].empty());
+    // Flat caps at half the spacing: the volume planning systems count.
+    EXPECT_NEAR(report["volumeCc"].get<double>(), report["contourVolumeCc"].get<double>(),
+                0.02 * report["contourVolumeCc"].get<double>());
+}
+
+TEST(Cli, CheckSaysWhereTheDefectsAre) {
+    // Two tetrahedra through each other: valid apart, intersecting together.
+    const fs::path crossing = scratch() / "crossing.off";
+    std::ofstream(crossing) << "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                            << "0.2 0.2 0.2\n1.2 0.2 0.2\n0.2 1.2 0.2\n0.2 0.2 1.2\n"
+                            << "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+                            << "3 4 6 5\n3 4 5 7\n3 5 6 7\n3 4 7 6\n";
+    const Result run = runDfrecon("check --json " + crossing.string());
+    EXPECT_EQ(run.exitCode, 2);
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_GT(report["selfIntersectingPairs"].get<int>(), 0);
+    ASSERT_FALSE(report["selfIntersectingAt"].empty());
+    const auto& first = report["selfIntersectingAt"][0];
+    EXPECT_EQ(first["triangles"].size(), 2u);
+    EXPECT_EQ(first["cornersMm"][0].size(), 3u);
+    EXPECT_GT(report["defectiveTriangles"].get<int>(), 1);
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_GE(report["defectBoxMm"]["min"][axis].get<double>(), 0.0);
+        EXPECT_LE(report["defectBoxMm"]["max"][axis].get<double>(), 1.2 + 1e-6);
+    }
+    const Result text = runDfrecon("check " + crossing.string());
+    EXPECT_NE(text.out.find("meet: [[["), std::string::npos) << text.out;
+}
+
+TEST(Cli, ReconstructGivesValidSolidsForAHostileLabelVolume) {
+    // Blobs that touch and merge, a bending tube, a shell with an island:
+    // every ROI valid as written, exit 0 (4 would mean one was not).
+    const dfrecon::LabelVolume volume = dfrecon::testing::hostileLabelVolume(16);
+    const fs::path nrrd = scratch() / "hostile.nrrd", dir = scratch() / "hostile";
+    dfrecon::writeMaskNrrd(nrrd.string(), volume.geometry,
+                           std::vector<std::uint8_t>(volume.labels.begin(), volume.labels.end()));
+    const Result run =
+        runDfrecon("-q reconstruct " + nrrd.string() + " --all --json -o " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["rois"].size(), 3u);
+    for (const auto& roi : report["rois"]) {
+        EXPECT_TRUE(roi["validSolid"].get<bool>()) << roi["roi"];
+        const Result check = runDfrecon("check " + roi["output"].get<std::string>());
+        EXPECT_EQ(check.exitCode, 0) << check.out;
+    }
 }
 
 TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {

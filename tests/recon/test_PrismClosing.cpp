@@ -73,8 +73,9 @@ TEST(PrismClosing, ACornerOnAnEdgeAndAStaircase) {
 TEST(PrismClosing, BranchingWithHolesOnBothSides) {
     Polygon hole = rectangle(1, 1, 2, 2);
     std::reverse(hole.begin(), hole.end());
-    expectValid(closedSlab({rectangle(0, 0, 3, 3), hole}, {rectangle(0, 0, 1, 3), rectangle(2, 0, 3, 3)}),
-                8 * 1.5 + 6 * 1.5);
+    expectValid(
+        closedSlab({rectangle(0, 0, 3, 3), hole}, {rectangle(0, 0, 1, 3), rectangle(2, 0, 3, 3)}),
+        8 * 1.5 + 6 * 1.5);
 }
 
 }  // namespace

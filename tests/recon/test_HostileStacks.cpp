@@ -1,0 +1,67 @@
+// Reconstruction on random structure sets as segmentation tools make them
+// (tests/recon/HostileStacks.hpp): every ROI must be a valid closed solid as
+// a float mesh file holds it, by the independent checker, whatever the
+// coincidences of its pixel contours.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "geometry/MeshCheck.hpp"
+#include "recon/Reconstruction.hpp"
+#include "tests/recon/HostileStacks.hpp"
+
+namespace dfrecon {
+namespace {
+
+ocl::Runtime& runtime() {
+    static ocl::Runtime instance("cpu");
+    return instance;
+}
+
+void expectEveryRoiValid(std::uint32_t seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const ContourSet set = contoursFromLabels(testing::hostileLabelVolume(seed));
+    ASSERT_FALSE(set.rois.empty());
+    for (const Roi& roi : set.rois) {
+        if (roi.slices.empty()) continue;
+        const Reconstruction result = reconstructSurface(runtime(), roi);
+        TriangleSoup written = result.surface;
+        roundPointsToFloat(written);
+        const MeshCheckReport check = checkMesh(written);
+        EXPECT_TRUE(check.validSolid())
+            << roi.name << ": boundary " << check.boundaryEdges << ", non-manifold "
+            << check.nonManifoldEdges << "/" << check.nonManifoldVertices << ", misoriented "
+            << check.misorientedEdges << ", degenerate " << check.degenerateTriangles
+            << ", intersecting " << check.intersectingPairs << ", volume " << check.volumeMm3;
+        EXPECT_EQ(result.check.validSolid(), check.validSolid()) << roi.name;
+        EXPECT_TRUE(result.brokenPieces.empty()) << roi.name;
+    }
+}
+
+class HostileStack : public ::testing::TestWithParam<std::uint32_t> {};
+
+TEST_P(HostileStack, EveryRoiIsAValidClosedSolid) {
+    expectEveryRoiValid(GetParam());
+}
+
+// Two dozen seeds in every run; DFRECON_HOSTILE_SEEDS=FIRST:LAST sweeps any
+// range (docs/reconstruction.md), e.g.
+//   DFRECON_HOSTILE_SEEDS=1:500 build/bin/test_recon --gtest_filter='HostileSweep*'
+TEST(HostileSweep, SeedsFromTheEnvironment) {
+    const char* range = std::getenv("DFRECON_HOSTILE_SEEDS");
+    if (!range) GTEST_SKIP() << "set DFRECON_HOSTILE_SEEDS=FIRST:LAST to sweep";
+    unsigned first = 0, last = 0;
+    ASSERT_EQ(std::sscanf(range, "%u:%u", &first, &last), 2) << range;
+    for (unsigned seed = first; seed <= last; ++seed) expectEveryRoiValid(seed);
+}
+
+#ifdef DFRECON_SANITIZE_BUILD
+INSTANTIATE_TEST_SUITE_P(Seeds, HostileStack, ::testing::Range(1u, 7u));
+#else
+INSTANTIATE_TEST_SUITE_P(Seeds, HostileStack, ::testing::Range(1u, 25u));
+#endif
+
+}  // namespace
+}  // namespace dfrecon
