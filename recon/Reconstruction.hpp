@@ -80,9 +80,13 @@ struct Reconstruction {
     std::vector<std::pair<double, double>> brokenPieces;
 };
 
-/// Reconstructs one ROI. With CapMode::Flat or Dome the result is closed and
-/// consistently oriented; contour points are mesh vertices (exactly, unless
-/// simplified away). `progress` receives the fraction done. Throws
+/// Reconstructs one ROI. With CapMode::Flat or Dome the result is a valid
+/// closed solid by construction (docs/reconstruction.md, "Valid by
+/// construction"), checked with its points rounded to float as mesh files
+/// store them — `check` says so, and `brokenPieces` where it is not. Contour
+/// points are mesh vertices, to float precision (unless simplified away, or
+/// moved 1 µm where contours of a plane touched). `progress` receives the
+/// fraction done. Throws
 /// std::invalid_argument for an ROI without contours, ClError on device
 /// failure. Work: the fields, O(pixels) per slab for the axes, O(points)
 /// for the strips.

@@ -62,14 +62,16 @@ void expectSolid(const Checked& c, long genus, std::size_t components) {
     EXPECT_EQ(c.check.components, components);
 }
 
-// Every contour point is a vertex of the surface, exactly.
+// Every contour point is a vertex of the surface, exactly as a float mesh
+// file holds it (the surface is checked, and so given, in floats).
 void expectContoursAreVertices(const Roi& roi, const TriangleSoup& surface) {
     std::set<std::tuple<double, double, double>> vertices;
     for (const Vec3& p : surface.points) vertices.insert({p.x, p.y, p.z});
     for (const Slice& slice : roi.slices)
         for (const Polygon& contour : slice.contours)
             for (Point2 p : contour)
-                ASSERT_TRUE(vertices.count({p.x, p.y, slice.zMm}))
+                ASSERT_TRUE(vertices.count(
+                    {double(float(p.x)), double(float(p.y)), double(float(slice.zMm))}))
                     << p.x << " " << p.y << " " << slice.zMm;
 }
 
