@@ -15,6 +15,7 @@ int benchSimplify(const std::string& device);
 int benchRtStruct();
 int benchSdm(const std::string& device);
 int benchSegment(const std::string& device);
+int benchStructureSet(const std::string& device);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

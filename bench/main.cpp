@@ -9,7 +9,8 @@ using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
     const std::string usage =
-        "usage: dfrecon-bench fields|recon|simplify|slices-io|rtstruct|sdm|segment|all "
+        "usage: dfrecon-bench "
+        "fields|recon|simplify|slices-io|rtstruct|sdm|segment|structure-set|all "
         "[--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
@@ -21,7 +22,9 @@ int main(int argc, char** argv) {
         "  sdm        surface distance maps, 512x512 per object, 6K-triangle scene, vs brute "
         "force and OpenVDB meshToVolume\n"
         "  segment    geodesic distances (fast marching, OpenCL fast iterative method) on spheres "
-        "and libcgal-demo meshes; geodesic Lloyd segmentation\n";
+        "and libcgal-demo meshes; geodesic Lloyd segmentation\n"
+        "  structure-set  whole structure sets (Brodmann atlas, kmeans, many blobs) through "
+        "reconstruct --all vs rasterise + marching cubes\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -37,9 +40,11 @@ int main(int argc, char** argv) {
     if (suite == "rtstruct") return benchRtStruct();
     if (suite == "sdm") return benchSdm(device);
     if (suite == "segment") return benchSegment(device);
+    if (suite == "structure-set") return benchStructureSet(device);
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
-               benchSimplify(device) | benchSdm(device) | benchSegment(device);
+               benchSimplify(device) | benchSdm(device) | benchSegment(device) |
+               benchStructureSet(device);
     std::cerr << usage;
     return 1;
 }

@@ -15,8 +15,8 @@
 
 #include "io/LabelVolume.hpp"
 #include "io/SlicesFile.hpp"
+#include "shapes/RandomLabelVolumes.hpp"
 #include "tests/BadSlicesInputs.hpp"
-#include "tests/recon/HostileStacks.hpp"
 
 namespace fs = std::filesystem;
 
@@ -279,7 +279,7 @@ TEST(Cli, CheckSaysWhereTheDefectsAre) {
 TEST(Cli, ReconstructGivesValidSolidsForAHostileLabelVolume) {
     // Blobs that touch and merge, a bending tube, a shell with an island:
     // every ROI valid as written, exit 0 (4 would mean one was not).
-    const dfrecon::LabelVolume volume = dfrecon::testing::hostileLabelVolume(16);
+    const dfrecon::LabelVolume volume = dfrecon::hostileLabelVolume(16);
     const fs::path nrrd = scratch() / "hostile.nrrd", dir = scratch() / "hostile";
     dfrecon::writeMaskNrrd(nrrd.string(), volume.geometry,
                            std::vector<std::uint8_t>(volume.labels.begin(), volume.labels.end()));

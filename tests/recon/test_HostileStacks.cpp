@@ -1,5 +1,5 @@
 // Reconstruction on random structure sets as segmentation tools make them
-// (tests/recon/HostileStacks.hpp): every ROI must be a valid closed solid as
+// (shapes/RandomLabelVolumes): every ROI must be a valid closed solid as
 // a float mesh file holds it, by the independent checker, whatever the
 // coincidences of its pixel contours.
 #include <gtest/gtest.h>
@@ -9,8 +9,9 @@
 #include <string>
 
 #include "geometry/MeshCheck.hpp"
+#include "io/MaskContours.hpp"
 #include "recon/Reconstruction.hpp"
-#include "tests/recon/HostileStacks.hpp"
+#include "shapes/RandomLabelVolumes.hpp"
 
 namespace dfrecon {
 namespace {
@@ -22,7 +23,7 @@ ocl::Runtime& runtime() {
 
 void expectEveryRoiValid(std::uint32_t seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const ContourSet set = contoursFromLabels(testing::hostileLabelVolume(seed));
+    const ContourSet set = contoursFromLabels(hostileLabelVolume(seed));
     ASSERT_FALSE(set.rois.empty());
     for (const Roi& roi : set.rois) {
         if (roi.slices.empty()) continue;
