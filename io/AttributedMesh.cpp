@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/MeshIO.hpp"
 
 namespace dfrecon {
 
@@ -85,7 +86,7 @@ void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const st
     for (const auto& [name, values] : attributes.faceLabels)
         addProperty<OpenMesh::FPropHandleT<int>>(mesh, name, mesh.faces(), values);
     writeAtomically(path, [&](const std::string& temporary) {
-        return OpenMesh::IO::write_mesh(mesh, temporary, flags);
+        return OpenMesh::IO::write_mesh(mesh, temporary, flags, kAsciiMeshDigits);
     });
 }
 

@@ -55,7 +55,7 @@ void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOpti
         flags += OpenMesh::IO::Options::VertexNormal;
     }
     writeAtomically(path, [&](const std::string& temporary) {
-        return OpenMesh::IO::write_mesh(copy, temporary, flags);
+        return OpenMesh::IO::write_mesh(copy, temporary, flags, kAsciiMeshDigits);
     });
 }
 

@@ -293,6 +293,15 @@ TEST(Cli, ReconstructGivesValidSolidsForAHostileLabelVolume) {
         const Result check = runDfrecon("check " + roi["output"].get<std::string>());
         EXPECT_EQ(check.exitCode, 0) << check.out;
     }
+    // ASCII files keep every coordinate the check saw (6 digits would not).
+    for (const char* ext : {".ply", ".obj", ".off"}) {
+        const fs::path ascii = scratch() / (std::string("hostile-ascii") + ext);
+        const Result written = runDfrecon("-q reconstruct " + nrrd.string() +
+                                          " --roi label_1 --ascii -o " + ascii.string());
+        ASSERT_EQ(written.exitCode, 0) << written.err;
+        const Result check = runDfrecon("check " + ascii.string());
+        EXPECT_EQ(check.exitCode, 0) << ext << ": " << check.out;
+    }
 }
 
 TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {
