@@ -17,7 +17,7 @@
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
-#include "recon/LevinBaseline.hpp"
+#include "recon/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "simplify/SurfaceDistance.hpp"

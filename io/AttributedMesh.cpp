@@ -49,13 +49,6 @@ void addProperty(TriMesh& mesh, const std::string& name, Range elements, const V
     for (auto e : elements) mesh.property(handle, e) = values[std::size_t(e.idx())];
 }
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 }  // namespace
 
 void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,

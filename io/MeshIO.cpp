@@ -15,7 +15,7 @@
 
 namespace dfrecon {
 
-static std::string lowerExtension(const std::string& path) {
+std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
@@ -26,10 +26,20 @@ bool isMeshExtension(const std::string& path) {
     return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".stl";
 }
 
-TriMesh readMesh(const std::string& path) {
+namespace {
+
+// What both readers refuse before parsing: an extension OpenMesh does not
+// read, or a path that is no regular file.
+void requireMeshFile(const std::string& path) {
     if (!isMeshExtension(path))
         throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
+}
+
+}  // namespace
+
+TriMesh readMesh(const std::string& path) {
+    requireMeshFile(path);
     TriMesh mesh;
     OpenMesh::IO::Options options;
     if (!OpenMesh::IO::read_mesh(mesh, path, options))
@@ -157,12 +167,8 @@ void checkAsciiOffIsComplete(const std::string& path) {
 }  // namespace
 
 TriangleSoup readTriangleSoup(const std::string& path) {
-    if (!isMeshExtension(path))
-        throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
-    if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
-    std::string extension = std::filesystem::path(path).extension().string();
-    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".off") checkAsciiOffIsComplete(path);
+    requireMeshFile(path);
+    if (lowerExtension(path) == ".off") checkAsciiOffIsComplete(path);
     TriangleSoup soup;
     SoupImporter importer(soup);
     IO::Options options;

@@ -19,6 +19,9 @@ struct MeshWriteOptions {
     bool vertexNormals = true;  // PLY, OBJ, OFF: per-vertex normals
 };
 
+/// The file name's extension in lower case, dot included ("" for none).
+std::string lowerExtension(const std::string& path);
+
 /// True for .ply .obj .off .stl (any letter case).
 bool isMeshExtension(const std::string& path);
 

@@ -1,11 +1,11 @@
-// The marching-cubes baseline on analytic shapes: a valid closed solid, near
-// the analytic surface, with the planning-system volume.
+// The marching-cubes baselines on analytic shapes: closed solids with the
+// planning-system volume (shape-based interpolation also near the surface).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "geometry/MeshCheck.hpp"
-#include "recon/LevinBaseline.hpp"
+#include "recon/MarchingCubesBaselines.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
@@ -39,5 +39,22 @@ TEST(LevinBaseline, SphereAndTorusAreValidSolidsNearTheSurface) {
         }
         EXPECT_LT(sum / double(mesh.n_vertices()), 0.6);  // staircase and caps included
         EXPECT_LT(worst, 2.5);
+    }
+}
+
+TEST(RasterBaseline, SphereAndTorusAreClosedWithThePlanningVolume) {
+    for (const char* name : {"sphere", "torus"}) {
+        SCOPED_TRACE(name);
+        SynthOptions options;
+        options.spacingMm = 2;
+        options.pointsPerContour = 128;
+        const ContourSet set = sliceShape(*makeShape(name), options);
+        const TriangleSoup soup = rasterBaseline(set.rois[0], 0.5);
+        const MeshCheckReport report = checkMesh(soup);
+        EXPECT_TRUE(report.watertight()) << report.boundaryEdges << " " << report.nonManifoldEdges;
+        EXPECT_GT(report.volumeMm3, 0) << "normals point outward";
+        EXPECT_EQ(report.genus, std::string(name) == "torus" ? 1 : 0);
+        // Each plane one spacing thick: the volume planning systems count.
+        EXPECT_NEAR(report.volumeMm3 / contourVolumeMm3(set.rois[0]), 1, 0.03);
     }
 }

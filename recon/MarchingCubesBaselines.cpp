@@ -1,4 +1,4 @@
-#include "recon/LevinBaseline.hpp"
+#include "recon/MarchingCubesBaselines.hpp"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/SignedFloodFill.h>
@@ -11,9 +11,35 @@
 
 namespace dfrecon {
 
-TriMesh levinBaseline(const SliceFields& fields) {
+namespace {
+
+void initialiseOpenVdb() {
     static std::once_flag initialised;
     std::call_once(initialised, [] { openvdb::initialize(); });
+}
+
+// Marching cubes on `volume` at `isovalue`, as outward triangles.
+TriangleSoup isoSurface(const openvdb::FloatGrid& volume, double isovalue) {
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(volume, points, triangles, quads, isovalue);
+    TriangleSoup soup;
+    soup.points.reserve(points.size());
+    for (const openvdb::Vec3s& p : points) soup.points.push_back({p[0], p[1], p[2]});
+    // OpenVDB winds its faces clockwise seen from outside; flip to outward.
+    for (const openvdb::Vec3I& t : triangles) soup.triangles.push_back({t[2], t[1], t[0]});
+    for (const openvdb::Vec4I& q : quads) {
+        soup.triangles.push_back({q[3], q[2], q[1]});
+        soup.triangles.push_back({q[3], q[1], q[0]});
+    }
+    return soup;
+}
+
+}  // namespace
+
+TriMesh levinBaseline(const SliceFields& fields) {
+    initialiseOpenVdb();
     const std::size_t slices = fields.sliceCount();
     if (slices == 0) throw std::invalid_argument("levinBaseline: no slices");
     const SliceGrid& grid = fields.grid;
@@ -90,23 +116,46 @@ TriMesh levinBaseline(const SliceFields& fields) {
     }
     openvdb::tools::signedFloodFill(volume->tree());
 
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> triangles;
-    std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*volume, points, triangles, quads, 0.0);
+    return toTriMesh(isoSurface(*volume, 0.0));
+}
 
-    TriMesh mesh;
-    std::vector<TriMesh::VertexHandle> handles;
-    handles.reserve(points.size());
-    for (const openvdb::Vec3s& p : points) handles.push_back(mesh.add_vertex({p[0], p[1], p[2]}));
-    // OpenVDB winds its faces clockwise seen from outside; flip to outward.
-    for (const openvdb::Vec3I& t : triangles)
-        mesh.add_face(handles[t[2]], handles[t[1]], handles[t[0]]);
-    for (const openvdb::Vec4I& q : quads) {
-        mesh.add_face(handles[q[3]], handles[q[2]], handles[q[1]]);
-        mesh.add_face(handles[q[3]], handles[q[1]], handles[q[0]]);
+TriangleSoup rasterBaseline(const Roi& roi, double pixelMm) {
+    initialiseOpenVdb();
+    if (roi.slices.empty()) throw std::invalid_argument("rasterBaseline: no slices");
+    Box2 box;
+    for (const Slice& s : roi.slices)
+        for (const Polygon& c : s.contours)
+            for (Point2 p : c) box.add(p);
+    const double h = pixelMm;
+    const int width = int(std::ceil((box.max.x - box.min.x) / h)) + 1;
+    const double spacing = roi.slices.size() > 1 ? spacingOf(roi).meanMm : 1.0;
+    openvdb::FloatGrid::Ptr volume = openvdb::FloatGrid::create(0.0f);
+    openvdb::math::Mat4d scale = openvdb::math::Mat4d::identity();
+    scale.preScale(openvdb::Vec3d(h, h, spacing));
+    scale.postTranslate(openvdb::Vec3d(box.min.x, box.min.y, roi.slices.front().zMm));
+    volume->setTransform(openvdb::math::Transform::createLinearTransform(scale));
+    auto access = volume->getAccessor();
+    std::vector<double> crossings;
+    for (const Slice& slice : roi.slices) {
+        const int plane = int(std::lround((slice.zMm - roi.slices.front().zMm) / spacing));
+        for (int j = 0; box.min.y + j * h <= box.max.y; ++j) {
+            const double y = box.min.y + j * h;
+            // Even-odd along the row: inside between the 1st and 2nd crossing, ...
+            crossings.clear();
+            for (const Polygon& c : slice.contours)
+                for (std::size_t e = 0; e < c.size(); ++e) {
+                    const Point2 a = c[e], b = c[(e + 1) % c.size()];
+                    if ((a.y <= y) != (b.y <= y))
+                        crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+                }
+            std::sort(crossings.begin(), crossings.end());
+            for (std::size_t c = 0; c + 1 < crossings.size(); c += 2)
+                for (int i = std::max(0, int(std::ceil((crossings[c] - box.min.x) / h)));
+                     i < width && box.min.x + i * h <= crossings[c + 1]; ++i)
+                    access.setValue(openvdb::Coord(i, j, plane), 1.0f);
+        }
     }
-    return mesh;
+    return isoSurface(*volume, 0.5);
 }
 
 }  // namespace dfrecon
