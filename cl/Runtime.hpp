@@ -45,6 +45,12 @@ class Runtime {
     std::map<std::string, cl::Program> programs_;
 };
 
+/// The work-group size of every 1D launch, always given explicitly: PoCL
+/// builds one work-group function per local size, and a size left to the
+/// runtime follows the global size, so launches of ever new sizes (the
+/// recursion's windows, an eikonal front) would each compile again.
+inline constexpr std::size_t kGroupSize1D = 64;
+
 /// Rounds `n` up to a multiple of `multiple` (global sizes must be multiples
 /// of the work-group size).
 inline std::size_t roundUp(std::size_t n, std::size_t multiple) {

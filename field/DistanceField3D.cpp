@@ -90,7 +90,8 @@ void propagateAlongZ(ocl::Runtime& runtime, DistanceField3D& field) {
         kernel.setArg(2, cl_uint(field.layerCount()));
         kernel.setArg(3, cl_uint(pixels));
         runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                             cl::NDRange(ocl::roundUp(pixels, 64)));
+                                             cl::NDRange(ocl::roundUp(pixels, ocl::kGroupSize1D)),
+                                             cl::NDRange(ocl::kGroupSize1D));
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "distance_3d.cl");
     }

@@ -161,10 +161,14 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
             kernel.setArg(a++, capacity);
             kernel.setArg(a++, list.get());
             kernel.setArg(a++, listCount.get());
+            // Work-groups of a fixed 4 × 4 tiles (padding tiles return at
+            // once): PoCL builds one work-group function per local size, and
+            // windows of every size would each get a new one.
             runtime.queue().enqueueNDRangeKernel(
                 kernel, cl::NullRange,
-                cl::NDRange((std::size_t(grid.width) + tile - 1) / tile,
-                            (std::size_t(grid.height) + tile - 1) / tile, batch));
+                cl::NDRange(ocl::roundUp((std::size_t(grid.width) + tile - 1) / tile, 4),
+                            ocl::roundUp((std::size_t(grid.height) + tile - 1) / tile, 4), batch),
+                cl::NDRange(4, 4, 1));
         };
         // The coarse level has no parent; it gets its own buffers as dummies.
         cull(kCoarseTile, 0, coarse, coarseCount, 0, coarseCapacity, coarse, coarseCount);

@@ -18,6 +18,30 @@ SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
     return grid;
 }
 
+SliceGrid windowOf(const SliceGrid& grid, const Box2& box, int marginPx) {
+    SliceGrid window = grid;
+    if (box.empty()) {
+        window.width = window.height = 0;
+        return window;
+    }
+    // Pixel index ranges whose centres reach the box plus the margin.
+    auto first = [&](double lo, double origin, int size) {
+        return std::clamp(int(std::floor((lo - origin) / grid.pixelMm - 0.5)) - marginPx, 0, size);
+    };
+    auto last = [&](double hi, double origin, int size) {
+        return std::clamp(int(std::ceil((hi - origin) / grid.pixelMm - 0.5)) + marginPx + 1, 0,
+                          size);
+    };
+    const int i0 = first(box.min.x, grid.originMm.x, grid.width);
+    const int i1 = last(box.max.x, grid.originMm.x, grid.width);
+    const int j0 = first(box.min.y, grid.originMm.y, grid.height);
+    const int j1 = last(box.max.y, grid.originMm.y, grid.height);
+    window.originMm = {grid.originMm.x + i0 * grid.pixelMm, grid.originMm.y + j0 * grid.pixelMm};
+    window.width = std::max(0, i1 - i0);
+    window.height = std::max(0, j1 - j0);
+    return window;
+}
+
 SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gridPixels) {
     Box2 box;
     for (const Slice& slice : slices)

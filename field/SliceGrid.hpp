@@ -24,6 +24,13 @@ struct SliceGrid {
 /// every side.
 SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx);
 
+/// The part of `grid` that covers `box` plus `marginPx` pixels on every
+/// side, on the same lattice (its pixel centres are `grid`'s) and clipped to
+/// it; an empty box gives an empty window. Fields sampled on a window equal
+/// the whole grid's at the same points, so work on one part of an ROI costs
+/// pixels of that part only. O(1).
+SliceGrid windowOf(const SliceGrid& grid, const Box2& box, int marginPx);
+
 /// Default grid side in pixels and margin (docs/fields.md).
 inline constexpr int kDefaultGridPixels = 512;
 inline constexpr int kGridMarginPx = 8;

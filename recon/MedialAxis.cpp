@@ -43,8 +43,9 @@ SliceSum sumSlices(ocl::Runtime& runtime, const SliceFields& fields, std::size_t
         kernel.setArg(a++, negative.get());
         runtime.queue().enqueueNDRangeKernel(
             kernel, cl::NullRange,
-            cl::NDRange(ocl::roundUp(std::size_t(grid.width), 16),
-                        ocl::roundUp(std::size_t(grid.height), 16)));
+            cl::NDRange(ocl::roundUp(std::size_t(grid.width), 8),
+                        ocl::roundUp(std::size_t(grid.height), 8)),
+            cl::NDRange(8, 8));  // fixed, so PoCL builds one work-group function
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "medial_axis_2d.cl");
     }

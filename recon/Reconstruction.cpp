@@ -195,15 +195,31 @@ class SurfaceReconstructor {
         return sign < 0;
     }
 
-    /// The fields of `parts`, one slice each, in order.
-    SliceFields fieldsOf(const std::vector<LayerPart>& parts) {
+    /// The window of the ROI's grid around `parts`: everything later steps
+    /// read of their fields (the negative regions, their borders and the
+    /// isolines) lies inside the parts' contours, and the margin is the one
+    /// the whole grid keeps, so the window answers as the whole grid would
+    /// at a fraction of the pixels.
+    SliceGrid windowAround(const std::vector<LayerPart>& parts) const {
+        Box2 box;
+        for (const LayerPart& p : parts)
+            for (std::uint32_t c : p.contours)
+                for (Point2 q : p.layer->contours[c]) box.add(q);
+        return windowOf(grid_, box, kGridMarginPx);
+    }
+
+    /// The fields of `parts`, one slice each, in order, on `grid` (by
+    /// default the window around them).
+    SliceFields fieldsOf(const std::vector<LayerPart>& parts,
+                         std::optional<SliceGrid> grid = std::nullopt) {
         std::vector<Slice> slices;
         for (const LayerPart& p : parts) {
             Slice& slice = slices.emplace_back(Slice{p.layer->zMm, {}});
             for (std::uint32_t c : p.contours) slice.contours.push_back(p.layer->contours[c]);
         }
         const auto start = Clock::now();
-        SliceFields fields = computeSliceFields(runtime_, slices, grid_, {}, options_.kernel);
+        SliceFields fields = computeSliceFields(
+            runtime_, slices, grid ? *grid : windowAround(parts), {}, options_.kernel);
         stats_.fieldsSeconds += secondsSince(start);
         return fields;
     }
@@ -212,6 +228,9 @@ class SurfaceReconstructor {
     /// field computed once serves both halves of a recursion.
     static SliceFields pairOf(const SliceFields& a, std::size_t ia, const SliceFields& b,
                               std::size_t ib) {
+        if (a.grid.originMm.x != b.grid.originMm.x || a.grid.originMm.y != b.grid.originMm.y ||
+            a.grid.width != b.grid.width || a.grid.height != b.grid.height)
+            throw std::logic_error("pairOf: fields on different grids");
         SliceFields pair;
         pair.grid = a.grid;
         const std::size_t pixels = a.grid.pixelCount();
@@ -233,9 +252,10 @@ class SurfaceReconstructor {
         stats_.deepestLevel = std::max(stats_.deepestLevel, depth);
         const double middle = 0.5 * (lower.layer->zMm + upper.layer->zMm);
         std::vector<MedialAxis> axes;
+        SliceSum sum;
         if (!lower.contours.empty() && !upper.contours.empty()) {
             const auto start = Clock::now();
-            const SliceSum sum = sumSlices(runtime_, fields, a, b);
+            sum = sumSlices(runtime_, fields, a, b);
             axes = traceMedialAxes(fields, a, b, sum);
             if (depth > 0 && emptyIsNegative(lower, upper))
                 for (MedialAxis& axis : axes) std::reverse(axis.pixels.begin(), axis.pixels.end());
@@ -249,12 +269,19 @@ class SurfaceReconstructor {
                 for (std::uint32_t k : x.contours) endingLower.contours.push_back(k);
                 for (std::uint32_t k : y.contours) endingUpper.contours.push_back(k);
             } else if (!(c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
-                         strip(x, y, axes[c.axes[0]], c.lower[0], c.upper[0]))) {
+                         strip(x, y, axes[c.axes[0]], fields.grid, c.lower[0], c.upper[0]))) {
                 if (depth >= options_.maxDepth) {
                     closeByPrisms(builder_, x, y, middle);
                     ++stats_.limitClosings;
                 } else {
-                    recurse(x, y, depth);
+                    // A component that is the whole slab has the fields
+                    // in hand already.
+                    const bool whole = x.contours.size() == lower.contours.size() &&
+                                       y.contours.size() == upper.contours.size();
+                    if (whole)
+                        recurse(x, y, depth, pairOf(fields, a, fields, b), &sum);
+                    else
+                        recurse(x, y, depth, fieldsOf({x, y}), nullptr);
                 }
             }
         }
@@ -275,13 +302,15 @@ class SurfaceReconstructor {
     }
 
     bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,
-               std::uint32_t lowerLocal, std::uint32_t upperLocal) {
+               const SliceGrid& axisGrid, std::uint32_t lowerLocal, std::uint32_t upperLocal) {
         const Layer& lower = *x.layer;
         const Layer& upper = *y.layer;
         const std::uint32_t p = x.contours[0], q = y.contours[0];
-        const auto lowerAt = positionsAlongAxis(axis, grid_, lower.contours[p], lowerLocal, true);
+        const auto lowerAt =
+            positionsAlongAxis(axis, axisGrid, lower.contours[p], lowerLocal, true);
         if (!lowerAt) return false;
-        const auto upperAt = positionsAlongAxis(axis, grid_, upper.contours[q], upperLocal, false);
+        const auto upperAt =
+            positionsAlongAxis(axis, axisGrid, upper.contours[q], upperLocal, false);
         if (!upperAt) return false;
         const std::size_t before = builder_.triangleCount();
         stitchStrip(builder_, lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt);
@@ -299,11 +328,13 @@ class SurfaceReconstructor {
 
     /// The paper's Fig. 7: the medial axis becomes a contour half-way, and
     /// both halves are solved again.
-    void recurse(const LayerPart& x, const LayerPart& y, int depth) {
-        const SliceFields fields = fieldsOf({x, y});
+    /// `fields` holds the fields of exactly x and y, `knownSum` (if set)
+    /// their sum.
+    void recurse(const LayerPart& x, const LayerPart& y, int depth, const SliceFields& fields,
+                 const SliceSum* knownSum) {
         const auto start = Clock::now();
-        const SliceSum sum = sumSlices(runtime_, fields, 0, 1);
-        std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, grid_);
+        const SliceSum sum = knownSum ? *knownSum : sumSlices(runtime_, fields, 0, 1);
+        std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, fields.grid);
         // Pixel-step isolines carry far more points than the surface needs.
         Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
@@ -322,7 +353,7 @@ class SurfaceReconstructor {
         const Layer& mid = layers_.back();
         const LayerPart m = part(mid, all(mid));
         // Only the intermediate contours' field is new; x's and y's are reused.
-        const SliceFields middleField = fieldsOf({m});
+        const SliceFields middleField = fieldsOf({m}, fields.grid);
         slab(x, m, pairOf(fields, 0, middleField, 0), 0, 1, depth + 1);
         slab(m, y, pairOf(middleField, 0, fields, 1), 0, 1, depth + 1);
     }
@@ -335,14 +366,15 @@ class SurfaceReconstructor {
                        std::size_t slice) const {
         if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return 0;
         const std::size_t other = up ? slice - 1 : slice + 1;
+        const SliceGrid& grid = fields.grid;
         double sum = 0;
         std::size_t count = 0;
         for (std::uint32_t c : end.contours)
             for (Point2 p : end.layer->contours[c]) {
                 const int i =
-                    std::clamp(int((p.x - grid_.originMm.x) / grid_.pixelMm), 0, grid_.width - 1);
+                    std::clamp(int((p.x - grid.originMm.x) / grid.pixelMm), 0, grid.width - 1);
                 const int j =
-                    std::clamp(int((p.y - grid_.originMm.y) / grid_.pixelMm), 0, grid_.height - 1);
+                    std::clamp(int((p.y - grid.originMm.y) / grid.pixelMm), 0, grid.height - 1);
                 const double d = fields.distanceMm[fields.index(other, i, j)];
                 if (!std::isfinite(d)) return 0;
                 sum += d;
@@ -375,11 +407,11 @@ class SurfaceReconstructor {
         }
         const SliceFields own = fieldsOf({end});
         std::vector<float> shifted(own.distanceMm.begin(),
-                                   own.distanceMm.begin() + std::ptrdiff_t(grid_.pixelCount()));
+                                   own.distanceMm.begin() + std::ptrdiff_t(own.grid.pixelCount()));
         for (float& d : shifted) d += float(insetMm);
         Slice lid{z, {}};
         for (SimplifiedContour& c :
-             simplifySlice(zeroIsolines(shifted, grid_), 0.25 * grid_.pixelMm))
+             simplifySlice(zeroIsolines(shifted, own.grid), 0.25 * own.grid.pixelMm))
             if (c.points.size() >= 3) lid.contours.push_back(std::move(c.points));
         if (lid.contours.empty()) {
             // The end would narrow to nothing before the lid: round it off.
@@ -392,9 +424,9 @@ class SurfaceReconstructor {
         const Layer& top = layers_.back();
         const LayerPart lidPart = part(top, all(top));
         if (up) {
-            slab(end, lidPart, pairOf(own, 0, fieldsOf({lidPart}), 0), 0, 1, 1);
+            slab(end, lidPart, pairOf(own, 0, fieldsOf({lidPart}, own.grid), 0), 0, 1, 1);
         } else {
-            slab(lidPart, end, pairOf(fieldsOf({lidPart}), 0, own, 0), 0, 1, 1);
+            slab(lidPart, end, pairOf(fieldsOf({lidPart}, own.grid), 0, own, 0), 0, 1, 1);
         }
         roundedCap(builder_, lidPart, up, 0.0, 0.0, {}, [](Point2) { return 0.0; });
     }
@@ -404,14 +436,15 @@ class SurfaceReconstructor {
         // Inner vertices on a lattice a third of the cap height apart (so the
         // rounding gets a few steps), at least a pixel and a half inside,
         // where the slice's field is exact.
-        const double pixel = grid_.pixelMm;
+        const SliceGrid& grid = fields.grid;
+        const double pixel = grid.pixelMm;
         const int step = std::max(2, int(std::lround(heightMm / 3 / pixel)));
         auto depthAt = [&](int i, int j) { return -fields.distanceMm[fields.index(slice, i, j)]; };
         std::vector<Point2> inner;
-        for (int j = step / 2; j < grid_.height; j += step) {
-            for (int i = step / 2; i < grid_.width; i += step) {
+        for (int j = step / 2; j < grid.height; j += step) {
+            for (int i = step / 2; i < grid.width; i += step) {
                 if (depthAt(i, j) < 1.5 * pixel) continue;
-                const Point2 p = grid_.pixelCentre(i, j);
+                const Point2 p = grid.pixelCentre(i, j);
                 int winding = 0;
                 for (std::uint32_t c : end.contours)
                     winding += windingNumber(p, end.layer->contours[c]);
@@ -430,15 +463,15 @@ class SurfaceReconstructor {
             const Box2 box = boundingBox(contour);
             double best = 0.5 * pixel;
             std::optional<Point2> deepest;
-            const int i0 = std::max(0, int((box.min.x - grid_.originMm.x) / pixel));
-            const int i1 = std::min(grid_.width - 1, int((box.max.x - grid_.originMm.x) / pixel));
-            const int j0 = std::max(0, int((box.min.y - grid_.originMm.y) / pixel));
-            const int j1 = std::min(grid_.height - 1, int((box.max.y - grid_.originMm.y) / pixel));
+            const int i0 = std::max(0, int((box.min.x - grid.originMm.x) / pixel));
+            const int i1 = std::min(grid.width - 1, int((box.max.x - grid.originMm.x) / pixel));
+            const int j0 = std::max(0, int((box.min.y - grid.originMm.y) / pixel));
+            const int j1 = std::min(grid.height - 1, int((box.max.y - grid.originMm.y) / pixel));
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i)
-                    if (depthAt(i, j) > best && inside(grid_.pixelCentre(i, j))) {
+                    if (depthAt(i, j) > best && inside(grid.pixelCentre(i, j))) {
                         best = depthAt(i, j);
-                        deepest = grid_.pixelCentre(i, j);
+                        deepest = grid.pixelCentre(i, j);
                     }
             if (!deepest) {
                 prismCap(end, up, heightMm);
@@ -521,7 +554,6 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     const SliceFields fields =
         computeSliceFields(runtime, slices, grid, fieldProgress, options.kernel);
     stats.fieldsSeconds = secondsSince(start);
-
     start = Clock::now();
     const double fieldsAndMedialBefore = stats.fieldsSeconds;
     SurfaceReconstructor reconstructor(runtime, options, grid, stats);

@@ -270,8 +270,9 @@ class DeviceSceneT final : public DeviceScene {
             kernel.setArg(a++, dNearest.get());
             kernel.setArg(a++, dFeature.get());
             kernel.setArg(a++, dClosest.get());
-            runtime_.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                                  cl::NDRange(ocl::roundUp(samples.size(), 64)));
+            runtime_.queue().enqueueNDRangeKernel(
+                kernel, cl::NullRange, cl::NDRange(ocl::roundUp(samples.size(), ocl::kGroupSize1D)),
+                cl::NDRange(ocl::kGroupSize1D));
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
         }

@@ -231,27 +231,29 @@ class FimDevice final : public EikonalFim::Device {
             cl::CommandQueue& queue = runtime_.queue();
             for (; count > 0 && int(iteration) <= limit_; ++iteration) {
                 local.vertexUpdates += count;
-                const cl::NDRange global(ocl::roundUp(count, 64));
+                const cl::NDRange global(ocl::roundUp(count, ocl::kGroupSize1D));
+                const cl::NDRange group(ocl::kGroupSize1D);
                 setArgs(update_, list_.get(), count, stencilFirst_.get(), corners_.get(),
                         shapes_.get(), slowness_.get(), time_.get(), label_.get(), tolerance_,
                         slotTime_.get(), slotLabel_.get(), slotSettled_.get());
-                queue.enqueueNDRangeKernel(update_, cl::NullRange, global);
+                queue.enqueueNDRangeKernel(update_, cl::NullRange, global, group);
                 setArgs(commit_, list_.get(), count, slotTime_.get(), slotLabel_.get(), time_.get(),
                         label_.get());
-                queue.enqueueNDRangeKernel(commit_, cl::NullRange, global);
+                queue.enqueueNDRangeKernel(commit_, cl::NullRange, global, group);
                 queue.enqueueFillBuffer(nextCount_.get(), cl_uint(0), 0, sizeof(cl_uint));
                 setArgs(expand_, list_.get(), count, slotSettled_.get(), dependentFirst_.get(),
                         dependents_.get(), stencilFirst_.get(), corners_.get(), shapes_.get(),
                         slowness_.get(), time_.get(), label_.get(), tolerance_, member_.get(),
                         claimed_.get(), iteration, nextList_.get(), nextTime_.get(),
                         nextLabel_.get(), nextCount_.get());
-                queue.enqueueNDRangeKernel(expand_, cl::NullRange, global);
+                queue.enqueueNDRangeKernel(expand_, cl::NullRange, global, group);
                 queue.enqueueReadBuffer(nextCount_.get(), CL_TRUE, 0, sizeof(cl_uint), &count);
                 if (count > 0) {
                     setArgs(commitNext_, nextList_.get(), count, nextTime_.get(), nextLabel_.get(),
                             cl_uint(iteration + 1), time_.get(), label_.get(), member_.get());
                     queue.enqueueNDRangeKernel(commitNext_, cl::NullRange,
-                                               cl::NDRange(ocl::roundUp(count, 64)));
+                                               cl::NDRange(ocl::roundUp(count, ocl::kGroupSize1D)),
+                                               cl::NDRange(ocl::kGroupSize1D));
                 }
                 std::swap(list_, nextList_);
             }

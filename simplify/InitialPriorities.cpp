@@ -57,8 +57,9 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
         kernel.setArg(a++, Real(kSliverAreaRatio));
         kernel.setArg(a++, priority.get());
-        runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                             cl::NDRange(ocl::roundUp(halfedges.size(), 64)));
+        runtime.queue().enqueueNDRangeKernel(
+            kernel, cl::NullRange, cl::NDRange(ocl::roundUp(halfedges.size(), ocl::kGroupSize1D)),
+            cl::NDRange(ocl::kGroupSize1D));
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "collapse_bound.cl");
     }

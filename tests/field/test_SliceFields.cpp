@@ -185,3 +185,46 @@ TEST(PrimitiveId, RoundTrips) {
     EXPECT_NE(id.encode(), kNoPrimitive);  // the largest valid id is not the sentinel
     EXPECT_EQ(PrimitiveId::decode(PrimitiveId{3, 7, false}.encode()).index, 7u);
 }
+
+// A window is a sub-rectangle of the grid's own pixels: the kernel's values
+// there are the whole grid's (to rounding of the shifted origin), so the
+// reconstruction can work on one part of an ROI at the cost of its pixels.
+TEST(SliceGridWindow, FieldsOnAWindowEqualTheWholeGrids) {
+    std::mt19937 rng(7);
+    const std::vector<Slice> slices = {
+        {0.0, {star(rng, {5, 5}, 40, 4, 12, true), star(rng, {40, 10}, 30, 3, 6, true)}},
+        {2.0, {star(rng, {6, 4}, 40, 4, 11, true)}}};
+    const SliceGrid grid = gridForSlices(slices, 0.4);
+    Box2 part;
+    for (Point2 p : slices[0].contours[1]) part.add(p);
+    const SliceGrid window = windowOf(grid, part, kGridMarginPx);
+    ASSERT_GT(window.width, 2 * kGridMarginPx);
+    ASSERT_LT(window.pixelCount(), grid.pixelCount() / 2);
+    const int di = int(std::lround((window.originMm.x - grid.originMm.x) / grid.pixelMm));
+    const int dj = int(std::lround((window.originMm.y - grid.originMm.y) / grid.pixelMm));
+    EXPECT_NEAR(window.originMm.x, grid.originMm.x + di * grid.pixelMm, 1e-9);
+    EXPECT_NEAR(window.originMm.y, grid.originMm.y + dj * grid.pixelMm, 1e-9);
+    // The part's box and its margin are inside the window.
+    EXPECT_LE(window.pixelCentre(kGridMarginPx, kGridMarginPx).x, part.min.x);
+    EXPECT_LE(window.pixelCentre(kGridMarginPx, kGridMarginPx).y, part.min.y);
+    EXPECT_GE(window.pixelCentre(window.width - 1 - kGridMarginPx, 0).x, part.max.x);
+    EXPECT_GE(window.pixelCentre(0, window.height - 1 - kGridMarginPx).y, part.max.y);
+
+    const SliceFields whole = computeSliceFields(runtime(), slices, grid);
+    const SliceFields part2 = computeSliceFields(runtime(), slices, window);
+    for (std::size_t s = 0; s < slices.size(); ++s)
+        for (int j = 0; j < window.height; ++j)
+            for (int i = 0; i < window.width; ++i) {
+                const float a = part2.distanceMm[part2.index(s, i, j)];
+                const float b = whole.distanceMm[whole.index(s, i + di, j + dj)];
+                ASSERT_NEAR(a, b, 1e-5 * grid.pixelMm) << s << " " << i << "," << j;
+            }
+    // Clipped to the grid, and empty for an empty box.
+    Box2 beyond;
+    beyond.add({-1e3, -1e3});
+    beyond.add({1e3, 1e3});
+    const SliceGrid all = windowOf(grid, beyond, kGridMarginPx);
+    EXPECT_EQ(all.width, grid.width);
+    EXPECT_EQ(all.height, grid.height);
+    EXPECT_EQ(windowOf(grid, Box2{}, kGridMarginPx).pixelCount(), 0u);
+}
