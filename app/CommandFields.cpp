@@ -54,9 +54,9 @@ std::vector<Slice> simplifiedSlices(const Roi& roi, double epsilonMm,
     return slices;
 }
 
-nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,
-                                      const std::vector<Slice>& slices, const SliceFields& fields,
-                                      const FieldsArgs& args, const GlobalOptions& global) {
+nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::vector<Slice>& slices,
+                                      const SliceFields& fields, const FieldsArgs& args,
+                                      const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const std::string stem = (fs::path(args.outputDir) / fileStem(roi.name)).string();
     const SliceGrid& grid = fields.grid;
@@ -94,7 +94,7 @@ nlohmann::ordered_json writeRoiFields(ocl::Runtime& runtime, const Roi& roi,
             if (s + 1 < fields.sliceCount()) {
                 // The sum with the next slice and its sign border: the medial
                 // axes the reconstruction walks (paper Fig. 4).
-                const SliceSum sum = sumSlices(runtime, fields, s, s + 1);
+                const SliceSum sum = sumSlices(fields, s, s + 1);
                 std::vector<PixelMark> medial;
                 for (const MedialAxis& axis : traceMedialAxes(fields, s, s + 1, sum))
                     for (const MedialPixel& p : axis.pixels) medial.push_back({p.i, p.j});
@@ -166,8 +166,7 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
                 computeSliceFields(runtime, slices, grid, [&](double f) { progress.update(f); });
         }
         const double fieldSeconds = watch.lap();
-        const nlohmann::ordered_json files =
-            writeRoiFields(runtime, *roi, slices, fields, args, global);
+        const nlohmann::ordered_json files = writeRoiFields(*roi, slices, fields, args, global);
         const double writeSeconds = watch.lap();
         reports.push_back(
             {{"roi", roi->name},

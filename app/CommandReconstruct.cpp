@@ -2,7 +2,10 @@
 // (docs/reconstruction.md), with a report of its size, volume and topology.
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +13,7 @@
 #include "app/EnumNames.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
+#include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
@@ -26,6 +30,7 @@ namespace {
 struct ReconstructArgs {
     std::string input, output, roi, capName = nameOf(kCapModeNames, CapMode::Flat);
     bool all = false, json = false, ascii = false, allowInvalid = false;
+    unsigned jobs = 0;      // ROIs at once; 0: defaultJobs()
     double maxErrorMm = 0;  // 0: no simplification
     ReconstructionOptions options;
 };
@@ -38,12 +43,25 @@ std::string outputPathFor(const ReconstructArgs& args, const std::string& stem, 
     return (fs::path(args.output) / (stem + ".ply")).string();
 }
 
-nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
-                                      const std::string& path, const ContourInput& input,
-                                      const ReconstructArgs& args, const GlobalOptions& global) {
+/// What one ROI gives: its report and the lines it prints, held until the
+/// command prints them in ROI order.
+struct RoiOutcome {
+    nlohmann::ordered_json report;
+    std::string out, err;  // for stdout and stderr
+};
+
+// OpenMesh's writers are process-wide singletons; ROIs reconstructed at once
+// write one at a time.
+std::mutex meshWriting;
+
+RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::string& path,
+                          const ContourInput& input, const ReconstructArgs& args,
+                          const GlobalOptions& global, bool showProgress) {
+    RoiOutcome outcome;
+    std::ostringstream out, err;
     Reconstruction result;
     {
-        Progress progress("reconstructing " + roi.name, !global.quiet);
+        Progress progress("reconstructing " + roi.name, showProgress && !global.quiet);
         result =
             reconstructSurface(runtime, roi, args.options, [&](double f) { progress.update(f); });
     }
@@ -55,7 +73,9 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         request.options.maxErrorMm = args.maxErrorMm;
         request.contours = &roi;
         request.label = "simplifying " + roi.name;
-        simplification = simplifyAndVerify(runtime, result.surface, request, global);
+        GlobalOptions options = global;
+        options.quiet = global.quiet || !showProgress;  // simplifyAndVerify says nothing else
+        simplification = simplifyAndVerify(runtime, result.surface, request, options);
     }
     // The reconstruction checked its surface as floats in the plane frame;
     // a rotated frame or a simplified surface is checked again as written.
@@ -74,6 +94,7 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
         const TriMesh mesh = toTriMesh(result.surface, &refused);
         MeshWriteOptions write;
         write.binary = !args.ascii;
+        const std::lock_guard<std::mutex> lock(meshWriting);
         writeMesh(mesh, path, write);
     }
     const double writeSeconds = watch.lap();
@@ -81,19 +102,19 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
     const ReconstructionStats& s = result.stats;
     const double contourVolume = contourVolumeMm3(roi);
     if (!args.json) {
-        std::cout << roi.name << ": " << check.vertices << " vertices, " << check.triangles
-                  << " triangles, volume " << check.volumeMm3 / 1000 << " cc (contours "
-                  << contourVolume / 1000 << " cc), "
-                  << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
-        if (check.genus >= 0) std::cout << ", genus " << check.genus;
-        std::cout << (written ? " -> " + path : std::string(", not written")) << "\n";
+        out << roi.name << ": " << check.vertices << " vertices, " << check.triangles
+            << " triangles, volume " << check.volumeMm3 / 1000 << " cc (contours "
+            << contourVolume / 1000 << " cc), "
+            << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
+        if (check.genus >= 0) out << ", genus " << check.genus;
+        out << (written ? " -> " + path : std::string(", not written")) << "\n";
     }
     if (!valid && !global.quiet) {
-        std::cerr << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
+        err << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
         for (const auto& [below, above] : result.brokenPieces)
-            std::cerr << " [" << below << ", " << above << "]";
-        std::cerr << " mm (plane frame)"
-                  << (written ? "; written anyway (--allow-invalid)" : "; not written") << "\n";
+            err << " [" << below << ", " << above << "]";
+        err << " mm (plane frame)"
+            << (written ? "; written anyway (--allow-invalid)" : "; not written") << "\n";
     }
     const RtStructRoiInfo* dicom = input.dicomInfo(roi);
     const std::optional<const char*> holes =
@@ -134,7 +155,10 @@ nlohmann::ordered_json reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
                    {"triangulation", s.triangulationSeconds},
                    {"check", checkSeconds},
                    {"write", writeSeconds}}}});
-    return report;
+    outcome.report = std::move(report);
+    outcome.out = out.str();
+    outcome.err = err.str();
+    return outcome;
 }
 
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
@@ -148,16 +172,37 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     else if (!isMeshExtension(args.output))
         throw std::invalid_argument("output '" + args.output +
                                     "' needs a mesh extension (.ply .stl .obj .off)");
-    ocl::Runtime runtime(global.device);
     const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
     std::string invalid;
-    for (std::size_t i = 0; i < rois.size(); ++i) {
-        reports.push_back(reconstructRoi(runtime, *rois[i], outputPathFor(args, stems[i], several),
-                                         load, args, global));
-        if (!reports.back()["validSolid"].get<bool>() && args.options.cap != CapMode::None)
-            invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
-    }
+    // One OpenCL queue per worker: a shared in-order queue would make each
+    // ROI wait for the other's kernels. With several workers each ROI's own
+    // bar would fight for the line, so the bar counts ROIs instead.
+    const std::size_t jobs =
+        args.jobs > 0 ? std::min<std::size_t>(args.jobs, rois.size()) : defaultJobs(rois.size());
+    std::vector<std::unique_ptr<ocl::Runtime>> runtimes(std::max<std::size_t>(1, jobs));
+    runtimes[0] = std::make_unique<ocl::Runtime>(global.device);
+    Progress overall("reconstructing " + std::to_string(rois.size()) + " ROIs",
+                     jobs > 1 && !global.quiet);
+    forEachInOrder(
+        rois.size(), jobs,
+        [&](std::size_t i, std::size_t worker) {
+            if (!runtimes[worker]) runtimes[worker] = std::make_unique<ocl::Runtime>(global.device);
+            return reconstructRoi(*runtimes[worker], *rois[i],
+                                  outputPathFor(args, stems[i], several), load, args, global,
+                                  jobs <= 1);
+        },
+        [&](std::size_t i, RoiOutcome outcome) {
+            overall.finish();
+            std::cout << outcome.out << std::flush;
+            std::cerr << outcome.err << std::flush;
+            if (!outcome.report["validSolid"].get<bool>() && args.options.cap != CapMode::None)
+                invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
+            reports.push_back(std::move(outcome.report));
+            overall.update(double(i + 1) / double(rois.size()));
+        });
+    overall.finish();
+    const ocl::Runtime& runtime = *runtimes[0];
     nlohmann::ordered_json empty = nlohmann::ordered_json::array();
     if (args.all)
         for (const Roi& roi : load.contours.rois)
@@ -238,6 +283,12 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_flag("--allow-invalid", args->allowInvalid,
                   "Write a surface that is not a valid closed solid anyway (it is reported, "
                   "and the exit code is still 4)");
+    cmd->add_option("-j,--jobs", args->jobs,
+                    "ROIs reconstructed at once, each with its own OpenCL queue (default 0: one "
+                    "per CPU core, at most one per ROI; 1: one after the other, each with its own "
+                    "progress bar). Results and reports come in ROI order either way")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {

@@ -22,11 +22,12 @@ namespace {
 // determinant's sign is noise.
 constexpr double kDegenerate = 1e-10;
 
-// Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc.
+// Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc. Compared
+// squared (no square roots: this is the checker's innermost test).
 double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
     const Vec3 u = b - a, v = c - a, w = d - a;
     const double det = dot(cross(u, v), w);
-    return std::abs(det) <= kDegenerate * length(u) * length(v) * length(w) ? 0.0 : det;
+    return det * det <= kDegenerate * kDegenerate * dot(u, u) * dot(v, v) * dot(w, w) ? 0.0 : det;
 }
 
 // 2D orientation in the plane that drops `axis`.
@@ -34,7 +35,8 @@ double orient2(Vec3 a, Vec3 b, Vec3 c, int axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     const double bu = b[u] - a[u], bv = b[v] - a[v], cu = c[u] - a[u], cv = c[v] - a[v];
     const double det = bu * cv - bv * cu;
-    return std::abs(det) <= kDegenerate * std::hypot(bu, bv) * std::hypot(cu, cv) ? 0.0 : det;
+    return det * det <= kDegenerate * kDegenerate * (bu * bu + bv * bv) * (cu * cu + cv * cv) ? 0.0
+                                                                                              : det;
 }
 
 // p in the plane that drops `axis`.
@@ -271,29 +273,42 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         parts.join(uses[begin].lo, uses[begin].hi);
         begin = end;
     }
-    std::vector<std::vector<std::uint32_t>> around(n);
-    for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
-        for (std::uint32_t v : soup.triangles[t]) around[v].push_back(t);
+    // The triangles around each vertex, packed (around[first[v] .. first[v + 1])).
+    std::vector<std::uint32_t> first(n + 1, 0), around(3 * soup.triangles.size());
+    for (const Triangle& tri : soup.triangles)
+        for (std::uint32_t v : tri) ++first[v + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    {
+        std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+        for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
+            for (std::uint32_t v : soup.triangles[t]) around[fill[v]++] = t;
+    }
+    std::vector<std::uint32_t> fan;  // reused: each triangle's group at v
     for (std::size_t v = 0; v < n; ++v) {
         if (!used[v]) continue;
         ++report.vertices;
         // The triangles around v must form one fan: join those sharing an
-        // edge at v and count the groups.
-        UnionFind local(around[v].size());
-        for (std::size_t p = 0; p < around[v].size(); ++p)
-            for (std::size_t q = p + 1; q < around[v].size(); ++q) {
-                const Triangle &s = soup.triangles[around[v][p]], &t = soup.triangles[around[v][q]];
-                int common = 0;
+        // edge at v (relabelling groups; fans are small) and count the groups.
+        const std::uint32_t* ring = around.data() + first[v];
+        const std::size_t k = first[v + 1] - first[v];
+        fan.resize(k);
+        std::iota(fan.begin(), fan.end(), 0u);
+        for (std::size_t p = 0; p < k; ++p)
+            for (std::size_t q = p + 1; q < k; ++q) {
+                if (fan[p] == fan[q]) continue;
+                const Triangle &s = soup.triangles[ring[p]], &t = soup.triangles[ring[q]];
+                bool common = false;
                 for (std::uint32_t x : s)
-                    for (std::uint32_t y : t) common += x == y && x != v;
-                if (common > 0) local.join(p, q);
+                    for (std::uint32_t y : t) common |= x == y && x != v;
+                if (!common) continue;
+                const std::uint32_t from = fan[q], to = fan[p];
+                for (std::uint32_t& g : fan)
+                    if (g == from) g = to;
             }
-        std::size_t groups = 0;
-        for (std::size_t p = 0; p < around[v].size(); ++p) groups += local.find(p) == p;
-        if (groups > 1) {
+        std::sort(fan.begin(), fan.end());
+        if (std::unique(fan.begin(), fan.end()) - fan.begin() > 1) {
             ++report.nonManifoldVertices;
-            report.defectiveTriangles.insert(report.defectiveTriangles.end(), around[v].begin(),
-                                             around[v].end());
+            report.defectiveTriangles.insert(report.defectiveTriangles.end(), ring, ring + k);
         }
     }
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;

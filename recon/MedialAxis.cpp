@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "cl/DeviceBuffer.hpp"
-
 namespace dfrecon {
 
 namespace {
@@ -18,45 +16,7 @@ void checkSlices(const SliceFields& fields, std::size_t lower, std::size_t upper
 
 }  // namespace
 
-SliceSum sumSlices(ocl::Runtime& runtime, const SliceFields& fields, std::size_t lower,
-                   std::size_t upper) {
-    checkSlices(fields, lower, upper);
-    const SliceGrid& grid = fields.grid;
-    // Only the two slices travel to the device.
-    const std::size_t pixels = grid.pixelCount();
-    std::vector<cl_float> pair(2 * pixels);
-    std::copy_n(fields.distanceMm.begin() + std::ptrdiff_t(lower * pixels), pixels, pair.begin());
-    std::copy_n(fields.distanceMm.begin() + std::ptrdiff_t(upper * pixels), pixels,
-                pair.begin() + std::ptrdiff_t(pixels));
-    ocl::DeviceBuffer<cl_float> distance(runtime, pair);
-    ocl::DeviceBuffer<cl_float> sum(runtime, pixels, CL_MEM_WRITE_ONLY);
-    ocl::DeviceBuffer<cl_uchar> negative(runtime, pixels, CL_MEM_WRITE_ONLY);
-    cl::Kernel kernel = runtime.kernel({"medial_axis_2d.cl"}, "sum_and_sign");
-    try {
-        int a = 0;
-        kernel.setArg(a++, distance.get());
-        kernel.setArg(a++, cl_uint(0));
-        kernel.setArg(a++, cl_uint(1));
-        kernel.setArg(a++, cl_uint(grid.width));
-        kernel.setArg(a++, cl_uint(grid.height));
-        kernel.setArg(a++, sum.get());
-        kernel.setArg(a++, negative.get());
-        runtime.queue().enqueueNDRangeKernel(
-            kernel, cl::NullRange,
-            cl::NDRange(ocl::roundUp(std::size_t(grid.width), 8),
-                        ocl::roundUp(std::size_t(grid.height), 8)),
-            cl::NDRange(8, 8));  // fixed, so PoCL builds one work-group function
-    } catch (const cl::Error& e) {
-        throw ocl::toClError(e, "medial_axis_2d.cl");
-    }
-    SliceSum result;
-    result.sumMm = sum.download(runtime);
-    const std::vector<cl_uchar> mask = negative.download(runtime);
-    result.negative.assign(mask.begin(), mask.end());
-    return result;
-}
-
-SliceSum sumSlicesReference(const SliceFields& fields, std::size_t lower, std::size_t upper) {
+SliceSum sumSlices(const SliceFields& fields, std::size_t lower, std::size_t upper) {
     checkSlices(fields, lower, upper);
     const std::size_t pixels = fields.grid.pixelCount();
     SliceSum result;

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "cl/Runtime.hpp"
 #include "field/SliceFields.hpp"
 
 namespace dfrecon {
@@ -19,13 +18,11 @@ struct SliceSum {
     std::vector<std::uint8_t> negative;
 };
 
-/// The sum of slices `lower` and `upper` of `fields`, by the `sum_and_sign`
-/// kernel (kernels/medial_axis_2d.cl). O(pixels).
-SliceSum sumSlices(ocl::Runtime& runtime, const SliceFields& fields, std::size_t lower,
-                   std::size_t upper);
-
-/// The plain C++ reference of sumSlices.
-SliceSum sumSlicesReference(const SliceFields& fields, std::size_t lower, std::size_t upper);
+/// The sum of slices `lower` and `upper` of `fields`. O(pixels), on the
+/// host: one float addition per pixel is memory-bound, and a device launch
+/// with its transfers cost several times the arithmetic (the reconstruction
+/// calls this thousands of times on small windows).
+SliceSum sumSlices(const SliceFields& fields, std::size_t lower, std::size_t upper);
 
 struct MedialPixel {
     int i = 0, j = 0;           // grid pixel

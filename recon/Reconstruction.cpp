@@ -255,7 +255,7 @@ class SurfaceReconstructor {
         SliceSum sum;
         if (!lower.contours.empty() && !upper.contours.empty()) {
             const auto start = Clock::now();
-            sum = sumSlices(runtime_, fields, a, b);
+            sum = sumSlices(fields, a, b);
             axes = traceMedialAxes(fields, a, b, sum);
             if (depth > 0 && emptyIsNegative(lower, upper))
                 for (MedialAxis& axis : axes) std::reverse(axis.pixels.begin(), axis.pixels.end());
@@ -333,7 +333,7 @@ class SurfaceReconstructor {
     void recurse(const LayerPart& x, const LayerPart& y, int depth, const SliceFields& fields,
                  const SliceSum* knownSum) {
         const auto start = Clock::now();
-        const SliceSum sum = knownSum ? *knownSum : sumSlices(runtime_, fields, 0, 1);
+        const SliceSum sum = knownSum ? *knownSum : sumSlices(fields, 0, 1);
         std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, fields.grid);
         // Pixel-step isolines carry far more points than the surface needs.
         Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};

@@ -28,7 +28,7 @@ Band bandBetween(Polygon lower, Polygon upper) {
     grid.pixelMm = 0.25;
     grid.width = grid.height = 128;
     band.fields = computeSliceFieldsReference(band.slices, grid);
-    band.axes = traceMedialAxes(band.fields, 0, 1, sumSlicesReference(band.fields, 0, 1));
+    band.axes = traceMedialAxes(band.fields, 0, 1, sumSlices(band.fields, 0, 1));
     return band;
 }
 
