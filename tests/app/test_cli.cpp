@@ -304,6 +304,32 @@ TEST(Cli, ReconstructGivesValidSolidsForAHostileLabelVolume) {
     }
 }
 
+TEST(Cli, ReconstructWithSeveralJobsGivesWhatOneJobGives) {
+    // Same files, same report (but for seconds), in ROI order.
+    const dfrecon::LabelVolume volume = dfrecon::hostileLabelVolume(3);
+    const fs::path nrrd = scratch() / "jobs.nrrd";
+    dfrecon::writeMaskNrrd(nrrd.string(), volume.geometry,
+                           std::vector<std::uint8_t>(volume.labels.begin(), volume.labels.end()));
+    auto run = [&](const std::string& jobs) {
+        const fs::path dir = scratch() / ("jobs" + jobs);
+        const Result r = runDfrecon("-q reconstruct " + nrrd.string() + " --all --json -j " + jobs +
+                                    " -o " + dir.string());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        auto report = nlohmann::json::parse(r.out);
+        report.erase("seconds");
+        for (auto& roi : report["rois"]) {
+            roi.erase("seconds");
+            const std::string output = roi["output"].get<std::string>();
+            roi["file"] = slurp(output);
+            roi.erase("output");
+        }
+        return report;
+    };
+    const auto one = run("1"), three = run("3");
+    ASSERT_GE(one["rois"].size(), 2u);
+    EXPECT_EQ(one, three);
+}
+
 TEST(Cli, ReconstructAllWritesOneMeshPerRoi) {
     const fs::path dir = scratch() / "all-rois";
     const Result run = runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
