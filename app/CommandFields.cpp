@@ -54,11 +54,11 @@ std::vector<Slice> simplifiedSlices(const Roi& roi, double epsilonMm,
     return slices;
 }
 
-nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::vector<Slice>& slices,
-                                      const SliceFields& fields, const FieldsArgs& args,
-                                      const GlobalOptions& global) {
+nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileStem,
+                                      const std::vector<Slice>& slices, const SliceFields& fields,
+                                      const FieldsArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
-    const std::string stem = (fs::path(args.outputDir) / fileStem(roi.name)).string();
+    const std::string stem = (fs::path(args.outputDir) / fileStem).string();
     const SliceGrid& grid = fields.grid;
     const SpacingStats spacing = spacingOf(roi);
 
@@ -149,7 +149,9 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
 
     ocl::Runtime runtime(global.device);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
-    for (const Roi* roi : rois) {
+    const std::vector<std::string> stems = uniqueFileStems(rois);
+    for (std::size_t r = 0; r < rois.size(); ++r) {
+        const Roi* roi = rois[r];
         if (roi->slices.empty())
             throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
         watch.restartLap();
@@ -166,7 +168,8 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
                 computeSliceFields(runtime, slices, grid, [&](double f) { progress.update(f); });
         }
         const double fieldSeconds = watch.lap();
-        const nlohmann::ordered_json files = writeRoiFields(*roi, slices, fields, args, global);
+        const nlohmann::ordered_json files =
+            writeRoiFields(*roi, stems[r], slices, fields, args, global);
         const double writeSeconds = watch.lap();
         reports.push_back(
             {{"roi", roi->name},

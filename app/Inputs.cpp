@@ -3,6 +3,7 @@
 #include <cctype>
 #include <iostream>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "app/Progress.hpp"
@@ -92,21 +93,34 @@ std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string
 
 std::string fileStem(const std::string& name) {
     std::string stem;
-    for (char c : name)
-        stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.'
+    for (char c : name.substr(0, kMaxStemBytes))
+        stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ||
+                        (c == '.' && !stem.empty())
                     ? c
                     : '_';
     return stem.empty() ? "roi" : stem;
 }
 
 std::vector<std::string> uniqueFileStems(const std::vector<const Roi*>& rois) {
+    auto key = [](std::string stem) {
+        for (char& c : stem) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return stem;
+    };
     std::map<std::string, int> uses;
-    for (const Roi* roi : rois) ++uses[fileStem(roi->name)];
-    std::vector<std::string> stems;
+    for (const Roi* roi : rois) ++uses[key(fileStem(roi->name))];
+    std::set<std::string> taken;
+    std::vector<std::string> stems(rois.size());
     for (std::size_t i = 0; i < rois.size(); ++i) {
-        std::string stem = fileStem(rois[i]->name);
-        if (uses[stem] > 1) stem += "_" + std::to_string(rois[i]->number.value_or(int(i) + 1));
-        stems.push_back(stem);
+        const std::string stem = fileStem(rois[i]->name);
+        if (uses[key(stem)] == 1) taken.insert(key(stems[i] = stem));
+    }
+    for (std::size_t i = 0; i < rois.size(); ++i) {
+        if (!stems[i].empty()) continue;
+        const std::string base =
+            fileStem(rois[i]->name) + "_" + std::to_string(rois[i]->number.value_or(int(i) + 1));
+        std::string stem = base;
+        for (int k = 2; taken.count(key(stem)); ++k) stem = base + "_" + std::to_string(k);
+        taken.insert(key(stems[i] = stem));
     }
     return stems;
 }

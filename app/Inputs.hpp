@@ -34,11 +34,16 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global);
 /// ROIs when the choice is missing, unknown or has no contours.
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all);
 
-/// `name` made safe as part of a file name (letters, digits, - _ . kept).
+/// `name` made safe as part of a file name: letters, digits, - _ . kept,
+/// anything else (and a leading dot, which would hide the file or make
+/// "..") becomes _, at most kMaxStemBytes long.
 std::string fileStem(const std::string& name);
+inline constexpr std::size_t kMaxStemBytes = 120;
 
-/// One file stem per ROI, unique among them: a stem two ROIs share gets
-/// the ROI's number (or position) appended.
+/// One file stem per ROI, unique among them even on case-insensitive file
+/// systems: a stem that is one ROI's alone is kept; ROIs that share one get
+/// _NUMBER (the ROI's number, or position), and _NUMBER_K where even that is
+/// taken. Deterministic in the ROIs' order.
 std::vector<std::string> uniqueFileStems(const std::vector<const Roi*>& rois);
 
 }  // namespace dfrecon::app

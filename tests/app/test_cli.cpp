@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -301,6 +302,75 @@ TEST(Cli, ReconstructGivesValidSolidsForAHostileLabelVolume) {
         ASSERT_EQ(written.exitCode, 0) << written.err;
         const Result check = runDfrecon("check " + ascii.string());
         EXPECT_EQ(check.exitCode, 0) << ext << ": " << check.out;
+    }
+}
+
+TEST(Cli, AFullDiskIsExitThreeAndLeavesNoFile) {
+    // A 64 KB tmpfs in a mount namespace of the command's own (root only;
+    // a file size limit cannot stand in, PoCL writes its own files).
+    const fs::path mount = scratch() / "tiny";
+    fs::create_directories(mount);
+    if (std::system(("unshare -m sh -c 'mount -t tmpfs -o size=64k tmpfs " + mount.string() +
+                     "' >/dev/null 2>&1")
+                        .c_str()) != 0)
+        GTEST_SKIP() << "cannot mount a tmpfs here (needs root and unshare)";
+    const fs::path slices = scratch() / "full-disk.slices";
+    ASSERT_EQ(runDfrecon("synth sphere --spacing 0.5 -o " + slices.string()).exitCode, 0);
+    const std::string in = slices.string(), out = mount.string();
+    for (const std::string& args :
+         {"reconstruct " + in + " -o " + out + "/s.ply", "field " + in + " -o " + out + "/s.vdb",
+          "fields " + in + " --png -o " + out + "/f",
+          "rasterize " + in + " --voxel-mm 0.2 -o " + out + "/m.nrrd",
+          "convert " + in + " -o " + out + "/c.dcm",
+          "synth sphere --spacing 0.5 -o " + out + "/t.slices"}) {
+        const fs::path err = scratch() / "full-disk.err", left = scratch() / "full-disk.left";
+        const std::string script = "mount -t tmpfs -o size=64k tmpfs " + out + " && " +
+                                   DFRECON_BINARY + " -q " + args + " >/dev/null 2>" +
+                                   err.string() + "; code=$?; find " + out + " -type f > " +
+                                   left.string() + "; exit $code";
+        const int status = std::system(("unshare -m sh -c '" + script + "'").c_str());
+        ASSERT_TRUE(WIFEXITED(status)) << args;
+        EXPECT_EQ(WEXITSTATUS(status), 3) << args << ": " << slurp(err);
+        EXPECT_NE(slurp(err).find("cannot write"), std::string::npos) << args << ": " << slurp(err);
+        EXPECT_EQ(slurp(left), "") << args;
+    }
+}
+
+TEST(Cli, RoisWhoseNamesClashStillGetAFileEach) {
+    // "x y" and "x_y" sanitise alike, "x_y_1" is what the first would get
+    // as x_y_NUMBER, "X_Y" is the same file on a case-insensitive disk, ".."
+    // must not name the folder above.
+    std::string text = "dfrecon-slices 1\nunits mm\n";
+    for (const char* name : {"\"x y\"", "x_y", "x_y_1", "X_Y", "..", "x/y"}) {
+        text += std::string("roi ") + name + "\n";
+        for (double z : {0.0, 2.0})
+            text += "slice " + std::to_string(z) + "\ncontour 4\n0 0\n10 0\n10 10\n0 10\n";
+    }
+    const fs::path input = scratch() / "clash.slices";
+    std::ofstream(input) << text;
+    for (const std::string command : {"reconstruct", "fields"}) {
+        const fs::path dir = scratch() / ("clash-" + command);
+        const Result run =
+            runDfrecon("-q " + command + " " + input.string() + " --all --json -o " + dir.string());
+        ASSERT_EQ(run.exitCode, 0) << command << ": " << run.err;
+        const auto report = nlohmann::json::parse(run.out);
+        ASSERT_EQ(report["rois"].size(), 6u) << command;
+        std::set<std::string> lowerCase;
+        for (const auto& entry : fs::directory_iterator(dir)) {
+            std::string name = entry.path().filename().string();
+            EXPECT_NE(name[0], '.') << name;
+            for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+            lowerCase.insert(name);
+        }
+        // reconstruct: one mesh per ROI; fields: the same set of files per ROI.
+        const std::size_t perRoi = command == "reconstruct" ? 1 : lowerCase.size() / 6;
+        EXPECT_EQ(lowerCase.size(), 6 * perRoi) << command;
+        EXPECT_GE(perRoi, 1u);
+        if (command == "reconstruct") {
+            std::set<std::string> outputs;
+            for (const auto& roi : report["rois"]) outputs.insert(roi["output"].get<std::string>());
+            EXPECT_EQ(outputs.size(), 6u);
+        }
     }
 }
 
