@@ -28,7 +28,9 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi, capName = nameOf(kCapModeNames, CapMode::Flat);
+    std::string input, output, roi,
+        capName = nameOf(kCapModeNames, CapMode::Flat),
+        interpolationName = nameOf(kInterpolationNames, Interpolation::Linear);
     bool all = false, json = false, ascii = false, allowInvalid = false;
     unsigned jobs = 0;      // ROIs at once; 0: defaultJobs()
     double maxErrorMm = 0;  // 0: no simplification
@@ -140,6 +142,10 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::stri
                  {"contourPoints", s.contourPoints},
                  {"pixelMm", s.pixelMm},
                  {"cap", nameOf(kCapModeNames, args.options.cap)},
+                 {"interpolation", nameOf(kInterpolationNames, args.options.interpolation)},
+                 {"smoothedVertices", s.smoothedVertices},
+                 {"smoothKeptLinearPieces", s.smoothRevertedPieces},
+                 {"smoothFellBackToLinear", s.smoothFellBack},
                  {"strips", s.strips},
                  {"rejectedStrips", s.rejectedStrips},
                  {"intermediateLayers", s.recursions},
@@ -269,6 +275,18 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--cap", args->capName, "End caps: flat, dome or none")
         ->capture_default_str()
         ->check(CLI::IsMember(namesOf(kCapModeNames)));
+    cmd->add_option("--interpolation", args->interpolationName,
+                    "Between planes: 'linear' runs straight from contour to contour; 'smooth' "
+                    "bends the strips onto a monotone cubic in z of the planes' distance fields "
+                    "(C1 across planes, still through every contour point, still a valid solid: "
+                    "a slab where bending would break it stays linear)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(namesOf(kInterpolationNames)));
+    cmd->add_option("--smooth-tolerance", args->options.smoothToleranceMm,
+                    "Smooth mode: strips are halved in z until no straight edge strays farther "
+                    "than this from the smooth surface, mm")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
                     "How far beyond an end contour its cap reaches, mm (default: half the DICOM "
                     "contour slab thickness if given, else half the slice spacing; at most half "
@@ -293,6 +311,8 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {
         args->options.cap = parseEnum(kCapModeNames, args->capName, "--cap");
+        args->options.interpolation =
+            parseEnum(kInterpolationNames, args->interpolationName, "--interpolation");
         runReconstruct(*args, global);
     });
 }

@@ -134,6 +134,11 @@ int benchRecon(const std::string& device) {
                 printRow(caseName, contourError > 0 ? "dfrecon-ce0.1" : "dfrecon", seconds, *shape,
                          result.surface);
             }
+            ReconstructionOptions smooth;
+            smooth.interpolation = Interpolation::Smooth;
+            Reconstruction result;
+            seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, smooth); });
+            printRow(caseName, "dfrecon-smooth", seconds, *shape, result.surface);
         }
     benchEndToEnd(runtime);
     return 0;

@@ -13,6 +13,7 @@
 #include "geometry/UnionFind.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
+#include "recon/LoftSmoothing.hpp"
 #include "recon/MedialAxis.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/StripStitching.hpp"
@@ -314,6 +315,7 @@ class SurfaceReconstructor {
         if (!upperAt) return false;
         const std::size_t before = builder_.triangleCount();
         stitchStrip(builder_, lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt);
+        builder_.markLoftSince(before);
         // Contours that zigzag or lean far can make a strip fold through
         // itself; such a band is solved again with an intermediate contour
         // instead (and at the limit closed by prisms, which cannot fold).
@@ -629,6 +631,17 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     std::sort(result.brokenPieces.begin(), result.brokenPieces.end());
     stats.checkSeconds = secondsSince(start);
     result.surface = builder.release();
+    if (options.interpolation == Interpolation::Smooth && slices.size() > 1 &&
+        result.check.validSolid()) {
+        start = Clock::now();
+        const LoftSmoothingStats smooth =
+            smoothLofts(result.surface, builder.pieces(), builder.lofts(), SliceInterpolant(fields),
+                        options.smoothToleranceMm, result.check);
+        stats.smoothedVertices = smooth.movedVertices;
+        stats.smoothRevertedPieces = smooth.revertedPieces;
+        stats.smoothFellBack = smooth.fellBack;
+        stats.checkSeconds += secondsSince(start);
+    }
     // Intermediate contours of discarded pieces leave points behind.
     removeUnusedPoints(result.surface);
     return result;

@@ -38,6 +38,18 @@ inline constexpr std::array<std::pair<const char*, CapMode>, 3> kCapModeNames{{
 /// The name of `mode` in kCapModeNames. O(1).
 const char* capModeName(CapMode mode);
 
+/// How the surface runs between two planes.
+enum class Interpolation {
+    Linear,  // straight from contour to contour (ruled strips)
+    Smooth,  // C1 across the planes: strips bent onto a monotone cubic in z of the
+             // slices' fields (recon/LoftSmoothing), still through every contour point
+};
+
+inline constexpr std::array<std::pair<const char*, Interpolation>, 2> kInterpolationNames{{
+    {"linear", Interpolation::Linear},
+    {"smooth", Interpolation::Smooth},
+}};
+
 /// Default grid side of the reconstruction's fields. Mesh vertices are the
 /// contour points whatever the pixel size; pixels only guide which points
 /// correspond and where contours branch, so half the resolution of the
@@ -51,6 +63,10 @@ struct ReconstructionOptions {
     CapMode cap = CapMode::Flat;
     double capOffsetMm = -1;  // how far beyond an end contour its cap reaches; < 0: half the ROI's
                               // slab thickness if it has one, else half the spacing
+    Interpolation interpolation = Interpolation::Linear;
+    /// Smooth mode: bands are halved in z until no straight edge strays
+    /// farther than this from the smooth surface.
+    double smoothToleranceMm = 0.01;
     FieldKernelOptions kernel;
 };
 
@@ -59,14 +75,17 @@ struct ReconstructionStats {
     std::size_t slices = 0, contourPoints = 0;  // after contour simplification
     std::size_t slabs = 0;                      // pairs of neighbouring slices
     std::size_t strips = 0;                     // contour pairs joined by tracing an axis
-    std::size_t rejectedStrips = 0;  // strips that folded through themselves, solved again
-    std::size_t recursions = 0;      // intermediate contour layers made
-    int deepestLevel = 0;            // deepest recursion level used
-    std::size_t limitClosings = 0;   // regions closed by prisms at the recursion limit
-    std::size_t caps = 0;            // end contours capped (or left open with CapMode::None)
-    std::size_t fallbackSlabs = 0;   // slabs whose pieces met, closed as one prism piece
-    std::size_t touchesOpened = 0;   // points where contours of one plane touched, opened
-    std::size_t repairedPieces = 0;  // slabs or caps closed again after the whole-surface check
+    std::size_t rejectedStrips = 0;    // strips that folded through themselves, solved again
+    std::size_t recursions = 0;        // intermediate contour layers made
+    int deepestLevel = 0;              // deepest recursion level used
+    std::size_t limitClosings = 0;     // regions closed by prisms at the recursion limit
+    std::size_t caps = 0;              // end contours capped (or left open with CapMode::None)
+    std::size_t fallbackSlabs = 0;     // slabs whose pieces met, closed as one prism piece
+    std::size_t touchesOpened = 0;     // points where contours of one plane touched, opened
+    std::size_t repairedPieces = 0;    // slabs or caps closed again after the whole-surface check
+    std::size_t smoothedVertices = 0;  // smooth mode: vertices bent onto the smooth surface
+    std::size_t smoothRevertedPieces = 0;  // smooth mode: pieces kept linear for validity
+    bool smoothFellBack = false;           // smooth mode: the whole surface kept linear
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0,
            checkSeconds = 0;
 };

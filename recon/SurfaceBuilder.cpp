@@ -25,6 +25,7 @@ void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {
     for (std::size_t t = 0; t < soup_.triangles.size(); ++t) {
         if (pieces_[t] < drop.size() && drop[pieces_[t]]) continue;
         soup_.triangles[kept] = soup_.triangles[t];
+        lofts_[kept] = lofts_[t];
         pieces_[kept++] = pieces_[t];
     }
     truncateTriangles(kept);

@@ -3,6 +3,7 @@
 // positions, triangles by vertex index. Contour vertices are added once and
 // shared by the pieces above and below them, which is what makes the
 // result watertight.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -22,6 +23,7 @@ class SurfaceBuilder {
     void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         soup_.triangles.push_back({a, b, c});
         pieces_.push_back(piece_);
+        lofts_.push_back(false);
     }
     const Vec3& point(std::uint32_t v) const { return soup_.points[v]; }
     std::size_t triangleCount() const { return soup_.triangles.size(); }
@@ -29,7 +31,15 @@ class SurfaceBuilder {
     void truncateTriangles(std::size_t count) {
         soup_.triangles.resize(count);
         pieces_.resize(count);
+        lofts_.resize(count);
     }
+    /// Marks the triangles added since `first` as a loft band: a strip
+    /// stitched between two layers, which smooth interpolation may bend.
+    void markLoftSince(std::size_t first) {
+        std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), true);
+    }
+    const std::vector<std::uint32_t>& pieces() const { return pieces_; }
+    const std::vector<bool>& lofts() const { return lofts_; }
     /// Tags the triangles added from now on with `piece` (the slab or cap
     /// they close), so that a broken piece can be found and built again.
     void setPiece(std::uint32_t piece) { piece_ = piece; }
@@ -47,6 +57,7 @@ class SurfaceBuilder {
   private:
     TriangleSoup soup_;
     std::vector<std::uint32_t> pieces_;  // per triangle
+    std::vector<bool> lofts_;            // per triangle
     std::uint32_t piece_ = 0;
 };
 

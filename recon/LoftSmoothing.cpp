@@ -1,0 +1,190 @@
+#include "recon/LoftSmoothing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace dfrecon {
+
+namespace {
+
+// Points of one plane share their z exactly (float-rounded alike); anything
+// this close counts as horizontal.
+constexpr double kHorizontalMm = 1e-6;
+constexpr int kMaxRounds = 5;
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+/// One round of red–green refinement of the loft triangles' slanted edges
+/// whose middle lies farther than `toleranceMm` from the smooth surface (F
+/// is a distance in the plane, so |F| there is how far the straight edge
+/// strays). Returns the number of edges split.
+std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
+                       std::vector<bool>& isLoft, const SliceInterpolant& field,
+                       double toleranceMm) {
+    std::unordered_map<std::uint64_t, std::uint32_t> middle;
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        if (!isLoft[t]) continue;
+        const Triangle& tri = soup.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
+            const Vec3 pa = soup.points[a], pb = soup.points[b];
+            // Not below an eighth of the slab: beyond that the straight
+            // pieces follow the cubic closely, and ends (where F turns
+            // fastest) would otherwise take every round.
+            const double dz = std::abs(pa.z - pb.z);
+            if (dz <= kHorizontalMm || dz < field.slabHeightAt(0.5 * (pa.z + pb.z)) / 7.9 ||
+                middle.count(edgeKey(a, b)))
+                continue;
+            const Vec3 m = 0.5 * (pa + pb);
+            if (std::abs(field.value(m)) <= toleranceMm) continue;
+            middle.emplace(edgeKey(a, b), std::uint32_t(soup.points.size()));
+            soup.points.push_back(m);
+        }
+    }
+    std::vector<Triangle> triangles;
+    std::vector<std::uint32_t> pieces;
+    std::vector<bool> lofts;
+    auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::size_t from) {
+        triangles.push_back({a, b, c});
+        pieces.push_back(pieceOf[from]);
+        lofts.push_back(isLoft[from]);
+    };
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const Triangle& tri = soup.triangles[t];
+        std::array<std::int64_t, 3> mid{};  // mid[k]: middle of edge k -> k+1, or -1
+        int splits = 0;
+        for (int k = 0; k < 3; ++k) {
+            const auto found =
+                middle.find(edgeKey(tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]));
+            mid[std::size_t(k)] = found == middle.end() ? -1 : std::int64_t(found->second);
+            splits += found != middle.end();
+        }
+        if (splits == 0) {
+            emit(tri[0], tri[1], tri[2], t);
+            continue;
+        }
+        // Rotate so the pattern is canonical: one split on edge 0; two on
+        // edges 0 and 1; the corners keep their cyclic order (orientation).
+        int r = 0;
+        if (splits == 1)
+            while (mid[std::size_t(r)] < 0) ++r;
+        if (splits == 2)
+            while (mid[std::size_t((r + 2) % 3)] >= 0) ++r;
+        const std::uint32_t a = tri[std::size_t(r)], b = tri[std::size_t((r + 1) % 3)],
+                            c = tri[std::size_t((r + 2) % 3)];
+        const auto ab = std::uint32_t(mid[std::size_t(r)]);
+        if (splits == 1) {
+            emit(a, ab, c, t);
+            emit(ab, b, c, t);
+        } else if (splits == 2) {
+            const auto bc = std::uint32_t(mid[std::size_t((r + 1) % 3)]);
+            emit(ab, b, bc, t);
+            emit(a, ab, bc, t);
+            emit(a, bc, c, t);
+        } else {
+            const auto bc = std::uint32_t(mid[1]), ca = std::uint32_t(mid[2]);
+            const auto ab0 = std::uint32_t(mid[0]);
+            emit(tri[0], ab0, ca, t);
+            emit(ab0, tri[1], bc, t);
+            emit(ca, bc, tri[2], t);
+            emit(ab0, bc, ca, t);
+        }
+    }
+    soup.triangles = std::move(triangles);
+    pieceOf = std::move(pieces);
+    isLoft = std::move(lofts);
+    return middle.size();
+}
+
+/// p moved, at its z, onto F = 0 (to within `toleranceMm`); false, and p
+/// unchanged, when Newton does not get there within `maxMoveMm` of the
+/// start. The field is bilinear between pixels, so its gradient jumps at
+/// pixel borders and Newton may circle within a small band: the best point
+/// seen counts.
+bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm,
+                        double toleranceMm) {
+    const Vec3 start = p;
+    Vec3 at = p, best = p;
+    double bestF = std::abs(field.value(p));
+    for (int iteration = 0; iteration < 12 && bestF > 0.1 * toleranceMm; ++iteration) {
+        const double f = field.value(at);
+        const Point2 g = field.gradientXy(at);
+        const double g2 = g.x * g.x + g.y * g.y;
+        if (g2 < 1e-6) break;  // flat: no direction to move in
+        Vec3 step{f * g.x / g2, f * g.y / g2, 0};
+        const double stepLength = length(step);
+        if (stepLength > 0.5 * maxMoveMm) step = (0.5 * maxMoveMm / stepLength) * step;
+        at = at - step;
+        if (length(at - start) > maxMoveMm) break;
+        const double fa = std::abs(field.value(at));
+        if (fa < bestF) bestF = fa, best = at;
+    }
+    if (bestF > toleranceMm) return false;
+    p = best;
+    return true;
+}
+
+}  // namespace
+
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
+                               std::vector<bool> isLoft, const SliceInterpolant& field,
+                               double toleranceMm, MeshCheckReport& check) {
+    LoftSmoothingStats stats;
+    const TriangleSoup linear = surface;
+    const std::size_t original = surface.points.size();
+    std::vector<Vec3> flat;  // where each new vertex was made, on the linear surface
+    // Each round splits the edges that stray and bends the new vertices onto
+    // the smooth surface, so the next round measures chords of the curve
+    // (each halving divides a smooth band's sag by about four).
+    for (; stats.rounds < kMaxRounds; ++stats.rounds) {
+        const std::size_t before = surface.points.size();
+        if (refineOnce(surface, pieceOf, isLoft, field, toleranceMm) == 0) break;
+        // Only vertices inside loft bands move: one shared with a cap or
+        // prism triangle would drag that flat piece along.
+        std::vector<bool> movable(surface.points.size(), true);
+        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+            if (!isLoft[t])
+                for (std::uint32_t v : surface.triangles[t]) movable[v] = false;
+        for (std::size_t v = before; v < surface.points.size(); ++v) {
+            flat.push_back(surface.points[v]);
+            Vec3 p = surface.points[v];
+            const double slab = field.slabHeightAt(p.z);
+            if (movable[v] && projectOntoZeroSet(field, p, 0.5 * slab, 0.2 * toleranceMm)) {
+                surface.points[v] = p;
+                ++stats.movedVertices;
+            }
+        }
+    }
+    std::vector<std::uint32_t> pieceOfVertex(surface.points.size(), 0);
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+        for (std::uint32_t v : surface.triangles[t]) pieceOfVertex[v] = pieceOf[t];
+
+    roundPointsToFloat(surface);
+    check = checkMesh(surface);
+    if (check.validSolid()) return stats;
+    // Pieces where bending broke something keep their flat (linear) band.
+    std::vector<bool> revert;
+    for (std::size_t t : check.defectiveTriangles) {
+        const std::uint32_t piece = pieceOf[t];
+        if (piece >= revert.size()) revert.resize(piece + 1, false);
+        if (!revert[piece]) ++stats.revertedPieces;
+        revert[piece] = true;
+    }
+    for (std::size_t v = original; v < surface.points.size(); ++v)
+        if (pieceOfVertex[v] < revert.size() && revert[pieceOfVertex[v]])
+            surface.points[v] = flat[v - original];
+    roundPointsToFloat(surface);
+    check = checkMesh(surface);
+    if (check.validSolid()) return stats;
+    surface = linear;
+    check = checkMesh(surface);
+    stats.fellBack = true;
+    return stats;
+}
+
+}  // namespace dfrecon

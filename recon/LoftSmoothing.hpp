@@ -1,0 +1,44 @@
+#pragma once
+// `--interpolation smooth`: the loft bands of a linear reconstruction (the
+// strips stitched between two layers of contours) refined in z and bent onto
+// the zero set of the slices' C1 interpolant (recon/SliceInterpolant), so the
+// surface follows the trend of the neighbouring planes instead of running
+// straight from plane to plane. Contour vertices never move, so the surface
+// still passes exactly through every contour point; validity is checked and
+// kept piece by piece.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/MeshCheck.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "recon/SliceInterpolant.hpp"
+
+namespace dfrecon {
+
+struct LoftSmoothingStats {
+    int rounds = 0;                  // refinement rounds that split something
+    std::size_t movedVertices = 0;   // new vertices bent onto the smooth surface
+    std::size_t revertedPieces = 0;  // pieces whose bent vertices went back (validity)
+    bool fellBack = false;           // the linear surface was kept
+};
+
+/// `surface` is a valid reconstruction whose triangle t lies in piece
+/// pieceOf[t] (a slab or a cap) and is part of a loft band iff isLoft[t].
+/// Every edge of a loft triangle that is not horizontal and whose middle is
+/// farther than `toleranceMm` from the smooth surface is halved, in rounds
+/// until none is (at most 5; red–green: neighbouring triangles split too, so
+/// the mesh stays conforming; edges in a plane, contour edges included, are
+/// never split).
+/// Each new vertex all of whose triangles are loft triangles then moves, at
+/// its own z, to the zero set of `field` (Newton steps along the xy
+/// gradient); one that would move more than half its slab's height stays.
+/// Pieces whose moved vertices make the surface invalid (checked with points
+/// rounded to float) get them back; if it is still not valid, the linear
+/// surface is restored. On return `check` describes `surface`.
+/// Work: O(T) per round over the triangles made, plus up to three mesh checks.
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
+                               std::vector<bool> isLoft, const SliceInterpolant& field,
+                               double toleranceMm, MeshCheckReport& check);
+
+}  // namespace dfrecon

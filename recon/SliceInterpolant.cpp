@@ -1,0 +1,87 @@
+#include "recon/SliceInterpolant.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace dfrecon {
+
+SliceInterpolant::SliceInterpolant(const SliceFields& fields) : fields_(fields) {
+    if (fields.sliceCount() == 0 || fields.grid.pixelCount() == 0)
+        throw std::invalid_argument("SliceInterpolant: no fields");
+    for (std::size_t s = 1; s < fields.sliceCount(); ++s)
+        if (!(fields.zMm[s] > fields.zMm[s - 1]))
+            throw std::invalid_argument("SliceInterpolant: slices not in increasing z");
+}
+
+std::size_t SliceInterpolant::slabAt(double zMm) const {
+    const std::vector<double>& z = fields_.zMm;
+    if (z.size() < 2) return 0;
+    const auto above = std::upper_bound(z.begin(), z.end(), zMm);
+    const std::size_t s = std::size_t(std::max<std::ptrdiff_t>(1, above - z.begin())) - 1;
+    return std::min(s, z.size() - 2);
+}
+
+double SliceInterpolant::slabHeightAt(double zMm) const {
+    if (fields_.zMm.size() < 2) return 0;
+    const std::size_t s = slabAt(zMm);
+    return fields_.zMm[s + 1] - fields_.zMm[s];
+}
+
+double SliceInterpolant::planeValue(std::size_t slice, Point2 p) const {
+    const SliceGrid& g = fields_.grid;
+    // Bilinear between pixel centres, clamped to the grid (whose margin keeps
+    // every contour well inside).
+    const double u = std::clamp((p.x - g.originMm.x) / g.pixelMm - 0.5, 0.0, g.width - 1.0);
+    const double v = std::clamp((p.y - g.originMm.y) / g.pixelMm - 0.5, 0.0, g.height - 1.0);
+    const int i = std::min(int(u), std::max(0, g.width - 2));
+    const int j = std::min(int(v), std::max(0, g.height - 2));
+    const int i1 = std::min(i + 1, g.width - 1), j1 = std::min(j + 1, g.height - 1);
+    const double fx = u - i, fy = v - j;
+    auto at = [&](int a, int b) { return double(fields_.distanceMm[fields_.index(slice, a, b)]); };
+    return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i1, j)) +
+           fy * ((1 - fx) * at(i, j1) + fx * at(i1, j1));
+}
+
+double SliceInterpolant::value(Vec3 p) const {
+    const std::vector<double>& z = fields_.zMm;
+    const Point2 xy{p.x, p.y};
+    if (z.size() == 1) return planeValue(0, xy);
+    const std::size_t s = slabAt(p.z);
+    const double h = z[s + 1] - z[s];
+    const double t = std::clamp((p.z - z[s]) / h, 0.0, 1.0);
+    const double v0 = planeValue(s, xy), v1 = planeValue(s + 1, xy);
+    const double secant = (v1 - v0) / h;
+    // Tangents from the neighbouring secants (one-sided at the ends); zero
+    // where the data turn, then limited (Fritsch–Carlson) so the cubic
+    // stays monotone between v0 and v1.
+    auto tangent = [&](bool hasOther, double other) {
+        if (!hasOther) return secant;
+        return other * secant <= 0 ? 0.0 : 0.5 * (other + secant);
+    };
+    const double below = s > 0 ? (v0 - planeValue(s - 1, xy)) / (z[s] - z[s - 1]) : 0;
+    const double above =
+        s + 2 < z.size() ? (planeValue(s + 2, xy) - v1) / (z[s + 2] - z[s + 1]) : 0;
+    double m0 = tangent(s > 0, below), m1 = tangent(s + 2 < z.size(), above);
+    if (secant == 0) {
+        m0 = m1 = 0;
+    } else {
+        const double a = m0 / secant, b = m1 / secant, r = a * a + b * b;
+        if (r > 9) {
+            const double k = 3 / std::sqrt(r);
+            m0 = k * a * secant;
+            m1 = k * b * secant;
+        }
+    }
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * v0 + (t3 - 2 * t2 + t) * h * m0 + (-2 * t3 + 3 * t2) * v1 +
+           (t3 - t2) * h * m1;
+}
+
+Point2 SliceInterpolant::gradientXy(Vec3 p) const {
+    const double d = 0.5 * fields_.grid.pixelMm;
+    return {(value({p.x + d, p.y, p.z}) - value({p.x - d, p.y, p.z})) / (2 * d),
+            (value({p.x, p.y + d, p.z}) - value({p.x, p.y - d, p.z})) / (2 * d)};
+}
+
+}  // namespace dfrecon
