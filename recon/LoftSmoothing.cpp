@@ -136,8 +136,8 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                                double toleranceMm, MeshCheckReport& check) {
     LoftSmoothingStats stats;
     const TriangleSoup linear = surface;
-    const std::size_t original = surface.points.size();
-    std::vector<Vec3> flat;  // where each new vertex was made, on the linear surface
+    const std::vector<std::uint32_t> linearPieceOf = pieceOf;
+    std::vector<bool> restoredBefore;
     // Each round splits the edges that stray and bends the new vertices onto
     // the smooth surface, so the next round measures chords of the curve
     // (each halving divides a smooth band's sag by about four).
@@ -151,7 +151,6 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             if (!isLoft[t])
                 for (std::uint32_t v : surface.triangles[t]) movable[v] = false;
         for (std::size_t v = before; v < surface.points.size(); ++v) {
-            flat.push_back(surface.points[v]);
             Vec3 p = surface.points[v];
             const double slab = field.slabHeightAt(p.z);
             if (movable[v] && projectOntoZeroSet(field, p, 0.5 * slab, 0.2 * toleranceMm)) {
@@ -160,24 +159,49 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             }
         }
     }
-    std::vector<std::uint32_t> pieceOfVertex(surface.points.size(), 0);
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-        for (std::uint32_t v : surface.triangles[t]) pieceOfVertex[v] = pieceOf[t];
-
-    roundPointsToFloat(surface);
-    check = checkMesh(surface);
-    if (check.validSolid()) return stats;
-    // Pieces where bending broke something keep their flat (linear) band.
-    std::vector<bool> revert;
-    for (std::size_t t : check.defectiveTriangles) {
-        const std::uint32_t piece = pieceOf[t];
-        if (piece >= revert.size()) revert.resize(piece + 1, false);
-        if (!revert[piece]) ++stats.revertedPieces;
-        revert[piece] = true;
+    // A piece whose bent (or merely refined: halving thin triangles and
+    // rounding the new points to float can fold them) triangles break the
+    // surface gets its linear triangles back. Pieces meet only in contour
+    // vertices, which refinement never touches, so swapping one piece keeps
+    // the mesh conforming.
+    std::vector<bool> restored;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        roundPointsToFloat(surface);
+        check = checkMesh(surface);
+        if (check.validSolid()) return stats;
+        for (std::size_t t : check.defectiveTriangles) {
+            const std::uint32_t piece = pieceOf[t];
+            if (piece >= restored.size()) restored.resize(piece + 1, false);
+            if (!restored[piece]) ++stats.revertedPieces;
+            restored[piece] = true;
+        }
+        auto isRestored = [&](std::uint32_t piece) {
+            return piece < restored.size() && restored[piece];
+        };
+        std::vector<std::array<std::uint32_t, 3>> triangles;
+        std::vector<std::uint32_t> pieces;
+        std::vector<bool> lofts;
+        auto wasRestored = [&](std::uint32_t piece) {
+            return piece < restoredBefore.size() && restoredBefore[piece];
+        };
+        // Kept: pieces still bent, and pieces already linear again.
+        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+            if (!isRestored(pieceOf[t]) || wasRestored(pieceOf[t])) {
+                triangles.push_back(surface.triangles[t]);
+                pieces.push_back(pieceOf[t]);
+                lofts.push_back(isLoft[t]);
+            }
+        for (std::size_t t = 0; t < linear.triangles.size(); ++t)
+            if (isRestored(linearPieceOf[t]) && !wasRestored(linearPieceOf[t])) {
+                triangles.push_back(linear.triangles[t]);
+                pieces.push_back(linearPieceOf[t]);
+                lofts.push_back(false);  // restored: not bent again
+            }
+        surface.triangles = std::move(triangles);
+        pieceOf = std::move(pieces);
+        isLoft = std::move(lofts);
+        restoredBefore = restored;
     }
-    for (std::size_t v = original; v < surface.points.size(); ++v)
-        if (pieceOfVertex[v] < revert.size() && revert[pieceOfVertex[v]])
-            surface.points[v] = flat[v - original];
     roundPointsToFloat(surface);
     check = checkMesh(surface);
     if (check.validSolid()) return stats;
