@@ -49,9 +49,13 @@ double SliceInterpolant::value(Vec3 p) const {
     if (z.size() == 1) return planeValue(0, xy);
     const std::size_t s = slabAt(p.z);
     const double h = z[s + 1] - z[s];
-    const double t = std::clamp((p.z - z[s]) / h, 0.0, 1.0);
     const double v0 = planeValue(s, xy), v1 = planeValue(s + 1, xy);
     const double secant = (v1 - v0) / h;
+    // Beyond the end planes (the caps), the end slab's trend continues: the
+    // tangent there is that slab's secant, so F stays C1 at the end plane.
+    if (p.z < z.front()) return v0 + (p.z - z[s]) * secant;
+    if (p.z > z.back()) return v1 + (p.z - z[s + 1]) * secant;
+    const double t = (p.z - z[s]) / h;
     // Tangents from the neighbouring secants (one-sided at the ends); zero
     // where the data turn, then limited (Fritsch–Carlson) so the cubic
     // stays monotone between v0 and v1.

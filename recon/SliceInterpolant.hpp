@@ -21,7 +21,8 @@ class SliceInterpolant {
     /// every value finite). Keeps a reference: `fields` must outlive it.
     explicit SliceInterpolant(const SliceFields& fields);
 
-    /// F at p, mm (< 0 inside). z is clamped to the stack's range. O(1).
+    /// F at p, mm (< 0 inside). Beyond the first and last plane, the end
+    /// slab's secant in z continues (a single slice: its field). O(1).
     double value(Vec3 p) const;
     /// dF/dx and dF/dy at p by central differences of half a pixel. O(1).
     Point2 gradientXy(Vec3 p) const;
