@@ -6,6 +6,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
@@ -111,7 +112,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
                     "Voxel size in x and y, mm (default 0: the ROI's extent plus margin fits "
                     "~512 px)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--isotropic", args->isotropic,
                   "Cubic voxels: resample z at the x/y voxel size (default: z step = half the "
                   "slice spacing, so slices and cap planes are voxel layers; half the smallest "
@@ -119,7 +120,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--band", args->bandVoxels,
                     "Narrow band half-width in voxels (of the largest voxel side)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {
         if (args->output.size() < 4 || args->output.substr(args->output.size() - 4) != ".vdb")

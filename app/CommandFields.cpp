@@ -9,6 +9,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/SliceFields.hpp"
@@ -214,19 +215,19 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--pixel-mm", args->pixelMm,
                     "Pixel size in mm (default 0: the ROI's extent plus margin fits ~512 px)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--png", args->png,
                   "Also write pictures: NAME-distance-NNN.png (blue inside, red outside, "
                   "iso-lines), NAME-ids-NNN.png (nearest primitive as hue) and NAME-medial-NNN.png "
                   "(sum with the next slice, medial axes in yellow)");
     cmd->add_option("--iso-mm", args->isoStepMm, "Iso-line spacing in the pictures, mm")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--contour-error", args->contourErrorMm,
                     "Simplify contours first so every original point stays within this many mm "
                     "(0 = off); fields are then of the simplified contours")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runFields(*args, global); });
 }

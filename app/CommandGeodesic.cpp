@@ -11,6 +11,7 @@
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "segment/GeodesicDistances.hpp"
@@ -152,7 +153,7 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::IsMember(namesOf(kSpeedKindNames)));
     cmd->add_option("--curvature-weight", args->curvatureWeightMm,
                     "e or m of the curvature speeds, in mm (default: √(area/10))")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--solver", args->solver,
                     "auto (the faster for this mesh and device), fm (fast marching) or fim "
                     "(OpenCL fast iterative method)")

@@ -8,6 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
@@ -137,11 +138,11 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--voxel-mm", args->voxelMm,
                     "Or a grid of cubic voxels this size (mm) on the ROI's axes, around its "
                     "contours")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--pixel-mm", args->pixelMm,
                     "Field pixel size in mm (default 0: the ROI's extent fits 512 px)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runRasterize(*args, global); });
 }

@@ -13,6 +13,7 @@
 #include "app/EnumNames.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
@@ -261,12 +262,12 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--pixel-mm", args->options.pixelMm,
                     "Field pixel size in mm (default 0: the ROI's extent plus margin fits 256 px)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--contour-error", args->options.contourErrorMm,
                     "Simplify contours first so every original point stays within this many mm "
                     "(0 = keep every point)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--max-depth", args->options.maxDepth,
                     "Recursion levels for branching regions; at the limit what is left is closed "
                     "by a step of spacing / 2^(depth+1)")
@@ -286,18 +287,18 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "Smooth mode: strips are halved in z until no straight edge strays farther "
                     "than this from the smooth surface, mm")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--cap-offset", args->options.capOffsetMm,
                     "How far beyond an end contour its cap reaches, mm (default: half the DICOM "
                     "contour slab thickness if given, else half the slice spacing; at most half "
                     "the gap to the next slice)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--max-error", args->maxErrorMm,
                     "Then simplify with this two-sided bound in mm, as dfrecon simplify does "
                     "(0 = keep every triangle); the report gives the certified bound and the "
                     "verified distance to the full surface and the contours")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--allow-invalid", args->allowInvalid,
                   "Write a surface that is not a valid closed solid anyway (it is reported, "
                   "and the exit code is still 4)");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
@@ -238,11 +239,11 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--max-error", args->maxErrorMm,
                     "Instead of --size: the sampling bound in mm (texel = bound / sqrt(2)); the "
                     "atlas grows to fit")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--max-distance", args->maxDistanceMm,
                     "Clearance band in mm: look no farther (faster); points with nothing "
                     "closer get distance inf and nearest_object -1 (default: no limit)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--no-images", args->noImages, "Skip the atlas TIFF and PNG maps");
     cmd->add_flag("--no-pairs", args->noPairs, "Skip the pairwise proximity queries");
     cmd->add_flag("--json", args->json, "Print the JSON report to stdout too");

@@ -12,6 +12,7 @@
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Stopwatch.hpp"
 #include "segment/Segmentation.hpp"
@@ -112,18 +113,18 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         ->required();
     cmd->add_option("-k,--regions", args->regions, "Number of regions (seeds) to start from")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--speed", args->speed, "Front speed: uniform, repulsive or attractive")
         ->capture_default_str()
         ->check(CLI::IsMember(namesOf(kSpeedKindNames)));
     cmd->add_option("--iterations", args->options.lloyd.maxIterations,
                     "Most Lloyd iterations (they stop earlier once no vertex changes region)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--curvature-weight", args->options.curvatureWeightMm,
                     "e and m of the curvature speeds 1+e·κ and 1/(1+m·κ), in mm (default: "
                     "√(area/k), so crossing a 90° crease costs about one region's width)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--no-disk-constraint", args->noDisks,
                   "Do not add seeds where a region is not a topological disk");
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");

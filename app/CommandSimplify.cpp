@@ -8,6 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/Stopwatch.hpp"
@@ -96,7 +97,7 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global) {
                     "The two-sided bound in mm (every point of either surface this close to the "
                     "other)")
         ->required()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--field", args->field,
                     "A .vdb distance field (from dfrecon field): also report the largest |field| "
                     "on the result, i.e. how far it is from the contours' surface (measured, not "

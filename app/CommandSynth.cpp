@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/NumberChecks.hpp"
 #include "io/SlicesFile.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
@@ -80,18 +81,18 @@ void addSynthCommand(CLI::App& root, const GlobalOptions&) {
     cmd->add_option("-o,--output", args->output, "Output .slices file")->required();
     cmd->add_option("--spacing", args->options.spacingMm, "Slice spacing in mm")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--points", args->options.pointsPerContour, "Vertices per contour")
         ->capture_default_str()
         ->check(CLI::Range(3, 1000000));
     cmd->add_option("--noise", args->options.noiseMm,
                     "Std-dev of random vertex displacement in mm (clamped at 3 std-devs)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--seed", args->options.seed, "Random seed for --noise")->capture_default_str();
     cmd->add_option("--scale", args->scale, "Multiply every length of the shape")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args] { runSynth(*args); });
 }

@@ -66,6 +66,8 @@ static const Roi* findByNameOrNumber(const ContourSet& contours, const std::stri
 
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all) {
     std::vector<const Roi*> chosen;
+    if (all && !name.empty())
+        throw std::invalid_argument("--roi " + name + " and --all exclude each other: give one");
     if (all) {
         for (const Roi& roi : contours.rois)
             if (!roi.slices.empty()) chosen.push_back(&roi);

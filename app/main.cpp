@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <new>
+#include <string>
 
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
@@ -41,6 +42,25 @@ int main(int argc, char** argv) {
     addSegmentCommand(root, global);
     addGeodesicCommand(root, global);
     addCheckCommand(root, global);
+
+    // CLI11 reports a mistyped subcommand as a missing one; name it instead.
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--device") {
+            ++i;  // its value
+            continue;
+        }
+        if (arg.empty() || arg[0] == '-') continue;
+        bool known = false;
+        for (const CLI::App* command : root.get_subcommands({}))
+            known = known || command->check_name(arg);
+        if (!known) {
+            std::cerr << "dfrecon: unknown subcommand '" << arg
+                      << "' (dfrecon --help lists them)\n";
+            return kExitUsage;
+        }
+        break;
+    }
 
     try {
         root.parse(argc, argv);

@@ -3,6 +3,7 @@
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -14,6 +15,15 @@
 #include "io/InputError.hpp"
 
 namespace dfrecon {
+
+// OpenMesh logs every file it reads or writes ("[OBJWriter] : write file") on
+// streams of its own, past --quiet; dfrecon says what it wrote itself. Its
+// error stream stays: a reader's complaint can say more than ours.
+[[maybe_unused]] const bool openMeshLogsOff = [] {
+    omlog().disable();
+    omout().disable();
+    return true;
+}();
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();

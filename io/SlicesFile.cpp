@@ -17,6 +17,20 @@ namespace dfrecon {
 
 namespace {
 
+// Do all points of `polygon` lie on one line? Exact: integer-free but the
+// cross products of recorded coordinates are zero only when they truly are.
+bool allCollinear(const Polygon& polygon) {
+    for (std::size_t k = 2; k < polygon.size(); ++k) {
+        const Point2 u = polygon[1] - polygon[0], v = polygon[k] - polygon[0];
+        if (u.x * v.y - u.y * v.x != 0) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+namespace {
+
 // A contour as read, with the line of each point so later checks can point
 // at the file.
 struct SourceContour {
@@ -371,8 +385,10 @@ class Parser {
     void validate(const SourceSlice& slice, const std::string& name) const {
         std::vector<Polygon> polygons;
         for (const SourceContour& c : slice.contours) polygons.push_back(c.points);
+        // Zero area is either a line (nothing to validate further) or a
+        // figure eight whose halves cancel, which the crossing test names.
         for (std::size_t i = 0; i < polygons.size(); ++i)
-            if (signedArea(polygons[i]) == 0)
+            if (signedArea(polygons[i]) == 0 && allCollinear(polygons[i]))
                 fail(slice.contours[i].keywordLine, "contour has zero area (all points collinear)");
 
         const std::optional<ContourDefect> defect = findContourDefect(polygons);

@@ -43,6 +43,9 @@ inline std::vector<BadInput> badInputs() {
         {"TooFewDistinctPoints", kHeader + "roi a\nslice 0\ncontour 4\n0 0\n1 1\n1 1\n0 0\n", 5,
          "fewer than 3 distinct points (2)"},
         {"ZeroArea", kHeader + "roi a\nslice 0\ncontour 3\n0 0\n1 1\n2 2\n", 5, "zero area"},
+        // A figure eight's halves cancel to zero area: it crosses, it is no line.
+        {"BowTie", kHeader + "roi a\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 10\n", 6,
+         "self-intersecting contour"},
         {"SelfIntersecting", kHeader + "roi a\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 5\n", 6,
          "self-intersecting contour (line 5): segment 1 (lines 6-7) crosses segment 3 (lines 8-9)"},
         {"SelfTouching", kHeader + "roi a\nslice 0\ncontour 6\n0 0\n10 0\n5 5\n10 10\n0 10\n5 5\n",

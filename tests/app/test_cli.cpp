@@ -75,6 +75,32 @@ TEST(Cli, MissingInputFileExitsTwo) {
     EXPECT_NE(run.err.find("/nonexistent/file.slices: cannot open file"), std::string::npos);
 }
 
+TEST(Cli, UsageMessagesSayWhatIsWrong) {
+    const Result unknown = runDfrecon("frobnicate");
+    EXPECT_EQ(unknown.exitCode, 1);
+    EXPECT_NE(unknown.err.find("unknown subcommand 'frobnicate'"), std::string::npos)
+        << unknown.err;
+    const std::string slices = std::string(DFRECON_EXAMPLES) + "/two-rois.slices";
+    const Result both = runDfrecon("reconstruct " + slices + " --all --roi PTV -o x");
+    EXPECT_EQ(both.exitCode, 1);
+    EXPECT_NE(both.err.find("exclude each other"), std::string::npos) << both.err;
+    const Result negative =
+        runDfrecon("reconstruct " + slices + " --roi PTV --pixel-mm -1 -o x.ply");
+    EXPECT_EQ(negative.exitCode, 1);
+    EXPECT_NE(negative.err.find("must be at least 0, not -1"), std::string::npos) << negative.err;
+    EXPECT_LT(negative.err.size(), 200u) << negative.err;  // no DBL_MAX in 300 digits
+}
+
+TEST(Cli, QuietMeansQuietAlsoForMeshWriters) {
+    const std::string slices = std::string(DFRECON_EXAMPLES) + "/two-rois.slices";
+    for (const char* ext : {".obj", ".stl", ".off", ".ply"}) {
+        const Result run = runDfrecon("-q reconstruct " + slices + " --roi PTV -o " +
+                                      (scratch() / (std::string("quiet") + ext)).string());
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        EXPECT_EQ(run.err, "") << ext;
+    }
+}
+
 TEST(Cli, UsageErrorsExitOne) {
     EXPECT_EQ(runDfrecon("").exitCode, 1);
     EXPECT_EQ(runDfrecon("frobnicate").exitCode, 1);
