@@ -2,6 +2,7 @@
 // (paper surface-distance-maps): at every vertex and atlas texel of each
 // mesh, the signed distance to the nearest other mesh and which one it is;
 // plus pairwise separation, collision and penetration with their bounds.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -194,17 +195,26 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
         std::cout << report.dump(2) << "\n";
         return;
     }
-    for (std::size_t o = 0; o < scene.objectCount(); ++o)
+    // Micrometres are the most any of these numbers means.
+    auto mm = [](double value) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3f", value);
+        return std::string(text);
+    };
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        const auto& nearest = objects[o]["minDistanceMm"];
         std::cout << names[o] << ": " << samples[o].texelCount() << " texels of "
-                  << samples[o].atlas.texelMm << " mm (bound " << samples[o].samplingBoundMm()
-                  << " mm), nearest other object at " << objects[o]["minDistanceMm"].dump()
-                  << " mm\n";
+                  << mm(samples[o].atlas.texelMm) << " mm (sampling bound "
+                  << mm(samples[o].samplingBoundMm()) << " mm), nearest other object at "
+                  << (nearest.is_number() ? mm(nearest.get<double>()) + " mm" : nearest.dump())
+                  << "\n";
+    }
     for (const PairProximity& p : pairs)
         std::cout << names[p.first] << " - " << names[p.second] << ": "
-                  << (p.colliding() ? "COLLIDING, deepest point " +
-                                          std::to_string(p.deepestPointMm) + " mm inside"
-                                    : "separated by " + std::to_string(p.separationMm) + " mm (-" +
-                                          std::to_string(p.boundMm) + ")")
+                  << (p.colliding()
+                          ? "COLLIDING, deepest point " + mm(p.deepestPointMm) + " mm inside"
+                          : "separated by " + mm(p.separationMm) + " mm (exact to within " +
+                                mm(p.boundMm) + " mm)")
                   << "\n";
     std::cout << "-> " << args.outputDir << "\n";
 }
