@@ -12,6 +12,7 @@
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/ExitCodes.hpp"
+#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/OrderedParallel.hpp"
@@ -51,7 +52,24 @@ std::string outputPathFor(const ReconstructArgs& args, const std::string& stem, 
 struct RoiOutcome {
     nlohmann::ordered_json report;
     std::string out, err;  // for stdout and stderr
+    int failure = 0;       // exit code of the error that stopped this ROI, 0 if none
 };
+
+/// The outcome of an ROI that failed: reported, and the others go on.
+RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
+    const Failure failure = describeFailure(error);
+    RoiOutcome outcome;
+    outcome.failure = failure.exitCode;
+    outcome.err = "dfrecon: ROI '" + roi.name + "': " + failure.message + "\n";
+    outcome.report = {{"roi", roi.name},
+                      {"roiNumber", valueOrNull(roi.number)},
+                      {"output", nullptr},
+                      {"written", false},
+                      {"validSolid", false},
+                      {"error", failure.message},
+                      {"exitCode", failure.exitCode}};
+    return outcome;
+}
 
 // OpenMesh's writers are process-wide singletons; ROIs reconstructed at once
 // write one at a time.
@@ -181,7 +199,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                     "' needs a mesh extension (.ply .stl .obj .off)");
     const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
-    std::string invalid;
+    std::string invalid, failed;
+    int firstFailure = 0;
     // One OpenCL queue per worker: a shared in-order queue would make each
     // ROI wait for the other's kernels. With several workers each ROI's own
     // bar would fight for the line, so the bar counts ROIs instead.
@@ -194,17 +213,29 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     forEachInOrder(
         rois.size(), jobs,
         [&](std::size_t i, std::size_t worker) {
-            if (!runtimes[worker]) runtimes[worker] = std::make_unique<ocl::Runtime>(global.device);
-            return reconstructRoi(*runtimes[worker], *rois[i],
-                                  outputPathFor(args, stems[i], several), load, args, global,
-                                  jobs <= 1);
+            // With several ROIs one that fails is reported and the rest go on.
+            try {
+                if (!runtimes[worker])
+                    runtimes[worker] = std::make_unique<ocl::Runtime>(global.device);
+                return reconstructRoi(*runtimes[worker], *rois[i],
+                                      outputPathFor(args, stems[i], several), load, args, global,
+                                      jobs <= 1);
+            } catch (...) {
+                if (!several) throw;
+                return failedRoi(*rois[i], std::current_exception());
+            }
         },
         [&](std::size_t i, RoiOutcome outcome) {
             overall.finish();
             std::cout << outcome.out << std::flush;
             std::cerr << outcome.err << std::flush;
-            if (!outcome.report["validSolid"].get<bool>() && args.options.cap != CapMode::None)
+            if (outcome.failure != 0) {
+                failed += (failed.empty() ? "" : ", ") + rois[i]->name;
+                if (firstFailure == 0) firstFailure = outcome.failure;
+            } else if (!outcome.report["validSolid"].get<bool>() &&
+                       args.options.cap != CapMode::None) {
                 invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
+            }
             reports.push_back(std::move(outcome.report));
             overall.update(double(i + 1) / double(rois.size()));
         });
@@ -226,6 +257,11 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                             {"emptyRois", empty}}
                          .dump(2)
                   << "\n";
+    if (!failed.empty())
+        throw ItemsFailed("failed: " + failed +
+                              (invalid.empty() ? "" : "; not a valid closed solid: " + invalid) +
+                              " (the other ROIs were done)",
+                          firstFailure);
     if (!invalid.empty())
         throw InvalidResult("not a valid closed solid: " + invalid +
                             (args.allowInvalid ? " (written anyway: --allow-invalid)"

@@ -20,4 +20,17 @@ class InvalidResult : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// Thrown after a command that carries on past failing items (reconstruct
+/// --all) has done and reported the rest: main() prints the message and
+/// exits with the first failure's code.
+class ItemsFailed : public std::runtime_error {
+  public:
+    ItemsFailed(const std::string& message, int exitCode)
+        : std::runtime_error(message), exitCode_(exitCode) {}
+    int exitCode() const { return exitCode_; }
+
+  private:
+    int exitCode_;
+};
+
 }  // namespace dfrecon::app

@@ -8,8 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
-#include "cl/ClError.hpp"
-#include "io/InputError.hpp"
+#include "app/Failure.hpp"
 
 using namespace dfrecon;
 using namespace dfrecon::app;
@@ -74,26 +73,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         root.exit(e);
         return kExitUsage;
-    } catch (const InvalidResult& e) {
-        std::cerr << "dfrecon: " << e.what() << "\n";
-        return kExitInvalidResult;
-    } catch (const InputError& e) {
-        std::cerr << "dfrecon: " << e.what() << "\n";
-        return kExitBadInput;
-    } catch (const ocl::ClError& e) {
-        std::cerr << "dfrecon: OpenCL: " << e.what() << "\n";
-        return kExitRuntime;
-    } catch (const cl::Error& e) {
-        std::cerr << "dfrecon: OpenCL: " << ocl::toClError(e).what() << "\n";
-        return kExitRuntime;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "dfrecon: out of memory\n";
-        return kExitRuntime;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "dfrecon: " << e.what() << "\n";
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        std::cerr << "dfrecon: " << e.what() << "\n";
-        return kExitRuntime;
+    } catch (...) {
+        const Failure failure = describeFailure(std::current_exception());
+        std::cerr << "dfrecon: " << failure.message << "\n";
+        return failure.exitCode;
     }
 }

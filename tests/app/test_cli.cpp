@@ -400,6 +400,39 @@ TEST(Cli, RoisWhoseNamesClashStillGetAFileEach) {
     }
 }
 
+TEST(Cli, ReconstructAllCarriesOnPastAFailingRoi) {
+    // The first ROI has more contours on a plane than the fields can name;
+    // the second is fine and must still be reconstructed and written.
+    std::string text = "dfrecon-slices 1\nunits mm\nroi crowded\n";
+    for (double z : {0.0, 2.0}) {
+        text += "slice " + std::to_string(z) + "\n";
+        for (int k = 0; k < 4200; ++k) {
+            const double x = 3.0 * (k % 70), y = 3.0 * (k / 70);
+            text += "contour 3\n" + std::to_string(x) + " " + std::to_string(y) + "\n" +
+                    std::to_string(x + 1) + " " + std::to_string(y) + "\n" + std::to_string(x) +
+                    " " + std::to_string(y + 1) + "\n";
+        }
+    }
+    text += "roi fine\n";
+    for (double z : {0.0, 2.0})
+        text += "slice " + std::to_string(z) + "\ncontour 4\n0 0\n10 0\n10 10\n0 10\n";
+    const fs::path input = scratch() / "one-fails.slices", dir = scratch() / "one-fails";
+    std::ofstream(input) << text;
+    const Result run =
+        runDfrecon("-q reconstruct " + input.string() + " --all --json -o " + dir.string());
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.exitCode, 4);
+    EXPECT_NE(run.err.find("ROI 'crowded'"), std::string::npos) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["rois"].size(), 2u);
+    EXPECT_TRUE(report["rois"][0].contains("error"));
+    EXPECT_FALSE(report["rois"][0]["written"].get<bool>());
+    EXPECT_EQ(report["rois"][0]["exitCode"].get<int>(), run.exitCode);
+    EXPECT_TRUE(report["rois"][1]["validSolid"].get<bool>());
+    EXPECT_TRUE(fs::exists(dir / "fine.ply"));
+    EXPECT_FALSE(fs::exists(dir / "crowded.ply"));
+}
+
 TEST(Cli, ReconstructWithSeveralJobsGivesWhatOneJobGives) {
     // Same files, same report (but for seconds), in ROI order.
     const dfrecon::LabelVolume volume = dfrecon::hostileLabelVolume(3);
