@@ -17,6 +17,7 @@ void addDevicesCommand(CLI::App& root, const GlobalOptions& global);
 void addInfoCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 void addCheckCommand(CLI::App& root, const GlobalOptions& global);
+void addCompareCommand(CLI::App& root, const GlobalOptions& global);
 void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
     addSegmentCommand(root, global);
     addGeodesicCommand(root, global);
     addCheckCommand(root, global);
+    addCompareCommand(root, global);
 
     // CLI11 reports a mistyped subcommand as a missing one; name it instead.
     for (int i = 1; i < argc; ++i) {

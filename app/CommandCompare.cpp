@@ -1,0 +1,130 @@
+// dfrecon compare A B: how two structures agree, as contouring studies and QA
+// checks report it — volumes, Dice, Jaccard, Hausdorff, HD95 and mean surface
+// distance — computed on the surfaces (compare/), not on voxels, with the
+// distances' error bound stated.
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Inputs.hpp"
+#include "app/NumberChecks.hpp"
+#include "app/Stopwatch.hpp"
+#include "compare/OverlapVolume.hpp"
+#include "compare/SurfaceDistances.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "io/InputError.hpp"
+#include "io/MeshIO.hpp"
+#include "recon/Reconstruction.hpp"
+
+namespace dfrecon::app {
+
+namespace {
+
+struct CompareArgs {
+    std::string a, b, roiA, roiB;
+    double spacingMm = 0.2;
+    bool json = false;
+};
+
+/// A mesh file as it is, or an ROI of a contour file reconstructed (linear,
+/// flat caps: the surface whose volume is the contours' own).
+TriangleSoup surfaceOf(const std::string& path, const std::string& roi,
+                       const GlobalOptions& global) {
+    if (isMeshExtension(path)) {
+        TriangleSoup soup = readTriangleSoup(path);
+        if (!checkMesh(soup).validSolid())
+            throw InputError(path, 0, "not a valid closed solid (dfrecon check says where)");
+        return soup;
+    }
+    const ContourInput input = loadContours(path, global);
+    const Roi& chosen = *selectRois(input.contours, roi, false).front();
+    ocl::Runtime runtime(global.device);
+    Reconstruction result = reconstructSurface(runtime, chosen);
+    if (!result.check.validSolid())
+        throw InputError(path, 0, "ROI '" + chosen.name + "' gives no valid closed solid");
+    toPatient(result.surface, chosen.frame);
+    return result.surface;
+}
+
+void runCompare(const CompareArgs& args, const GlobalOptions& global) {
+    Stopwatch watch;
+    const TriangleSoup a = surfaceOf(args.a, args.roiA, global);
+    const TriangleSoup b = surfaceOf(args.b, args.roiB, global);
+    const double loadSeconds = watch.lap();
+    const Overlap overlap = overlapOf(a, b);
+    const double overlapSeconds = watch.lap();
+    const SurfaceDistances d = surfaceDistances(a, b, args.spacingMm);
+    const double distanceSeconds = watch.lap();
+    if (args.json) {
+        auto directed = [](const DirectedDistances& x) {
+            return nlohmann::ordered_json{{"hausdorffMm", x.maxMm},
+                                          {"hd95Mm", x.p95Mm},
+                                          {"meanMm", x.meanMm},
+                                          {"samples", x.samples}};
+        };
+        std::cout << nlohmann::ordered_json{{"command", "compare"},
+                                            {"a", args.a},
+                                            {"b", args.b},
+                                            {"volumeAMm3", overlap.volumeAMm3},
+                                            {"volumeBMm3", overlap.volumeBMm3},
+                                            {"volumeDifferenceMm3",
+                                             overlap.volumeBMm3 - overlap.volumeAMm3},
+                                            {"intersectionMm3", overlap.intersectionMm3},
+                                            {"unionMm3", overlap.unionMm3()},
+                                            {"dice", overlap.dice()},
+                                            {"jaccard", overlap.jaccard()},
+                                            {"hausdorffMm", d.hausdorffMm()},
+                                            {"hd95Mm", d.hd95Mm()},
+                                            {"meanSurfaceDistanceMm", d.meanMm()},
+                                            {"distanceBoundMm", d.spacingMm},
+                                            {"aToB", directed(d.aToB)},
+                                            {"bToA", directed(d.bToA)},
+                                            {"seconds",
+                                             {{"load", loadSeconds},
+                                              {"overlap", overlapSeconds},
+                                              {"distances", distanceSeconds}}}}
+                         .dump(2)
+                  << "\n";
+        return;
+    }
+    std::cout << "volume A " << overlap.volumeAMm3 / 1000 << " cc, B " << overlap.volumeBMm3 / 1000
+              << " cc, both " << overlap.intersectionMm3 / 1000 << " cc\n"
+              << "Dice " << overlap.dice() << ", Jaccard " << overlap.jaccard() << " (exact)\n"
+              << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm()
+              << " mm, mean surface distance " << d.meanMm() << " mm (each within " << d.spacingMm
+              << " mm)\n";
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = root.add_subcommand(
+        "compare",
+        "Volumes, Dice, Jaccard, Hausdorff, HD95 and mean surface distance of two "
+        "structures, on their surfaces");
+    cmd->footer(
+        "A and B are mesh files (.ply .stl .obj .off; valid closed solids) or contour files "
+        "(.slices, DICOM RTSTRUCT, label volumes; the ROI is reconstructed with the defaults). "
+        "Dice and Jaccard come from the exact volume of the intersection (CGAL corefinement, "
+        "exact constructions), so they carry no voxelisation error. Distances: every triangle "
+        "of each surface is sampled on a lattice no coarser than --spacing and each sample gets "
+        "its exact distance to the other surface; Hausdorff is the larger directed maximum, "
+        "HD95 the larger directed area-weighted 95th percentile, the mean is area-weighted over "
+        "both surfaces; each is within --spacing of its exact value. Exit codes: 0 done, 1 "
+        "usage, 2 bad input (a surface that is not a valid closed solid), 3 runtime failure.");
+    cmd->add_option("a", args->a, "First structure: mesh or contour file")->required();
+    cmd->add_option("b", args->b, "Second structure: mesh or contour file")->required();
+    cmd->add_option("--roi-a", args->roiA, "ROI of A when A is a contour file with several");
+    cmd->add_option("--roi-b", args->roiB, "ROI of B when B is a contour file with several");
+    cmd->add_option("--spacing", args->spacingMm,
+                    "Largest lattice step of the distance samples, mm: the bound on every "
+                    "distance's error")
+        ->capture_default_str()
+        ->check(kPositive);
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    cmd->callback([args, &global] { runCompare(*args, global); });
+}
+
+}  // namespace dfrecon::app

@@ -1,0 +1,76 @@
+// Overlap and surface distances between two structures against exact
+// formulas: boxes (whose overlap is a box), nested boxes (every point of the
+// inner surface exactly d from the outer), offset spheres (the lens formula).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "compare/OverlapVolume.hpp"
+#include "compare/SurfaceDistances.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "shapes/MeshShapes.hpp"
+
+using namespace dfrecon;
+
+TEST(OverlapVolume, OffsetBoxesOverlapInABox) {
+    for (double d : {0.0, 0.5, 3.25, 9.0}) {
+        const TriangleSoup a = boxMesh({0, 0, 0}, {10, 10, 10}, 3);
+        const TriangleSoup b = boxMesh({d, 0, 0}, {10 + d, 10, 10}, 4);
+        const Overlap o = overlapOf(a, b);
+        EXPECT_NEAR(o.volumeAMm3, 1000, 1e-9);
+        EXPECT_NEAR(o.volumeBMm3, 1000, 1e-9);
+        EXPECT_NEAR(o.intersectionMm3, 100 * (10 - d), 1e-9) << d;
+        EXPECT_NEAR(o.dice(), (10 - d) / 10, 1e-12) << d;
+        EXPECT_NEAR(o.jaccard(), (10 - d) / (10 + d), 1e-12) << d;
+    }
+}
+
+TEST(OverlapVolume, DisjointAndNestedSolids) {
+    const TriangleSoup a = boxMesh({0, 0, 0}, {10, 10, 10}, 2);
+    EXPECT_NEAR(overlapOf(a, boxMesh({20, 0, 0}, {30, 10, 10}, 2)).dice(), 0, 1e-12);
+    const Overlap nested = overlapOf(a, boxMesh({2, 2, 2}, {4, 4, 4}, 2));
+    EXPECT_NEAR(nested.intersectionMm3, 8, 1e-9);
+    EXPECT_NEAR(nested.dice(), 16.0 / 1008, 1e-12);
+}
+
+TEST(OverlapVolume, OffsetSpheresFollowTheLensFormula) {
+    // Fine geodesic spheres: the polyhedra's volumes approach the balls'; the
+    // Dice of the polyhedra approaches (4R + d)(2R − d)² / (16 R³).
+    const double r = 10;
+    for (double d : {2.0, 8.0}) {
+        const TriangleSoup a = geodesicSphere(48, r), b = geodesicSphere(48, r, {d, 0, 0});
+        const Overlap o = overlapOf(a, b);
+        const double exact = (4 * r + d) * (2 * r - d) * (2 * r - d) / (16 * r * r * r);
+        EXPECT_NEAR(o.dice(), exact, 2e-3) << d;
+    }
+}
+
+TEST(OverlapVolume, RefusesWhatIsNoSolid) {
+    TriangleSoup open = boxMesh({0, 0, 0}, {1, 1, 1}, 1);
+    open.triangles.pop_back();
+    EXPECT_THROW(overlapOf(open, boxMesh({0, 0, 0}, {1, 1, 1}, 1)), std::invalid_argument);
+}
+
+TEST(SurfaceDistances, NestedBoxesAreExactlyDApart) {
+    const double d = 1.5;
+    const TriangleSoup inner = boxMesh({0, 0, 0}, {10, 10, 10}, 3);
+    const TriangleSoup outer = boxMesh({-d, -d, -d}, {10 + d, 10 + d, 10 + d}, 2);
+    const SurfaceDistances s = surfaceDistances(inner, outer, 0.25);
+    // From the inner surface every point is exactly d from the outer one.
+    EXPECT_NEAR(s.aToB.maxMm, d, 1e-9);
+    EXPECT_NEAR(s.aToB.meanMm, d, 1e-9);
+    EXPECT_NEAR(s.aToB.p95Mm, d, 1e-9);
+    // From the outer surface, up to d√3 at its corners.
+    EXPECT_LE(s.bToA.maxMm, d * std::sqrt(3.0) + 1e-9);
+    EXPECT_GE(s.bToA.maxMm, d * std::sqrt(3.0) - s.spacingMm);
+    EXPECT_NEAR(s.hausdorffMm(), s.bToA.maxMm, 1e-12);
+    EXPECT_NEAR(s.areaAMm2, 600, 1e-9);
+    EXPECT_NEAR(s.areaBMm2, 6 * (10 + 2 * d) * (10 + 2 * d), 1e-9);
+}
+
+TEST(SurfaceDistances, IdenticalSurfacesAreZeroApart) {
+    const TriangleSoup a = geodesicSphere(8, 5);
+    const SurfaceDistances s = surfaceDistances(a, a, 0.5);
+    EXPECT_LT(s.hausdorffMm(), 1e-9);
+    EXPECT_LT(s.meanMm(), 1e-9);
+}
