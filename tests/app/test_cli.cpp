@@ -15,7 +15,9 @@
 #include <openvdb/tools/Interpolation.h>
 
 #include "io/LabelVolume.hpp"
+#include "io/MeshIO.hpp"
 #include "io/SlicesFile.hpp"
+#include "shapes/MeshShapes.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/BadSlicesInputs.hpp"
 
@@ -431,6 +433,31 @@ TEST(Cli, ReconstructAllCarriesOnPastAFailingRoi) {
     EXPECT_TRUE(report["rois"][1]["validSolid"].get<bool>());
     EXPECT_TRUE(fs::exists(dir / "fine.ply"));
     EXPECT_FALSE(fs::exists(dir / "crowded.ply"));
+}
+
+TEST(Cli, CompareGivesExactOverlapAndBoundedDistances) {
+    const fs::path a = scratch() / "cmp-a.ply", b = scratch() / "cmp-b.ply";
+    dfrecon::writeMesh(dfrecon::toTriMesh(dfrecon::boxMesh({0, 0, 0}, {10, 10, 10}, 2)),
+                       a.string());
+    dfrecon::writeMesh(dfrecon::toTriMesh(dfrecon::boxMesh({2, 0, 0}, {12, 10, 10}, 3)),
+                       b.string());
+    const Result run = runDfrecon("compare " + a.string() + " " + b.string() + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_NEAR(report["dice"].get<double>(), 0.8, 1e-9);
+    EXPECT_NEAR(report["jaccard"].get<double>(), 8.0 / 12, 1e-9);
+    EXPECT_NEAR(report["hausdorffMm"].get<double>(), 2, report["distanceBoundMm"].get<double>());
+    // A contour file's ROI is reconstructed; a surface with a hole is refused.
+    const Result contours = runDfrecon("compare " + std::string(DFRECON_EXAMPLES) +
+                                       "/two-rois.slices " + a.string() + " --roi-a PTV");
+    EXPECT_EQ(contours.exitCode, 0) << contours.err;
+    dfrecon::TriangleSoup open = dfrecon::boxMesh({0, 0, 0}, {1, 1, 1}, 1);
+    open.triangles.pop_back();
+    const fs::path holed = scratch() / "cmp-open.ply";
+    dfrecon::writeMesh(dfrecon::toTriMesh(open), holed.string());
+    const Result refused = runDfrecon("compare " + holed.string() + " " + a.string());
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.err.find(holed.string()), std::string::npos) << refused.err;
 }
 
 TEST(Cli, ReconstructWithSeveralJobsGivesWhatOneJobGives) {
