@@ -16,6 +16,7 @@ int benchRtStruct();
 int benchSdm(const std::string& device);
 int benchSegment(const std::string& device);
 int benchStructureSet(const std::string& device);
+int benchCompare();
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>

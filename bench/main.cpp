@@ -10,7 +10,7 @@ using namespace dfrecon::bench;
 int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
-        "fields|recon|simplify|slices-io|rtstruct|sdm|segment|structure-set|all "
+        "fields|recon|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|all "
         "[--device SPEC]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
@@ -24,7 +24,9 @@ int main(int argc, char** argv) {
         "  segment    geodesic distances (fast marching, OpenCL fast iterative method) on spheres "
         "and libcgal-demo meshes; geodesic Lloyd segmentation\n"
         "  structure-set  whole structure sets (Brodmann atlas, kmeans, many blobs) through "
-        "reconstruct --all vs rasterise + marching cubes\n";
+        "reconstruct --all vs rasterise + marching cubes\n"
+        "  compare    Dice and Hausdorff of offset balls: surfaces (exact overlap) vs voxels, "
+        "against the exact values\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -41,10 +43,11 @@ int main(int argc, char** argv) {
     if (suite == "sdm") return benchSdm(device);
     if (suite == "segment") return benchSegment(device);
     if (suite == "structure-set") return benchStructureSet(device);
+    if (suite == "compare") return benchCompare();
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                benchSimplify(device) | benchSdm(device) | benchSegment(device) |
-               benchStructureSet(device);
+               benchStructureSet(device) | benchCompare();
     std::cerr << usage;
     return 1;
 }
