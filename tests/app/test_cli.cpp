@@ -121,7 +121,7 @@ TEST(Cli, HelpEverywhereWithDefaultsAndUnits) {
         EXPECT_NE(run.out.find("Usage:"), std::string::npos) << sub;
     }
     const Result synth = runDfrecon("synth --help");
-    EXPECT_NE(synth.out.find("--spacing FLOAT:POSITIVE=2"), std::string::npos) << synth.out;
+    EXPECT_NE(synth.out.find("--spacing FLOAT:NUMBER > 0=2"), std::string::npos) << synth.out;
     EXPECT_NE(synth.out.find("in mm"), std::string::npos);
     EXPECT_NE(synth.out.find("hollow-sphere"), std::string::npos);
 }
