@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -66,37 +68,60 @@ void expectRefused(const TempDir& dir, const std::string& file, const std::strin
     EXPECT_LT(r.seconds, 2.0) << args;
 }
 
-// Replays the lines of cases.tsv whose file starts with `prefix`; returns
-// how many.
-int replayCorpus(const std::string& prefix) {
-    const TempDir dir("hostile-" + prefix);
-    const std::string corpus = std::string(DFRECON_TEST_DATA) + "/hostile/";
-    std::ifstream cases(corpus + "cases.tsv");
-    EXPECT_TRUE(cases) << "no cases.tsv in " << corpus;
+// One line of cases.tsv.
+struct Case {
+    std::string file, fragment, args, name;
+    int exitCode = 0;
+};
+
+std::vector<Case> corpusCases() {
+    std::vector<Case> cases;
+    std::ifstream in(std::string(DFRECON_TEST_DATA) + "/hostile/cases.tsv");
     std::string line;
-    int count = 0;
-    while (std::getline(cases, line)) {
-        if (line.empty() || line[0] == '#' || line.rfind(prefix, 0) != 0) continue;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.empty() || line[0] == '#') continue;
         std::istringstream fields(line);
-        std::string file, exitCode, fragment, args;
-        std::getline(fields, file, '\t');
+        Case c;
+        std::string exitCode;
+        std::getline(fields, c.file, '\t');
         std::getline(fields, exitCode, '\t');
-        std::getline(fields, fragment, '\t');
-        std::getline(fields, args);
-        EXPECT_TRUE(fs::exists(corpus + file)) << line;
-        const std::string out = dir / ("out" + std::to_string(count));
-        expectRefused(dir, corpus + file,
-                      replaced(replaced(args, "{in}", corpus + file), "{out}", out), fragment,
-                      std::stoi(exitCode));
-        ++count;
+        std::getline(fields, c.fragment, '\t');
+        std::getline(fields, c.args);
+        c.exitCode = std::atoi(exitCode.c_str());
+        // A test name: the file's letters and digits, and the line.
+        for (char ch : c.file) c.name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+        c.name += "_line" + std::to_string(number);
+        cases.push_back(c);
     }
-    return count;
+    return cases;
 }
 
 }  // namespace
 
-TEST(HostileInputs, MeshCorpusEndsWithExitTwoNamingTheFile) {
-    EXPECT_GE(replayCorpus("mesh-"), 10);
+class HostileCorpus : public ::testing::TestWithParam<Case> {};
+
+TEST_P(HostileCorpus, EndsWithItsExitCodeNamingTheFile) {
+    const Case& c = GetParam();
+    const TempDir dir("hostile-" + c.name);
+    const std::string corpus = std::string(DFRECON_TEST_DATA) + "/hostile/";
+    ASSERT_TRUE(fs::exists(corpus + c.file)) << c.file;
+    std::string args = replaced(c.args, "{in}", corpus + c.file);
+    args = replaced(replaced(args, "{out}", dir / "out"), "{examples}", DFRECON_EXAMPLES);
+    expectRefused(dir, corpus + c.file, args, c.fragment, c.exitCode);
+}
+
+INSTANTIATE_TEST_SUITE_P(CasesTsv, HostileCorpus, ::testing::ValuesIn(corpusCases()),
+                         [](const auto& testInfo) { return testInfo.param.name; });
+
+TEST(HostileInputs, CorpusCoversEveryReader) {
+    int mesh = 0, label = 0, dicom = 0;
+    for (const Case& c : corpusCases()) {
+        mesh += c.file.rfind("mesh-", 0) == 0;
+        label += c.file.rfind("label-", 0) == 0;
+        dicom += c.file.rfind("dicom-", 0) == 0;
+    }
+    EXPECT_GE(mesh, 10);
+    EXPECT_GE(label, 10);
 }
 
 TEST(HostileInputs, SimplifyRefusesWhatCheckRefusesBeforeDecimating) {
