@@ -33,10 +33,12 @@ inline constexpr std::uint64_t kMaxLabelVolumeBytes = std::uint64_t(2) << 30;
 /// stack on tens of thousands).
 inline constexpr std::size_t kMaxDicomNestingDepth = 64;
 
-/// Most crossings between the contours of one plane that are combined by
-/// exclusive or (CLOSEDPLANAR_XOR, shared edges): CGAL's exact arrangement
-/// takes about a kilobyte per crossing and grows quadratically with
-/// contours that all cross each other.
-inline constexpr std::size_t kMaxXorCrossingsPerPlane = 100000;
+/// Most contours plus crossing points in one group of contours of a plane
+/// combined by exclusive or (CLOSEDPLANAR_XOR, shared edges). CGAL's exact
+/// arrangement takes about 2 kB and 0.1 ms per crossing; 50 000 take some
+/// 5 s and 200 MB. Real planes have a handful.
+inline constexpr std::size_t kMaxXorCrossingsPerPlane = 50000;
+/// The same for all planes of a file together (some 15 s at most).
+inline constexpr std::size_t kMaxXorCrossingsPerFile = 150000;
 
 }  // namespace dfrecon

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/DicomNesting.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -105,6 +106,7 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
 
 RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
     silenceDcmtkLog();
+    checkDicomNesting(dicomPath, kMaxDicomNestingDepth);
     DcmFileFormat file;
     const OFCondition status = file.loadFile(dicomPath.c_str());
     if (status.bad())

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/HostileDicom.hpp"
 #include "tests/TempDir.hpp"
 
 namespace fs = std::filesystem;
@@ -114,11 +115,10 @@ INSTANTIATE_TEST_SUITE_P(CasesTsv, HostileCorpus, ::testing::ValuesIn(corpusCase
                          [](const auto& testInfo) { return testInfo.param.name; });
 
 TEST(HostileInputs, CorpusCoversEveryReader) {
-    int mesh = 0, label = 0, dicom = 0;
+    int mesh = 0, label = 0;
     for (const Case& c : corpusCases()) {
         mesh += c.file.rfind("mesh-", 0) == 0;
         label += c.file.rfind("label-", 0) == 0;
-        dicom += c.file.rfind("dicom-", 0) == 0;
     }
     EXPECT_GE(mesh, 10);
     EXPECT_GE(label, 10);
@@ -143,4 +143,30 @@ TEST(HostileInputs, SimplifyRefusesWhatCheckRefusesBeforeDecimating) {
     expectRefused(dir, path, "simplify " + path + " --max-error 0.1 -o " + dir / "out.ply",
                   "not a valid closed solid");
     EXPECT_FALSE(fs::exists(dir / "out.ply"));
+}
+
+TEST(HostileInputs, DeeplyNestedDicomIsRefusedNotACrash) {
+    // 100 000 nested sequences in a private tag: DCMTK's parser exhausted
+    // the stack (SIGSEGV).
+    const TempDir dir("hostile-nesting");
+    const std::string path = dir / "nested.dcm";
+    std::ofstream(path, std::ios::binary) << dfrecon::testing::nestedSequencesDicom(100000);
+    expectRefused(dir, path, "info " + path, "sequences nested more than 64 deep");
+    expectRefused(dir, path, "reconstruct " + path + " --all -o " + dir / "out",
+                  "sequences nested more than 64 deep");
+    // As the reference of convert --like too.
+    expectRefused(dir, path,
+                  "convert " + std::string(DFRECON_EXAMPLES) + "/torus.slices --like " + path +
+                      " -o " + dir / "out.dcm",
+                  "sequences nested more than 64 deep");
+}
+
+TEST(HostileInputs, MutuallyCrossingXorContoursAreRefusedNotACrash) {
+    // 150 stars crossing one another on one plane: 2.5 GB in CGAL, then
+    // SIGSEGV.
+    const TempDir dir("hostile-xor");
+    const std::string path = dir / "stars.dcm";
+    std::ofstream(path, std::ios::binary) << dfrecon::testing::crossingStarsRtStruct(150, 64, 1);
+    expectRefused(dir, path, "info " + path,
+                  "ROI 1 'stars', plane 0 mm: 150 contours meeting in more than 49850 places");
 }
