@@ -13,6 +13,7 @@
 
 #include "io/InputError.hpp"
 #include "io/InputLimits.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon {
@@ -330,6 +331,7 @@ std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void*
 }  // namespace labelvolume
 
 LabelVolume readLabelVolume(const std::string& path) {
+    const ReadingInput reading(path);
     namespace fs = std::filesystem;
     const bool nrrd = endsWith(path, ".nrrd") || endsWith(path, ".nhdr");
     const bool nifti = endsWith(path, ".nii") || endsWith(path, ".nii.gz");

@@ -11,6 +11,7 @@
 
 #include "io/InputError.hpp"
 #include "io/InputLimits.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon {
@@ -210,6 +211,7 @@ bool isMaskStackPath(const std::string& path) {
 }
 
 MaskStack readMaskStack(const std::string& path) {
+    const ReadingInput reading(path);
     std::error_code error;
     const fs::path sidecarPath =
         fs::is_directory(path, error) ? fs::path(path) / kMaskStackSidecar : fs::path(path);

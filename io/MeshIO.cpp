@@ -13,6 +13,7 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/MeshFileCheck.hpp"
 
 namespace dfrecon {
@@ -52,6 +53,7 @@ void requireMeshFile(const std::string& path) {
 }  // namespace
 
 TriMesh readMesh(const std::string& path) {
+    const ReadingInput reading(path);
     requireMeshFile(path);
     TriMesh mesh;
     OpenMesh::IO::Options options;
@@ -160,6 +162,7 @@ class SoupImporter : public IO::BaseImporter {
 }  // namespace
 
 TriangleSoup readTriangleSoup(const std::string& path) {
+    const ReadingInput reading(path);
     requireMeshFile(path);
     TriangleSoup soup;
     SoupImporter importer(soup);

@@ -14,6 +14,7 @@
 #include "geometry/KeyholeSplit.hpp"
 #include "geometry/PolygonXor.hpp"
 #include "io/DicomNesting.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -568,6 +569,7 @@ class Reader {
 }  // namespace
 
 RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits) {
+    const ReadingInput reading(path);
     return Reader(path, limits).run();
 }
 

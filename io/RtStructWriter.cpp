@@ -10,6 +10,7 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/DicomNesting.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -105,6 +106,7 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
 }  // namespace
 
 RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
+    const ReadingInput reading(dicomPath);
     silenceDcmtkLog();
     checkDicomNesting(dicomPath, kMaxDicomNestingDepth);
     DcmFileFormat file;

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -59,14 +60,15 @@ std::string replaced(std::string text, const std::string& from, const std::strin
     return text;
 }
 
-// Exit 2 within two seconds, stderr "dfrecon: FILE..." saying `fragment`.
+// Exit 2 (or `exitCode`) within `seconds`, stderr "dfrecon: FILE..."
+// saying `fragment`.
 void expectRefused(const TempDir& dir, const std::string& file, const std::string& args,
-                   const std::string& fragment, int exitCode = 2) {
+                   const std::string& fragment, int exitCode = 2, double seconds = 2.0) {
     const Result r = run(dir, args);
     EXPECT_EQ(r.exitCode, exitCode) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("dfrecon: " + file, 0), 0u) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\n" << r.err;
-    EXPECT_LT(r.seconds, 2.0) << args;
+    EXPECT_LT(r.seconds, seconds) << args;
 }
 
 // One line of cases.tsv.
@@ -169,4 +171,45 @@ TEST(HostileInputs, MutuallyCrossingXorContoursAreRefusedNotACrash) {
     std::ofstream(path, std::ios::binary) << dfrecon::testing::crossingStarsRtStruct(150, 64, 1);
     expectRefused(dir, path, "info " + path,
                   "ROI 1 'stars', plane 0 mm: 150 contours meeting in more than 49850 places");
+}
+
+TEST(HostileInputs, ContourOverTheFieldIdLimitIsBadInputNotUsage) {
+    // A valid contour of more points than the distance fields index
+    // (2^19 - 1) was a usage error (exit 1) without the file.
+    const TempDir dir("hostile-points");
+    const std::string path = dir / "long.slices";
+    {
+        std::ofstream out(path);
+        const int n = 1 << 19;
+        out << "dfrecon-slices 1\nunits mm\nroi long\nslice 0\ncontour " << n << "\n";
+        char line[64];
+        for (int k = 0; k < n; ++k) {
+            std::snprintf(line, sizeof line, "%.5f %.5f\n", 50 * std::cos(2 * M_PI * k / n),
+                          50 * std::sin(2 * M_PI * k / n));
+            out << line;
+        }
+    }
+    expectRefused(dir, path, "reconstruct " + path + " -o " + dir / "out.ply",
+                  "has over 524287 points, the most the distance fields can index", 2, 5.0);
+}
+
+TEST(HostileInputs, OutOfMemoryNamesTheFile) {
+#ifdef DFRECON_SANITIZE_BUILD
+    GTEST_SKIP() << "AddressSanitizer needs more address space than the cap leaves";
+#else
+    // A valid volume within the budget (4·10^8 voxels, 2 GB with their
+    // labels) read under a 1.5 GB address-space cap: memory runs out.
+    const TempDir dir("hostile-memory");
+    const std::string path = dir / "large.nrrd";
+    const std::string header =
+        "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 400\nencoding: raw\n\n";
+    std::ofstream(path, std::ios::binary) << header;
+    fs::resize_file(path, header.size() + 400000000u);  // sparse: zeros, no disk
+    const std::string err = dir / "stderr.txt";
+    const int status = std::system(("ulimit -v 1500000; exec " + std::string(DFRECON_BINARY) +
+                                    " -q info " + path + " >/dev/null 2>" + err)
+                                       .c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 3);
+    EXPECT_EQ(slurp(err), "dfrecon: " + path + ": out of memory while reading it\n");
+#endif
 }
