@@ -9,8 +9,7 @@
 using namespace dfrecon;
 
 TEST(InputsInUse, NamesTheReadThatFailedAndEveryInputOnce) {
-    // ctest runs each test in a process of its own: the record starts empty.
-    EXPECT_EQ(lastInput(), "");
+    // Other tests of the process may have read files before: names of its own.
     { const ReadingInput a("a.slices"); }
     {
         const ReadingInput b("b.ply");
@@ -29,7 +28,10 @@ TEST(InputsInUse, NamesTheReadThatFailedAndEveryInputOnce) {
     { const ReadingInput again("a.slices"); }  // a new read clears the failure
     const InputsInUse in = inputsInUse();
     EXPECT_EQ(in.reading, "");
-    EXPECT_EQ(in.inputs,
-              (std::vector<std::string>{"a.slices", "b.ply", "stack.json", "plane.png"}));
+    std::vector<std::string> ours;
+    for (const std::string& f : in.inputs)
+        if (f == "a.slices" || f == "b.ply" || f == "stack.json" || f == "plane.png")
+            ours.push_back(f);
+    EXPECT_EQ(ours, (std::vector<std::string>{"a.slices", "b.ply", "stack.json", "plane.png"}));
     EXPECT_EQ(lastInput(), "a.slices");
 }
