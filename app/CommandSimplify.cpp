@@ -32,12 +32,21 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
         throw std::invalid_argument("output '" + args.output +
                                     "' needs a mesh extension (.ply .stl .obj .off)");
     TriangleSoup surface = readTriangleSoup(args.input);
+    // The same test as dfrecon check: the bounds and the collision test
+    // assume a valid closed solid, and on a surface that already meets
+    // itself (two faces back to back) the decimation ran for minutes.
     const MeshCheckReport before = checkMesh(surface);
-    if (!before.watertight() || before.nonManifoldVertices > 0)
+    if (!before.validSolid())
         throw InputError(args.input, 0,
-                         "not a closed manifold surface (" + std::to_string(before.boundaryEdges) +
+                         "not a valid closed solid (" + std::to_string(before.boundaryEdges) +
                              " boundary edges, " + std::to_string(before.nonManifoldEdges) +
-                             " non-manifold edges); run dfrecon check");
+                             " non-manifold edges, " + std::to_string(before.nonManifoldVertices) +
+                             " non-manifold vertices, " + std::to_string(before.misorientedEdges) +
+                             " misoriented edges, " + std::to_string(before.degenerateTriangles) +
+                             " degenerate triangles, " + std::to_string(before.intersectingPairs) +
+                             " self-intersecting triangle pairs, " +
+                             (before.volumeMm3 > 0 ? "" : "no ") +
+                             "positive volume); run dfrecon check");
     SimplifyRequest request;
     request.options = args.options;
     request.label = "simplifying " + args.input;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <unordered_set>
 
 namespace dfrecon {
 
@@ -183,6 +184,24 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
         });
     if (!complete) return ContourDefect{ContourDefect::Kind::TooComplex};
     return found;
+}
+
+std::size_t countContourContacts(const std::vector<Polygon>& contours, std::size_t stopAfter,
+                                 std::size_t pairBudget) {
+    // A pair sharing several cells is met once per cell: kept in a set, so
+    // each counts once (the set holds at most stopAfter + 1 pairs).
+    const std::vector<Segment> segments = segmentsOf(contours);
+    std::unordered_set<std::uint64_t> pairs;
+    const bool complete = visitContacts(segments, pairBudget,
+                                        [&](const Segment& s, const Segment& t, SegmentContact) {
+                                            if (s.contour == t.contour) return false;
+                                            std::uint64_t i = std::uint64_t(&s - segments.data()),
+                                                          j = std::uint64_t(&t - segments.data());
+                                            if (i > j) std::swap(i, j);
+                                            pairs.insert(i << 32 | j);
+                                            return pairs.size() > stopAfter;
+                                        });
+    return complete ? pairs.size() : SIZE_MAX;
 }
 
 std::vector<ContourTouch> findContourTouches(const std::vector<Polygon>& contours,

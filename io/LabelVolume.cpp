@@ -12,6 +12,8 @@
 #include <type_traits>
 
 #include "io/InputError.hpp"
+#include "io/InputLimits.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon {
@@ -145,16 +147,29 @@ void requireBytes(const std::string& path, std::uint64_t neededBytes, std::uint6
                              " bytes of samples, the header needs " + std::to_string(neededBytes));
 }
 
+std::string memoryProblem(std::uint64_t voxels, std::size_t sampleBytes) {
+    // Both libraries decode into one buffer of samples, then every voxel
+    // gets a 32-bit label; nothing else grows with the volume.
+    const long double bytes = static_cast<long double>(voxels) * (sampleBytes + 4);
+    if (bytes <= static_cast<long double>(kMaxLabelVolumeBytes)) return {};
+    std::ostringstream s;
+    s << voxels << " voxels of " << sampleBytes << " byte(s) need "
+      << std::uint64_t(std::min<long double>(bytes, 1e19L)) / (1u << 20)
+      << " MiB with their labels, over the " << kMaxLabelVolumeBytes / (1u << 20)
+      << " MiB a label volume may take";
+    return s.str();
+}
+
 std::string geometryProblem(const VolumeGeometry& g) {
     for (int a = 0; a < 3; ++a)
         if (g.size[a] <= 0) return "axis " + std::to_string(a) + " has no voxels";
     if (std::uint64_t(g.voxelCount()) > kMaxLabelVolumeVoxels)
         return "more than " + std::to_string(kMaxLabelVolumeVoxels) + " voxels";
     for (int a = 0; a < 3; ++a) {
-        if (!std::isfinite(g.spacingMm[a]) || !(g.spacingMm[a] > 0)) {
+        if (!std::isfinite(g.spacingMm[a]) || !(g.spacingMm[a] >= kMinVoxelSpacingMm)) {
             std::ostringstream s;
             s << "axis " << a << " has spacing " << g.spacingMm[a]
-              << " mm; spacing must be positive";
+              << " mm; spacing must be a finite length of at least " << kMinVoxelSpacingMm << " mm";
             return s.str();
         }
         if (!std::isfinite(g.originMm[a])) return "the origin is not finite";
@@ -165,6 +180,20 @@ std::string geometryProblem(const VolumeGeometry& g) {
     }
     if (!(std::fabs(determinant(g.direction)) > kMinAxisDeterminant))
         return "the axis directions are (nearly) parallel";
+    // The grid is a parallelepiped: within the limit when its 8 outer
+    // corners are.
+    for (int corner = 0; corner < 8; ++corner) {
+        auto at = [&](int a) { return (corner >> a & 1) ? g.size[a] - 0.5 : -0.5; };
+        const Vec3 p = g.worldOfIndex(at(0), at(1), at(2));
+        for (int c = 0; c < 3; ++c)
+            if (!(std::fabs(p[c]) <= kMaxAbsCoordinateMm)) {
+                std::ostringstream s;
+                s << "the volume reaches (" << p.x << ", " << p.y << ", " << p.z
+                  << ") mm, beyond the limit of ±" << std::int64_t(kMaxAbsCoordinateMm)
+                  << " mm (origin, spacing or directions are not a patient's)";
+                return s.str();
+            }
+    }
     return {};
 }
 
@@ -176,7 +205,8 @@ VolumeGeometry geometryFromSteps(const std::string& path, const std::array<int, 
     for (int c = 0; c < 3; ++c) g.originMm[c] = originMm[c] + 0.0;
     for (int a = 0; a < 3; ++a) {
         const auto& v = steps[a];
-        const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        // hypot: a step of 1e200 is long, not infinite.
+        const double length = std::hypot(v[0], v[1], v[2]);
         if (!std::isfinite(length))
             throw InputError(path, 0, "the step of axis " + std::to_string(a) + " is not finite");
         if (!(length > 0))
@@ -301,6 +331,7 @@ std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void*
 }  // namespace labelvolume
 
 LabelVolume readLabelVolume(const std::string& path) {
+    const ReadingInput reading(path);
     namespace fs = std::filesystem;
     const bool nrrd = endsWith(path, ".nrrd") || endsWith(path, ".nhdr");
     const bool nifti = endsWith(path, ".nii") || endsWith(path, ".nii.gz");

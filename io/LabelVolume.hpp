@@ -60,11 +60,16 @@ struct LabelVolume {
 /// NIfTI uses the sform when sform_code > 0, else the qform, both RAS.
 /// Throws InputError(path, 0, what is wrong) for a missing, unreadable,
 /// unsupported or inconsistent file: not 3-D (a NIfTI file with more axes
-/// is accepted when they all have size 1), more than kMaxLabelVolumeVoxels voxels,
-/// less data in the file than the header claims (checked before the data
-/// are allocated), non-positive or non-finite spacing, degenerate axes, or a
-/// label that is not an integer in int32 range. Thread-safe (the libraries'
-/// global state is guarded). O(voxels).
+/// is accepted when they all have size 1), more than kMaxLabelVolumeVoxels
+/// voxels, samples and labels over the memory budget kMaxLabelVolumeBytes,
+/// less data in the file than the header claims (both checked before the
+/// data are allocated), a NIfTI vox_offset outside the file, spacing that is
+/// not finite or below kMinVoxelSpacingMm (nan included, which the libraries
+/// would turn into 1 mm), degenerate axes, a grid reaching beyond
+/// kMaxAbsCoordinateMm (io/InputLimits.hpp), or a label that is not a
+/// finite integer in int32 range (NaN floats included, which niftilib would
+/// turn into 0). Thread-safe (the libraries' global state is guarded).
+/// O(voxels).
 LabelVolume readLabelVolume(const std::string& path);
 
 /// Writes `mask` (geometry.voxelCount() bytes, x fastest) as an attached

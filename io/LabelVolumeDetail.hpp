@@ -60,9 +60,16 @@ VolumeGeometry geometryFromSteps(const std::string& path, const std::array<int, 
                                  const std::array<double, 3>& originMm);
 
 /// Why `geometry` cannot describe a volume ("" when it can): sizes not
-/// positive or too many voxels, spacing not finite and positive, origin not
-/// finite, directions not unit vectors, axes (nearly) parallel. O(1).
+/// positive or too many voxels, spacing not finite or below
+/// kMinVoxelSpacingMm, origin not finite, directions not unit vectors, axes
+/// (nearly) parallel, or a corner of the grid beyond kMaxAbsCoordinateMm
+/// (io/InputLimits.hpp). O(1).
 std::string geometryProblem(const VolumeGeometry& geometry);
+
+/// Why `voxels` samples of `sampleBytes` each, with a 32-bit label per
+/// voxel, do not fit kMaxLabelVolumeBytes ("" when they do): checked from
+/// the header, before anything is allocated. O(1).
+std::string memoryProblem(std::uint64_t voxels, std::size_t sampleBytes);
 
 /// The labels of geometry.voxelCount() samples of `type` at `data` (native
 /// byte order, x fastest), scaled by `scale`. Throws InputError naming

@@ -2,14 +2,22 @@
 // which reads NIfTI-1 and NIfTI-2, plain or gzip (znzlib).
 //
 // niftilib allocates nvox·nbyper bytes from the header and reads into
-// them, so the header is read alone first (read_data = 0), its sizes and
-// the file's length are checked, and only then the data.
+// them, so the header is read alone first (read_data = 0), its sizes, the
+// memory budget and the file's length are checked, and only then the data.
+// niftilib also mends what it should report: a pixdim that is not positive
+// becomes 1, a vox_offset it cannot use is replaced, and every NaN or
+// infinite float sample becomes 0. The raw header is read again to see what
+// the file says, and float samples are scanned as stored.
 #include <nifti2_io.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <sstream>
+#include <vector>
 
 #include "io/InputError.hpp"
 #include "io/LabelVolumeDetail.hpp"
@@ -68,8 +76,35 @@ bool gzipped(const std::string& path) {
 // NIfTI's (x, y, z) are RAS; LPS negates x and y.
 constexpr double kRasToLps[3] = {-1, -1, 1};
 
+// What the header on disk says where niftilib mends it.
+struct RawHeader {
+    double voxOffset = 0;
+    double pixdim[4] = {0, 0, 0, 0};
+    std::uint64_t headerBytes = 0;  // the smallest vox_offset of a single file
+};
+
+RawHeader rawHeader(const std::string& path) {
+    int version = 0;
+    void* raw = nifti_read_header(path.c_str(), &version, 0);
+    if (!raw) throw InputError(path, 0, "not a readable NIfTI file (bad or truncated header)");
+    RawHeader h;
+    if (version == 1) {
+        const auto* n1 = static_cast<const nifti_1_header*>(raw);
+        h.voxOffset = n1->vox_offset;
+        for (int a = 0; a < 4; ++a) h.pixdim[a] = n1->pixdim[a];
+        h.headerBytes = 352;
+    } else {
+        const auto* n2 = static_cast<const nifti_2_header*>(raw);
+        h.voxOffset = double(n2->vox_offset);
+        for (int a = 0; a < 4; ++a) h.pixdim[a] = n2->pixdim[a];
+        h.headerBytes = 544;
+    }
+    std::free(raw);
+    return h;
+}
+
 VolumeGeometry geometryOf(const std::string& path, const nifti_image& image,
-                          const std::array<int, 3>& size) {
+                          const std::array<int, 3>& size, const RawHeader& raw) {
     // sform when it is set (it may carry shear, and is what registration
     // tools write); otherwise the qform, which niftilib builds from the
     // quaternion, qfac and pixdim (or, for qform_code 0, the ANALYZE-style
@@ -77,13 +112,14 @@ VolumeGeometry geometryOf(const std::string& path, const nifti_image& image,
     const bool useSform = image.sform_code > 0;
     if (!useSform)
         for (int a = 1; a <= 3; ++a)
-            // niftilib quietly uses 1 for a non-positive pixdim; a label map
-            // with such a spacing is broken, so say so instead.
-            if (!(image.pixdim[a] > 0) || !std::isfinite(image.pixdim[a]))
-                throw InputError(path, 0,
-                                 "pixdim[" + std::to_string(a) + "] is " +
-                                     std::to_string(image.pixdim[a]) +
-                                     "; spacing must be positive");
+            // niftilib quietly uses 1 for a pixdim that is not positive; a
+            // label map with such a spacing is broken, so say so instead.
+            if (!(raw.pixdim[a] > 0) || !std::isfinite(raw.pixdim[a])) {
+                std::ostringstream s;
+                s << "pixdim[" << a << "] is " << raw.pixdim[a]
+                  << "; spacing must be positive and finite";
+                throw InputError(path, 0, s.str());
+            }
     const nifti_dmat44& m = useSform ? image.sto_xyz : image.qto_xyz;
     std::array<std::array<double, 3>, 3> steps{};
     std::array<double, 3> origin{};
@@ -92,6 +128,38 @@ VolumeGeometry geometryOf(const std::string& path, const nifti_image& image,
         origin[c] = kRasToLps[c] * m.m[c][3];
     }
     return geometryFromSteps(path, size, steps, origin);
+}
+
+// The first float sample as stored that is NaN or infinite (niftilib loads
+// it as 0), or -1. One pass over the data through znzlib. O(voxels).
+template <class Float, class Bits>
+std::int64_t firstNonFinite(const std::string& path, std::uint64_t offset, std::uint64_t count,
+                            bool swapped) {
+    znzFile file = znzopen(path.c_str(), "rb", gzipped(path) ? 1 : 0);
+    if (znz_isnull(file)) throw InputError(path, 0, "cannot reopen the data");
+    std::vector<Bits> chunk(std::size_t(1) << 16);
+    std::int64_t found = -1;
+    if (znzseek(file, znz_off_t(offset), SEEK_SET) < 0) count = 0;
+    for (std::uint64_t done = 0; done < count && found < 0;) {
+        const std::size_t want = std::size_t(std::min<std::uint64_t>(chunk.size(), count - done));
+        const std::size_t got = znzread(chunk.data(), sizeof(Bits), want, file);
+        for (std::size_t k = 0; k < got && found < 0; ++k) {
+            Bits bits = chunk[k];
+            if (swapped) {
+                Bits reversed = 0;
+                for (std::size_t b = 0; b < sizeof(Bits); ++b)
+                    reversed = Bits(reversed << 8 | ((bits >> (8 * b)) & 0xff));
+                bits = reversed;
+            }
+            Float value;
+            std::memcpy(&value, &bits, sizeof value);
+            if (!std::isfinite(value)) found = std::int64_t(done + k);
+        }
+        if (got < want) break;
+        done += got;
+    }
+    znzclose(file);
+    return found;
 }
 
 }  // namespace
@@ -123,7 +191,10 @@ LabelVolume readNiftiLabelVolume(const std::string& path) {
         std::uint64_t(size[0]) * std::uint64_t(size[1]) * std::uint64_t(size[2]);
     if (image->nbyper != int(sampleBytes(type)) || image->nvox != std::int64_t(voxels))
         throw InputError(path, 0, "inconsistent header (voxel count or bytes per voxel)");
-    const VolumeGeometry geometry = geometryOf(path, *image, size);
+    const std::string memory = memoryProblem(voxels, sampleBytes(type));
+    if (!memory.empty()) throw InputError(path, 0, memory);
+    const RawHeader raw = rawHeader(path);
+    const VolumeGeometry geometry = geometryOf(path, *image, size, raw);
     LinearScale scale;
     // scl_slope 0 means "no scaling" in NIfTI; niftilib already turns a
     // non-finite slope into 0.
@@ -132,9 +203,16 @@ LabelVolume readNiftiLabelVolume(const std::string& path) {
         scale = {image->scl_slope, image->scl_inter};
     }
 
+    // The data start where the header says, or the file is refused: a
+    // vox_offset niftilib cannot use it replaces, and reads the wrong bytes.
+    if (!(raw.voxOffset >= double(raw.headerBytes)) || raw.voxOffset > 1e18 ||
+        image->iname_offset != std::int64_t(raw.voxOffset)) {
+        std::ostringstream s;
+        s << "vox_offset " << raw.voxOffset << " is not where data can start (from "
+          << raw.headerBytes << " bytes, within the file)";
+        throw InputError(path, 0, s.str());
+    }
     // The file must be able to hold the samples before they are allocated.
-    if (image->iname_offset < 0)
-        throw InputError(path, 0, "negative vox_offset " + std::to_string(image->iname_offset));
     std::error_code ec;
     const std::uint64_t fileBytes = std::filesystem::file_size(path, ec);
     if (ec) throw InputError(path, 0, "cannot measure the file");
@@ -148,6 +226,24 @@ LabelVolume readNiftiLabelVolume(const std::string& path) {
     // Pass 2: the data (niftilib swaps bytes to the host's order).
     if (nifti_image_load(image.get()) != 0 || !image->data)
         throw InputError(path, 0, "truncated or unreadable image data");
+    if (type == SampleType::Float32 || type == SampleType::Float64) {
+        const bool swapped = image->byteorder != nifti_short_order();
+        const std::uint64_t offset = std::uint64_t(image->iname_offset);
+        const std::int64_t bad =
+            type == SampleType::Float32
+                ? firstNonFinite<float, std::uint32_t>(path, offset, voxels, swapped)
+                : firstNonFinite<double, std::uint64_t>(path, offset, voxels, swapped);
+        if (bad >= 0) {
+            const std::uint64_t nx = std::uint64_t(size[0]), ny = std::uint64_t(size[1]);
+            const std::uint64_t at = std::uint64_t(bad);
+            throw InputError(path, 0,
+                             "voxel (" + std::to_string(at % nx) + ", " +
+                                 std::to_string(at / nx % ny) + ", " +
+                                 std::to_string(at / (nx * ny)) +
+                                 ") holds NaN or infinity, not a finite label (niftilib would "
+                                 "read it as 0)");
+        }
+    }
     LabelVolume volume;
     volume.geometry = geometry;
     volume.labels = labelsFromSamples(path, image->data, type, geometry, scale);

@@ -10,8 +10,10 @@
 //  - without an exact NRRD magic teem tries its other formats (PNM, PNG,
 //    VTK, text tables) on the file; those are refused.
 //  - the data are allocated from the header's sizes before reading. The
-//    header is read first with skipData, sizes and file length checked,
-//    and only then the data.
+//    header is read first with skipData, sizes, the memory budget and the
+//    file length checked, and only then the data.
+//  - "nan" is how teem marks a value a header leaves out: a spacing or
+//    origin written as nan would quietly become the default.
 #include <teem/nrrd.h>
 
 #include <algorithm>
@@ -145,7 +147,17 @@ DataLocation screenHeader(const std::string& path) {
         // key/value pairs use ":=" and are not fields.
         const std::size_t colon = line.find(": ");
         if (colon == std::string::npos) continue;
-        if (normalisedFieldName(line.substr(0, colon)) != "datafile") continue;
+        const std::string field = normalisedFieldName(line.substr(0, colon));
+        // teem reads "nan" as it marks a value the header leaves out, so a
+        // spacing of nan would quietly become the default 1 mm.
+        if (field == "spacings" || field == "spaceorigin" || field == "spacedirections") {
+            std::string value = line.substr(colon + 2);
+            for (char& c : value) c = char(std::tolower(static_cast<unsigned char>(c)));
+            if (value.find("nan") != std::string::npos)
+                throw InputError(path, 0,
+                                 line.substr(0, colon) + " holds nan; the geometry must be finite");
+        }
+        if (field != "datafile") continue;
         dataFile = line.substr(colon + 2);
         dataFile.erase(0, std::min(dataFile.size(), dataFile.find_first_not_of(" \t")));
         if (dataFile.empty()) throw InputError(path, 0, "empty data file name");
@@ -313,6 +325,9 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
             path, 0, std::to_string(header->dim) + "-D image; a label volume needs 3 dimensions");
     const std::array<int, 3> size = checkedSizes(path, sizes);
     const SampleType type = sampleTypeOf(path, header->type);
+    const std::string memory =
+        memoryProblem(sizes[0] * sizes[1] * sizes[2], sampleBytes(type));  // sizes checked above
+    if (!memory.empty()) throw InputError(path, 0, memory);
     const NrrdEncoding* encoding = headerIo->encoding;
     if (encoding != nrrdEncodingRaw && encoding != nrrdEncodingGzip &&
         encoding != nrrdEncodingAscii && encoding != nrrdEncodingHex)

@@ -11,6 +11,7 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
+#include "io/InputsInUse.hpp"
 
 namespace dfrecon {
 
@@ -86,6 +87,7 @@ struct LevelSetSampler::Grid {
 
 LevelSetSampler::LevelSetSampler(const std::string& path, const std::string& gridName)
     : grid_(std::make_unique<Grid>()) {
+    const ReadingInput reading(path);
     static std::once_flag initialised;
     std::call_once(initialised, [] { openvdb::initialize(); });
     openvdb::GridPtrVecPtr grids;
@@ -94,6 +96,8 @@ LevelSetSampler::LevelSetSampler(const std::string& path, const std::string& gri
         file.open();
         grids = file.getGrids();
         file.close();
+    } catch (const std::bad_alloc&) {
+        throw;  // main() says which file, as for any input
     } catch (const std::exception& e) {
         throw InputError(path, 0, std::string("not a readable OpenVDB file: ") + e.what());
     }

@@ -10,6 +10,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/InputError.hpp"
+#include "io/InputLimits.hpp"
+#include "io/InputsInUse.hpp"
+#include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon {
 
@@ -67,19 +70,27 @@ bool naturalLess(const std::string& a, const std::string& b) {
     return a.size() - i < b.size() - j;
 }
 
-// A finite, positive number from the sidecar, or InputError naming the key.
-double positiveNumber(const json& value, const std::string& sidecar, const std::string& key) {
-    if (!value.is_number() || !std::isfinite(value.get<double>()) || !(value.get<double>() > 0))
-        throw InputError(sidecar, 0, key + " must be a finite number > 0");
+// A spacing from the sidecar: finite, at least kMinVoxelSpacingMm, and no
+// longer than the coordinate limit; or InputError naming the key.
+double spacing(const json& value, const std::string& sidecar, const std::string& key) {
+    if (!value.is_number() || !std::isfinite(value.get<double>()) ||
+        !(value.get<double>() >= kMinVoxelSpacingMm) ||
+        !(value.get<double>() <= kMaxAbsCoordinateMm))
+        throw InputError(
+            sidecar, 0, key + " must be a length from 1e-6 to 1e6 mm (found " + value.dump() + ")");
     return value.get<double>();
 }
 
+// Coordinates from the sidecar: finite and within kMaxAbsCoordinateMm.
 std::vector<double> numbers(const json& value, const std::string& sidecar, const std::string& key) {
     if (!value.is_array()) throw InputError(sidecar, 0, key + " must be an array of numbers");
     std::vector<double> out;
     for (const json& v : value) {
         if (!v.is_number() || !std::isfinite(v.get<double>()))
             throw InputError(sidecar, 0, key + " must hold finite numbers only");
+        if (std::fabs(v.get<double>()) > kMaxAbsCoordinateMm)
+            throw InputError(sidecar, 0,
+                             key + " holds " + v.dump() + ", beyond the limit of ±1000000 mm");
         out.push_back(v.get<double>());
     }
     return out;
@@ -138,9 +149,13 @@ std::vector<double> slicePositions(const json& doc, std::size_t count, double zS
             if (!(positions[k] > positions[k - 1]))
                 throw InputError(sidecar, 0, "slicePositionsMm are not strictly increasing");
     } else {
-        const double spacingMm = positiveNumber(doc["sliceSpacingMm"], sidecar, "sliceSpacingMm");
+        const double spacingMm = spacing(doc["sliceSpacingMm"], sidecar, "sliceSpacingMm");
         for (std::size_t k = 0; k < count; ++k)
             positions.push_back(zStartMm + double(k) * spacingMm);
+        if (!(std::fabs(positions.back()) <= kMaxAbsCoordinateMm))
+            throw InputError(sidecar, 0,
+                             "the slices reach z = " + std::to_string(positions.back()) +
+                                 " mm, beyond the limit of ±1000000 mm");
     }
     return positions;
 }
@@ -196,6 +211,7 @@ bool isMaskStackPath(const std::string& path) {
 }
 
 MaskStack readMaskStack(const std::string& path) {
+    const ReadingInput reading(path);
     std::error_code error;
     const fs::path sidecarPath =
         fs::is_directory(path, error) ? fs::path(path) / kMaskStackSidecar : fs::path(path);
@@ -215,9 +231,11 @@ MaskStack readMaskStack(const std::string& path) {
     VolumeGeometry& geometry = stack.volume.geometry;
     if (!doc.contains("pixelSpacingMm"))
         throw InputError(sidecar, 0, "pixelSpacingMm [column, row] is missing");
-    const std::vector<double> pixel = numbers(doc["pixelSpacingMm"], sidecar, "pixelSpacingMm");
-    if (pixel.size() != 2 || !(pixel[0] > 0) || !(pixel[1] > 0))
+    if (!doc["pixelSpacingMm"].is_array() || doc["pixelSpacingMm"].size() != 2)
         throw InputError(sidecar, 0, "pixelSpacingMm must be two numbers > 0");
+    const std::vector<double> pixel = {
+        spacing(doc["pixelSpacingMm"][0], sidecar, "pixelSpacingMm"),
+        spacing(doc["pixelSpacingMm"][1], sidecar, "pixelSpacingMm")};
     std::vector<double> origin{0, 0, 0};
     if (doc.contains("originMm")) {
         origin = numbers(doc["originMm"], sidecar, "originMm");
@@ -249,7 +267,12 @@ MaskStack readMaskStack(const std::string& path) {
                                  std::to_string(count) + " images of " +
                                      std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                                      " pixels exceed the 2^31 voxel limit");
+            // Images are decoded one at a time: only the labels grow.
+            const std::string memory = labelvolume::memoryProblem(voxels, 0);
+            if (!memory.empty()) throw InputError(sidecar, 0, memory);
             geometry.size = {image.cols, image.rows, int(count)};
+            const std::string problem = labelvolume::geometryProblem(geometry);
+            if (!problem.empty()) throw InputError(sidecar, 0, problem);
             stack.volume.labels.resize(geometry.voxelCount());
         } else if (image.cols != geometry.size[0] || image.rows != geometry.size[1]) {
             throw InputError(images[k].string(), 0,

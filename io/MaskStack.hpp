@@ -38,11 +38,14 @@ bool isMaskStackPath(const std::string& path);
 /// read with cv::imread(IMREAD_UNCHANGED) and must be 8- or 16-bit single
 /// channel, all of one size. Throws InputError(file, 0, what is wrong) for
 /// a missing or malformed sidecar (bad JSON, missing or mistyped keys,
-/// non-positive or non-finite spacing, positions not strictly increasing or
-/// not one per image, no images, more than kMaxMaskStackImages images),
-/// missing or undecodable images, other pixel types, images of different
-/// sizes, and stacks of more than kMaxLabelVolumeVoxels voxels (checked
-/// after the first image, before the volume is allocated). O(voxels).
+/// spacing not a finite length from kMinVoxelSpacingMm to
+/// kMaxAbsCoordinateMm, positions not strictly increasing or not one per
+/// image or beyond kMaxAbsCoordinateMm, no images, more than
+/// kMaxMaskStackImages images), missing or undecodable images, other pixel
+/// types, images of different sizes, and stacks of more than
+/// kMaxLabelVolumeVoxels voxels, over the memory budget or reaching beyond
+/// the coordinate limit (checked after the first image, before the volume
+/// is allocated). O(voxels).
 MaskStack readMaskStack(const std::string& path);
 
 }  // namespace dfrecon

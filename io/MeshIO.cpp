@@ -13,6 +13,8 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
+#include "io/InputsInUse.hpp"
+#include "io/MeshFileCheck.hpp"
 
 namespace dfrecon {
 
@@ -39,21 +41,28 @@ bool isMeshExtension(const std::string& path) {
 namespace {
 
 // What both readers refuse before parsing: an extension OpenMesh does not
-// read, or a path that is no regular file.
+// read, a path that is no regular file, or a file OpenMesh would not read
+// as written (io/MeshFileCheck).
 void requireMeshFile(const std::string& path) {
     if (!isMeshExtension(path))
         throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
+    checkMeshFileBeforeReading(path);
 }
 
 }  // namespace
 
 TriMesh readMesh(const std::string& path) {
+    const ReadingInput reading(path);
     requireMeshFile(path);
     TriMesh mesh;
     OpenMesh::IO::Options options;
     if (!OpenMesh::IO::read_mesh(mesh, path, options))
         throw InputError(path, 0, "not a readable mesh (OpenMesh could not parse it)");
+    for (auto v : mesh.vertices()) {
+        const auto& p = mesh.point(v);
+        requireSanePoint(path, std::size_t(v.idx()), {p[0], p[1], p[2]});
+    }
     if (mesh.n_faces() == 0) throw InputError(path, 0, "mesh has no triangles");
     return mesh;
 }
@@ -150,35 +159,11 @@ class SoupImporter : public IO::BaseImporter {
     TriangleSoup& soup_;
 };
 
-// OpenMesh's ASCII OFF reader does not notice a file that ends before the
-// counts in its header are read, and then hands over uninitialised indices.
-// Checks that enough numbers follow the header: 3 per vertex, at least 4
-// per face. O(file size).
-void checkAsciiOffIsComplete(const std::string& path) {
-    std::ifstream in(path);
-    std::string magic;
-    // Only plain "OFF": its variants (COFF, NOFF, STOFF, nOFF) carry other
-    // numbers per vertex, and OpenMesh reads them as it sees fit.
-    if (!(in >> magic) || magic != "OFF") return;
-    long vertices = 0, faces = 0, edges = 0;
-    if (!(in >> vertices >> faces >> edges)) return;  // binary OFF or odd header: OpenMesh decides
-    if (vertices < 0 || faces < 0)
-        throw InputError(path, 2, "negative vertex or face count in the OFF header");
-    long numbers = 0;
-    std::string token;
-    const long needed = 3 * vertices + 4 * faces;
-    while (numbers < needed && in >> token) ++numbers;
-    if (numbers < needed)
-        throw InputError(path, 0,
-                         "truncated OFF file: the header promises " + std::to_string(vertices) +
-                             " vertices and " + std::to_string(faces) + " faces");
-}
-
 }  // namespace
 
 TriangleSoup readTriangleSoup(const std::string& path) {
+    const ReadingInput reading(path);
     requireMeshFile(path);
-    if (lowerExtension(path) == ".off") checkAsciiOffIsComplete(path);
     TriangleSoup soup;
     SoupImporter importer(soup);
     IO::Options options;
@@ -190,6 +175,7 @@ TriangleSoup readTriangleSoup(const std::string& path) {
                 throw InputError(path, 0,
                                  "a face refers to vertex " + std::to_string(v) + " of " +
                                      std::to_string(soup.points.size()));
+    for (std::size_t v = 0; v < soup.points.size(); ++v) requireSanePoint(path, v, soup.points[v]);
     if (soup.triangles.empty()) throw InputError(path, 0, "mesh has no triangles");
     return soup;
 }

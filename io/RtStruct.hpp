@@ -9,6 +9,7 @@
 
 #include "io/ContourSet.hpp"
 #include "io/InputError.hpp"
+#include "io/InputLimits.hpp"
 
 namespace dfrecon {
 
@@ -47,7 +48,10 @@ struct RtStructLimits {
     std::size_t maxRois = 10'000;
     std::size_t maxContoursPerRoi = 1'000'000;
     std::size_t maxPointsTotal = 20'000'000;
-    double maxAbsCoordinateMm = 1e6;
+    double maxAbsCoordinateMm = kMaxAbsCoordinateMm;
+    std::size_t maxNestingDepth = kMaxDicomNestingDepth;     // checked before DCMTK parses
+    std::size_t maxXorCrossings = kMaxXorCrossingsPerPlane;  // contours + crossings, per plane
+    std::size_t maxXorCrossingsPerFile = kMaxXorCrossingsPerFile;  // and for the whole file
 };
 
 struct RtStructLoad {

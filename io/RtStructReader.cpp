@@ -13,6 +13,8 @@
 #include "geometry/ContourValidation.hpp"
 #include "geometry/KeyholeSplit.hpp"
 #include "geometry/PolygonXor.hpp"
+#include "io/DicomNesting.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -68,6 +70,7 @@ class Reader {
 
     RtStructLoad run() {
         silenceDcmtkLog();
+        checkDicomNesting(file_, limits_.maxNestingDepth);
         DcmFileFormat fileFormat;
         const OFCondition status = fileFormat.loadFile(file_.c_str(), EXS_Unknown, EGL_noChange,
                                                        DCM_MaxReadLength, ERM_autoDetect);
@@ -441,7 +444,22 @@ class Reader {
             // here as on any other plane, so it is reported before the XOR.
             for (std::size_t i = 0; i < slice.contours.size(); ++i)
                 validate(r, Slice{slice.zMm, {slice.contours[i]}}, {items[i]});
-            combineConflicts(slice, items);
+            // Each plane within its limit, and all planes within the file's.
+            const std::size_t fileLeft = limits_.maxXorCrossingsPerFile > xorWork_
+                                             ? limits_.maxXorCrossingsPerFile - xorWork_
+                                             : 0;
+            try {
+                xorWork_ +=
+                    combineConflicts(slice, items, std::min(limits_.maxXorCrossings, fileLeft));
+            } catch (const TooManyCrossings& e) {
+                std::ostringstream plane;
+                plane << slice.zMm;
+                fail(roiLabel(r) + ", plane " + plane.str() + " mm: " + e.what() +
+                     (fileLeft < limits_.maxXorCrossings
+                          ? " (what was left of " + std::to_string(limits_.maxXorCrossingsPerFile) +
+                                " for the whole file)"
+                          : std::string()));
+            }
             ++out_.rois[r].planesCombined;
         }
         if (defect) validate(r, slice, items);  // a valid plane needs no second look
@@ -452,7 +470,10 @@ class Reader {
     // Contours whose bounding boxes overlap form groups (union-find); only a
     // group with crossings or shared edges is combined by exclusive or, so
     // every other contour keeps its points exactly as written. O(c²) box tests.
-    static void combineConflicts(Slice& slice, std::vector<std::size_t>& items) {
+    // Returns the work done: contours plus crossings combined.
+    static std::size_t combineConflicts(Slice& slice, std::vector<std::size_t>& items,
+                                        std::size_t maxWork) {
+        std::size_t done = 0;
         const std::size_t n = slice.contours.size();
         std::vector<Box2> boxes;
         for (const Polygon& c : slice.contours) boxes.push_back(boundingBox(c));
@@ -482,7 +503,11 @@ class Reader {
                 defect && defect->kind == ContourDefect::Kind::Crossing &&
                 std::none_of(polygons.begin(), polygons.end(),
                              [](const Polygon& p) { return findContourDefect({p}).has_value(); });
-            if (conflict) polygons = xorRegions(polygons);
+            if (conflict) {
+                std::size_t work = 0;
+                polygons = xorRegions(polygons, maxWork - std::min(maxWork, done), &work);
+                done += work;
+            }
             for (std::size_t k = 0; k < polygons.size(); ++k) {
                 combined.contours.push_back(std::move(polygons[k]));
                 combinedItems.push_back(conflict ? 0 : items[indices[k]]);
@@ -490,6 +515,7 @@ class Reader {
         }
         slice = std::move(combined);
         items = std::move(combinedItems);
+        return done;
     }
 
     // A contour that touches itself is a keyhole (or a pinch); split it.
@@ -536,12 +562,14 @@ class Reader {
     std::map<Sint32, std::size_t> indexOfNumber_;
     std::vector<std::vector<SourceContour>> contours_;  // per ROI
     std::size_t totalPoints_ = 0;
+    std::size_t xorWork_ = 0;  // contours and crossings combined by XOR so far
     bool slabWarned_ = false;
 };
 
 }  // namespace
 
 RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits) {
+    const ReadingInput reading(path);
     return Reader(path, limits).run();
 }
 

@@ -9,6 +9,8 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/DicomNesting.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
@@ -104,7 +106,9 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
 }  // namespace
 
 RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
+    const ReadingInput reading(dicomPath);
     silenceDcmtkLog();
+    checkDicomNesting(dicomPath, kMaxDicomNestingDepth);
     DcmFileFormat file;
     const OFCondition status = file.loadFile(dicomPath.c_str());
     if (status.bad())

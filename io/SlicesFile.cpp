@@ -12,6 +12,7 @@
 
 #include "geometry/ContourValidation.hpp"
 #include "io/AtomicWrite.hpp"
+#include "io/InputsInUse.hpp"
 
 namespace dfrecon {
 
@@ -472,6 +473,7 @@ SlicesLoad parseSlices(std::istream& in, const std::string& fileName, const Slic
 
 SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
                           const std::function<void(double)>& progress) {
+    const ReadingInput reading(path);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "is a directory");
     std::ifstream in(path, std::ios::binary);

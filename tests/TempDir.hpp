@@ -14,8 +14,12 @@ class TempDir {
   public:
     explicit TempDir(const std::string& prefix) {
         const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        // Parameterised tests are named "Test/Parameter": one folder still.
+        std::string name = test->name();
+        for (char& c : name)
+            if (c == '/') c = '_';
         path_ = std::filesystem::temp_directory_path() /
-                ("dfrecon-" + prefix + "-" + std::to_string(::getpid()) + "-" + test->name());
+                ("dfrecon-" + prefix + "-" + std::to_string(::getpid()) + "-" + name);
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }

@@ -126,3 +126,25 @@ TEST(ContourValidation, ContoursCrossingOnlyAtSharedPointsAreCrossings) {
     const Polygon through = {{10, 10}, {5, 12}, {-2, 4}};
     EXPECT_TRUE(findContourDefect({a, through}));
 }
+
+TEST(ContourValidation, CountsEachMeetingPairOfSegmentsOnce) {
+    // Random stars against the all-pairs count, in grids of every coarseness.
+    std::mt19937 random(7);
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<Polygon> stars;
+        for (int s = 0; s < 4; ++s)
+            stars.push_back(randomStarPolygon(random, {double(s), 0}, 30, 2, 6));
+        std::size_t expected = 0;
+        for (std::size_t c = 0; c < stars.size(); ++c)
+            for (std::size_t d = c + 1; d < stars.size(); ++d)
+                for (std::size_t i = 0; i < stars[c].size(); ++i)
+                    for (std::size_t j = 0; j < stars[d].size(); ++j)
+                        expected += segmentContact(stars[c][i], stars[c][(i + 1) % 30], stars[d][j],
+                                                   stars[d][(j + 1) % 30]) != SegmentContact::None;
+        EXPECT_EQ(countContourContacts(stars, 1u << 20), expected);
+        // It stops one past the limit.
+        if (expected > 3) {
+            EXPECT_EQ(countContourContacts(stars, 3), 4u);
+        }
+    }
+}

@@ -414,13 +414,14 @@ TEST(LabelVolume, RefusesAbsurdSizesBeforeAllocating) {
               "NRRD0004\ntype: uint8\ndimension: 3\n"
               "sizes: 4294967296 4294967296 4294967296\nencoding: raw\n\n");
     expectInputError(dir / "overflow.nrrd", "too large");  // teem catches this one itself
-    // Under the cap (2·10^9 voxels, 8 GB as int32) but with no data: refused
-    // by the size check, which runs before anything is allocated.
+    // Within the memory budget (10^8 voxels, 500 MB with their labels) but
+    // with no data: refused by the size check, which runs before anything is
+    // allocated.
     writeFile(dir / "empty.nrrd",
-              "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2000 2000 500\nencoding: raw\n\n");
+              "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 100\nencoding: raw\n\n");
     expectInputError(dir / "empty.nrrd", "truncated: the file can hold at most 0 bytes");
     writeFile(dir / "bomb.nrrd",
-              "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2000 2000 500\nencoding: gzip\n\n" +
+              "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 100\nencoding: gzip\n\n" +
                   gzip(std::string(1000, '\0')));
     expectInputError(dir / "bomb.nrrd", "truncated");
     writeNifti(dir / "huge.nii", {2, 2, 2}, DT_UINT8, std::string(8, '\0'), [](nifti_image&) {});
@@ -432,6 +433,104 @@ TEST(LabelVolume, RefusesAbsurdSizesBeforeAllocating) {
     }
     writeFile(dir / "huge.nii", bytes);
     expectInputError(dir / "huge.nii", "more than the limit");
+}
+
+TEST(LabelVolume, RefusesVolumesOverTheMemoryBudgetBeforeAllocating) {
+    TempDir dir("labelvolume");
+    // 10^9 voxels: under the voxel cap, but 5 GB with their labels. A
+    // megabyte of gzip can hold them, so the header alone decides.
+    writeFile(dir / "bomb.nrrd",
+              "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 1000\nencoding: gzip\n\n" +
+                  gzip(std::string(1 << 20, '\0')));
+    expectInputError(dir / "bomb.nrrd", "over the 2048 MiB a label volume may take");
+    writeNifti(dir / "bomb.nii", {2, 2, 2}, DT_UINT8, std::string(8, '\0'), [](nifti_image&) {});
+    std::string bytes = readFile(dir / "bomb.nii");
+    for (int a = 1; a <= 3; ++a) {
+        const std::int16_t size = 1000;
+        std::memcpy(&bytes[40 + 2 * a], &size, 2);
+    }
+    writeFile(dir / "bomb.nii.gz", gzip(bytes + std::string(1 << 20, '\0')));
+    expectInputError(dir / "bomb.nii.gz", "over the 2048 MiB a label volume may take");
+    // int32 samples: 4 + 4 bytes a voxel; 300 · 10^6 voxels are 2.4 GB.
+    writeFile(dir / "wide.nrrd",
+              "NRRD0004\ntype: int32\ndimension: 3\nsizes: 1000 1000 300\nendian: little\n"
+              "encoding: gzip\n\n" +
+                  gzip(std::string(1000, '\0')));
+    expectInputError(dir / "wide.nrrd", "300000000 voxels of 4 byte(s)");
+}
+
+TEST(LabelVolume, RefusesGeometryNoPatientHas) {
+    TempDir dir("labelvolume");
+    const std::string start = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n";
+    const std::string data = "\n" + std::string(8, '\0');
+    // teem reads nan as "not given": it used to become 1 mm.
+    writeFile(dir / "nan.nrrd", start + "spacings: 1 nan 1\n" + data);
+    expectInputError(dir / "nan.nrrd", "spacings holds nan");
+    writeFile(dir / "nan-origin.nrrd", start +
+                                           "space: left-posterior-superior\n"
+                                           "space directions: (1,0,0) (0,1,0) (0,0,1)\n"
+                                           "space origin: (nan,nan,nan)\n" +
+                                           data);
+    expectInputError(dir / "nan-origin.nrrd", "space origin holds nan");
+    writeFile(dir / "far.nrrd", start +
+                                    "space: left-posterior-superior\n"
+                                    "space directions: (1,0,0) (0,1,0) (0,0,1)\n"
+                                    "space origin: (1e30,0,0)\n" +
+                                    data);
+    expectInputError(dir / "far.nrrd", "beyond the limit of ±1000000 mm");
+    writeFile(dir / "long.nrrd", start + "spacings: 1 1e308 1\n" + data);
+    expectInputError(dir / "long.nrrd", "beyond the limit of ±1000000 mm");
+    writeFile(dir / "tiny.nrrd", start + "spacings: 1 1e-9 1\n" + data);
+    expectInputError(dir / "tiny.nrrd", "axis 1 has spacing 1e-09 mm");
+    // niftilib makes a pixdim that is not positive 1 mm, for the qform as
+    // for no transform at all.
+    for (const float pixdim : {0.0f, -1.0f, NAN, INFINITY})
+        for (const int qform : {0, 1}) {
+            writeNifti(dir / "pixdim.nii", {2, 2, 2}, DT_UINT8, std::string(8, '\0'),
+                       [&](nifti_image& i) {
+                           i.qform_code = qform;
+                           i.sform_code = 0;
+                       });
+            std::string bytes = readFile(dir / "pixdim.nii");
+            std::memcpy(&bytes[76 + 4 * 2], &pixdim, 4);  // pixdim[2]
+            writeFile(dir / "pixdim.nii", bytes);
+            expectInputError(dir / "pixdim.nii", "pixdim[2] is");
+        }
+    writeNifti(dir / "sform.nii", {2, 2, 2}, DT_UINT8, std::string(8, '\0'), [](nifti_image& i) {
+        i.sform_code = NIFTI_XFORM_SCANNER_ANAT;
+        i.sto_xyz = {};
+        for (int a = 0; a < 3; ++a) i.sto_xyz.m[a][a] = 1;
+        i.sto_xyz.m[0][3] = 1e38;
+    });
+    expectInputError(dir / "sform.nii", "beyond the limit of ±1000000 mm");
+}
+
+TEST(LabelVolume, RefusesVoxOffsetsOutsideTheFile) {
+    TempDir dir("labelvolume");
+    for (const float offset : {1e20f, 100.0f, 4096.0f, NAN}) {
+        writeNifti(dir / "offset.nii", {2, 2, 2}, DT_UINT8, std::string(8, '\1'),
+                   [](nifti_image&) {});
+        std::string bytes = readFile(dir / "offset.nii");
+        std::memcpy(&bytes[108], &offset, 4);  // vox_offset
+        writeFile(dir / "offset.nii", bytes);
+        expectInputError(dir / "offset.nii", offset == 4096.0f ? "truncated" : "vox_offset");
+    }
+}
+
+TEST(LabelVolume, RefusesNanVoxelsThatNiftilibWouldReadAsZero) {
+    TempDir dir("labelvolume");
+    for (const float bad : {NAN, INFINITY}) {
+        std::vector<float> samples(8, 1.0f);
+        samples[5] = bad;
+        writeNifti(dir / "nan.nii", {2, 2, 2}, DT_FLOAT32, bytesOf(samples), [](nifti_image&) {});
+        expectInputError(dir / "nan.nii", "voxel (1, 0, 1) holds NaN or infinity");
+        writeFile(dir / "nan.nii.gz", gzip(readFile(dir / "nan.nii")));
+        expectInputError(dir / "nan.nii.gz", "voxel (1, 0, 1) holds NaN or infinity");
+    }
+    std::vector<double> samples(8, 2.0);
+    samples[7] = NAN;
+    writeNifti(dir / "nan64.nii", {2, 2, 2}, DT_FLOAT64, bytesOf(samples), [](nifti_image&) {});
+    expectInputError(dir / "nan64.nii", "voxel (1, 1, 1) holds NaN");
 }
 
 TEST(LabelVolume, RefusesLabelsThatAreNotInt32Integers) {

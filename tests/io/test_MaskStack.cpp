@@ -183,6 +183,22 @@ TEST(MaskStack, HostileStacksAreRefused) {
     // 2200 copies of a 1000 × 1000 image: over 2^31 voxels, refused before
     // the volume is allocated.
     refused(with("files", std::vector<std::string>(2200, "big.png")), "bad.json", "2^31");
+    // 600 copies: under 2^31 voxels, but their labels take 2.4 GB.
+    refused(with("files", std::vector<std::string>(600, "big.png")), "bad.json",
+            "over the 2048 MiB a label volume may take");
+    // Geometry that is no patient's (1e308 mm printed -nan extents).
+    refused(with("sliceSpacingMm", 1e308), "bad.json", "sliceSpacingMm must be a length");
+    refused(with("pixelSpacingMm", {1e308, 1}), "bad.json", "pixelSpacingMm must be a length");
+    refused(with("pixelSpacingMm", {1, 1e-9}), "bad.json", "pixelSpacingMm must be a length");
+    refused(with("originMm", {1e30, 0}), "bad.json", "beyond the limit");
+    json close = with("sliceSpacingMm", nullptr);
+    close["slicePositionsMm"] = {0.0, 1e-9};
+    close["files"] = {"a.png", "a.png"};
+    refused(close, "bad.json", "axis 2 has spacing");
+    json far = good;
+    far["files"] = {"a.png", "a.png"};
+    far["sliceSpacingMm"] = 999999;
+    refused(far, "bad.json", "beyond the limit");
     std::ofstream(dir / "bad.json") << "{ not json";
     EXPECT_THROW(readMaskStack(dir / "bad.json"), InputError);
     EXPECT_THROW(readMaskStack(dir / "absent.json"), InputError);

@@ -12,6 +12,7 @@
 
 #include "io/RtStruct.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "tests/HostileDicom.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;
@@ -441,6 +442,50 @@ TEST(RtStruct, LimitsStopHostileSizes) {
         FAIL() << "no error";
     } catch (const InputError& e) {
         EXPECT_NE(e.problem().find("points"), std::string::npos) << e.what();
+    }
+    fs::remove(path);
+}
+
+TEST(RtStruct, DeepNestingIsRefusedBeforeDcmtkParsesIt) {
+    // 100 000 nested sequences exhausted DCMTK's stack (SIGSEGV).
+    const std::string path = tempPath("nesting");
+    std::ofstream(path, std::ios::binary) << dfrecon::testing::nestedSequencesDicom(100000);
+    EXPECT_NE(readError(path).find("sequences nested more than 64 deep"), std::string::npos)
+        << readError(path);
+    // At the limit the file goes on to DCMTK, which finds what else is wrong.
+    std::ofstream(path, std::ios::binary) << dfrecon::testing::nestedSequencesDicom(64);
+    EXPECT_NE(readError(path).find("StructureSetROISequence"), std::string::npos)
+        << readError(path);
+    fs::remove(path);
+}
+
+TEST(RtStruct, ExclusiveOrWorkIsBoundedPerPlaneAndPerFile) {
+    // Stars that all cross one another: 150 of them took 2.5 GB in CGAL,
+    // then overflowed the stack.
+    const std::string path = tempPath("stars");
+    std::ofstream(path, std::ios::binary) << dfrecon::testing::crossingStarsRtStruct(6, 8, 2);
+    const RtStructLoad load = readRtStruct(path);  // 6 contours, 240 crossings a plane
+    EXPECT_EQ(load.rois[0].planesCombined, 2u);
+    RtStructLimits limits;
+    limits.maxXorCrossings = 200;
+    try {
+        readRtStruct(path, limits);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), path);
+        EXPECT_NE(e.problem().find("ROI 1 'stars', plane 0 mm: 6 contours meeting in more than "
+                                   "194 places"),
+                  std::string::npos)
+            << e.what();
+    }
+    limits.maxXorCrossings = 1000;
+    limits.maxXorCrossingsPerFile = 400;
+    try {
+        readRtStruct(path, limits);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(e.problem().find("plane 2 mm"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("for the whole file"), std::string::npos) << e.what();
     }
     fs::remove(path);
 }
