@@ -148,7 +148,7 @@ int benchRecon(const std::string& device) {
         const ContourSet warm = sliceShape(*makeShape("sphere"), {});
         reconstructSurface(runtime, warm.rois[0]);
     }
-    for (const std::string& name : shapeNames())
+    for (const std::string& name : allShapeNames())
         for (double spacing : {2.0, 5.0}) {
             const auto shape = makeShape(name);
             SynthOptions options;

@@ -296,9 +296,14 @@ std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, u
 }
 
 const std::vector<std::string>& shapeNames() {
+    static const std::vector<std::string> names = {"sphere", "ellipsoid", "torus",        "capsule",
+                                                   "y",      "two-blobs", "hollow-sphere"};
+    return names;
+}
+
+const std::vector<std::string>& allShapeNames() {
     static const std::vector<std::string> names = [] {
-        std::vector<std::string> all = {"sphere", "ellipsoid", "torus",        "capsule",
-                                        "y",      "two-blobs", "hollow-sphere"};
+        std::vector<std::string> all = shapeNames();
         for (const std::string& name : betweenPlanesShapeNames()) all.push_back(name);
         return all;
     }();
@@ -336,7 +341,7 @@ std::unique_ptr<AnalyticShape> makeShape(const std::string& name, double scale) 
     if (name == "hollow-sphere") return std::make_unique<HollowSphere>(20 * s, 10 * s);
     if (auto shape = makeBetweenPlanesShape(name, s)) return shape;
     std::string known;
-    for (const std::string& n : shapeNames()) known += (known.empty() ? "" : ", ") + n;
+    for (const std::string& n : allShapeNames()) known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown shape '" + name + "' (known: " + known + ")");
 }
 

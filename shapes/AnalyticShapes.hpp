@@ -48,11 +48,16 @@ class AnalyticShape {
 /// measuring distances from the surface to a reconstruction.
 std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, unsigned seed = 1);
 
-/// Names accepted by makeShape, for help texts: sphere, ellipsoid, torus,
-/// capsule, y, two-blobs, hollow-sphere, then the between-planes family
-/// (shapes/BetweenPlanesShapes.hpp): bent-tube, torus-30, torus-60,
-/// cylinder-30, cylinder-60, plate-20, thin-ellipsoid, neck, branch.
+/// The shapes with closed-form sections: sphere, ellipsoid, torus, capsule,
+/// y, two-blobs, hollow-sphere (what the reconstruction and simplification
+/// tests sweep).
 const std::vector<std::string>& shapeNames();
+
+/// Every name makeShape accepts, for synth and the recon benchmark:
+/// shapeNames(), then the between-planes family (shapes/BetweenPlanesShapes:
+/// bent-tube, torus-30, torus-60, cylinder-30, cylinder-60, plate-20,
+/// thin-ellipsoid, neck, branch).
+const std::vector<std::string>& allShapeNames();
 
 /// One-line description of a shape's geometry at scale 1 (for --help).
 std::string shapeDescription(const std::string& name);

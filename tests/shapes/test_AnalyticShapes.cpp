@@ -7,7 +7,6 @@
 #include <random>
 
 #include "shapes/AnalyticShapes.hpp"
-#include "shapes/BetweenPlanesShapes.hpp"
 
 using namespace dfrecon;
 
@@ -131,17 +130,7 @@ TEST_P(ShapeTest, SignedDistanceIsOneLipschitz) {
     }
 }
 
-// The shapes with closed-form sections; the between-planes family, whose
-// sections are traced from the distance, has its own (faster) checks in
-// test_BetweenPlanesShapes.cpp.
-std::vector<std::string> closedFormShapeNames() {
-    std::vector<std::string> names;
-    for (const std::string& name : shapeNames())
-        if (betweenPlanesShapeDescription(name).empty()) names.push_back(name);
-    return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(ClosedForm, ShapeTest, ::testing::ValuesIn(closedFormShapeNames()),
+INSTANTIATE_TEST_SUITE_P(AllShapes, ShapeTest, ::testing::ValuesIn(shapeNames()),
                          [](const auto& testInfo) {
                              std::string name = testInfo.param;
                              for (char& c : name)

@@ -198,7 +198,9 @@ TEST(BetweenPlanesShapes, NamesAreKnownToMakeShape) {
     for (const std::string& name : betweenPlanesShapeNames()) {
         EXPECT_EQ(makeShape(name)->name(), name);
         EXPECT_FALSE(shapeDescription(name).empty());
-        EXPECT_NE(std::find(shapeNames().begin(), shapeNames().end(), name), shapeNames().end());
+        EXPECT_NE(std::find(allShapeNames().begin(), allShapeNames().end(), name),
+                  allShapeNames().end());
+        EXPECT_EQ(std::find(shapeNames().begin(), shapeNames().end(), name), shapeNames().end());
     }
     EXPECT_EQ(makeBetweenPlanesShape("sphere", 1.0), nullptr);
     const auto big = makeBetweenPlanesShape("neck", 2.0), small = makeBetweenPlanesShape("neck", 1);
