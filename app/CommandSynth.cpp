@@ -68,7 +68,7 @@ void runSynth(const SynthArgs& args) {
 void addSynthCommand(CLI::App& root, const GlobalOptions&) {
     auto args = std::make_shared<SynthArgs>();
     std::string shapes;
-    for (const std::string& name : shapeNames())
+    for (const std::string& name : allShapeNames())
         shapes += "\n  " + name + ": " + shapeDescription(name);
     CLI::App* cmd = root.add_subcommand(
         "synth",
@@ -77,7 +77,7 @@ void addSynthCommand(CLI::App& root, const GlobalOptions&) {
                 "\nSlices sit at cell centres zmin + spacing*(k+1/2).");
     cmd->add_option("shape", args->shape, "Shape name (see below)")
         ->required()
-        ->check(CLI::IsMember(shapeNames()));
+        ->check(CLI::IsMember(allShapeNames()));
     cmd->add_option("-o,--output", args->output, "Output .slices file")->required();
     cmd->add_option("--spacing", args->options.spacingMm, "Slice spacing in mm")
         ->capture_default_str()

@@ -1,10 +1,16 @@
-// Reconstruction quality on every synth shape at 2 mm and 5 mm spacing.
+// Reconstruction quality on every synth shape at 2 mm and 5 mm spacing: the
+// closed-form shapes and the between-planes family (tilted, bent, thin,
+// necked, branching; shapes/BetweenPlanesShapes).
 // Distances by dense sampling against the analytic surface, both directions:
-// reconstruction → surface with the exact signed distance, surface →
-// reconstruction with exact point–triangle distances over a BVH.
+// reconstruction → surface with the exact signed distance (the bounded
+// smooth union through shapes/SurfaceReference), surface → reconstruction
+// with exact point–triangle distances over a BVH. Each row also splits the
+// errors by where they lie between the contour planes (bench/SlabErrors),
+// because that is where interpolation sags.
 // Systems: levin-mc (the baseline: fields interpolated in z, marching cubes
-// at 0.5 mm voxels), dfrecon at default settings and dfrecon with
-// --contour-error 0.1 (fields at their default pixel size). Then the end-to-end
+// at 0.5 mm voxels), dfrecon at default settings, dfrecon with
+// --contour-error 0.1 (fields at their default pixel size) and dfrecon with
+// --interpolation smooth. Then the end-to-end
 // time of 100 slices x 500 points per contour (fields, axes, triangulation,
 // writing a PLY).
 #include <cstdio>
@@ -14,60 +20,92 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
+#include "bench/SlabErrors.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "shapes/SurfaceReference.hpp"
 #include "simplify/SurfaceDistance.hpp"
 
 namespace dfrecon::bench {
 
 namespace {
 
-struct SurfaceDistance {
-    double hausdorffMm = 0, meanMm = 0;
+constexpr std::size_t kSamples = 20000;
+
+// What a case measures against: the true surface, points on it, and the
+// contour planes.
+struct Truth {
+    const AnalyticShape& shape;
+    const SurfaceReference& reference;
+    const std::vector<Vec3>& surfaceSamples;
+    std::vector<double> planesMm;
 };
 
-SurfaceDistance measure(const AnalyticShape& shape, const TriangleSoup& soup) {
-    constexpr std::size_t kSamples = 20000;
+struct SurfaceDistance {
+    double hausdorffMm = 0, meanMm = 0;
+    std::vector<ErrorSample> errors;  // both directions, with their z
+};
+
+SurfaceDistance measure(const Truth& truth, const TriangleSoup& soup) {
     SurfaceDistance d;
     double sum = 0;
     for (const Vec3& p : sampleTriangles(soup, kSamples, 7)) {
-        const double e = std::abs(shape.signedDistance(p));
+        const double e = truth.reference.distance(p);
+        d.errors.push_back({p.z, e});
         d.hausdorffMm = std::max(d.hausdorffMm, e);
         sum += e;
     }
     const TriangleBvh bvh(soup);
-    const std::vector<Vec3> surface = sampleSurface(shape, kSamples, 11);
-    for (const Vec3& p : surface) {
+    for (const Vec3& p : truth.surfaceSamples) {
         const double e = bvh.nearest(p).distance;
+        d.errors.push_back({p.z, e});
         d.hausdorffMm = std::max(d.hausdorffMm, e);
         sum += e;
     }
-    d.meanMm = sum / double(kSamples + surface.size());
+    d.meanMm = sum / double(d.errors.size());
     return d;
 }
 
+// null where a class holds no sample (fewer than two planes).
+nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value) {
+    return stats.samples == 0 ? nlohmann::json() : nlohmann::json(stats.*value);
+}
+
 void printRow(const std::string& caseName, const std::string& system, double seconds,
-              const AnalyticShape& shape, const TriangleSoup& soup) {
+              const Truth& truth, const TriangleSoup& soup) {
     const MeshCheckReport check = checkMesh(soup);
-    const SurfaceDistance distance = measure(shape, soup);
-    std::cout << nlohmann::ordered_json{{"bench", "recon"},
-                                        {"case", caseName},
-                                        {"system", system},
-                                        {"seconds", seconds},
-                                        {"triangles", check.triangles},
-                                        {"watertight", check.validSolid()},
-                                        {"genus", check.genus},
-                                        {"components", check.components},
-                                        {"hausdorff_mm", distance.hausdorffMm},
-                                        {"mean_dist_mm", distance.meanMm},
-                                        {"volume_err_pct",
-                                         100 * (check.volumeMm3 / shape.volumeMm3() - 1)}}
-                     .dump()
-              << std::endl;
+    const SurfaceDistance distance = measure(truth, soup);
+    const SlabErrors split = splitBySlabPosition(distance.errors, truth.planesMm);
+    std::cout
+        << nlohmann::ordered_json{{"bench", "recon"},
+                                  {"case", caseName},
+                                  {"system", system},
+                                  {"seconds", seconds},
+                                  {"triangles", check.triangles},
+                                  {"watertight", check.validSolid()},
+                                  {"genus", check.genus},
+                                  {"components", check.components},
+                                  {"hausdorff_mm", distance.hausdorffMm},
+                                  {"mean_dist_mm", distance.meanMm},
+                                  {"volume_err_pct",
+                                   100 * (check.volumeMm3 / truth.shape.volumeMm3() - 1)},
+                                  {"planes", truth.planesMm.size()},
+                                  {"slab_mean_mm", orNull(split.slab, &ErrorStats::meanMm)},
+                                  {"near_plane_mean_mm",
+                                   orNull(split.nearPlane, &ErrorStats::meanMm)},
+                                  {"near_plane_p95_mm",
+                                   orNull(split.nearPlane, &ErrorStats::p95Mm)},
+                                  {"near_plane_max_mm",
+                                   orNull(split.nearPlane, &ErrorStats::maxMm)},
+                                  {"mid_slab_mean_mm", orNull(split.midSlab, &ErrorStats::meanMm)},
+                                  {"mid_slab_p95_mm", orNull(split.midSlab, &ErrorStats::p95Mm)},
+                                  {"mid_slab_max_mm", orNull(split.midSlab, &ErrorStats::maxMm)}}
+               .dump()
+        << std::endl;
 }
 
 // 100 slices of 500 points through the whole command path, the speed target
@@ -110,7 +148,7 @@ int benchRecon(const std::string& device) {
         const ContourSet warm = sliceShape(*makeShape("sphere"), {});
         reconstructSurface(runtime, warm.rois[0]);
     }
-    for (const std::string& name : shapeNames())
+    for (const std::string& name : allShapeNames())
         for (double spacing : {2.0, 5.0}) {
             const auto shape = makeShape(name);
             SynthOptions options;
@@ -119,26 +157,30 @@ int benchRecon(const std::string& device) {
             const ContourSet set = sliceShape(*shape, options);
             const Roi& roi = set.rois[0];
             const std::string caseName = name + " " + std::to_string(int(spacing)) + " mm";
+            const SurfaceReference reference(*shape);
+            const std::vector<Vec3> surface = sampleSurface(*shape, kSamples, 11);
+            Truth truth{*shape, reference, surface, {}};
+            for (const Slice& slice : roi.slices) truth.planesMm.push_back(slice.zMm);
             TriMesh mesh;
             double seconds = bestSeconds(1, [&] {
                 const SliceFields fields =
                     computeSliceFields(runtime, roi.slices, gridForSlices(roi.slices, 0.5));
                 mesh = levinBaseline(fields);
             });
-            printRow(caseName, "levin-mc", seconds, *shape, toTriangleSoup(mesh));
+            printRow(caseName, "levin-mc", seconds, truth, toTriangleSoup(mesh));
             for (double contourError : {0.0, 0.1}) {
                 ReconstructionOptions recon;
                 recon.contourErrorMm = contourError;
                 Reconstruction result;
                 seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, recon); });
-                printRow(caseName, contourError > 0 ? "dfrecon-ce0.1" : "dfrecon", seconds, *shape,
+                printRow(caseName, contourError > 0 ? "dfrecon-ce0.1" : "dfrecon", seconds, truth,
                          result.surface);
             }
             ReconstructionOptions smooth;
             smooth.interpolation = Interpolation::Smooth;
             Reconstruction result;
             seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, smooth); });
-            printRow(caseName, "dfrecon-smooth", seconds, *shape, result.surface);
+            printRow(caseName, "dfrecon-smooth", seconds, truth, result.surface);
         }
     benchEndToEnd(runtime);
     return 0;

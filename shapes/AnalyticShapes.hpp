@@ -11,6 +11,11 @@
 
 namespace dfrecon {
 
+/// A point on a shape's surface with its outward unit normal.
+struct SurfacePoint {
+    Vec3 point, normal;
+};
+
 class AnalyticShape {
   public:
     virtual ~AnalyticShape() = default;
@@ -26,6 +31,15 @@ class AnalyticShape {
     /// each with about `pointsPerContour` vertices on the exact section curve.
     /// Empty outside (zMin, zMax).
     virtual std::vector<Polygon> section(double zMm, int pointsPerContour) const = 0;
+    /// Whether signedDistance is the exact Euclidean distance. Where it is
+    /// not (a smooth union), it is still 1-Lipschitz with the surface as its
+    /// zero set and the right sign, so |signedDistance| <= the true distance;
+    /// measure distances with shapes/SurfaceReference then.
+    virtual bool distanceIsExact() const { return true; }
+    /// Points on the surface about `stepMm` apart with outward normals, from
+    /// the shape's own parametrisation rather than from signedDistance: an
+    /// independent reference for tests. Empty for shapes that have none.
+    virtual std::vector<SurfacePoint> parametricSurface(double /*stepMm*/) const { return {}; }
 };
 
 /// About `count` points on the shape's surface (|signedDistance| < 1e-9 mm),
@@ -34,9 +48,16 @@ class AnalyticShape {
 /// measuring distances from the surface to a reconstruction.
 std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, unsigned seed = 1);
 
-/// Names accepted by makeShape, for help texts: sphere, ellipsoid, torus,
-/// capsule, y, two-blobs, hollow-sphere.
+/// The shapes with closed-form sections: sphere, ellipsoid, torus, capsule,
+/// y, two-blobs, hollow-sphere (what the reconstruction and simplification
+/// tests sweep).
 const std::vector<std::string>& shapeNames();
+
+/// Every name makeShape accepts, for synth and the recon benchmark:
+/// shapeNames(), then the between-planes family (shapes/BetweenPlanesShapes:
+/// bent-tube, torus-30, torus-60, cylinder-30, cylinder-60, plate-20,
+/// thin-ellipsoid, neck, branch).
+const std::vector<std::string>& allShapeNames();
 
 /// One-line description of a shape's geometry at scale 1 (for --help).
 std::string shapeDescription(const std::string& name);

@@ -1,0 +1,45 @@
+#include "bench/SlabErrors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dfrecon::bench {
+
+namespace {
+
+ErrorStats statsOf(std::vector<double> errors) {
+    ErrorStats stats;
+    stats.samples = errors.size();
+    if (errors.empty()) return stats;
+    std::sort(errors.begin(), errors.end());
+    double sum = 0;
+    for (double e : errors) sum += e;
+    stats.meanMm = sum / double(errors.size());
+    // Nearest rank: the smallest error with at least 95 % of samples at or below it.
+    const auto rank = std::size_t(std::ceil(0.95 * double(errors.size())));
+    stats.p95Mm = errors[std::max<std::size_t>(rank, 1) - 1];
+    stats.maxMm = errors.back();
+    return stats;
+}
+
+}  // namespace
+
+SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
+                               const std::vector<double>& planesMm) {
+    std::vector<double> slab, nearPlane, midSlab;
+    if (planesMm.size() >= 2)
+        for (const ErrorSample& s : samples) {
+            if (s.zMm < planesMm.front() || s.zMm > planesMm.back()) continue;
+            // The slab [z_k, z_k+1] holding z (the last one for z on the last plane).
+            const auto above = std::upper_bound(planesMm.begin(), planesMm.end(), s.zMm);
+            const std::size_t k =
+                std::min<std::size_t>(std::size_t(above - planesMm.begin()), planesMm.size() - 1) -
+                1;
+            const double t = (s.zMm - planesMm[k]) / (planesMm[k + 1] - planesMm[k]);
+            slab.push_back(s.errorMm);
+            (t < 0.25 || t > 0.75 ? nearPlane : midSlab).push_back(s.errorMm);
+        }
+    return {statsOf(std::move(slab)), statsOf(std::move(nearPlane)), statsOf(std::move(midSlab))};
+}
+
+}  // namespace dfrecon::bench
