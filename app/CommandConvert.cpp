@@ -33,9 +33,11 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
         throw std::invalid_argument("--like applies to DICOM output only");
     const ContourInput input = loadContours(args.input, global);
     ContourSet chosen;
-    if (args.roi.empty())
+    if (args.roi.empty()) {
+        for (const Roi& roi : input.contours.rois)
+            if (roi.defect) throw *roi.defect;  // a converted file must hold every ROI
         chosen = input.contours;
-    else
+    } else
         chosen.rois.push_back(*selectRois(input.contours, args.roi, false).front());
 
     if (toDicom) {

@@ -153,6 +153,7 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
     const std::vector<std::string> stems = uniqueFileStems(rois);
     for (std::size_t r = 0; r < rois.size(); ++r) {
         const Roi* roi = rois[r];
+        if (roi->defect) throw *roi->defect;
         if (roi->slices.empty())
             throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
         watch.restartLap();

@@ -7,6 +7,7 @@
 
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
+#include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
 #include "app/Reports.hpp"
 #include "io/SlicesFile.hpp"
@@ -103,11 +104,28 @@ void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
     }
 }
 
+// ROIs the reader could not read: said on stderr, and the command exits 2
+// once the rest is reported.
+void reportDefects(const ContourSet& contours) {
+    std::size_t defects = 0;
+    for (const Roi& roi : contours.rois)
+        if (roi.defect) {
+            std::cerr << "dfrecon: " << roi.defect->what() << "\n";
+            ++defects;
+        }
+    if (defects > 0)
+        throw ItemsFailed(std::to_string(defects) + " ROI(s) could not be read; the others could",
+                          kExitBadInput);
+}
+
 void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
     const ContourInput load = loadContours(path, global);
     if (json) {
         nlohmann::ordered_json rois = nlohmann::ordered_json::array();
-        for (const Roi& roi : load.contours.rois) rois.push_back(roiJson(roi, load.dicomInfo(roi)));
+        for (const Roi& roi : load.contours.rois) {
+            rois.push_back(roiJson(roi, load.dicomInfo(roi)));
+            if (roi.defect) rois.back()["error"] = roi.defect->what();
+        }
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
         std::cout << nlohmann::ordered_json{{"command", "info"},
@@ -117,11 +135,16 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
                                             {"warnings", warnings}}
                          .dump(2)
                   << "\n";
+        reportDefects(load.contours);
         return;
     }
     std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI")
               << "\n";
-    for (const Roi& roi : load.contours.rois) printRoi(roi, load.dicomInfo(roi));
+    for (const Roi& roi : load.contours.rois) {
+        printRoi(roi, load.dicomInfo(roi));
+        if (roi.defect) std::cout << "  NOT READ: " << roi.defect->problem() << "\n";
+    }
+    reportDefects(load.contours);
 }
 
 }  // namespace

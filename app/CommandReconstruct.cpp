@@ -215,6 +215,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
         [&](std::size_t i, std::size_t worker) {
             // With several ROIs one that fails is reported and the rest go on.
             try {
+                if (rois[i]->defect) throw *rois[i]->defect;
                 if (!runtimes[worker])
                     runtimes[worker] = std::make_unique<ocl::Runtime>(global.device);
                 return reconstructRoi(*runtimes[worker], *rois[i],

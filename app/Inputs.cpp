@@ -69,8 +69,10 @@ std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string
     if (all && !name.empty())
         throw std::invalid_argument("--roi " + name + " and --all exclude each other: give one");
     if (all) {
+        // ROIs the reader could not read are chosen too, for the command to
+        // report them among the others.
         for (const Roi& roi : contours.rois)
-            if (!roi.slices.empty()) chosen.push_back(&roi);
+            if (!roi.slices.empty() || roi.defect) chosen.push_back(&roi);
         if (chosen.empty()) throw std::invalid_argument("no ROI has contours");
         return chosen;
     }
@@ -88,6 +90,7 @@ std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string
             "--all (available: " +
             roiNames(contours) + ")");
     }
+    if (roi->defect) throw *roi->defect;
     if (roi->slices.empty())
         throw std::invalid_argument("ROI '" + roi->name + "' has no closed planar contours");
     return {roi};

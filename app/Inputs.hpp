@@ -28,8 +28,10 @@ struct ContourInput {
 /// file. Throws InputError (exit 2) on bad input.
 ContourInput loadContours(const std::string& path, const GlobalOptions& global);
 
-/// The ROIs a command works on: `all` → every ROI with slices; a name →
-/// that ROI (or, failing a name, the ROI with that DICOM number); neither →
+/// The ROIs a command works on: `all` → every ROI with slices or a
+/// defect (Roi::defect: the reader could not read it; the command reports
+/// it); a name → that ROI (its defect, if it has one, is thrown:
+/// exit 2) (or, failing a name, the ROI with that DICOM number); neither →
 /// the only ROI. Throws std::invalid_argument (exit 1) naming the available
 /// ROIs when the choice is missing, unknown or has no contours.
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all);

@@ -95,4 +95,12 @@ Polygon circlePolygon(Point2 centre, double radius, int points, bool clockwise) 
     return polygon;
 }
 
+bool allCollinear(const Polygon& polygon) {
+    for (std::size_t k = 2; k < polygon.size(); ++k) {
+        const Point2 u = polygon[1] - polygon[0], v = polygon[k] - polygon[0];
+        if (u.x * v.y - u.y * v.x != 0) return false;
+    }
+    return true;
+}
+
 }  // namespace dfrecon

@@ -39,6 +39,10 @@ inline double length(Point2 a) {
 using Polygon = std::vector<Point2>;
 
 /// Shoelace area: positive for counter-clockwise polygons. O(n).
+/// Do all points lie on one line (a polygon with no area at all, as
+/// opposed to a figure eight whose halves cancel)? Exact on the recorded
+/// coordinates. O(n).
+bool allCollinear(const Polygon& polygon);
 double signedArea(const Polygon& polygon);
 
 /// Winding number of `polygon` around `p` (non-zero inside, 0 outside);

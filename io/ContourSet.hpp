@@ -8,6 +8,7 @@
 
 #include "geometry/PlaneFrame.hpp"
 #include "geometry/Polygon.hpp"
+#include "io/InputError.hpp"
 
 namespace dfrecon {
 
@@ -34,6 +35,10 @@ struct Roi {
     /// DICOM Contour Slab Thickness where the source gave one (0: none); a
     /// single-slice ROI is a slab this thick.
     double slabThicknessMm = 0;
+    /// Why this ROI could not be read (its slices are then empty), where a
+    /// reader keeps the file's other ROIs: a clinical export with one bad
+    /// contour loop still gives every other structure.
+    std::optional<InputError> defect;
 
     std::size_t contourCount() const;
     std::size_t pointCount() const;

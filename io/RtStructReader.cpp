@@ -80,7 +80,18 @@ class Reader {
         readIdentity(data);
         readRoiList(data);
         readRoiContours(data);
-        for (std::size_t r = 0; r < out_.contours.rois.size(); ++r) buildSlices(r);
+        // A structure whose contours cannot be made valid (a loop crossing
+        // itself, planes that are not planes) is that structure's problem:
+        // it is kept with its defect and no slices, the others load.
+        for (std::size_t r = 0; r < out_.contours.rois.size(); ++r) {
+            try {
+                buildSlices(r);
+            } catch (const InputError& e) {
+                Roi& roi = out_.contours.rois[r];
+                roi.slices.clear();
+                roi.defect = e;
+            }
+        }
         return std::move(out_);
     }
 
@@ -520,7 +531,9 @@ class Reader {
 
     // A contour that touches itself is a keyhole (or a pinch); split it.
     std::vector<Polygon> splitSelfTouching(std::size_t r, Polygon polygon, std::size_t item) {
-        if (polygon.size() < 3 || signedArea(polygon) == 0) {
+        // No area at all; a figure eight whose halves cancel is a crossing,
+        // which validation names.
+        if (polygon.size() < 3 || allCollinear(polygon)) {
             warn(roiLabel(r) + ": contour " + std::to_string(item) + " has no area; skipped");
             ++out_.rois[r].contoursSkipped;
             return {};

@@ -18,20 +18,6 @@ namespace dfrecon {
 
 namespace {
 
-// Do all points of `polygon` lie on one line? Exact: integer-free but the
-// cross products of recorded coordinates are zero only when they truly are.
-bool allCollinear(const Polygon& polygon) {
-    for (std::size_t k = 2; k < polygon.size(); ++k) {
-        const Point2 u = polygon[1] - polygon[0], v = polygon[k] - polygon[0];
-        if (u.x * v.y - u.y * v.x != 0) return false;
-    }
-    return true;
-}
-
-}  // namespace
-
-namespace {
-
 // A contour as read, with the line of each point so later checks can point
 // at the file.
 struct SourceContour {

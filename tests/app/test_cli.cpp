@@ -16,6 +16,7 @@
 
 #include "io/LabelVolume.hpp"
 #include "io/MeshIO.hpp"
+#include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 #include "shapes/MeshShapes.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
@@ -458,6 +459,44 @@ TEST(Cli, CompareGivesExactOverlapAndBoundedDistances) {
     const Result refused = runDfrecon("compare " + holed.string() + " " + a.string());
     EXPECT_EQ(refused.exitCode, 2);
     EXPECT_NE(refused.err.find(holed.string()), std::string::npos) << refused.err;
+}
+
+TEST(Cli, OneBadRoiInAnRtStructDoesNotBlockTheOthers) {
+    // A clinical export with one contour loop crossing itself: that ROI is
+    // reported (exit 2), every other one is read, chosen and reconstructed.
+    dfrecon::ContourSet set;
+    const dfrecon::Polygon square{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    const dfrecon::Polygon bowTie{{0, 0}, {10, 10}, {10, 0}, {0, 10}};
+    for (const auto& [name, contour] : {std::pair{"loop", bowTie}, std::pair{"good", square}}) {
+        dfrecon::Roi roi;
+        roi.name = name;
+        for (double z : {0.0, 2.0, 4.0}) roi.slices.push_back({z, {contour}});
+        set.rois.push_back(roi);
+    }
+    const fs::path dcm = scratch() / "one-bad-roi.dcm";
+    dfrecon::writeRtStruct(set, dcm.string());
+
+    const Result info = runDfrecon("info " + dcm.string());
+    EXPECT_EQ(info.exitCode, 2);
+    EXPECT_NE(info.err.find(dcm.string() + ": ROI 1 'loop'"), std::string::npos) << info.err;
+    EXPECT_NE(info.out.find("\"good\""), std::string::npos) << info.out;
+
+    const Result good = runDfrecon("-q reconstruct " + dcm.string() + " --roi good -o " +
+                                   (scratch() / "good-only.ply").string());
+    EXPECT_EQ(good.exitCode, 0) << good.err;
+    const Result loop = runDfrecon("-q reconstruct " + dcm.string() + " --roi loop -o " +
+                                   (scratch() / "loop.ply").string());
+    EXPECT_EQ(loop.exitCode, 2) << loop.err;
+
+    const fs::path dir = scratch() / "one-bad-roi";
+    const Result all =
+        runDfrecon("-q reconstruct " + dcm.string() + " --all --json -o " + dir.string());
+    EXPECT_EQ(all.exitCode, 2) << all.err;
+    const auto report = nlohmann::json::parse(all.out);
+    ASSERT_EQ(report["rois"].size(), 2u);
+    EXPECT_EQ(report["rois"][0]["exitCode"].get<int>(), 2);
+    EXPECT_TRUE(report["rois"][1]["validSolid"].get<bool>());
+    EXPECT_TRUE(fs::exists(dir / "good.ply"));
 }
 
 TEST(Cli, ReconstructWithSeveralJobsGivesWhatOneJobGives) {
