@@ -1,11 +1,20 @@
 // Inputs the fuzzers found or started from: each must load or fail with an
 // InputError, never crash, hang or throw anything else. tests/data/fuzz/
 // holds .slices inputs; tests/data/fuzz-rtstruct/ (seeds) and
-// tests/data/fuzz-rtstruct-regressions/ (findings) hold RTSTRUCT inputs.
+// tests/data/fuzz-rtstruct-regressions/ (findings) hold RTSTRUCT inputs;
+// tests/data/fuzz-mesh*/ and tests/data/fuzz-label*/ hold mesh files and
+// label volumes, stored as files of their format (the fuzz targets' first
+// byte, which picks the extension, taken off and made the extension).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <initializer_list>
+#include <vector>
 
+#include "io/InputLimits.hpp"
+#include "io/LabelVolume.hpp"
+#include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -65,4 +74,69 @@ TEST(FuzzRegressions, EveryKeptRtStructIsHandled) {
     }
     fs::remove(written);
     EXPECT_GT(files, 0);
+}
+
+namespace {
+
+// The regular files of tests/data/NAME/ for each NAME, seeds and findings.
+std::vector<fs::path> keptInputs(std::initializer_list<const char*> names) {
+    std::vector<fs::path> files;
+    for (const char* name : names) {
+        const fs::path dir = fs::path(DFRECON_TEST_DATA) / name;
+        if (!fs::is_directory(dir)) continue;
+        for (const auto& entry : fs::directory_iterator(dir))
+            if (entry.is_regular_file()) files.push_back(entry.path());
+    }
+    return files;
+}
+
+}  // namespace
+
+TEST(FuzzRegressions, EveryKeptMeshIsHandled) {
+    const std::vector<fs::path> files = keptInputs({"fuzz-mesh", "fuzz-mesh-regressions"});
+    for (const fs::path& file : files) {
+        SCOPED_TRACE(file.string());
+        TriangleSoup soup;
+        try {
+            soup = readTriangleSoup(file.string());
+        } catch (const InputError&) {
+            continue;  // a clear error is the expected outcome for most
+        }
+        // What tests/fuzz/fuzz_mesh.cpp checks of whatever loads.
+        EXPECT_FALSE(soup.triangles.empty());
+        for (const Vec3& p : soup.points)
+            for (double c : {p.x, p.y, p.z})
+                ASSERT_TRUE(std::isfinite(c) && std::abs(c) <= kMaxAbsCoordinateMm);
+        for (const auto& triangle : soup.triangles)
+            for (std::uint32_t v : triangle) ASSERT_LT(v, soup.points.size());
+    }
+    EXPECT_GT(files.size(), 0u);
+}
+
+TEST(FuzzRegressions, EveryKeptLabelVolumeIsHandled) {
+    const std::vector<fs::path> files = keptInputs({"fuzz-label", "fuzz-label-regressions"});
+    for (const fs::path& file : files) {
+        SCOPED_TRACE(file.string());
+        LabelVolume volume;
+        try {
+            volume = readLabelVolume(file.string());
+        } catch (const InputError&) {
+            continue;
+        }
+        // What tests/fuzz/fuzz_label_volume.cpp checks of whatever loads.
+        const VolumeGeometry& g = volume.geometry;
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GT(g.size[a], 0);
+            EXPECT_TRUE(std::isfinite(g.spacingMm[a]) && g.spacingMm[a] >= kMinVoxelSpacingMm);
+            EXPECT_TRUE(std::isfinite(g.originMm[a]));
+        }
+        EXPECT_EQ(volume.labels.size(), g.voxelCount());
+        for (int corner = 0; corner < 8; ++corner) {
+            auto at = [&](int a) { return (corner >> a & 1) ? g.size[a] - 0.5 : -0.5; };
+            const Vec3 p = g.worldOfIndex(at(0), at(1), at(2));
+            for (double c : {p.x, p.y, p.z})
+                EXPECT_TRUE(std::isfinite(c) && std::abs(c) <= kMaxAbsCoordinateMm);
+        }
+    }
+    EXPECT_GT(files.size(), 0u);
 }
