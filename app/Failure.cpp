@@ -25,19 +25,6 @@ std::string outOfMemory() {
     return files + ": out of memory while processing " + (in.inputs.size() == 1 ? "it" : "them");
 }
 
-// Whether `e` is the distance fields refusing a contour or a plane over
-// what their 32-bit ids index (field/SliceFields checkLimits, which states
-// these limits): valid input too large for this program, so bad input
-// naming the file, not a usage error. (A type of its own thrown by field/
-// would be better than the words; tests/app/test_cli_hostile holds them.)
-bool isFieldIdLimit(const std::invalid_argument& e) {
-    const std::string what = e.what();
-    return what.find("has over " + std::to_string(kMaxPrimitivesPerContour - 1) + " points") !=
-               std::string::npos ||
-           what.find("has over " + std::to_string(kMaxContoursPerSlice - 1) + " contours") !=
-               std::string::npos;
-}
-
 }  // namespace
 
 Failure describeFailure(std::exception_ptr error) {
@@ -57,12 +44,13 @@ Failure describeFailure(std::exception_ptr error) {
         return {kExitRuntime, outOfMemory()};
     } catch (const std::length_error& e) {  // a container asked for more than can exist
         return {kExitRuntime, outOfMemory() + " (" + e.what() + ")"};
+    } catch (const PrimitiveLimitExceeded& e) {
+        // Valid input too large for this program: bad input naming the file.
+        const std::string file = lastInput().empty() ? "" : lastInput() + ": ";
+        return {kExitBadInput, file + e.what() +
+                                   ", the most the distance fields can index (--contour-error "
+                                   "simplifies contours first)"};
     } catch (const std::invalid_argument& e) {
-        if (isFieldIdLimit(e) && !lastInput().empty())
-            return {kExitBadInput,
-                    lastInput() + ": " + e.what() +
-                        ", the most the distance fields can index (--contour-error simplifies "
-                        "contours first)"};
         return {kExitUsage, e.what()};
     } catch (const std::exception& e) {
         return {kExitRuntime, e.what()};

@@ -6,8 +6,17 @@
 // kNoPrimitive (all bits set, never a valid id) marks pixels of a slice
 // without contours.
 #include <cstdint>
+#include <stdexcept>
 
 namespace dfrecon {
+
+/// A slice with more contours, or a contour with more points, than the ids
+/// can index: valid input too large for the fields (the caller names the
+/// file; docs/cli.md "Limits on input").
+class PrimitiveLimitExceeded : public std::invalid_argument {
+  public:
+    using std::invalid_argument::invalid_argument;
+};
 
 inline constexpr std::uint32_t kNoPrimitive = 0xffffffffu;
 inline constexpr std::uint32_t kMaxContoursPerSlice = (1u << 12) - 1;

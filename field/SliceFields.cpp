@@ -28,11 +28,11 @@ std::size_t tilesOf(const SliceGrid& grid, std::uint32_t tile) {
 void checkLimits(const std::vector<Slice>& slices) {
     for (const Slice& slice : slices) {
         if (slice.contours.size() >= kMaxContoursPerSlice)
-            throw std::invalid_argument("slice z=" + std::to_string(slice.zMm) + " has over " +
-                                        std::to_string(kMaxContoursPerSlice - 1) + " contours");
+            throw PrimitiveLimitExceeded("slice z=" + std::to_string(slice.zMm) + " has over " +
+                                         std::to_string(kMaxContoursPerSlice - 1) + " contours");
         for (const Polygon& c : slice.contours)
             if (c.size() >= kMaxPrimitivesPerContour)
-                throw std::invalid_argument(
+                throw PrimitiveLimitExceeded(
                     "a contour at z=" + std::to_string(slice.zMm) + " has over " +
                     std::to_string(kMaxPrimitivesPerContour - 1) + " points");
     }

@@ -9,31 +9,23 @@
 // that readLabelVolume promises: positive sizes, finite spacing of at least
 // kMinVoxelSpacingMm, finite origin and unit directions, and a grid within
 // kMaxAbsCoordinateMm.
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "io/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/LabelVolume.hpp"
+#include "tests/fuzz/ScratchInput.hpp"
 
 using namespace dfrecon;
 
 namespace {
 
 constexpr std::array<const char*, 4> kExtensions{{".nrrd", ".nhdr", ".nii", ".nii.gz"}};
-
-std::string scratch(const char* extension) {
-    // Per process, so that several fuzzers (or -fork) never share a file;
-    // /dev/shm where there is one keeps the disk out of the loop.
-    static const std::string dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
-    return dir + "/dfrecon-fuzz-label-" + std::to_string(getpid()) + extension;
-}
 
 void expectSane(const LabelVolume& volume) {
     const VolumeGeometry& g = volume.geometry;
@@ -76,24 +68,7 @@ extern "C" const char* __ubsan_default_options() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size == 0) return 0;
-    // One file per extension, removed at exit (-fork starts a process, so a
-    // set per job).
-    struct Scratch {
-        std::array<std::string, kExtensions.size()> paths;
-        Scratch() {
-            for (std::size_t e = 0; e < kExtensions.size(); ++e) paths[e] = scratch(kExtensions[e]);
-        }
-        ~Scratch() {
-            for (const std::string& path : paths) std::remove(path.c_str());
-        }
-    };
-    static const Scratch files;
-    const std::string& path = files.paths[data[0] % kExtensions.size()];
-    {
-        std::ofstream file(path, std::ios::binary | std::ios::trunc);
-        file.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
-        if (!file) __builtin_trap();  // scratch space full: not the reader's fault
-    }
+    const std::string& path = fuzz::writeScratchInput("label", kExtensions, data, size);
     LabelVolume volume;
     try {
         volume = readLabelVolume(path);
