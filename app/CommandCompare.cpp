@@ -3,6 +3,7 @@
 // distance — computed on the surfaces (compare/), not on voxels, with the
 // distances' error bound stated.
 #include <iostream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -29,8 +30,8 @@ struct CompareArgs {
 
 /// A mesh file as it is, or an ROI of a contour file reconstructed (linear,
 /// flat caps: the surface whose volume is the contours' own).
-TriangleSoup surfaceOf(const std::string& path, const std::string& roi,
-                       const GlobalOptions& global) {
+TriangleSoup surfaceOf(const std::string& path, const std::string& roi, const GlobalOptions& global,
+                       std::unique_ptr<ocl::Runtime>& runtime) {
     if (isMeshExtension(path)) {
         TriangleSoup soup = readTriangleSoup(path);
         if (!checkMesh(soup).validSolid())
@@ -39,8 +40,9 @@ TriangleSoup surfaceOf(const std::string& path, const std::string& roi,
     }
     const ContourInput input = loadContours(path, global);
     const Roi& chosen = *selectRois(input.contours, roi, false).front();
-    ocl::Runtime runtime(global.device);
-    Reconstruction result = reconstructSurface(runtime, chosen);
+    // One device and program cache for both inputs, made only if needed.
+    if (!runtime) runtime = std::make_unique<ocl::Runtime>(global.device);
+    Reconstruction result = reconstructSurface(*runtime, chosen);
     if (!result.check.validSolid())
         throw InputError(path, 0, "ROI '" + chosen.name + "' gives no valid closed solid");
     toPatient(result.surface, chosen.frame);
@@ -49,8 +51,9 @@ TriangleSoup surfaceOf(const std::string& path, const std::string& roi,
 
 void runCompare(const CompareArgs& args, const GlobalOptions& global) {
     Stopwatch watch;
-    const TriangleSoup a = surfaceOf(args.a, args.roiA, global);
-    const TriangleSoup b = surfaceOf(args.b, args.roiB, global);
+    std::unique_ptr<ocl::Runtime> runtime;
+    const TriangleSoup a = surfaceOf(args.a, args.roiA, global, runtime);
+    const TriangleSoup b = surfaceOf(args.b, args.roiB, global, runtime);
     const double loadSeconds = watch.lap();
     const Overlap overlap = overlapOf(a, b);
     const double overlapSeconds = watch.lap();
