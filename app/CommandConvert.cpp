@@ -48,9 +48,12 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
     } else {
         for (const Roi& roi : chosen.rois)
             if (!roi.frame.isIdentity())
-                throw std::invalid_argument("ROI '" + roi.name + "' lies in " +
-                                            roi.frame.orientationName() +
-                                            " planes; .slices holds axial stacks only");
+                throw std::invalid_argument(
+                    "ROI '" + roi.name + "' lies in " + roi.frame.orientationName() +
+                    " planes (normal " + std::to_string(roi.frame.n.x) + ", " +
+                    std::to_string(roi.frame.n.y) + ", " + std::to_string(roi.frame.n.z) +
+                    "), and a .slices file holds planes normal to z only; convert it to a "
+                    "DICOM RTSTRUCT (.dcm), which holds any orientation");
         writeSlicesFile(chosen, args.output);
     }
     std::size_t contours = 0;

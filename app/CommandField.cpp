@@ -67,6 +67,10 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     writeLevelSetVdb(volume, args.output, options);
     const double writeSeconds = watch.lap();
 
+    // The volume is sampled in the plane frame; users and the .vdb transform
+    // see patient LPS.
+    const Vec3 originLps =
+        roi.frame.toPatient({volume.originMm[0], volume.originMm[1], volume.originMm[2]});
     if (args.json) {
         std::cout << nlohmann::ordered_json{{"command", "field"},
                                             {"input", args.input},
@@ -74,7 +78,11 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                                             {"output", args.output},
                                             {"voxels", {volume.nx, volume.ny, volume.nz}},
                                             {"voxelMm", xyzJson(volume.voxelMm)},
-                                            {"originMm", xyzJson(volume.originMm)},
+                                            {"originMm", xyzJson(originLps)},
+                                            {"axes",
+                                             {{"i", xyzJson(roi.frame.u)},
+                                              {"j", xyzJson(roi.frame.v)},
+                                              {"k", xyzJson(roi.frame.n)}}},
                                             {"bandVoxels", args.bandVoxels},
                                             {"device", runtime.device().deviceName},
                                             {"seconds",
@@ -101,7 +109,8 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "The slices' exact 2D fields propagated along z (distance = in-slice Euclidean + |dz|, "
         "never below the true Euclidean distance; negative inside). Ends close half a slice "
         "spacing beyond the end slices, as the flat caps do. Grid named after the ROI, voxel "
-        "(i, j, k) centred at the reported origin + (i, j, k) x voxel size, in mm; metadata: "
+        "(i, j, k) centred at the reported origin + i, j, k voxel sizes along the reported "
+        "axes, in patient LPS mm (the axes are x, y, z for axial stacks); metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")

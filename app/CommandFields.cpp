@@ -11,6 +11,7 @@
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/SliceFields.hpp"
 #include "io/AtomicWrite.hpp"
@@ -63,32 +64,49 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
     const SliceGrid& grid = fields.grid;
     const SpacingStats spacing = spacingOf(roi);
 
+    // Sample (i, j) of slice s is centred at plane point originMm + (i + ½,
+    // j + ½)·pixelMm at the slice's z; the frame places it in patient LPS.
+    const PlaneFrame& frame = roi.frame;
+    auto patientOrigin = [&](double zMm) {
+        return frame.toPatient(
+            {grid.originMm.x + 0.5 * grid.pixelMm, grid.originMm.y + 0.5 * grid.pixelMm, zMm});
+    };
     RawVolumeInfo info;
     info.width = grid.width;
     info.height = grid.height;
     info.slices = int(fields.sliceCount());
-    info.originMm[0] = grid.originMm.x + 0.5 * grid.pixelMm;
-    info.originMm[1] = grid.originMm.y + 0.5 * grid.pixelMm;
-    info.originMm[2] = roi.slices.front().zMm;
-    info.spacingMm[0] = info.spacingMm[1] = grid.pixelMm;
-    info.spacingMm[2] = spacing.meanMm > 0 ? spacing.meanMm : 1;
+    info.originMm = patientOrigin(fields.zMm.front());
+    info.stepMm = {grid.pixelMm * frame.u, grid.pixelMm * frame.v,
+                   (spacing.meanMm > 0 ? spacing.meanMm : 1.0) * frame.n};
+    if (!spacing.uniform)
+        for (double zMm : fields.zMm) info.sliceOriginsMm.push_back(patientOrigin(zMm));
+    nlohmann::ordered_json files = nlohmann::ordered_json::array();
     info.description = "dfrecon signed distance (mm, negative inside) of ROI " + roi.name;
-    writeRawVolume(stem + "-distance.nhdr", stem + "-distance.raw", fields.distanceMm, info);
+    for (const std::string& header :
+         writeRawVolume(stem + "-distance.nhdr", stem + "-distance.raw", fields.distanceMm, info))
+        files.push_back(header);
+    files.push_back(stem + "-distance.raw");
     info.description = "dfrecon nearest-primitive ids of ROI " + roi.name + " (docs/fields.md)";
-    writeRawVolume(stem + "-ids.nhdr", stem + "-ids.raw", fields.nearestId, info);
+    for (const std::string& header :
+         writeRawVolume(stem + "-ids.nhdr", stem + "-ids.raw", fields.nearestId, info))
+        files.push_back(header);
+    files.push_back(stem + "-ids.raw");
+    if (!spacing.uniform && !global.quiet)
+        std::cerr << "dfrecon: warning: ROI '" << roi.name << "': planes are unevenly spaced ("
+                  << spacing.minMm << " to " << spacing.maxMm
+                  << " mm), which one NRRD volume cannot hold; wrote one 2D header per slice ("
+                  << fileStem << "-distance-NNN.nhdr, " << fileStem << "-ids-NNN.nhdr)\n";
 
-    nlohmann::ordered_json files = {stem + "-distance.nhdr", stem + "-distance.raw",
-                                    stem + "-ids.nhdr", stem + "-ids.raw"};
     if (args.png) {
         Progress progress("pictures of " + roi.name, !global.quiet);
-        const ImageFrame frame{grid.originMm, grid.pixelMm, grid.width, grid.height};
+        const ImageFrame image{grid.originMm, grid.pixelMm, grid.width, grid.height};
         for (std::size_t s = 0; s < fields.sliceCount(); ++s) {
             char suffix[32];
             std::snprintf(suffix, sizeof suffix, "-%03zu.png", s);
             const std::size_t offset = s * grid.pixelCount();
             writeSignedFieldPng(stem + "-distance" + suffix, fields.distanceMm.data() + offset,
-                                frame, slices[s].contours, args.isoStepMm);
-            writeLabelPng(stem + "-ids" + suffix, fields.nearestId.data() + offset, frame,
+                                image, slices[s].contours, args.isoStepMm);
+            writeLabelPng(stem + "-ids" + suffix, fields.nearestId.data() + offset, image,
                           slices[s].contours);
             files.push_back(stem + "-distance" + suffix);
             files.push_back(stem + "-ids" + suffix);
@@ -102,7 +120,7 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
                 std::vector<Polygon> both = slices[s].contours;
                 both.insert(both.end(), slices[s + 1].contours.begin(),
                             slices[s + 1].contours.end());
-                writeSignedFieldPng(stem + "-medial" + suffix, sum.sumMm.data(), frame, both,
+                writeSignedFieldPng(stem + "-medial" + suffix, sum.sumMm.data(), image, both,
                                     args.isoStepMm, medial);
                 files.push_back(stem + "-medial" + suffix);
             }
@@ -112,8 +130,10 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
 
     nlohmann::ordered_json sliceList = nlohmann::ordered_json::array();
     for (std::size_t s = 0; s < fields.sliceCount(); ++s)
-        sliceList.push_back(
-            {{"index", s}, {"zMm", fields.zMm[s]}, {"contours", slices[s].contours.size()}});
+        sliceList.push_back({{"index", s},
+                             {"zMm", fields.zMm[s]},
+                             {"firstSampleLpsMm", xyzJson(patientOrigin(fields.zMm[s]))},
+                             {"contours", slices[s].contours.size()}});
     const nlohmann::ordered_json meta = {
         {"roi", roi.name},
         {"grid",
@@ -121,7 +141,12 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
           {"pixelMm", grid.pixelMm},
           {"width", grid.width},
           {"height", grid.height},
-          {"pixelCentre", "originMm + (i + 0.5, j + 0.5) * pixelMm"}}},
+          {"pixelCentre", "originMm + (i + 0.5, j + 0.5) * pixelMm, in plane coordinates"}}},
+        {"planeFrame",
+         {{"u", xyzJson(frame.u)},
+          {"v", xyzJson(frame.v)},
+          {"n", xyzJson(frame.n)},
+          {"toPatient", "LPS = x * u + y * v + zMm * n"}}},
         {"layout", "slice-major, then rows (j), then columns (i); little-endian"},
         {"distance",
          {{"file", fs::path(stem + "-distance.raw").filename().string()},

@@ -28,7 +28,7 @@ nlohmann::ordered_json sliceJson(const Slice& slice) {
 }
 
 nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
-    const Extent3 extent = extentOf(roi);
+    const Extent3 extent = patientExtentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
     nlohmann::ordered_json slices = nlohmann::ordered_json::array();
     std::size_t holes = 0;
@@ -49,6 +49,7 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
                                   {"mean", spacing.meanMm},
                                   {"uniform", spacing.uniform}}},
                                 {"planes", roi.frame.orientationName()},
+                                {"planeNormal", xyzJson(roi.frame.n)},
                                 {"perSlice", slices}};
     if (dicom) {
         j["holeConvention"] = nameOf(kHoleConventionNames, dicom->holes);
@@ -62,12 +63,21 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
     return j;
 }
 
+// Slice positions are along the plane normal: for a patient axis (the
+// canonical frames readers give) that is the patient coordinate itself.
+std::string planeAxisName(const PlaneFrame& frame) {
+    if (frame.n == Vec3{0, 0, 1}) return "z";
+    if (frame.n == Vec3{1, 0, 0}) return "x";
+    if (frame.n == Vec3{0, 1, 0}) return "y";
+    return "n";
+}
+
 std::string counted(std::size_t n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
 void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
-    const Extent3 extent = extentOf(roi);
+    const Extent3 extent = patientExtentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
     std::cout << "ROI ";
     if (roi.number) std::cout << *roi.number << " ";
@@ -90,14 +100,18 @@ void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
     if (extent.empty) return;
     std::cout << "  extent x " << extent.min[0] << " .. " << extent.max[0] << ", y "
               << extent.min[1] << " .. " << extent.max[1] << ", z " << extent.min[2] << " .. "
-              << extent.max[2] << " mm\n";
+              << extent.max[2] << " mm (patient LPS)\n";
     if (roi.slices.size() > 1)
         std::cout << "  spacing " << (spacing.uniform ? "uniform " : "uneven ") << spacing.minMm
                   << (spacing.uniform ? "" : " .. " + std::to_string(spacing.maxMm)) << " mm\n";
+    const std::string axis = planeAxisName(roi.frame);
+    if (axis == "n")
+        std::cout << "  planes at n = position along the normal (" << roi.frame.n.x << ", "
+                  << roi.frame.n.y << ", " << roi.frame.n.z << ")\n";
     for (const Slice& slice : roi.slices) {
         int holes = 0;
         for (int depth : nestingDepths(slice)) holes += depth % 2;
-        std::cout << "  z " << std::setw(9) << slice.zMm << ": "
+        std::cout << "  " << axis << " " << std::setw(9) << slice.zMm << ": "
                   << counted(slice.contours.size(), "contour");
         if (holes > 0) std::cout << " (" << counted(std::size_t(holes), "hole") << ")";
         std::cout << "\n";

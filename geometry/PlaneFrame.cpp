@@ -30,4 +30,10 @@ PlaneFrame frameWithNormal(Vec3 normal) {
     return {u, cross(n, u), n};
 }
 
+PlaneFrame canonicalFrame(const PlaneFrame& frame) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (std::abs(std::abs(frame.n[axis]) - 1) < 1e-9) return frameWithNormal(kAxes[axis]);
+    return frame;
+}
+
 }  // namespace dfrecon

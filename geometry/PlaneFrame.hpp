@@ -28,4 +28,12 @@ struct PlaneFrame {
 /// the patient axis least aligned with n, made orthogonal to it.
 PlaneFrame frameWithNormal(Vec3 normal);
 
+/// The frame readers settle on for planes normal to a patient axis (within
+/// 1e-9): frameWithNormal(+axis). Every axial stack then has the identity,
+/// whichever way its source's axes ran (a RAS label volume, slices stored
+/// feet first), so its plane coordinates are patient LPS coordinates; a
+/// sagittal stack has (y, z, x), a coronal one (z, x, y). Any other frame is
+/// returned unchanged. O(1).
+PlaneFrame canonicalFrame(const PlaneFrame& frame);
+
 }  // namespace dfrecon

@@ -1,6 +1,8 @@
 #include "io/ContourSet.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace dfrecon {
 
@@ -97,6 +99,45 @@ Extent3 extentOf(const Roi& roi) {
                 e.empty = false;
             }
     return e;
+}
+
+Extent3 patientExtentOf(const Roi& roi) {
+    Extent3 e;
+    for (const Slice& s : roi.slices)
+        for (const Polygon& c : s.contours)
+            for (Point2 p : c) {
+                const Vec3 v = roi.frame.toPatient({p.x, p.y, s.zMm});
+                for (int k = 0; k < 3; ++k) {
+                    e.min[k] = e.empty ? v[k] : std::min(e.min[k], v[k]);
+                    e.max[k] = e.empty ? v[k] : std::max(e.max[k], v[k]);
+                }
+                e.empty = false;
+            }
+    return e;
+}
+
+void changeFrame(Roi& roi, const PlaneFrame& target) {
+    const PlaneFrame source = roi.frame;
+    if (source.u == target.u && source.v == target.v && source.n == target.n) return;
+    const double normals = dot(source.n, target.n);
+    if (!(std::abs(std::abs(normals) - 1) < 1e-9))
+        throw std::invalid_argument("changeFrame: the frames' planes are not parallel");
+    // (u, v, n) and (u', v', n') are both right-handed, so with n' = -n the
+    // in-plane map has determinant -1 and every contour turns round.
+    const bool mirrored = normals < 0;
+    for (Slice& slice : roi.slices) {
+        for (Polygon& contour : slice.contours) {
+            for (Point2& p : contour) {
+                const Vec3 q = target.fromPatient(source.toPatient({p.x, p.y, slice.zMm}));
+                p = {q.x, q.y};
+            }
+            if (mirrored) std::reverse(contour.begin(), contour.end());
+        }
+        // Not through the rotation: the plane position stays the file's value.
+        if (mirrored) slice.zMm = -slice.zMm;
+    }
+    if (mirrored) std::reverse(roi.slices.begin(), roi.slices.end());
+    roi.frame = target;
 }
 
 SpacingStats spacingOf(const Roi& roi) {

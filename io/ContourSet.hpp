@@ -66,8 +66,23 @@ struct Extent3 {
     double min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
     bool empty = true;
 };
-/// Bounding box of every contour point of the ROI (z from the slices).
+/// Bounding box of every contour point of the ROI in its plane coordinates
+/// (z from the slices).
 Extent3 extentOf(const Roi& roi);
+
+/// Bounding box of every contour point of the ROI in patient LPS
+/// coordinates (the plane frame applied; the same as extentOf for the
+/// identity). O(points).
+Extent3 patientExtentOf(const Roi& roi);
+
+/// Re-expresses `roi` in `target`, a frame of the same planes (target.n =
+/// ±roi.frame.n): points and plane positions become `target`'s coordinates,
+/// slices stay sorted by increasing z, and contours keep their orientation
+/// convention (all reversed when the map between the frames is a mirror).
+/// Exact when both frames' axes are patient axes up to sign (coordinates are
+/// then only permuted and negated). Throws std::invalid_argument when the
+/// normals differ. O(points).
+void changeFrame(Roi& roi, const PlaneFrame& target);
 
 /// Slice spacing statistics of an ROI (0 slices or 1 slice: all zero).
 struct SpacingStats {

@@ -123,6 +123,9 @@ ContourSet contoursFromLabels(const LabelVolume& volume, const MaskContourOption
         roi.slabThicknessMm = geometry.spacingMm[2];
         std::sort(roi.slices.begin(), roi.slices.end(),
                   [](const Slice& a, const Slice& b) { return a.zMm < b.zMm; });
+        // The volume's own axes (RAS, feet-first slices) would leave an axial
+        // stack in a mirrored or rotated frame that every output must undo.
+        changeFrame(roi, canonicalFrame(frame));
         set.rois.push_back(std::move(roi));
     }
     return set;

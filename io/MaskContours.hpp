@@ -36,13 +36,15 @@ struct MaskContourOptions {
 /// diagonally are separate regions. Holes and islands are kept; outer
 /// contours run counter-clockwise, holes clockwise (Slice's convention).
 ///
-/// Coordinates: the ROI's frame has u = direction[0], v = direction[1] and
-/// n = ±direction[2] (the sign that makes it right-handed); a contour point
-/// (x, y) on a slice at z satisfies frame.toPatient(x, y, z) =
-/// geometry.worldOfIndex(i, j, k) for its fractional voxel index, so
-/// volumes with identity directions give the identity frame with z the
-/// plane's world z. Slices are sorted by increasing z; slabThicknessMm is the
-/// slice spacing (each plane stands for a slab of voxels).
+/// Coordinates: a contour point (x, y) on a slice at z satisfies
+/// frame.toPatient(x, y, z) = geometry.worldOfIndex(i, j, k) for its
+/// fractional voxel index. When direction[2] is a patient axis the frame is
+/// canonicalFrame()'s, so every axial volume (LPS or RAS, slices head or
+/// feet first) gives the identity frame: x, y, z are patient LPS. Otherwise
+/// u = direction[0], v = direction[1] and n = ±direction[2] (the sign that
+/// makes it right-handed); planePositionsMm are along that n. Slices are
+/// sorted by increasing z; slabThicknessMm is the slice spacing (each plane
+/// stands for a slab of voxels).
 ///
 /// Throws InputError(options.sourceName, 0, ...) when the volume's axes are
 /// not orthogonal (|cos| > 1e-4 between two directions; nearly orthogonal

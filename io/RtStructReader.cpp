@@ -378,7 +378,9 @@ class Reader {
                      "others: its points spread " +
                      std::to_string(span) + " mm along the common normal");
         }
-        const PlaneFrame frame = frameWithNormal(normal);
+        // Which way the contours ran does not matter (orientation is
+        // normalised later): a patient axis gets its one canonical frame.
+        const PlaneFrame frame = canonicalFrame(frameWithNormal(normal));
         warn(roiLabel(r) + ": contours lie in " + frame.orientationName() +
              " planes; reconstructed in their own frame, outputs are in patient coordinates");
         return frame;

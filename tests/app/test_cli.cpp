@@ -21,17 +21,15 @@
 #include "shapes/MeshShapes.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/BadSlicesInputs.hpp"
+#include "tests/CliRun.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int exitCode;
-    std::string out, err;
-};
+using Result = dfrecon::testing::CliResult;
+using dfrecon::testing::slurp;
 
-// ctest runs each test in its own process, several at once: one folder each.
 fs::path scratch() {
     static const fs::path dir = [] {
         std::string pattern = (fs::temp_directory_path() / "dfrecon-test-cli-XXXXXX").string();
@@ -41,19 +39,8 @@ fs::path scratch() {
     return dir;
 }
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 Result runDfrecon(const std::string& args) {
-    const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-    const std::string command = std::string(DFRECON_BINARY) + " " + args + " >" + out.string() +
-                                " 2>" + err.string() + " </dev/null";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return dfrecon::testing::runCli(scratch().string(), args);
 }
 
 }  // namespace

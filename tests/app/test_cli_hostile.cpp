@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/CliRun.hpp"
 #include "tests/HostileDicom.hpp"
 #include "tests/TempDir.hpp"
 
@@ -22,35 +23,18 @@ using dfrecon::testing::TempDir;
 
 namespace {
 
-struct Result {
-    int exitCode;
-    std::string err;
-    double seconds;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using Result = dfrecon::testing::CliResult;
+using dfrecon::testing::slurp;
 
 // Runs dfrecon with `args` under the address-space cap the issue sets
 // (not under AddressSanitizer, whose shadow memory needs far more).
 Result run(const TempDir& dir, const std::string& args) {
-    const std::string err = dir / "stderr.txt";
 #ifdef DFRECON_SANITIZE_BUILD
     const std::string cap;
 #else
     const std::string cap = "ulimit -v 3000000; ";
 #endif
-    const std::string command = cap + "exec " + std::string(DFRECON_BINARY) + " -q " + args +
-                                " >/dev/null 2>" + err + " </dev/null";
-    const auto start = std::chrono::steady_clock::now();
-    const int status = std::system(command.c_str());
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err), seconds};
+    return dfrecon::testing::runCli(dir.str(), "-q " + args, cap);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

@@ -11,6 +11,7 @@
 
 #include "io/MeshIO.hpp"
 #include "shapes/MeshShapes.hpp"
+#include "tests/CliRun.hpp"
 #include "tests/TempDir.hpp"
 
 namespace fs = std::filesystem;
@@ -18,24 +19,11 @@ using dfrecon::testing::TempDir;
 
 namespace {
 
-struct Result {
-    int exitCode;
-    std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using Result = dfrecon::testing::CliResult;
+using dfrecon::testing::slurp;
 
 Result run(const TempDir& dir, const std::string& args) {
-    const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string command =
-        std::string(DFRECON_BINARY) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return dfrecon::testing::runCli(dir.str(), args);
 }
 
 /// An ASCII PLY: its header lines and, per element, its rows of numbers.

@@ -189,18 +189,41 @@ TEST(MaskContours, CoronalVolumeFrameMapsPointsBackOntoVoxelEdgeMidpoints) {
     expectPointsOnVoxelEdgeMidpoints(volume, roi, 7);
 }
 
-TEST(MaskContours, LeftHandedAxesFlipTheNormalAndKeepSlicesIncreasing) {
-    // Axis 0 along x, axis 1 up (+z), axis 2 along y: x × z = −y.
+TEST(MaskContours, LeftHandedAxesGetTheCanonicalFrameAndKeepSlicesIncreasing) {
+    // Axis 0 along x, axis 1 up (+z), axis 2 along y: x × z = −y, so the
+    // volume's own frame would have n = −y; the canonical coronal one is
+    // (z, x, y).
     const LabelVolume volume = ballVolume({{{{1, 0, 0}}, {{0, 0, 1}}, {{0, 1, 0}}}});
     const ContourSet set = contoursFromLabels(volume);
     ASSERT_EQ(set.rois.size(), 1u);
     const Roi& roi = set.rois[0];
-    EXPECT_EQ(roi.frame.n, (Vec3{0, -1, 0}));
-    EXPECT_EQ(cross(roi.frame.u, roi.frame.v), roi.frame.n);
+    EXPECT_EQ(roi.frame.u, (Vec3{0, 0, 1}));
+    EXPECT_EQ(roi.frame.v, (Vec3{1, 0, 0}));
+    EXPECT_EQ(roi.frame.n, (Vec3{0, 1, 0}));
     for (std::size_t s = 1; s < roi.slices.size(); ++s)
         EXPECT_LT(roi.slices[s - 1].zMm, roi.slices[s].zMm);
     expectOrientedByNesting(roi);
     expectPointsOnVoxelEdgeMidpoints(volume, roi, 7);
+}
+
+// RAS volumes (NIfTI's usual axes, x and y negated in LPS) and volumes
+// stored feet first are still axial stacks: the identity frame, so contour
+// coordinates are patient LPS and every output needs no frame at all.
+TEST(MaskContours, AxialVolumesInAnyAxisDirectionGetTheIdentityFrame) {
+    for (const auto& direction :
+         {std::array<std::array<double, 3>, 3>{{{{-1, 0, 0}}, {{0, -1, 0}}, {{0, 0, 1}}}},
+          std::array<std::array<double, 3>, 3>{{{{1, 0, 0}}, {{0, -1, 0}}, {{0, 0, -1}}}},
+          std::array<std::array<double, 3>, 3>{{{{0, 1, 0}}, {{1, 0, 0}}, {{0, 0, -1}}}}}) {
+        const LabelVolume volume = ballVolume(direction);
+        const ContourSet set = contoursFromLabels(volume);
+        ASSERT_EQ(set.rois.size(), 1u);
+        const Roi& roi = set.rois[0];
+        EXPECT_TRUE(roi.frame.isIdentity());
+        for (std::size_t s = 1; s < roi.slices.size(); ++s)
+            EXPECT_LT(roi.slices[s - 1].zMm, roi.slices[s].zMm);
+        expectOrientedByNesting(roi);
+        expectPointsOnVoxelEdgeMidpoints(volume, roi, 7);
+    }
 }
 
 TEST(MaskContours, ShearedVolumesAndBadPlanePositionsAreRefused) {
