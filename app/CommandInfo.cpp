@@ -55,6 +55,7 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
         j["holeConvention"] = nameOf(kHoleConventionNames, dicom->holes);
         j["keyholeCuts"] = dicom->keyholeCuts;
         j["contoursSkipped"] = dicom->contoursSkipped;
+        j["contoursRepaired"] = dicom->contoursRepaired;
         j["slabThicknessMm"] = valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm);
     }
     j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}

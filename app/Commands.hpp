@@ -8,8 +8,9 @@ namespace dfrecon::app {
 
 /// Options every subcommand shares.
 struct GlobalOptions {
-    std::string device;  // --device, falls back to $DFRECON_DEVICE
-    bool quiet = false;  // --quiet: no progress bar, no warnings on stderr
+    std::string device;           // --device, falls back to $DFRECON_DEVICE
+    bool quiet = false;           // --quiet: no progress bar, no warnings on stderr
+    bool repairContours = false;  // --repair-contours: self-crossing contours by even-odd
 };
 
 void addSynthCommand(CLI::App& root, const GlobalOptions& global);

@@ -26,7 +26,7 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global) 
         RtStructLoad load;
         {
             Progress progress("reading " + path, !global.quiet);
-            load = readRtStruct(path);
+            load = readRtStruct(path, {}, ContourRepairOptions{global.repairContours});
         }
         input.format = "DICOM RTSTRUCT";
         input.contours = std::move(load.contours);
@@ -36,7 +36,9 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global) 
         SlicesLoad load;
         {
             Progress progress("reading " + path, !global.quiet);
-            load = readSlicesFile(path, {}, [&](double f) { progress.update(f); });
+            load = readSlicesFile(
+                path, {}, [&](double f) { progress.update(f); },
+                ContourRepairOptions{global.repairContours});
         }
         input.format = "dfrecon-slices 1";
         input.contours = std::move(load.contours);

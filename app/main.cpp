@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
                     "OpenCL device: cpu, gpu, an index from `dfrecon devices`, or part of its name "
                     "(default: $DFRECON_DEVICE, else the first GPU, else the CPU)");
     root.add_flag("-q,--quiet", global.quiet, "No progress bar and no warnings on stderr");
+    root.add_flag("--repair-contours", global.repairContours,
+                  "Resolve a contour that crosses itself (a figure eight, a loop drawn over its "
+                  "start) into the simple contours of its even-odd region, with a warning naming "
+                  "it, instead of refusing its ROI (.slices and RTSTRUCT input)");
     root.fallthrough();
 
     addSynthCommand(root, global);

@@ -53,6 +53,18 @@ struct ContourSet {
     const Roi* findRoiNumber(int number) const;
 };
 
+/// What readers may fix in contours instead of refusing them.
+struct ContourRepairOptions {
+    /// `--repair-contours`: a contour that crosses itself becomes the simple
+    /// contours of its even-odd region (geometry/SelfCrossingRepair), with a
+    /// warning naming it, instead of failing its ROI.
+    bool selfCrossings = false;
+};
+
+/// At most this many cuts resolve one self-crossing contour; more is not a
+/// drawing slip but noise, and stays an error.
+inline constexpr std::size_t kMaxSelfCrossingCuts = 10'000;
+
 /// Nesting depth of each contour of a slice: 0 for contours inside no other,
 /// 1 for holes, 2 for islands inside holes, ... Contours may touch but must
 /// not cross. O(c² · n) for c contours of n points (bounding boxes prune).

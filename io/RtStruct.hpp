@@ -38,7 +38,8 @@ struct RtStructRoiInfo {
     std::size_t contoursRead = 0;     // closed planar contours accepted
     std::size_t contoursSkipped = 0;  // POINT, OPEN_PLANAR, OPEN_NONPLANAR, degenerate
     std::size_t keyholeCuts = 0;
-    std::size_t planesCombined = 0;  // planes whose contours crossed or shared edges: even-odd
+    std::size_t planesCombined = 0;    // planes whose contours crossed or shared edges: even-odd
+    std::size_t contoursRepaired = 0;  // self-crossing contours resolved (--repair-contours)
     HoleConvention holes = HoleConvention::None;
     bool hasContourSequence = false;
 };
@@ -75,7 +76,8 @@ inline constexpr double kSamePlaneToleranceMm = 0.01;
 /// Other geometric types are skipped with a warning. Throws InputError
 /// naming the tag for anything unreadable, missing, contradictory or over
 /// `limits`. Linear in the file size plus validation.
-RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {});
+RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {},
+                          const ContourRepairOptions& repair = {});
 
 /// True if `path` looks like a DICOM file (".dcm" extension or the "DICM"
 /// magic at byte 128).

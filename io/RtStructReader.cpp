@@ -13,6 +13,7 @@
 #include "geometry/ContourValidation.hpp"
 #include "geometry/KeyholeSplit.hpp"
 #include "geometry/PolygonXor.hpp"
+#include "geometry/SelfCrossingRepair.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
@@ -65,8 +66,8 @@ struct SourceContour {
 
 class Reader {
   public:
-    Reader(std::string path, const RtStructLimits& limits)
-        : file_(std::move(path)), limits_(limits) {}
+    Reader(std::string path, const RtStructLimits& limits, const ContourRepairOptions& repair)
+        : file_(std::move(path)), limits_(limits), repair_(repair) {}
 
     RtStructLoad run() {
         silenceDcmtkLog();
@@ -541,10 +542,28 @@ class Reader {
             return {};
         }
         const std::optional<ContourDefect> defect = findContourDefect({polygon});
+        if (defect && defect->contact == SegmentContact::Cross && repair_.selfCrossings)
+            if (std::optional<std::vector<Polygon>> region = repairedRegion(polygon)) {
+                warn(roiLabel(r) + ": contour " + std::to_string(item) +
+                     " crosses itself; replaced by the " + std::to_string(region->size()) +
+                     " contour(s) of its even-odd region (--repair-contours)");
+                ++out_.rois[r].contoursRepaired;
+                return std::move(*region);
+            }
         if (!defect || defect->contact == SegmentContact::Cross) return {std::move(polygon)};
         KeyholeSplit split = splitKeyholes(polygon);
         out_.rois[r].keyholeCuts += split.cuts;
         return std::move(split.loops);
+    }
+
+    // The even-odd region of a self-crossing contour, or nothing where it
+    // cannot be had within the limits (validation then names the crossing).
+    std::optional<std::vector<Polygon>> repairedRegion(const Polygon& polygon) const {
+        try {
+            return evenOddRegion(polygon, kMaxSelfCrossingCuts, limits_.maxXorCrossings);
+        } catch (const TooManyCrossings&) {
+            return std::nullopt;
+        }
     }
 
     void validate(std::size_t r, const Slice& slice, const std::vector<std::size_t>& items) {
@@ -573,6 +592,7 @@ class Reader {
 
     std::string file_;
     RtStructLimits limits_;
+    ContourRepairOptions repair_;
     RtStructLoad out_;
     std::map<Sint32, std::size_t> indexOfNumber_;
     std::vector<std::vector<SourceContour>> contours_;  // per ROI
@@ -583,9 +603,10 @@ class Reader {
 
 }  // namespace
 
-RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits) {
+RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits,
+                          const ContourRepairOptions& repair) {
     const ReadingInput reading(path);
-    return Reader(path, limits).run();
+    return Reader(path, limits, repair).run();
 }
 
 }  // namespace dfrecon

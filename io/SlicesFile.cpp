@@ -11,7 +11,10 @@
 #include <sstream>
 
 #include "geometry/ContourValidation.hpp"
+#include "geometry/PolygonXor.hpp"
+#include "geometry/SelfCrossingRepair.hpp"
 #include "io/AtomicWrite.hpp"
+#include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 
 namespace dfrecon {
@@ -91,8 +94,12 @@ bool looksNumeric(const std::string& token) {
 class Parser {
   public:
     Parser(std::istream& in, std::string fileName, const SlicesLimits& limits,
-           const SlicesProgress& progress)
-        : in_(in), file_(std::move(fileName)), limits_(limits), progress_(progress) {}
+           const SlicesProgress& progress, const ContourRepairOptions& repair)
+        : in_(in),
+          file_(std::move(fileName)),
+          limits_(limits),
+          progress_(progress),
+          repair_(repair) {}
 
     SlicesLoad run() {
         readAll();
@@ -322,6 +329,7 @@ class Parser {
                                      "' has no contours; ignored");
                 continue;
             }
+            if (repair_.selfCrossings) repairSelfCrossings(slice);
             validate(slice, name);
             Slice out;
             out.zMm = slice.zMm;
@@ -367,6 +375,34 @@ class Parser {
             merged.push_back(std::move(slice));
         }
         slices = std::move(merged);
+    }
+
+    // Each contour that crosses itself becomes the contours of its even-odd
+    // region, all carrying its line; one that cannot stays for validate().
+    void repairSelfCrossings(SourceSlice& slice) {
+        std::vector<SourceContour> out;
+        for (SourceContour& c : slice.contours) {
+            const std::optional<ContourDefect> defect = findContourDefect({c.points});
+            std::optional<std::vector<Polygon>> region;
+            if (defect && defect->kind == ContourDefect::Kind::SelfIntersection &&
+                defect->contact == SegmentContact::Cross) {
+                try {
+                    region =
+                        evenOddRegion(c.points, kMaxSelfCrossingCuts, kMaxXorCrossingsPerPlane);
+                } catch (const TooManyCrossings&) {
+                }
+            }
+            if (!region) {
+                out.push_back(std::move(c));
+                continue;
+            }
+            warn(c.keywordLine, "contour crosses itself; replaced by the " +
+                                    std::to_string(region->size()) +
+                                    " contour(s) of its even-odd region (--repair-contours)");
+            for (Polygon& loop : *region)
+                out.push_back({c.keywordLine, loop, std::vector<int>(loop.size(), c.keywordLine)});
+        }
+        slice.contours = std::move(out);
     }
 
     void validate(const SourceSlice& slice, const std::string& name) const {
@@ -418,6 +454,7 @@ class Parser {
     std::string file_;
     SlicesLimits limits_;
     SlicesProgress progress_;
+    ContourRepairOptions repair_;
     std::vector<char> chunk_;
     std::size_t chunkPos_ = 0;
     std::uint64_t bytesRead_ = 0;
@@ -453,12 +490,13 @@ std::string quotedName(const std::string& name) {
 }  // namespace
 
 SlicesLoad parseSlices(std::istream& in, const std::string& fileName, const SlicesLimits& limits,
-                       const SlicesProgress& progress) {
-    return Parser(in, fileName, limits, progress).run();
+                       const SlicesProgress& progress, const ContourRepairOptions& repair) {
+    return Parser(in, fileName, limits, progress, repair).run();
 }
 
 SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
-                          const std::function<void(double)>& progress) {
+                          const std::function<void(double)>& progress,
+                          const ContourRepairOptions& repair) {
     const ReadingInput reading(path);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "is a directory");
@@ -468,7 +506,7 @@ SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
     SlicesProgress bytes;
     if (progress && !ec && size > 0)
         bytes = [&](std::uint64_t read) { progress(std::min(1.0, double(read) / double(size))); };
-    return parseSlices(in, path, limits, bytes);
+    return parseSlices(in, path, limits, bytes, repair);
 }
 
 void formatSlices(const ContourSet& contours, std::ostream& out) {

@@ -36,13 +36,17 @@ struct SlicesLoad {
 /// repeated points, unsorted slices and duplicated z with a warning; orients
 /// contours by nesting depth (outer CCW, holes CW). Time and memory are
 /// linear in the input for valid files and bounded by `limits` otherwise.
+/// With repair.selfCrossings, a contour crossing itself is replaced by the
+/// simple contours of its even-odd region, with a warning at its line.
 SlicesLoad parseSlices(std::istream& in, const std::string& fileName,
-                       const SlicesLimits& limits = {}, const SlicesProgress& progress = {});
+                       const SlicesLimits& limits = {}, const SlicesProgress& progress = {},
+                       const ContourRepairOptions& repair = {});
 
 /// Opens and parses a file; a missing or unreadable file is an InputError.
 /// `progress`, if set, receives the fraction of the file read so far.
 SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits = {},
-                          const std::function<void(double)>& progress = {});
+                          const std::function<void(double)>& progress = {},
+                          const ContourRepairOptions& repair = {});
 
 /// Writes `.slices` v1 text; numbers use the shortest form that reads back
 /// to the same double, so parseSlices(formatSlices(x)) == x.
