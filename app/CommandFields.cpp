@@ -11,6 +11,7 @@
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/SliceFields.hpp"
 #include "io/AtomicWrite.hpp"
@@ -210,7 +211,8 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
         ->required();
     cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file");
     cmd->add_option("--pixel-mm", args->pixelMm,
