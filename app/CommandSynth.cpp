@@ -1,5 +1,6 @@
 // dfrecon synth SHAPE -o OUT.slices: contour slices of an analytic solid.
 #include <iostream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 

@@ -29,7 +29,7 @@ fi
 "$prefix/bin/dfrecon" --version >/dev/null || fail "the installed program does not run"
 
 cmake -S "$source/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_PREFIX_PATH="$prefix" >"$scratch/configure.log" ||
+  -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_PREFIX_PATH="$prefix" >"$scratch/configure.log" 2>&1 ||
   { cat "$scratch/configure.log"; fail "configuring the consumer failed"; }
 cmake --build "$scratch/build" >"$scratch/build.log" 2>&1 ||
   { cat "$scratch/build.log"; fail "building the consumer failed"; }
