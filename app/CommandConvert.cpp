@@ -84,7 +84,9 @@ void addConvertCommand(CLI::App& root, const GlobalOptions& global) {
         "the input's values where they fit), .slices the text format of docs/formats.md. "
         "Without --like the structure set stands alone, with its own study and frame of "
         "reference. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
     cmd->add_option("-o,--output", args->output, "Output file: .dcm or .slices")
         ->required()

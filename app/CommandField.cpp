@@ -105,7 +105,9 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "(i, j, k) centred at the reported origin + (i, j, k) x voxel size, in mm; metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
     cmd->add_option("-o,--output", args->output, "Output .vdb file")
         ->required()

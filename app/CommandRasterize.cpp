@@ -128,7 +128,8 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         "as a label map or segmentation. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime "
         "failure.");
     cmd->add_option("file", args->input,
-                    "Input contours: .slices, DICOM RTSTRUCT (.dcm) or a label volume")
+                    "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT "
+                    "(.dcm) or a label volume")
         ->required();
     cmd->add_option("-o,--output", args->output, "Output label map (.nrrd)")
         ->required()
