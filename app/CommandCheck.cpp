@@ -8,6 +8,7 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
 #include "io/MeshIO.hpp"
@@ -62,7 +63,9 @@ void addCheckCommand(CLI::App& root, const GlobalOptions&) {
     CLI::App* cmd = root.add_subcommand(
         "check", "Check a mesh: watertight, manifold, oriented, no self-intersections; genus");
     cmd->footer("Exit code 0 for a valid closed solid (outward normals), 2 otherwise.");
-    cmd->add_option("mesh", args->path, "Mesh file (.ply .obj .off .stl)")->required();
+    cmd->add_option("mesh", args->path, "Mesh file (.ply .obj .off .stl)")
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args] { runCheck(args->path, args->json); });
 }

@@ -8,6 +8,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/StandardStreams.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -86,9 +87,13 @@ void addConvertCommand(CLI::App& root, const GlobalOptions& global) {
         "the input's values where they fit), .slices the text format of docs/formats.md. "
         "Without --like the structure set stands alone, with its own study and frame of "
         "reference. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output file: .dcm or .slices")->required();
+    cmd->add_option("-o,--output", args->output, "Output file: .dcm or .slices")
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi, "Only this ROI (name or DICOM number; default: all)");
     cmd->add_option("--like", args->like,
                     "A DICOM file (an image of the planning CT, or an RTSTRUCT) whose patient, "

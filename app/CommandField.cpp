@@ -9,6 +9,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/FieldVolume.hpp"
 #include "io/LevelSetVdb.hpp"
@@ -113,9 +114,13 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "axes, in patient LPS mm (the axes are x, y, z for axial stacks); metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output .vdb file")->required();
+    cmd->add_option("-o,--output", args->output, "Output .vdb file")
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
     cmd->add_option("--pixel-mm", args->pixelMm,
                     "Voxel size in x and y, mm (default 0: the ROI's extent plus margin fits "

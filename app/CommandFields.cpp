@@ -12,6 +12,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/SliceFields.hpp"
 #include "io/AtomicWrite.hpp"
@@ -232,10 +233,13 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
         "Writes, per ROI, NAME-distance.nhdr/.raw (float32 mm, negative inside) and "
         "NAME-ids.nhdr/.raw (uint32 nearest primitive), which 3D Slicer and ParaView open, and "
         "NAME-fields.json describing the layout (docs/fields.md).");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
     cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi, "ROI name (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file");
     cmd->add_option("--pixel-mm", args->pixelMm,

@@ -13,6 +13,7 @@
 #include "app/GeodesicOutput.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"
@@ -141,9 +142,11 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
         "distance ∫ds/F for a non-uniform speed; -1 where unreached) and 'source' (index into "
         "--from), and colours. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply or .vtk)")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--from", args->from, "Source vertex indices (0-based), comma-separated")
         ->required();
     cmd->add_option("--speed", args->speed,

@@ -172,7 +172,9 @@ void addInfoCommand(CLI::App& root, const GlobalOptions& global) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = root.add_subcommand(
         "info", "Validate a contour file and summarise it: ROIs, slices, contours, holes, extent");
-    cmd->add_option("file", args->path, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->path,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([&global, args] { runInfo(global, args->path, args->json); });

@@ -11,6 +11,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
 #include "io/LabelVolume.hpp"
@@ -127,9 +128,12 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         "as a label map or segmentation. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime "
         "failure.");
     cmd->add_option("file", args->input,
-                    "Input contours: .slices, DICOM RTSTRUCT (.dcm) or a label volume")
+                    "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT "
+                    "(.dcm) or a label volume")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output label map (.nrrd)")->required();
+    cmd->add_option("-o,--output", args->output, "Output label map (.nrrd)")
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi,
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
     cmd->add_option("--like", args->like,

@@ -19,6 +19,7 @@
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
@@ -30,7 +31,7 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi,
+    std::string input, output, roi, format,
         capName = nameOf(kCapModeNames, CapMode::Flat),
         interpolationName = nameOf(kInterpolationNames, Interpolation::Linear);
     bool all = false, json = false, ascii = false, allowInvalid = false;
@@ -39,12 +40,13 @@ struct ReconstructArgs {
     ReconstructionOptions options;
 };
 
-// Where the ROI with file stem `stem` goes: the output path itself for one
-// ROI, else OUTPUT/STEM.ply (the folder's name cannot give an extension).
-std::string outputPathFor(const ReconstructArgs& args, const std::string& stem, bool several) {
+// Where the ROI with file stem `stem` goes: `single` for one ROI, else
+// OUTPUT/STEM.ply (the folder's name cannot give an extension).
+MeshOutput outputFor(const ReconstructArgs& args, const MeshOutput& single, const std::string& stem,
+                     bool several) {
     namespace fs = std::filesystem;
-    if (!several) return args.output;
-    return (fs::path(args.output) / (stem + ".ply")).string();
+    if (!several) return single;
+    return {(fs::path(args.output) / (stem + ".ply")).string(), ".ply"};
 }
 
 /// What one ROI gives: its report and the lines it prints, held until the
@@ -75,7 +77,7 @@ RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
 // write one at a time.
 std::mutex meshWriting;
 
-RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::string& path,
+RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
                           const ContourInput& input, const ReconstructArgs& args,
                           const GlobalOptions& global, bool showProgress) {
     RoiOutcome outcome;
@@ -116,7 +118,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::stri
         MeshWriteOptions write;
         write.binary = !args.ascii;
         const std::lock_guard<std::mutex> lock(meshWriting);
-        writeMesh(mesh, path, write);
+        writeMeshOutput(mesh, output, write);
     }
     const double writeSeconds = watch.lap();
 
@@ -128,7 +130,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::stri
             << contourVolume / 1000 << " cc), "
             << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
         if (check.genus >= 0) out << ", genus " << check.genus;
-        out << (written ? " -> " + path : std::string(", not written")) << "\n";
+        out << (written ? " -> " + output.label() : std::string(", not written")) << "\n";
     }
     if (!valid && !global.quiet) {
         err << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
@@ -144,7 +146,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::stri
     for (const auto& [below, above] : result.brokenPieces) broken.push_back({below, above});
     nlohmann::ordered_json report{{"roi", roi.name},
                                   {"roiNumber", valueOrNull(roi.number)},
-                                  {"output", valueOrNull(written, path)},
+                                  {"output", valueOrNull(written, output.path)},
                                   {"written", written}};
     appendItems(report, meshCheckJson(check));
     appendItems(report,
@@ -191,12 +193,18 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     const Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
-    const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output));
-    if (several)
+    const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output) &&
+                                             !isStandardStream(args.output));
+    MeshOutput single;
+    if (several) {
+        if (isStandardStream(args.output))
+            throw std::invalid_argument("-o - takes one ROI's mesh; several ROIs need a folder");
+        if (!args.format.empty())
+            throw std::invalid_argument("--format is for -o -; several ROIs are written as .ply");
         fs::create_directories(args.output);
-    else if (!isMeshExtension(args.output))
-        throw std::invalid_argument("output '" + args.output +
-                                    "' needs a mesh extension (.ply .stl .obj .off)");
+    } else {
+        single = meshOutput(args.output, args.format, args.json);
+    }
     const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
     std::string invalid, failed;
@@ -219,8 +227,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                 if (!runtimes[worker])
                     runtimes[worker] = std::make_unique<ocl::Runtime>(global.device);
                 return reconstructRoi(*runtimes[worker], *rois[i],
-                                      outputPathFor(args, stems[i], several), load, args, global,
-                                      jobs <= 1);
+                                      outputFor(args, single, stems[i], several), load, args,
+                                      global, jobs <= 1);
             } catch (...) {
                 if (!several) throw;
                 return failedRoi(*rois[i], std::current_exception());
@@ -228,7 +236,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
         },
         [&](std::size_t i, RoiOutcome outcome) {
             overall.finish();
-            std::cout << outcome.out << std::flush;
+            reportStream(single.toStandardOutput()) << outcome.out << std::flush;
             std::cerr << outcome.err << std::flush;
             if (outcome.failure != 0) {
                 failed += (failed.empty() ? "" : ", ") + rois[i]->name;
@@ -289,10 +297,15 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         "solid is reported with the slabs where it fails and not written (unless "
         "--allow-invalid). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure, 4 a "
         "surface is not a valid closed solid. See docs/reconstruction.md.");
-    cmd->add_option("file", args->input, "Input contours: .slices or DICOM RTSTRUCT (.dcm)")
+    cmd->add_option("file", args->input,
+                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
+                    "(.dcm)")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output mesh file, or folder with --all")
+    cmd->add_option("-o,--output", args->output,
+                    "Output mesh file, - for standard output (with --format), or folder with "
+                    "--all")
         ->required();
+    addMeshFormatOption(*cmd, args->format);
     cmd->add_option("--roi", args->roi,
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file that has contours");

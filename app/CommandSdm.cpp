@@ -15,6 +15,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
@@ -238,9 +239,11 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
         "separation with its bound, closest points, collision, deepest penetrating point). "
         "Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure. See docs/cli.md.");
     cmd->add_option("meshes", args->inputs, "Two or more meshes (.ply .stl .obj .off), in mm")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("--size", args->sizeTexels,
                     "Atlas width and height in texels per mesh; the texel size is the smallest "
                     "at which all triangles fit")

@@ -14,6 +14,7 @@
 #include "app/GeodesicOutput.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "segment/Segmentation.hpp"
 
@@ -108,9 +109,11 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         "bad "
         "input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("-o,--output", args->output, "Output mesh with region ids (.ply or .vtk)")
-        ->required();
+        ->required()
+        ->check(kNotStandardStream);
     cmd->add_option("-k,--regions", args->regions, "Number of regions (seeds) to start from")
         ->capture_default_str()
         ->check(kPositive);

@@ -11,6 +11,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
+#include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
@@ -21,16 +22,14 @@ namespace dfrecon::app {
 namespace {
 
 struct SimplifyArgs {
-    std::string input, output, field, contours, roi;
+    std::string input, output, field, contours, roi, format;
     bool json = false, ascii = false;
     SimplifyOptions options;
 };
 
 void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
     const Stopwatch watch;
-    if (!isMeshExtension(args.output))
-        throw std::invalid_argument("output '" + args.output +
-                                    "' needs a mesh extension (.ply .stl .obj .off)");
+    const MeshOutput output = meshOutput(args.output, args.format, args.json);
     TriangleSoup surface = readTriangleSoup(args.input);
     // The same test as dfrecon check: the bounds and the collision test
     // assume a valid closed solid, and on a surface that already meets
@@ -65,13 +64,14 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
     const MeshCheckReport after = checkMesh(surface);
     MeshWriteOptions write;
     write.binary = !args.ascii;
-    writeMesh(toTriMesh(surface), args.output, write);
+    writeMeshOutput(toTriMesh(surface), output, write);
     if (!args.json) {
-        std::cout << args.input << ": " << report["trianglesBefore"] << " -> "
-                  << report["triangles"] << " triangles within " << args.options.maxErrorMm
-                  << " mm (verified max " << report["verified"]["maxMm"].get<double>() << " mm), "
-                  << (after.validSolid() ? "closed valid solid" : "NOT a valid closed solid")
-                  << " -> " << args.output << "\n";
+        reportStream(output.toStandardOutput())
+            << args.input << ": " << report["trianglesBefore"] << " -> " << report["triangles"]
+            << " triangles within " << args.options.maxErrorMm << " mm (verified max "
+            << report["verified"]["maxMm"].get<double>() << " mm), "
+            << (after.validSolid() ? "closed valid solid" : "NOT a valid closed solid") << " -> "
+            << output.label() << "\n";
         return;
     }
     nlohmann::ordered_json out{{"command", "simplify"},
@@ -99,9 +99,14 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global) {
         "certified bound and the distance an independent check (dense samples, exact distances) "
         "measures. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure. See "
         "docs/simplification.md.");
-    cmd->add_option("file", args->input, "Input closed mesh (.ply .stl .obj .off)")->required();
-    cmd->add_option("-o,--output", args->output, "Output mesh file (.ply .stl .obj .off)")
+    cmd->add_option("file", args->input, "Input closed mesh (.ply .stl .obj .off)")
+        ->required()
+        ->check(kNotStandardStream);
+    cmd->add_option("-o,--output", args->output,
+                    "Output mesh file (.ply .stl .obj .off), or - for standard output (with "
+                    "--format)")
         ->required();
+    addMeshFormatOption(*cmd, args->format);
     cmd->add_option("--max-error", args->options.maxErrorMm,
                     "The two-sided bound in mm (every point of either surface this close to the "
                     "other)")

@@ -1,10 +1,12 @@
 // dfrecon synth SHAPE -o OUT.slices: contour slices of an analytic solid.
 #include <iostream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/StandardStreams.hpp"
 #include "io/SlicesFile.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
@@ -32,7 +34,16 @@ double planimetricVolume(const Roi& roi, double spacingMm) {
 void runSynth(const SynthArgs& args) {
     const auto shape = makeShape(args.shape, args.scale);
     const ContourSet contours = sliceShape(*shape, args.options);
-    writeSlicesFile(contours, args.output);
+    const bool toStandardOutput = isStandardStream(args.output);
+    if (toStandardOutput && args.json)
+        throw std::invalid_argument(
+            "-o - and --json would both write to standard output: give one");
+    if (toStandardOutput) {
+        formatSlices(contours, std::cout);
+        if (!std::cout.flush()) throw std::runtime_error("cannot write to standard output");
+    } else {
+        writeSlicesFile(contours, args.output);
+    }
 
     const Roi& roi = contours.rois.front();
     const double exact = shape->volumeMm3();
@@ -55,11 +66,12 @@ void runSynth(const SynthArgs& args) {
         };
         std::cout << report.dump(2) << "\n";
     } else {
-        std::cout << "wrote " << args.output << ": " << args.shape << ", " << roi.slices.size()
-                  << " slices, " << roi.contourCount() << " contours, " << roi.pointCount()
-                  << " points\n"
-                  << "exact volume " << exact / 1000 << " cc; slices' area x spacing "
-                  << estimate / 1000 << " cc\n";
+        reportStream(toStandardOutput)
+            << "wrote " << (toStandardOutput ? "standard output" : args.output) << ": "
+            << args.shape << ", " << roi.slices.size() << " slices, " << roi.contourCount()
+            << " contours, " << roi.pointCount() << " points\n"
+            << "exact volume " << exact / 1000 << " cc; slices' area x spacing " << estimate / 1000
+            << " cc\n";
     }
 }
 
@@ -78,7 +90,8 @@ void addSynthCommand(CLI::App& root, const GlobalOptions&) {
     cmd->add_option("shape", args->shape, "Shape name (see below)")
         ->required()
         ->check(CLI::IsMember(allShapeNames()));
-    cmd->add_option("-o,--output", args->output, "Output .slices file")->required();
+    cmd->add_option("-o,--output", args->output, "Output .slices file, or - for standard output")
+        ->required();
     cmd->add_option("--spacing", args->options.spacingMm, "Slice spacing in mm")
         ->capture_default_str()
         ->check(kPositive);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "app/Progress.hpp"
+#include "app/StandardStreams.hpp"
+#include "io/InputsInUse.hpp"
 #include "io/LabelInput.hpp"
 
 namespace dfrecon::app {
@@ -18,7 +20,15 @@ const RtStructRoiInfo* ContourInput::dicomInfo(const Roi& roi) const {
 
 ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
     ContourInput input;
-    if (isLabelInputPath(path)) {
+    if (isStandardStream(path)) {
+        // Only .slices streams (app/StandardStreams.hpp); the parser's limits
+        // bound what a pipe can make it hold, as they bound a file.
+        const ReadingInput reading(kStandardInputName);
+        SlicesLoad load = parseSlices(std::cin, kStandardInputName);
+        input.format = "dfrecon-slices 1";
+        input.contours = std::move(load.contours);
+        input.warnings = std::move(load.warnings);
+    } else if (isLabelInputPath(path)) {
         Progress progress("reading " + path, !global.quiet);
         input.format = "label volume";
         input.contours = readLabelContours(path);

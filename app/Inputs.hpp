@@ -22,7 +22,11 @@ struct ContourInput {
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
 };
 
-/// Loads and validates `path`: a label volume (.nrrd .nhdr .nii .nii.gz) or
+/// How messages name standard input ("-").
+inline constexpr const char* kStandardInputName = "<stdin>";
+
+/// Loads and validates `path`: "-", .slices text from standard input
+/// (app/StandardStreams.hpp); a label volume (.nrrd .nhdr .nii .nii.gz) or
 /// mask stack (folder with stack.json, or the .json itself), contoured per
 /// label; a DICOM RT Structure Set (by extension or magic); or a .slices
 /// file. Throws InputError (exit 2) on bad input.

@@ -234,6 +234,11 @@ class Stage {
 
 void writeAtomically(const std::string& path,
                      const std::function<bool(const std::string&)>& write) {
+    // "-" is standard output on the command line (docs/cli.md): an output
+    // that reaches here with it cannot stream, and a file named "-" is never
+    // what was meant.
+    if (path == "-")
+        throw std::invalid_argument("this output cannot go to standard output ('-'): give a file");
     Stage stage(path);
     if (!write(stage.stagePath())) fail(path, "the writer failed");
     stage.commit();

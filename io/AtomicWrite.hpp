@@ -31,6 +31,8 @@ namespace dfrecon {
 /// above. If `write` throws or returns false, or any step fails, nothing is
 /// left behind, `path` is untouched, and the error propagates
 /// (std::runtime_error "cannot write PATH: reason" for our own failures).
+/// Throws std::invalid_argument for the path "-", which names standard
+/// output on the command line.
 /// Memory: the file's size, held until it is copied. Thread-safe.
 void writeAtomically(const std::string& path, const std::function<bool(const std::string&)>& write);
 

@@ -67,25 +67,52 @@ TriMesh readMesh(const std::string& path) {
     return mesh;
 }
 
+namespace {
+
+// What a mesh file of extension `ext` holds: a copy of `mesh` with its
+// normals where the format keeps them (the caller's mesh stays const), and
+// OpenMesh's flags for it.
+struct MeshToWrite {
+    TriMesh mesh;
+    OpenMesh::IO::Options flags;
+};
+
+MeshToWrite prepareMesh(const TriMesh& mesh, const std::string& ext,
+                        const MeshWriteOptions& options) {
+    if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
+        throw std::invalid_argument("unsupported mesh format '" + ext +
+                                    "' (use .ply .obj .off .stl)");
+    MeshToWrite out{mesh, {}};
+    if (options.binary && (ext == ".ply" || ext == ".stl"))
+        out.flags += OpenMesh::IO::Options::Binary;
+    if (options.vertexNormals && ext != ".stl") {
+        out.mesh.request_face_normals();
+        out.mesh.request_vertex_normals();
+        out.mesh.update_normals();
+        out.flags += OpenMesh::IO::Options::VertexNormal;
+    }
+    return out;
+}
+
+}  // namespace
+
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options) {
     if (!isMeshExtension(path))
         throw std::invalid_argument(path +
                                     ": unsupported mesh extension (use .ply .obj .off .stl)");
-    const std::string ext = lowerExtension(path);
-
-    // Normals are computed on a copy so the caller's mesh stays const.
-    TriMesh copy = mesh;
-    OpenMesh::IO::Options flags;
-    if (options.binary && (ext == ".ply" || ext == ".stl")) flags += OpenMesh::IO::Options::Binary;
-    if (options.vertexNormals && ext != ".stl") {
-        copy.request_face_normals();
-        copy.request_vertex_normals();
-        copy.update_normals();
-        flags += OpenMesh::IO::Options::VertexNormal;
-    }
+    const MeshToWrite prepared = prepareMesh(mesh, lowerExtension(path), options);
     writeAtomically(path, [&](const std::string& temporary) {
-        return OpenMesh::IO::write_mesh(copy, temporary, flags, kAsciiMeshDigits);
+        return OpenMesh::IO::write_mesh(prepared.mesh, temporary, prepared.flags, kAsciiMeshDigits);
     });
+}
+
+void writeMesh(const TriMesh& mesh, std::ostream& out, const std::string& extension,
+               const MeshWriteOptions& options) {
+    const MeshToWrite prepared = prepareMesh(mesh, extension, options);
+    if (!OpenMesh::IO::write_mesh(prepared.mesh, out, extension, prepared.flags,
+                                  kAsciiMeshDigits) ||
+        !out.flush())
+        throw std::runtime_error("cannot write the " + extension.substr(1) + " mesh to the stream");
 }
 
 namespace {

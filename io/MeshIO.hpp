@@ -1,6 +1,7 @@
 #pragma once
 // Triangle meshes (OpenMesh half-edge structure, double precision in mm) and
 // their files: PLY (binary or ASCII), OBJ, OFF, STL, chosen by extension.
+#include <iosfwd>
 #include <string>
 
 #include "geometry/TriMesh.hpp"
@@ -39,5 +40,12 @@ TriangleSoup readTriangleSoup(const std::string& path);
 /// failure leaves no partial file. Throws std::runtime_error on failure,
 /// std::invalid_argument for an unsupported extension.
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options = {});
+
+/// Writes `mesh` to a stream (standard output: `-o -`) in the format of
+/// `extension` (".ply" .obj .off .stl), the same bytes writeMesh would put in
+/// a file. Throws std::runtime_error when the stream fails (checked after a
+/// flush), std::invalid_argument for an unsupported extension.
+void writeMesh(const TriMesh& mesh, std::ostream& out, const std::string& extension,
+               const MeshWriteOptions& options = {});
 
 }  // namespace dfrecon

@@ -20,11 +20,12 @@ packages=(
   clang libclang-rt-14-dev clang-format
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
-# imgcodecs only. The rest make the RTSTRUCT test fixtures (scripts/
-# fixtures.sh) and need none of theirs (pydicom's would add python3-pil,
-# dicom3tools' ghostscript and netpbm).
+# imgcodecs only. python3 makes the man page and bash completion at build
+# time (scripts/help_pages.py). The rest make the RTSTRUCT test fixtures
+# (scripts/fixtures.sh) and need none of theirs (pydicom's would add
+# python3-pil, dicom3tools' ghostscript and netpbm).
 packages_no_recommends=(
-  libopencv-dev
+  libopencv-dev python3
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
 )

@@ -18,22 +18,18 @@ struct CliResult {
 };
 
 inline std::string slurp(const std::string& path) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
 }
 
-/// `DFRECON_BINARY args` with stdin from /dev/null, stdout and stderr caught
-/// in files of `scratchDir`; `shellPrefix` runs first in the same shell
-/// (e.g. "ulimit -v N; "), and the program is exec'd so limits apply to it.
-inline CliResult runCli(const std::string& scratchDir, const std::string& args,
-                        const std::string& shellPrefix = "") {
+/// Runs `shellCommand` through the shell, its stdout and stderr caught in
+/// files of `scratchDir`; the exit code is that of its last command.
+inline CliResult runShell(const std::string& scratchDir, const std::string& shellCommand) {
     const std::string out = scratchDir + "/stdout.txt", err = scratchDir + "/stderr.txt";
-    const std::string command = shellPrefix + "exec " + std::string(DFRECON_BINARY) + " " + args +
-                                " >" + out + " 2>" + err + " </dev/null";
     const auto start = std::chrono::steady_clock::now();
-    const int status = std::system(command.c_str());
+    const int status = std::system(("(" + shellCommand + ") >" + out + " 2>" + err).c_str());
     CliResult result;
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -41,6 +37,15 @@ inline CliResult runCli(const std::string& scratchDir, const std::string& args,
     result.out = slurp(out);
     result.err = slurp(err);
     return result;
+}
+
+/// `DFRECON_BINARY args` with stdin from /dev/null; `shellPrefix` runs
+/// first in the same shell (e.g. "ulimit -v N; "), and the program is
+/// exec'd so limits apply to it.
+inline CliResult runCli(const std::string& scratchDir, const std::string& args,
+                        const std::string& shellPrefix = "") {
+    return runShell(scratchDir, shellPrefix + "exec " + std::string(DFRECON_BINARY) + " " + args +
+                                    " </dev/null");
 }
 
 }  // namespace dfrecon::testing

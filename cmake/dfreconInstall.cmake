@@ -1,0 +1,63 @@
+# What `cmake --install build --prefix P` puts under P (docs/building.md):
+#   bin/dfrecon
+#   lib/libdfrecon_FOLDER.a            one static library per stage folder
+#   include/dfrecon/FOLDER/*.hpp       their headers (and kernels/*.cl, which
+#                                      geometry/ and segment/ headers include)
+#   lib/cmake/dfrecon/                 the package: dfreconConfig.cmake,
+#                                      dfreconConfigVersion.cmake, the
+#                                      dfrecon:: targets, their dependencies
+#   share/man/man1/dfrecon.1           man page, from the program's --help
+#   share/bash-completion/completions/dfrecon
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(DFRECON_LIBRARY_FOLDERS kernels cl geometry io field shapes recon simplify sdm segment compare)
+set(dfrecon_libraries "")
+foreach(folder IN LISTS DFRECON_LIBRARY_FOLDERS)
+  # dfrecon_recon is dfrecon::recon to package users, and to projects that
+  # add this tree as a subdirectory.
+  set_target_properties(dfrecon_${folder} PROPERTIES EXPORT_NAME ${folder})
+  add_library(dfrecon::${folder} ALIAS dfrecon_${folder})
+  list(APPEND dfrecon_libraries dfrecon_${folder})
+  install(DIRECTORY ${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfrecon/${folder}
+          FILES_MATCHING PATTERN "*.hpp" PATTERN "*.cl")
+endforeach()
+
+install(TARGETS dfrecon RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS ${dfrecon_libraries} EXPORT dfreconTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+
+set(dfrecon_package_dir ${CMAKE_INSTALL_LIBDIR}/cmake/dfrecon)
+install(EXPORT dfreconTargets NAMESPACE dfrecon:: DESTINATION ${dfrecon_package_dir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/dfreconConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/dfreconConfig.cmake
+                              INSTALL_DESTINATION ${dfrecon_package_dir})
+# Before 1.0 a minor version may change the interface.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/dfreconConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/dfreconConfig.cmake
+              ${PROJECT_BINARY_DIR}/dfreconConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/dfreconDependencies.cmake
+        DESTINATION ${dfrecon_package_dir})
+
+# The man page and the bash completion are made from the built program's
+# --help, so they never disagree with it (scripts/help_pages.py).
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+set(DFRECON_MAN_PAGE ${PROJECT_BINARY_DIR}/share/man/man1/dfrecon.1)
+set(DFRECON_COMPLETION ${PROJECT_BINARY_DIR}/share/bash-completion/completions/dfrecon)
+add_custom_command(
+  OUTPUT ${DFRECON_MAN_PAGE} ${DFRECON_COMPLETION}
+  # The sanitizer build's program checks for leaks at exit; --help has none to
+  # find, and a build step is no place for LeakSanitizer's ptrace tracer.
+  COMMAND ${CMAKE_COMMAND} -E env ASAN_OPTIONS=detect_leaks=0
+          ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/scripts/help_pages.py $<TARGET_FILE:dfrecon>
+          --version ${PROJECT_VERSION} --man ${DFRECON_MAN_PAGE} --completion ${DFRECON_COMPLETION}
+  DEPENDS dfrecon ${PROJECT_SOURCE_DIR}/scripts/help_pages.py
+          ${PROJECT_SOURCE_DIR}/scripts/dfrecon_help.py ${PROJECT_SOURCE_DIR}/scripts/man_page.py
+          ${PROJECT_SOURCE_DIR}/scripts/bash_completion.py
+  COMMENT "Man page and bash completion from dfrecon --help"
+  VERBATIM)
+add_custom_target(dfrecon_help_pages ALL DEPENDS ${DFRECON_MAN_PAGE} ${DFRECON_COMPLETION})
+install(FILES ${DFRECON_MAN_PAGE} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+install(FILES ${DFRECON_COMPLETION}
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)
