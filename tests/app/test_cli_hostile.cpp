@@ -44,15 +44,15 @@ std::string replaced(std::string text, const std::string& from, const std::strin
     return text;
 }
 
-// Exit 2 (or `exitCode`) within `seconds`, stderr "dfrecon: FILE..."
-// saying `fragment`.
+// Exit 2 (or `exitCode`), stderr "dfrecon: FILE..." saying `fragment`. A
+// hang is caught by the tests' ctest timeout (tests/CMakeLists.txt), not by
+// timing the run: wall-clock limits fail on a loaded machine.
 void expectRefused(const TempDir& dir, const std::string& file, const std::string& args,
-                   const std::string& fragment, int exitCode = 2, double seconds = 2.0) {
+                   const std::string& fragment, int exitCode = 2) {
     const Result r = run(dir, args);
     EXPECT_EQ(r.exitCode, exitCode) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("dfrecon: " + file, 0), 0u) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\n" << r.err;
-    EXPECT_LT(r.seconds, seconds) << args;
 }
 
 // One line of cases.tsv.
