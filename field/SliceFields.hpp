@@ -40,14 +40,20 @@ struct FieldKernelOptions {
     bool singlePrecision = false;
 };
 
-/// Fields of all `slices` on `grid` with the OpenCL kernels of
-/// kernels/closest_segment_2d.cl (two-level tile culling, 32×32 then 8×8;
-/// batches of slices per launch; fp64 on devices that have it). Sign from
-/// the winding number of all contours, so holes, islands and touching
-/// contours come out right. Work: O(tiles·segments + pixels·candidates) per
-/// slice. `progress`, if set, receives the fraction of slices done after
-/// each batch. Throws std::invalid_argument beyond the PrimitiveId limits,
-/// ClError on device failure.
+/// Fields of all `slices` on `grid` with the OpenCL kernel of
+/// kernels/closest_segment_2d.cl: each pixel finds its nearest segment by
+/// branch and bound over a tree of boxes of consecutive segments, skipping
+/// only boxes provably farther than its best (so the result is the
+/// brute-force scan's, ties to the lower segment index); many slices per
+/// launch; fp64 on devices that have it. Sign from the winding number of all
+/// contours, from each row's crossings computed with windingCrossing() (so
+/// exactly windingNumber()'s, on the contour too): holes, islands and
+/// touching contours come out right. Work per slice: O(segments · rows they
+/// span) on the host, and O(log segments + segments near the pixel) per
+/// pixel for contours no denser than the pixels there. `progress`, if set,
+/// receives the fraction of slices done after each batch. Throws
+/// PrimitiveLimitExceeded beyond the PrimitiveId limits, ClError on device
+/// failure.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
                                const SliceGrid& grid,
                                const std::function<void(double)>& progress = {},

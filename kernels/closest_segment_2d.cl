@@ -4,40 +4,64 @@
 // (the third global dimension).
 //
 // Needs real.cl and closest_point.cl first. Coordinates are millimetres
-// relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its centre at
-// ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the fine tile and
-// work-group side) and LANES come from the host too.
+// relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its
+// centre at ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the work-group
+// side in pixels), LANES and LEAF come from the host too.
 //
-// Culling (tile_candidates, run coarse then fine): pixels are grouped in
-// square tiles. For a tile with centre c and half-diagonal h (over its pixel
-// centres), every pixel p in it has |p - c| <= h, so
-//   d(p, s) >= d(c, s) - h   and   min_s d(p, s) <= min_s d(c, s) + h.
-// Only segments with d(c, s) <= min_s d(c, s) + 2h can be nearest to any
-// pixel of the tile. The candidate list keeps segment order, so ties resolve
-// as in a brute-force scan.
+// Nearest segment: branch and bound over a hierarchy of boxes per slice
+// (built on the host, field/SliceFields.cpp). Leaf k holds segments
+// [k * LEAF, (k + 1) * LEAF) of the slice in (contour, index) order, so a
+// leaf is a short run of a contour and its bounding box is small; the tree is
+// a heap (node n has children 2n and 2n + 1, leaves at leafBase + k, index 0
+// unused; missing leaves have empty boxes) whose node boxes contain their
+// children's. For a pixel p and any segment s inside box B,
+//   d(p, s) >= d(p, B)   (the box holds every point of s),
+// so a subtree whose box is farther than the best distance found so far
+// holds no segment nearer than it. Rounding is covered by `reach`: a subtree
+// is skipped only when its computed box distance exceeds the computed best
+// distance by REACH_RELATIVE and slackMm, each far above the rounding of
+// both (a few ulps of the coordinates' magnitude, which the host passes in
+// slackMm); so the segment a full scan would pick is never skipped. Ties are
+// broken by the lower segment index, whatever order leaves are visited in:
+// the result is that of a brute-force scan in segment order keeping the
+// first strict minimum. Work per pixel: O(depth + the segments in leaves
+// whose boxes come within the nearest distance): O(log segments) for
+// contours that are not denser than the pixels near the pixel.
 #ifndef TILE
 #define TILE 8
 #endif
-// Pixels per work-item in the field kernel, as vector lanes: 8 suits CPU
-// devices (explicit SIMD), 1 suits GPUs (many small work-items).
+#ifndef LEAF
+#define LEAF 8
+#endif
+// Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
+// SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
+// the tree together: a subtree is entered when any lane may find a nearer
+// segment in it.
 #ifndef LANES
 #define LANES 1
+#endif
+#if defined(REAL_IS_DOUBLE)
+#define REACH_RELATIVE (1 + 64 * DBL_EPSILON)
+#else
+#define REACH_RELATIVE (1 + 64 * FLT_EPSILON)
 #endif
 #if LANES == 1
 #define REALV REAL
 #define INTV int
 #define CONVERT_REALV(x) ((REAL)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
-#define MASKV int  // scalar isless() gives int whatever the operand type
+#define MASKV int  // scalar comparisons give int whatever the operand type
 #define MASK_SCALAR int
 #define LANE_OFFSETS 0
 #define PICK(a, b, mask) ((mask) ? (b) : (a))
+#define ANY(mask) (mask)
+#define LANE_MIN(v) (v)
 #else
 #define REALV CONCAT(REAL, LANES)
 #define INTV CONCAT(int, LANES)
 #define CONVERT_REALV CONCAT(convert_, REALV)
 #define VSTORE CONCAT(vstore, LANES)
-// Vector isless()/select() masks have the lane type's width.
+// Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
 #define MASKV CONCAT(long, LANES)
 #define MASK_SCALAR long
@@ -47,138 +71,123 @@
 #endif
 #if LANES == 4
 #define LANE_OFFSETS ((INTV)(0, 1, 2, 3))
+#define LANE_MIN(v) fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3))
 #elif LANES == 8
 #define LANE_OFFSETS ((INTV)(0, 1, 2, 3, 4, 5, 6, 7))
+#define LANE_MIN(v)                                                 \
+    fmin(fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3)),         \
+         fmin(fmin((v).s4, (v).s5), fmin((v).s6, (v).s7)))
 #else
 #error "LANES must be 1, 4 or 8"
 #endif
 #define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
+#define ANY(mask) any(mask)
 #endif
+// Deep enough for any tree the host builds (it checks the depth).
+#define STACK_DEPTH 32
 
-// Squared distance from p to segment s = (ax, ay, bx, by); t receives the
-// clamped parameter of the nearest point (0 = start vertex, 1 = end vertex).
-inline REAL segmentDistance2(REAL2 p, REAL4 s, REAL* t) {
-    const REAL2 a = s.xy, ab = s.zw - s.xy, ap = p - a;
-    const REAL u = segment_parameter(ap.x, ap.y, ab.x, ab.y);
-    *t = u;
-    const REAL2 q = ap - u * ab;
-    return dot(q, q);
-}
-
-// One work-item per (tile x, tile y, slice of the batch) for tiles of
-// `tile` pixels. Scans the candidates of the enclosing parent tile (a
-// coarser level of the same kind; parentTile = 0 for none, or when that list
-// overflowed: the whole slice). Writes up to `capacity` candidate segment
-// indices (global, in segment order) and the full count, which may exceed
-// capacity: users then scan the whole slice.
-__kernel void tile_candidates(__global const REAL4* segments, __global const uint* sliceFirst,
-                              __global const uint* sliceCount, const uint width, const uint height,
-                              const REAL pixelMm, const uint tile, const uint parentTile,
-                              __global const uint* parentCandidates,
-                              __global const uint* parentCount, const uint parentCapacity,
-                              const uint capacity, __global uint* candidates,
-                              __global uint* candidateCount) {
-    const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
-    const uint tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
-    if (tx >= tilesX || ty >= tilesY) return;
-    const uint i0 = tx * tile, j0 = ty * tile;
-    const uint i1 = min(i0 + tile, width) - 1, j1 = min(j0 + tile, height) - 1;
-    // The box of the tile's pixel centres: fields are only sampled there.
-    const REAL2 lo = (REAL2)((i0 + (REAL)0.5) * pixelMm, (j0 + (REAL)0.5) * pixelMm);
-    const REAL2 hi = (REAL2)((i1 + (REAL)0.5) * pixelMm, (j1 + (REAL)0.5) * pixelMm);
-    const REAL2 centre = (lo + hi) / 2;
-    const REAL halfDiagonal = length(hi - lo) / 2;
-
-    // Where to look: the parent's list, or every segment of the slice.
-    const uint first = sliceFirst[s];
-    uint count = sliceCount[s];
-    __global const uint* from = 0;
-    if (parentTile > 0) {
-        const uint parentsX = (width + parentTile - 1) / parentTile;
-        const uint parentsY = (height + parentTile - 1) / parentTile;
-        const size_t parent = ((size_t)s * parentsY + j0 / parentTile) * parentsX + i0 / parentTile;
-        if (parentCount[parent] <= parentCapacity) {
-            count = parentCount[parent];
-            from = parentCandidates + parent * parentCapacity;
-        }
-    }
-
-    REAL best2 = INFINITY, t;
-    for (uint k = 0; k < count; ++k) {
-        const uint seg = from ? from[k] : first + k;
-        best2 = fmin(best2, segmentDistance2(centre, segments[seg], &t));
-    }
-    // Compared squared; relative slack so rounding never drops the nearest.
-    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * (REAL)(1 + 1e-5) + (REAL)1e-6 * pixelMm;
-    const REAL reach2 = reach * reach;
-
-    const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
-    __global uint* list = candidates + at * capacity;
-    uint n = 0;
-    for (uint k = 0; k < count; ++k) {
-        const uint seg = from ? from[k] : first + k;
-        if (segmentDistance2(centre, segments[seg], &t) <= reach2) {
-            if (n < capacity) list[n] = seg;
-            ++n;
-        }
-    }
-    candidateCount[at] = n;
+// Squared distance from the lanes' points (px, py) to box (xmin, ymin, xmax,
+// ymax); +inf for an empty box (xmin = +inf, xmax = -inf).
+inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
+    const REALV dx = fmax(fmax(box.x - px, px - box.z), (REALV)(0));
+    const REAL dy = fmax(fmax(box.y - py, py - box.w), (REAL)0);
+    return dx * dx + dy * dy;
 }
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1, j) of slice
-// s of the batch, computed in vector lanes (explicit SIMD for CPU devices;
-// GPUs scalarise it); a work-group is one TILE x TILE tile, so every loop
-// bound is the same for all its work-items. ids[k] = (segment id, id of its
-// end vertex); the start vertex id is segment id | 1.
-// Crossings of row j: crossings[rowFirst[r] .. rowFirst[r + 1]) with
-// r = s * height + j, each (k, dir): the contour crosses the row between
-// pixel k - 1 and k going up (dir = +1) or down (-1). The winding number at
-// pixel i is the sum of dir over crossings with k > i (Sunday's rule with
-// the ray to +x), non-zero meaning inside.
+// s of the batch; a work-group is one TILE x TILE tile (neighbouring pixels
+// walk the same part of the tree). ids[k] = (segment id, id of its end
+// vertex); the start vertex id is segment id | 1.
+// Sign: the crossings of row j are crossings[rowFirst[r] .. rowFirst[r + 1])
+// with r = s * height + j, sorted by k, each (k, w): the contour crosses the
+// row between pixel k - 1 and k (windingCrossing() counts it for pixels
+// i < k), and w is the winding those crossings from this one to the row's
+// end add. So the winding number at pixel i is the w of the first crossing
+// with k > i (0 if none), found by binary search: O(log crossings) per
+// work-item plus the crossings among its own pixels.
 __kernel __attribute__((reqd_work_group_size(TILE / LANES, TILE, 1))) void signed_distance_2d(
     __global const REAL4* segments, __global const uint2* ids, __global const uint* sliceFirst,
-    __global const uint* sliceCount, __global const uint* rowFirst, __global const int2* crossings,
-    const uint width, const uint height, const REAL pixelMm, const uint capacity,
-    __global const uint* candidates, __global const uint* candidateCount, __global float* distance,
-    __global uint* nearestId) {
+    __global const uint* sliceCount, __global const REAL4* boxes, __global const uint* treeFirst,
+    __global const uint* leafBase, __global const uint* rowFirst, __global const int2* crossings,
+    const uint width, const uint height, const REAL pixelMm, const REAL slackMm,
+    __global float* distance, __global uint* nearestId) {
     const uint i0 = get_global_id(0) * LANES, j = get_global_id(1), s = get_global_id(2);
-    if (j >= height) return;  // padding rows of the last tile row (no barriers below)
-    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
-    const size_t tile = ((size_t)s * tilesY + j / TILE) * tilesX + i0 / TILE;
+    if (j >= height || i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;
     const REALV px = (CONVERT_REALV(lane) + (REAL)0.5) * pixelMm;
     const REAL py = (j + (REAL)0.5) * pixelMm;
 
-    const uint listed = candidateCount[tile];
-    const bool useList = listed <= capacity;
-    const uint n = useList ? listed : sliceCount[s];
-    __global const uint* list = candidates + tile * capacity;
-    // Per lane: the nearest segment so far and its parameter; ids are looked
-    // up once at the end.
-    REALV best2 = (REALV)(INFINITY), bestT = (REALV)(0);
+    const uint first = sliceFirst[s], count = sliceCount[s];
+    __global const REAL4* tree = boxes + treeFirst[s];
+    const uint leaves = leafBase[s];
+    // Per lane: the nearest segment so far, its parameter, and how far a box
+    // may be and still hold a segment that beats (or ties) it.
+    REALV best2 = (REALV)(INFINITY), bestT = (REALV)(0), reach2 = (REALV)(INFINITY);
     MASKV bestSeg = (MASKV)(0);
-    for (uint k = 0; k < n; ++k) {
-        const uint seg = useList ? list[k] : sliceFirst[s] + k;
-        const REAL4 sg = segments[seg];
-        const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
-        const REAL len2 = abx * abx + aby * aby;
-        const REAL inverse = len2 > 0 ? 1 / len2 : 0;
-        const REALV apx = px - sg.x;
-        const REAL apy = py - sg.y;
-        const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
-        const REALV qx = apx - t * abx, qy = apy - t * aby;
-        const REALV d2 = qx * qx + qy * qy;
-        const MASKV better = isless(d2, best2);
-        best2 = PICK(best2, d2, better);
-        bestT = PICK(bestT, t, better);
-        bestSeg = PICK(bestSeg, (MASKV)(seg), better);
+    uint stack[STACK_DEPTH];
+    int top = 0;
+    uint node = count > 0 ? 1 : 0;
+    while (node != 0) {
+        if (node >= leaves) {
+            const uint begin = first + (node - leaves) * LEAF;
+            const uint end = min(begin + LEAF, first + count);
+            for (uint seg = begin; seg < end; ++seg) {
+                const REAL4 sg = segments[seg];
+                const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
+                const REAL len2 = abx * abx + aby * aby;
+                const REAL inverse = len2 > 0 ? 1 / len2 : 0;
+                const REALV apx = px - sg.x;
+                const REAL apy = py - sg.y;
+                const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+                const REALV qx = apx - t * abx, qy = apy - t * aby;
+                const REALV d2 = qx * qx + qy * qy;
+                const MASKV better =
+                    isless(d2, best2) | (isequal(d2, best2) & ((MASKV)(seg) < bestSeg));
+                best2 = PICK(best2, d2, better);
+                bestT = PICK(bestT, t, better);
+                bestSeg = PICK(bestSeg, (MASKV)(seg), better);
+            }
+            const REALV reach = sqrt(best2) * REACH_RELATIVE + slackMm;
+            reach2 = reach * reach;
+            node = 0;
+        } else {
+            const uint left = 2 * node, right = left + 1;
+            const REALV toLeft = boxDistance2(tree[left], px, py);
+            const REALV toRight = boxDistance2(tree[right], px, py);
+            const bool needLeft = ANY(islessequal(toLeft, reach2));
+            const bool needRight = ANY(islessequal(toRight, reach2));
+            if (needLeft && needRight) {
+                // Nearer first, so the bound tightens before the other side.
+                const bool leftFirst = LANE_MIN(toLeft) <= LANE_MIN(toRight);
+                stack[top++] = leftFirst ? right : left;
+                node = leftFirst ? left : right;
+            } else {
+                node = needLeft ? left : (needRight ? right : 0);
+            }
+        }
+        // Next: the latest postponed subtree that may still hold a nearer one.
+        while (node == 0 && top > 0) {
+            const uint next = stack[--top];
+            if (ANY(islessequal(boxDistance2(tree[next], px, py), reach2))) node = next;
+        }
     }
 
+    // Winding numbers from the row's crossings right of each lane.
     const size_t row = (size_t)s * height + j;
-    INTV winding = (INTV)(0);
-    for (uint c = rowFirst[row]; c < rowFirst[row + 1]; ++c) {
-        const int2 crossing = crossings[c];
-        winding += PICK((INTV)(0), (INTV)(crossing.y), (INTV)(crossing.x) > lane);
+    uint lo = rowFirst[row], hi = rowFirst[row + 1];
+    const uint rowEnd = hi;
+    while (lo < hi) {  // first crossing with k > i0
+        const uint mid = (lo + hi) / 2;
+        if ((uint)crossings[mid].x > i0)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
+    for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
+        // Lanes at or right of this crossing no longer count it.
+        const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
+        winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
     }
 
     REAL d[LANES], tl[LANES];
@@ -191,7 +200,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, TILE, 1))) void signe
     for (int l = 0; l < LANES; ++l) {
         if (i0 + l >= width) break;
         uint id = 0xffffffffu;
-        if (n > 0) {
+        if (count > 0) {
             const uint2 e = ids[(uint)segs[l]];
             id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
         }
