@@ -42,6 +42,8 @@ struct FlatSegments {
     std::vector<cl_uint2> ids;  // (segment id, end vertex id)
     std::vector<cl_uint> sliceFirst, sliceCount;
     std::vector<Real4> boxes;                // (xmin, ymin, xmax, ymax) per node
+    std::vector<Real4> chords;               // per node: (ax, ay, bx, by), a segment that
+    std::vector<double> devs;                // lies within dev of all its segments
     std::vector<cl_uint> treeFirst, leafBase;  // per slice: its heap in boxes, first leaf node
     double magnitudeMm = 0;                  // largest coordinate, for the rounding slack
 };
@@ -74,16 +76,51 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
     flat.leafBase.push_back(cl_uint(leaves));
     const std::size_t heap = flat.boxes.size();
     flat.boxes.resize(heap + 2 * leaves, emptyBox<Real4>());
-    Real4* node = flat.boxes.data() + heap;
-    for (std::size_t k = 0; k < count; ++k) {
-        const Real4 s = flat.segments[first + k];
-        Real4 box;
-        box.s[0] = std::min(s.s[0], s.s[2]), box.s[1] = std::min(s.s[1], s.s[3]);
-        box.s[2] = std::max(s.s[0], s.s[2]), box.s[3] = std::max(s.s[1], s.s[3]);
-        Real4& leaf = node[leaves + k / kLeaf];
-        leaf = unite(leaf, box);
+    flat.chords.resize(heap + 2 * leaves, Real4{});
+    flat.devs.resize(heap + 2 * leaves, 0.0);
+    Real4* box = flat.boxes.data() + heap;
+    Real4* chord = flat.chords.data() + heap;
+    double* dev = flat.devs.data() + heap;
+    const auto point = [](const Real4& r, int end) {
+        return Point2{double(r.s[2 * end]), double(r.s[2 * end + 1])};
+    };
+    const auto chordOf = [&](Point2 a, Point2 b) {
+        Real4 r;
+        r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
+        return r;
+    };
+    for (std::size_t leaf = 0; leaf * kLeaf < count; ++leaf) {
+        const std::size_t begin = first + leaf * kLeaf, end = std::min(begin + kLeaf, first + count);
+        const Point2 a = point(flat.segments[begin], 0), b = point(flat.segments[end - 1], 1);
+        Real4& into = box[leaves + leaf];
+        double& radius = dev[leaves + leaf];
+        for (std::size_t k = begin; k < end; ++k) {
+            const Real4 s = flat.segments[k];
+            Real4 segmentBox;
+            segmentBox.s[0] = std::min(s.s[0], s.s[2]), segmentBox.s[1] = std::min(s.s[1], s.s[3]);
+            segmentBox.s[2] = std::max(s.s[0], s.s[2]), segmentBox.s[3] = std::max(s.s[1], s.s[3]);
+            into = unite(into, segmentBox);
+            // Distance to a segment is convex: the ends bound the segment.
+            radius = std::max({radius, distanceToSegment(point(s, 0), a, b),
+                               distanceToSegment(point(s, 1), a, b)});
+        }
+        chord[leaves + leaf] = chordOf(a, b);
     }
-    for (std::size_t n = leaves - 1; n >= 1; --n) node[n] = unite(node[2 * n], node[2 * n + 1]);
+    for (std::size_t n = leaves - 1; n >= 1; --n) {
+        const std::size_t l = 2 * n, r = l + 1;
+        box[n] = unite(box[l], box[r]);
+        if (!(box[r].s[0] <= box[r].s[2])) {  // right side empty
+            chord[n] = chord[l], dev[n] = dev[l];
+            continue;
+        }
+        // Each child's segments lie within its dev of its chord, whose
+        // points lie within the larger distance of its ends from ours.
+        const Point2 a = point(chord[l], 0), b = point(chord[r], 1);
+        chord[n] = chordOf(a, b);
+        for (const std::size_t c : {l, r})
+            dev[n] = std::max(dev[n], dev[c] + std::max(distanceToSegment(point(chord[c], 0), a, b),
+                                                        distanceToSegment(point(chord[c], 1), a, b)));
+    }
 }
 
 template <class Real4>
@@ -188,7 +225,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
     ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst),
         sliceCount(runtime, flat.sliceCount);
-    ocl::DeviceBuffer<Real4> boxes(runtime, flat.boxes);
+    ocl::DeviceBuffer<Real4> boxes(runtime, flat.boxes), chords(runtime, flat.chords);
+    ocl::DeviceBuffer<Real> devs(runtime, std::vector<Real>(flat.devs.begin(), flat.devs.end()));
     ocl::DeviceBuffer<cl_uint> treeFirst(runtime, flat.treeFirst),
         leafBase(runtime, flat.leafBase);
     ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
@@ -213,6 +251,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
         field.setArg(a++, boxes.get());
+        field.setArg(a++, chords.get());
+        field.setArg(a++, devs.get());
         field.setArg(a++, treeFirst.get());
         field.setArg(a++, leafBase.get());
         field.setArg(a++, rowFirst.get());
@@ -223,13 +263,12 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, slackMm);
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
-        // Work-groups of one tile, so neighbouring pixels walk the same
-        // boxes; each work-item computes `lanes` pixels of a row.
+        // A work-item computes `lanes` pixels of TILE rows, row after row.
         const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
         const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-        runtime.queue().enqueueNDRangeKernel(
-            field, cl::NullRange, cl::NDRange(tilesX * kTile / lanes, tilesY * kTile, batch),
-            cl::NDRange(kTile / lanes, kTile, 1));
+        runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
+                                             cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
+                                             cl::NDRange(kTile / lanes, 1, 1));
         download(runtime, distance, out.distanceMm.data() + offset, false);
         download(runtime, nearest, out.nearestId.data() + offset, true);
     } catch (const cl::Error& e) {

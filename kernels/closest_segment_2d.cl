@@ -83,8 +83,6 @@
 #define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
 #define ANY(mask) any(mask)
 #endif
-// Deep enough for any tree the host builds (it checks the depth).
-#define STACK_DEPTH 32
 
 // Squared distance from the lanes' points (px, py) to box (xmin, ymin, xmax,
 // ymax); +inf for an empty box (xmin = +inf, xmax = -inf).
@@ -94,118 +92,167 @@ inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
     return dx * dx + dy * dy;
 }
 
-// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1, j) of slice
-// s of the batch; a work-group is one TILE x TILE tile (neighbouring pixels
-// walk the same part of the tree). ids[k] = (segment id, id of its end
-// vertex); the start vertex id is segment id | 1.
+// Squared distance from the lanes' points to segment (ax, ay, bx, by).
+inline REALV chordDistance2(REAL4 c, REALV px, REAL py) {
+    const REAL abx = c.z - c.x, aby = c.w - c.y;
+    const REAL len2 = abx * abx + aby * aby;
+    const REAL inverse = len2 > 0 ? 1 / len2 : 0;
+    const REALV apx = px - c.x;
+    const REAL apy = py - c.y;
+    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    const REALV qx = apx - t * abx, qy = apy - t * aby;
+    return qx * qx + qy * qy;
+}
+
+// The lanes' nearest segment so far: (squared distance, segment index)
+// compared lexicographically, so the lower index wins ties in any order of
+// visits; bestT is its parameter; reach and reach2 say how far a box may be
+// and still hold a segment that beats or ties it.
+typedef struct {
+    REALV best2, bestT, reach, reach2;
+    MASKV bestSeg;
+} Nearest;
+
+inline void consider(Nearest* n, __global const REAL4* segments, uint seg, REALV px, REAL py) {
+    const REAL4 sg = segments[seg];
+    const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
+    const REAL len2 = abx * abx + aby * aby;
+    const REAL inverse = len2 > 0 ? 1 / len2 : 0;
+    const REALV apx = px - sg.x;
+    const REAL apy = py - sg.y;
+    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    const REALV qx = apx - t * abx, qy = apy - t * aby;
+    const REALV d2 = qx * qx + qy * qy;
+    const MASKV better =
+        isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
+    n->best2 = PICK(n->best2, d2, better);
+    n->bestT = PICK(n->bestT, t, better);
+    n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
+}
+
+inline void updateReach(Nearest* n, REAL slackMm) {
+    n->reach = sqrt(n->best2) * REACH_RELATIVE + slackMm;
+    n->reach2 = n->reach * n->reach;
+}
+
+// Whether any lane may find a segment of node `node` that beats or ties its
+// best: the node's box and capsule (chord widened by dev) both within reach.
+inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
+                          __global const REAL4* chords, __global const REAL* devs, uint node,
+                          REALV px, REAL py) {
+    const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
+    if (!ANY(inBox)) return false;
+    const REALV capsule = n->reach + devs[node];
+    return ANY(inBox & islessequal(chordDistance2(chords[node], px, py), capsule * capsule));
+}
+
+// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
+// rows j0 .. j0+TILE-1 of slice s of the batch, row after row: each row
+// starts from the nearest segments of the row below, so its bound is tight
+// from the start. ids[k] = (segment id, id of its end vertex); the start
+// vertex id is segment id | 1.
 // Sign: the crossings of row j are crossings[rowFirst[r] .. rowFirst[r + 1])
 // with r = s * height + j, sorted by k, each (k, w): the contour crosses the
 // row between pixel k - 1 and k (windingCrossing() counts it for pixels
 // i < k), and w is the winding those crossings from this one to the row's
 // end add. So the winding number at pixel i is the w of the first crossing
 // with k > i (0 if none), found by binary search: O(log crossings) per
-// work-item plus the crossings among its own pixels.
-__kernel __attribute__((reqd_work_group_size(TILE / LANES, TILE, 1))) void signed_distance_2d(
+// work-item and row plus the crossings among its own pixels.
+__kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
     __global const REAL4* segments, __global const uint2* ids, __global const uint* sliceFirst,
-    __global const uint* sliceCount, __global const REAL4* boxes, __global const uint* treeFirst,
-    __global const uint* leafBase, __global const uint* rowFirst, __global const int2* crossings,
-    const uint width, const uint height, const REAL pixelMm, const REAL slackMm,
-    __global float* distance, __global uint* nearestId) {
-    const uint i0 = get_global_id(0) * LANES, j = get_global_id(1), s = get_global_id(2);
-    if (j >= height || i0 >= width) return;  // padding of the last tiles (no barriers below)
+    __global const uint* sliceCount, __global const REAL4* boxes, __global const REAL4* chords,
+    __global const REAL* devs, __global const uint* treeFirst, __global const uint* leafBase,
+    __global const uint* rowFirst, __global const int2* crossings, const uint width,
+    const uint height, const REAL pixelMm, const REAL slackMm, __global float* distance,
+    __global uint* nearestId) {
+    const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
+    if (i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;
     const REALV px = (CONVERT_REALV(lane) + (REAL)0.5) * pixelMm;
-    const REAL py = (j + (REAL)0.5) * pixelMm;
-
     const uint first = sliceFirst[s], count = sliceCount[s];
-    __global const REAL4* tree = boxes + treeFirst[s];
+    const uint tree = treeFirst[s];
+    __global const REAL4* box = boxes + tree;
+    __global const REAL4* chord = chords + tree;
+    __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
-    // Per lane: the nearest segment so far, its parameter, and how far a box
-    // may be and still hold a segment that beats (or ties) it.
-    REALV best2 = (REALV)(INFINITY), bestT = (REALV)(0), reach2 = (REALV)(INFINITY);
-    MASKV bestSeg = (MASKV)(0);
-    uint stack[STACK_DEPTH];
-    int top = 0;
-    uint node = count > 0 ? 1 : 0;
-    while (node != 0) {
-        if (node >= leaves) {
-            const uint begin = first + (node - leaves) * LEAF;
-            const uint end = min(begin + LEAF, first + count);
-            for (uint seg = begin; seg < end; ++seg) {
-                const REAL4 sg = segments[seg];
-                const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
-                const REAL len2 = abx * abx + aby * aby;
-                const REAL inverse = len2 > 0 ? 1 / len2 : 0;
-                const REALV apx = px - sg.x;
-                const REAL apy = py - sg.y;
-                const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
-                const REALV qx = apx - t * abx, qy = apy - t * aby;
-                const REALV d2 = qx * qx + qy * qy;
-                const MASKV better =
-                    isless(d2, best2) | (isequal(d2, best2) & ((MASKV)(seg) < bestSeg));
-                best2 = PICK(best2, d2, better);
-                bestT = PICK(bestT, t, better);
-                bestSeg = PICK(bestSeg, (MASKV)(seg), better);
-            }
-            const REALV reach = sqrt(best2) * REACH_RELATIVE + slackMm;
-            reach2 = reach * reach;
-            node = 0;
-        } else {
-            const uint left = 2 * node, right = left + 1;
-            const REALV toLeft = boxDistance2(tree[left], px, py);
-            const REALV toRight = boxDistance2(tree[right], px, py);
-            const bool needLeft = ANY(islessequal(toLeft, reach2));
-            const bool needRight = ANY(islessequal(toRight, reach2));
-            if (needLeft && needRight) {
-                // Nearer first, so the bound tightens before the other side.
-                const bool leftFirst = LANE_MIN(toLeft) <= LANE_MIN(toRight);
-                stack[top++] = leftFirst ? right : left;
-                node = leftFirst ? left : right;
-            } else {
-                node = needLeft ? left : (needRight ? right : 0);
-            }
-        }
-        // Next: the latest postponed subtree that may still hold a nearer one.
-        while (node == 0 && top > 0) {
-            const uint next = stack[--top];
-            if (ANY(islessequal(boxDistance2(tree[next], px, py), reach2))) node = next;
-        }
-    }
 
-    // Winding numbers from the row's crossings right of each lane.
-    const size_t row = (size_t)s * height + j;
-    uint lo = rowFirst[row], hi = rowFirst[row + 1];
-    const uint rowEnd = hi;
-    while (lo < hi) {  // first crossing with k > i0
-        const uint mid = (lo + hi) / 2;
-        if ((uint)crossings[mid].x > i0)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
-    for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
-        // Lanes at or right of this crossing no longer count it.
-        const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
-        winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
-    }
-
-    REAL d[LANES], tl[LANES];
-    int w[LANES];
     MASK_SCALAR segs[LANES];
-    VSTORE(sqrt(best2), 0, d);
-    VSTORE(bestT, 0, tl);
-    VSTORE(winding, 0, w);
-    VSTORE(bestSeg, 0, segs);
-    for (int l = 0; l < LANES; ++l) {
-        if (i0 + l >= width) break;
-        uint id = 0xffffffffu;
+    for (uint j = j0; j < min(j0 + TILE, height); ++j) {
+        const REAL py = (j + (REAL)0.5) * pixelMm;
+        Nearest n;
+        n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
+        n.bestSeg = (MASKV)(0);
         if (count > 0) {
-            const uint2 e = ids[(uint)segs[l]];
-            id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
+            if (j == j0) {
+                // No row below: the leaf down the nearer side of each node.
+                uint node = 1;
+                while (node < leaves) {
+                    const REAL left = LANE_MIN(boxDistance2(box[2 * node], px, py));
+                    const REAL right = LANE_MIN(boxDistance2(box[2 * node + 1], px, py));
+                    node = 2 * node + (right < left ? 1 : 0);
+                }
+                const uint begin = first + (node - leaves) * LEAF;
+                for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
+                    consider(&n, segments, seg, px, py);
+            } else {
+                for (int l = 0; l < LANES; ++l)
+                    if (l == 0 || segs[l] != segs[l - 1])
+                        consider(&n, segments, (uint)segs[l], px, py);
+            }
+            updateReach(&n, slackMm);
+            // Depth first, left before right, without a stack: after a
+            // node, climb past right children and step to the sibling.
+            uint node = 1;
+            while (node != 0) {
+                if (worthVisiting(&n, box, chord, dev, node, px, py)) {
+                    if (node < leaves) {
+                        node *= 2;
+                        continue;
+                    }
+                    const uint begin = first + (node - leaves) * LEAF;
+                    for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
+                        consider(&n, segments, seg, px, py);
+                    updateReach(&n, slackMm);
+                }
+                while (node & 1) node >>= 1;
+                if (node != 0) ++node;
+            }
         }
-        const size_t pixel = row * width + i0 + l;
-        distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
-        nearestId[pixel] = id;
+
+        // Winding numbers from the row's crossings right of each lane.
+        const size_t row = (size_t)s * height + j;
+        uint lo = rowFirst[row], hi = rowFirst[row + 1];
+        const uint rowEnd = hi;
+        while (lo < hi) {  // first crossing with k > i0
+            const uint mid = (lo + hi) / 2;
+            if ((uint)crossings[mid].x > i0)
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
+        for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
+            // Lanes at or right of this crossing no longer count it.
+            const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
+            winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
+        }
+
+        REAL d[LANES], tl[LANES];
+        int w[LANES];
+        VSTORE(sqrt(n.best2), 0, d);
+        VSTORE(n.bestT, 0, tl);
+        VSTORE(winding, 0, w);
+        VSTORE(n.bestSeg, 0, segs);
+        for (int l = 0; l < LANES; ++l) {
+            if (i0 + l >= width) break;
+            uint id = 0xffffffffu;
+            if (count > 0) {
+                const uint2 e = ids[(uint)segs[l]];
+                id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
+            }
+            const size_t pixel = row * width + i0 + l;
+            distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
+            nearestId[pixel] = id;
+        }
     }
 }
