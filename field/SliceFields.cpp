@@ -15,6 +15,9 @@ namespace {
 
 constexpr std::uint32_t kTile = 8;  // work-group side in pixels
 constexpr std::uint32_t kLeaf = 8;  // segments per leaf of the box tree
+// Candidates a tile lists at most; beyond, its pixels walk the tree (about
+// where that gets cheaper than scanning the list).
+constexpr cl_uint kListCapacity = 48;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -231,6 +234,10 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         leafBase(runtime, flat.leafBase);
     ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
     ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
+    const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
+    const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+    ocl::DeviceBuffer<cl_uint> candidates(runtime, tilesX * tilesY * batch * kListCapacity);
+    ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
 
@@ -244,8 +251,32 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         Real(64 * double(std::numeric_limits<Real>::epsilon()) * (flat.magnitudeMm + grid.pixelMm));
     const std::size_t offset = begin * grid.pixelCount();
     try {
-        cl::Kernel field(program, "signed_distance_2d");
+        cl::Kernel cull(program, "tile_candidates");
         int a = 0;
+        cull.setArg(a++, segments.get());
+        cull.setArg(a++, sliceFirst.get());
+        cull.setArg(a++, sliceCount.get());
+        cull.setArg(a++, boxes.get());
+        cull.setArg(a++, chords.get());
+        cull.setArg(a++, devs.get());
+        cull.setArg(a++, treeFirst.get());
+        cull.setArg(a++, leafBase.get());
+        cull.setArg(a++, cl_uint(grid.width));
+        cull.setArg(a++, cl_uint(grid.height));
+        cull.setArg(a++, Real(grid.pixelMm));
+        cull.setArg(a++, slackMm);
+        cull.setArg(a++, kListCapacity);
+        cull.setArg(a++, candidates.get());
+        cull.setArg(a++, candidateCount.get());
+        // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
+        // PoCL builds one work-group function per local size, and windows of
+        // every size would each get a new one.
+        runtime.queue().enqueueNDRangeKernel(
+            cull, cl::NullRange, cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
+            cl::NDRange(4, 4, 1));
+
+        cl::Kernel field(program, "signed_distance_2d");
+        a = 0;
         field.setArg(a++, segments.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
@@ -261,11 +292,12 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, cl_uint(grid.height));
         field.setArg(a++, Real(grid.pixelMm));
         field.setArg(a++, slackMm);
+        field.setArg(a++, kListCapacity);
+        field.setArg(a++, candidates.get());
+        field.setArg(a++, candidateCount.get());
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
-        // A work-item computes `lanes` pixels of TILE rows, row after row.
-        const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
-        const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+        // A work-item computes `lanes` pixels of a tile's rows, row after row.
         runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
                                              cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
                                              cl::NDRange(kTile / lanes, 1, 1));

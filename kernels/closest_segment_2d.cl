@@ -135,6 +135,13 @@ inline void updateReach(Nearest* n, REAL slackMm) {
     n->reach2 = n->reach * n->reach;
 }
 
+inline void visitLeaf(Nearest* n, __global const REAL4* segments, uint first, uint count,
+                      uint leaf, REALV px, REAL py) {
+    const uint begin = first + leaf * LEAF;
+    for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
+        consider(n, segments, seg, px, py);
+}
+
 // Whether any lane may find a segment of node `node` that beats or ties its
 // best: the node's box and capsule (chord widened by dev) both within reach.
 inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
@@ -144,6 +151,117 @@ inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
     if (!ANY(inBox)) return false;
     const REALV capsule = n->reach + devs[node];
     return ANY(inBox & islessequal(chordDistance2(chords[node], px, py), capsule * capsule));
+}
+
+// Squared distance from point c to segment s = (ax, ay, bx, by).
+inline REAL pointSegmentDistance2(REAL2 c, REAL4 s) {
+    const REAL2 a = s.xy, ab = s.zw - s.xy, ap = c - a;
+    const REAL2 q = ap - segment_parameter(ap.x, ap.y, ab.x, ab.y) * ab;
+    return dot(q, q);
+}
+
+// The same tests for one point c (scalar): whether node `node` may hold a
+// segment within `reach` of c.
+inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
+                       __global const REAL4* chords, __global const REAL* devs, uint node) {
+    const REAL4 b = boxes[node];
+    const REAL dx = fmax(fmax(b.x - c.x, c.x - b.z), (REAL)0);
+    const REAL dy = fmax(fmax(b.y - c.y, c.y - b.w), (REAL)0);
+    if (dx * dx + dy * dy > reach * reach) return false;
+    const REAL4 k = chords[node];
+    const REAL capsule = reach + devs[node];
+    return pointSegmentDistance2(c, k) <= capsule * capsule;
+}
+
+// One work-item per (tile x, tile y, slice of the batch): the segments that
+// can be nearest to a pixel of the TILE x TILE tile, when there are at most
+// `capacity`. For the tile's centre c and half-diagonal h (over its pixel
+// centres) every pixel p has |p - c| <= h, so d(p, s) >= d(c, s) - h and
+// min_s d(p, s) <= min_s d(c, s) + h: only segments with
+// d(c, s) <= min_s d(c, s) + 2h can be nearest to one of its pixels. Both the
+// minimum and the list come from branch and bound over the tree (nodes whose
+// box or capsule is beyond the limit hold none), with the rounding slack of
+// the field kernel. Writes the count, or capacity + 1 when there are more:
+// the field kernel then walks the tree for each pixel instead. O(depth +
+// capacity) nodes per tile for contours no denser than its pixels.
+__kernel void tile_candidates(__global const REAL4* segments, __global const uint* sliceFirst,
+                              __global const uint* sliceCount, __global const REAL4* boxes,
+                              __global const REAL4* chords, __global const REAL* devs,
+                              __global const uint* treeFirst, __global const uint* leafBase,
+                              const uint width, const uint height, const REAL pixelMm,
+                              const REAL slackMm, const uint capacity,
+                              __global uint* candidates, __global uint* candidateCount) {
+    const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
+    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
+    if (tx >= tilesX || ty >= tilesY) return;
+    const uint i0 = tx * TILE, j0 = ty * TILE;
+    const uint i1 = min(i0 + TILE, width) - 1, j1 = min(j0 + TILE, height) - 1;
+    const REAL2 lo = (REAL2)((i0 + (REAL)0.5) * pixelMm, (j0 + (REAL)0.5) * pixelMm);
+    const REAL2 hi = (REAL2)((i1 + (REAL)0.5) * pixelMm, (j1 + (REAL)0.5) * pixelMm);
+    const REAL2 c = (lo + hi) / 2;
+    const REAL halfDiagonal = length(hi - lo) / 2;
+    const uint first = sliceFirst[s], count = sliceCount[s];
+    const uint tree = treeFirst[s];
+    __global const REAL4* box = boxes + tree;
+    __global const REAL4* chord = chords + tree;
+    __global const REAL* dev = devs + tree;
+    const uint leaves = leafBase[s];
+    const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
+    __global uint* list = candidates + at * capacity;
+
+    // min_s d(c, s): the leaf down the nearer side, then depth first (left
+    // before right, without a stack) through what may still be nearer.
+    REAL best2 = INFINITY;
+    uint node = 1;
+    while (node < leaves) {
+        const REAL4 l = box[2 * node], r = box[2 * node + 1];
+        const REAL dl = fmax(fmax(l.x - c.x, c.x - l.z), (REAL)0) +
+                        fmax(fmax(l.y - c.y, c.y - l.w), (REAL)0);
+        const REAL dr = fmax(fmax(r.x - c.x, c.x - r.z), (REAL)0) +
+                        fmax(fmax(r.y - c.y, c.y - r.w), (REAL)0);
+        node = 2 * node + (dr < dl ? 1 : 0);
+    }
+    for (uint seg = first + (node - leaves) * LEAF;
+         seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
+        best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
+    node = count > 0 ? 1 : 0;
+    while (node != 0) {
+        if (nodeWithin(c, sqrt(best2) * REACH_RELATIVE + slackMm, box, chord, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            for (uint seg = first + (node - leaves) * LEAF;
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
+                best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
+        }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
+    }
+
+    // The candidates, in segment order (a left-first walk visits leaves in
+    // order).
+    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * REACH_RELATIVE + slackMm;
+    uint n = 0;
+    node = count > 0 ? 1 : 0;
+    while (node != 0 && n <= capacity) {
+        if (nodeWithin(c, reach, box, chord, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            for (uint seg = first + (node - leaves) * LEAF;
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
+                 ++seg)
+                if (pointSegmentDistance2(c, segments[seg]) <= reach * reach) {
+                    if (n < capacity) list[n] = seg;
+                    ++n;
+                }
+        }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
+    }
+    candidateCount[at] = n;
 }
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
@@ -163,8 +281,9 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const uint* sliceCount, __global const REAL4* boxes, __global const REAL4* chords,
     __global const REAL* devs, __global const uint* treeFirst, __global const uint* leafBase,
     __global const uint* rowFirst, __global const int2* crossings, const uint width,
-    const uint height, const REAL pixelMm, const REAL slackMm, __global float* distance,
-    __global uint* nearestId) {
+    const uint height, const REAL pixelMm, const REAL slackMm, const uint capacity,
+    __global const uint* candidates, __global const uint* candidateCount,
+    __global float* distance, __global uint* nearestId) {
     const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
     if (i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;
@@ -175,6 +294,10 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const REAL4* chord = chords + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
+    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
+    const size_t tile = ((size_t)s * tilesY + j0 / TILE) * tilesX + i0 / TILE;
+    const uint listed = candidateCount[tile];
+    __global const uint* list = candidates + tile * capacity;
 
     MASK_SCALAR segs[LANES];
     for (uint j = j0; j < min(j0 + TILE, height); ++j) {
@@ -182,40 +305,49 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         Nearest n;
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
-        if (count > 0) {
+        if (listed <= capacity) {
+            for (uint k = 0; k < listed; ++k) consider(&n, segments, list[k], px, py);
+        } else if (count > 0) {
+            uint start;  // a leaf near the lanes, where the walk starts
             if (j == j0) {
                 // No row below: the leaf down the nearer side of each node.
-                uint node = 1;
-                while (node < leaves) {
-                    const REAL left = LANE_MIN(boxDistance2(box[2 * node], px, py));
-                    const REAL right = LANE_MIN(boxDistance2(box[2 * node + 1], px, py));
-                    node = 2 * node + (right < left ? 1 : 0);
+                start = 1;
+                while (start < leaves) {
+                    const REAL left = LANE_MIN(boxDistance2(box[2 * start], px, py));
+                    const REAL right = LANE_MIN(boxDistance2(box[2 * start + 1], px, py));
+                    start = 2 * start + (right < left ? 1 : 0);
                 }
-                const uint begin = first + (node - leaves) * LEAF;
-                for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
-                    consider(&n, segments, seg, px, py);
             } else {
                 for (int l = 0; l < LANES; ++l)
                     if (l == 0 || segs[l] != segs[l - 1])
                         consider(&n, segments, (uint)segs[l], px, py);
+                start = leaves + ((uint)segs[LANES / 2] - first) / LEAF;
             }
             updateReach(&n, slackMm);
-            // Depth first, left before right, without a stack: after a
-            // node, climb past right children and step to the sibling.
-            uint node = 1;
-            while (node != 0) {
-                if (worthVisiting(&n, box, chord, dev, node, px, py)) {
-                    if (node < leaves) {
-                        node *= 2;
-                        continue;
+            // The start leaf, then the sibling subtree of each of its
+            // ancestors, nearest first: every leaf once. Depth first within a
+            // subtree, left before right, without a stack: after a node,
+            // climb past right children and step to the sibling.
+            if (worthVisiting(&n, box, chord, dev, start, px, py)) {
+                visitLeaf(&n, segments, first, count, start - leaves, px, py);
+                updateReach(&n, slackMm);
+            }
+            for (uint below = start; below > 1; below >>= 1) {
+                const uint root = below ^ 1;
+                uint node = root;
+                for (;;) {
+                    if (worthVisiting(&n, box, chord, dev, node, px, py)) {
+                        if (node < leaves) {
+                            node *= 2;
+                            continue;
+                        }
+                        visitLeaf(&n, segments, first, count, node - leaves, px, py);
+                        updateReach(&n, slackMm);
                     }
-                    const uint begin = first + (node - leaves) * LEAF;
-                    for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
-                        consider(&n, segments, seg, px, py);
-                    updateReach(&n, slackMm);
+                    while (node != root && (node & 1)) node >>= 1;
+                    if (node == root) break;
+                    ++node;
                 }
-                while (node & 1) node >>= 1;
-                if (node != 0) ++node;
             }
         }
 
