@@ -5,6 +5,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
@@ -17,7 +20,7 @@ constexpr std::uint32_t kTile = 8;  // work-group side in pixels
 constexpr std::uint32_t kLeaf = 8;  // segments per leaf of the box tree
 // Candidates a tile lists at most; beyond, its pixels walk the tree (about
 // where that gets cheaper than scanning the list).
-constexpr cl_uint kListCapacity = 48;
+constexpr int kListCapacity = 48;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -219,9 +222,22 @@ void download(ocl::Runtime& runtime, const ocl::DeviceBuffer<T>& buffer, T* to, 
 
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
-              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, SliceFields& out) {
+              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
+              SliceFields& out) {
+    using Clock = std::chrono::steady_clock;
+    const bool prof = std::getenv("PROF") != nullptr;
+    auto t0 = Clock::now();
+    auto lap = [&](const char* what) {
+        if (!prof) return;
+        runtime.queue().finish();
+        auto t1 = Clock::now();
+        std::fprintf(stderr, "%s %.3f ms\n", what, std::chrono::duration<double, std::milli>(t1 - t0).count());
+        t0 = t1;
+    };
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
+    lap("flatten");
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
+    lap("crossings");
     const std::size_t batch = end - begin;
 
     ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
@@ -236,10 +252,11 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
     const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
     const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-    ocl::DeviceBuffer<cl_uint> candidates(runtime, tilesX * tilesY * batch * kListCapacity);
+    ocl::DeviceBuffer<cl_uint> candidates(runtime, tilesX * tilesY * batch * capacity);
     ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
+    lap("buffers");
 
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
                                 " -DLANES=" + std::to_string(lanes) +
@@ -265,7 +282,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cull.setArg(a++, cl_uint(grid.height));
         cull.setArg(a++, Real(grid.pixelMm));
         cull.setArg(a++, slackMm);
-        cull.setArg(a++, kListCapacity);
+        cull.setArg(a++, capacity);
         cull.setArg(a++, candidates.get());
         cull.setArg(a++, candidateCount.get());
         // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
@@ -274,6 +291,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         runtime.queue().enqueueNDRangeKernel(
             cull, cl::NullRange, cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
             cl::NDRange(4, 4, 1));
+        lap("cull");
 
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
@@ -292,7 +310,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, cl_uint(grid.height));
         field.setArg(a++, Real(grid.pixelMm));
         field.setArg(a++, slackMm);
-        field.setArg(a++, kListCapacity);
+        field.setArg(a++, capacity);
         field.setArg(a++, candidates.get());
         field.setArg(a++, candidateCount.get());
         field.setArg(a++, distance.get());
@@ -301,8 +319,10 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
                                              cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
                                              cl::NDRange(kTile / lanes, 1, 1));
+        lap("kernel");
         download(runtime, distance, out.distanceMm.data() + offset, false);
         download(runtime, nearest, out.nearestId.data() + offset, true);
+        lap("download");
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
@@ -328,6 +348,8 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
     if (lanes == 0) lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
     if (lanes != 1 && lanes != 4 && lanes != 8)
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
+    const cl_uint capacity = cl_uint(
+        options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
     SliceFields fields = emptyFields(slices, grid);
     const std::size_t perBatch =
         std::max<std::size_t>(1, kPixelsPerBatch / std::max<std::size_t>(1, grid.pixelCount()));
@@ -343,7 +365,7 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
             runBatch<decltype(real), decltype(real4)>(runtime, slices, begin, end, grid, lanes,
-                                                      fields);
+                                                      capacity, fields);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));

@@ -38,6 +38,10 @@ struct FieldKernelOptions {
     /// Float arithmetic, what devices without fp64 get (about 1e-6 relative
     /// error instead of 1e-12).
     bool singlePrecision = false;
+    /// Candidates a tile of 8×8 pixels lists at most before its pixels walk
+    /// the segment tree instead: -1 = the default. Results are the same
+    /// (0: always walk; tests run both ways).
+    int tileListCapacity = -1;
 };
 
 /// Fields of all `slices` on `grid` with the OpenCL kernel of

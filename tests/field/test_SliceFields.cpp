@@ -70,14 +70,19 @@ void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid
 }
 
 // Every kernel variant: 8, 4 and 1 pixels per work-item (CPU and GPU
-// shapes) in double precision, and float (devices without fp64) in 8 and 1.
+// shapes) in double precision, and float (devices without fp64) in 8 and 1;
+// and both ways to the nearest segment: every tile walking the tree per
+// pixel row (lists of 0) and every tile scanning its list (lists of 4096).
 void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
     const SliceFields reference = computeSliceFieldsReference(slices, grid);
     for (const FieldKernelOptions options :
          {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
-          FieldKernelOptions{8, true}, FieldKernelOptions{1, true}}) {
+          FieldKernelOptions{8, true}, FieldKernelOptions{1, true},
+          FieldKernelOptions{8, false, 0}, FieldKernelOptions{1, true, 0},
+          FieldKernelOptions{8, false, 4096}, FieldKernelOptions{1, true, 4096}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
-                     (options.singlePrecision ? ", float" : ", double"));
+                     (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
+                     std::to_string(options.tileListCapacity));
         expectVariantAgrees(slices, grid, reference, options);
     }
 }
