@@ -5,9 +5,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
@@ -40,18 +37,18 @@ void checkLimits(const std::vector<Slice>& slices) {
 
 // Segments of a run of slices, flattened in (slice, contour, index) order:
 // endpoints relative to the grid origin and the ids the kernel reports; per
-// slice a heap of boxes over leaves of kLeaf consecutive segments (the
-// kernel's header says how it is read).
+// slice a heap of boxes and capsules over leaves of kLeaf consecutive
+// segments (the kernel's header says how it is read).
 template <class Real4>
 struct FlatSegments {
     std::vector<Real4> segments;
     std::vector<cl_uint2> ids;  // (segment id, end vertex id)
     std::vector<cl_uint> sliceFirst, sliceCount;
-    std::vector<Real4> boxes;                // (xmin, ymin, xmax, ymax) per node
-    std::vector<Real4> chords;               // per node: (ax, ay, bx, by), a segment that
-    std::vector<double> devs;                // lies within dev of all its segments
+    std::vector<Real4> boxes;   // (xmin, ymin, xmax, ymax) per node
+    std::vector<Real4> chords;  // per node: (ax, ay, bx, by), a segment that lies within
+    std::vector<double> devs;   // dev of all its segments (in the Real coordinates)
     std::vector<cl_uint> treeFirst, leafBase;  // per slice: its heap in boxes, first leaf node
-    double magnitudeMm = 0;                  // largest coordinate, for the rounding slack
+    double magnitudeMm = 0;                    // largest coordinate, for the rounding slack
 };
 
 template <class Real4>
@@ -70,12 +67,14 @@ Real4 unite(Real4 a, Real4 b) {
     return box;
 }
 
-// The box tree of segments[first, first + count): O(count).
+// The tree of segments[first, first + count): O(count). Capsules are
+// computed in double from the coordinates the kernel reads; a dev rounded
+// down to float is covered by the kernel's slack.
 template <class Real4>
 void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count) {
     std::size_t leaves = 1;
     while (leaves * kLeaf < count) leaves *= 2;
-    // 2^31 leaves would overflow the kernel's uint node index and its stack.
+    // Beyond, the kernel's uint node indices (up to 2·leaves) would overflow.
     if (leaves > (std::size_t(1) << 30))
         throw PrimitiveLimitExceeded("a slice has too many segments for the field kernel");
     flat.treeFirst.push_back(cl_uint(flat.boxes.size()));
@@ -96,7 +95,8 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         return r;
     };
     for (std::size_t leaf = 0; leaf * kLeaf < count; ++leaf) {
-        const std::size_t begin = first + leaf * kLeaf, end = std::min(begin + kLeaf, first + count);
+        const std::size_t begin = first + leaf * kLeaf,
+                          end = std::min(begin + kLeaf, first + count);
         const Point2 a = point(flat.segments[begin], 0), b = point(flat.segments[end - 1], 1);
         Real4& into = box[leaves + leaf];
         double& radius = dev[leaves + leaf];
@@ -124,8 +124,9 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         const Point2 a = point(chord[l], 0), b = point(chord[r], 1);
         chord[n] = chordOf(a, b);
         for (const std::size_t c : {l, r})
-            dev[n] = std::max(dev[n], dev[c] + std::max(distanceToSegment(point(chord[c], 0), a, b),
-                                                        distanceToSegment(point(chord[c], 1), a, b)));
+            dev[n] =
+                std::max(dev[n], dev[c] + std::max(distanceToSegment(point(chord[c], 0), a, b),
+                                                   distanceToSegment(point(chord[c], 1), a, b)));
     }
 }
 
@@ -192,9 +193,9 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
                     // Counted for i < k: the rounded side test is monotone in
                     // x, so start at the interpolated crossing and settle.
                     const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
-                    int first = int(std::clamp(
-                        std::floor((x - grid.originMm.x) / grid.pixelMm - 0.5) + 1, 0.0,
-                        double(grid.width)));
+                    int first =
+                        int(std::clamp(std::floor((x - grid.originMm.x) / grid.pixelMm - 0.5) + 1,
+                                       0.0, double(grid.width)));
                     while (first > 0 && !counted(first - 1)) --first;
                     while (first < grid.width && counted(first)) ++first;
                     if (first > 0)
@@ -224,20 +225,8 @@ template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
               SliceFields& out) {
-    using Clock = std::chrono::steady_clock;
-    const bool prof = std::getenv("PROF") != nullptr;
-    auto t0 = Clock::now();
-    auto lap = [&](const char* what) {
-        if (!prof) return;
-        runtime.queue().finish();
-        auto t1 = Clock::now();
-        std::fprintf(stderr, "%s %.3f ms\n", what, std::chrono::duration<double, std::milli>(t1 - t0).count());
-        t0 = t1;
-    };
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
-    lap("flatten");
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
-    lap("crossings");
     const std::size_t batch = end - begin;
 
     ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
@@ -246,8 +235,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         sliceCount(runtime, flat.sliceCount);
     ocl::DeviceBuffer<Real4> boxes(runtime, flat.boxes), chords(runtime, flat.chords);
     ocl::DeviceBuffer<Real> devs(runtime, std::vector<Real>(flat.devs.begin(), flat.devs.end()));
-    ocl::DeviceBuffer<cl_uint> treeFirst(runtime, flat.treeFirst),
-        leafBase(runtime, flat.leafBase);
+    ocl::DeviceBuffer<cl_uint> treeFirst(runtime, flat.treeFirst), leafBase(runtime, flat.leafBase);
     ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
     ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
     const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
@@ -256,7 +244,6 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
-    lap("buffers");
 
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
                                 " -DLANES=" + std::to_string(lanes) +
@@ -289,9 +276,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         // PoCL builds one work-group function per local size, and windows of
         // every size would each get a new one.
         runtime.queue().enqueueNDRangeKernel(
-            cull, cl::NullRange, cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
+            cull, cl::NullRange,
+            cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
             cl::NDRange(4, 4, 1));
-        lap("cull");
 
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
@@ -319,10 +306,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
                                              cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
                                              cl::NDRange(kTile / lanes, 1, 1));
-        lap("kernel");
         download(runtime, distance, out.distanceMm.data() + offset, false);
         download(runtime, nearest, out.nearestId.data() + offset, true);
-        lap("download");
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }

@@ -44,18 +44,20 @@ struct FieldKernelOptions {
     int tileListCapacity = -1;
 };
 
-/// Fields of all `slices` on `grid` with the OpenCL kernel of
-/// kernels/closest_segment_2d.cl: each pixel finds its nearest segment by
-/// branch and bound over a tree of boxes of consecutive segments, skipping
-/// only boxes provably farther than its best (so the result is the
-/// brute-force scan's, ties to the lower segment index); many slices per
-/// launch; fp64 on devices that have it. Sign from the winding number of all
-/// contours, from each row's crossings computed with windingCrossing() (so
-/// exactly windingNumber()'s, on the contour too): holes, islands and
-/// touching contours come out right. Work per slice: O(segments · rows they
-/// span) on the host, and O(log segments + segments near the pixel) per
-/// pixel for contours no denser than the pixels there. `progress`, if set,
-/// receives the fraction of slices done after each batch. Throws
+/// Fields of all `slices` on `grid` with the OpenCL kernels of
+/// kernels/closest_segment_2d.cl: a tree of boxes and capsules over runs of
+/// consecutive segments per slice; each 8×8 tile lists the segments that can
+/// be nearest to one of its pixels (when few), else its pixels walk the tree
+/// row by row from the row below's nearest. Both only skip what is provably
+/// farther than the best, so the result is the brute-force scan's (ties to
+/// the lower segment index). Many slices per launch; fp64 on devices that
+/// have it. Sign from the winding number of all contours, from each row's
+/// crossings found with windingCrossing() (so exactly windingNumber()'s, on
+/// the contour too): holes, islands and touching contours come out right.
+/// Work per slice: O(segments · rows they span) on the host; per tile
+/// O(depth + its list); per pixel its tile's list (at most
+/// tileListCapacity) or O(depth + the segments near it). `progress`, if
+/// set, receives the fraction of slices done after each batch. Throws
 /// PrimitiveLimitExceeded beyond the PrimitiveId limits, ClError on device
 /// failure.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,

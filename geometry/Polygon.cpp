@@ -20,7 +20,8 @@ double signedArea(const Polygon& polygon) {
 int windingNumber(Point2 p, const Polygon& polygon) {
     int winding = 0;
     const std::size_t n = polygon.size();
-    for (std::size_t i = 0; i < n; ++i) winding += windingCrossing(p, polygon[i], polygon[(i + 1) % n]);
+    for (std::size_t i = 0; i < n; ++i)
+        winding += windingCrossing(p, polygon[i], polygon[(i + 1) % n]);
     return winding;
 }
 

@@ -8,25 +8,35 @@
 // centre at ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the work-group
 // side in pixels), LANES and LEAF come from the host too.
 //
-// Nearest segment: branch and bound over a hierarchy of boxes per slice
-// (built on the host, field/SliceFields.cpp). Leaf k holds segments
-// [k * LEAF, (k + 1) * LEAF) of the slice in (contour, index) order, so a
-// leaf is a short run of a contour and its bounding box is small; the tree is
-// a heap (node n has children 2n and 2n + 1, leaves at leafBase + k, index 0
-// unused; missing leaves have empty boxes) whose node boxes contain their
-// children's. For a pixel p and any segment s inside box B,
-//   d(p, s) >= d(p, B)   (the box holds every point of s),
-// so a subtree whose box is farther than the best distance found so far
-// holds no segment nearer than it. Rounding is covered by `reach`: a subtree
-// is skipped only when its computed box distance exceeds the computed best
-// distance by REACH_RELATIVE and slackMm, each far above the rounding of
-// both (a few ulps of the coordinates' magnitude, which the host passes in
-// slackMm); so the segment a full scan would pick is never skipped. Ties are
-// broken by the lower segment index, whatever order leaves are visited in:
-// the result is that of a brute-force scan in segment order keeping the
-// first strict minimum. Work per pixel: O(depth + the segments in leaves
-// whose boxes come within the nearest distance): O(log segments) for
-// contours that are not denser than the pixels near the pixel.
+// Nearest segment, exactly (the brute-force scan's answer, which
+// tests/field/test_SliceFields.cpp holds it to). The host builds per slice a
+// tree over the segments (field/SliceFields.cpp): leaf k holds segments
+// [k * LEAF, (k + 1) * LEAF) of the slice in (contour, index) order, a short
+// run of a contour; the tree is a heap (node n has children 2n and 2n + 1,
+// leaves at leafBase + k, index 0 unused; missing leaves have empty boxes).
+// Every node has a box holding its segments and a capsule: a chord segment
+// and a radius dev such that every point of its segments lies within dev of
+// the chord. So for any point p and segment s of node N,
+//   d(p, s) >= d(p, box(N))   and   d(p, s) >= d(p, chord(N)) - dev(N),
+// and a node farther than a distance already reached holds no segment nearer
+// than it: branch and bound never drops the nearest segment. Two ways use
+// it, chosen per tile of TILE x TILE pixels:
+//  - tile_candidates lists the segments that can be nearest to some pixel of
+//    the tile (its header says why), when they are at most `capacity`; the
+//    tile's pixels then scan that list, like a brute-force scan of a few
+//    segments (contours sparse next to the pixels);
+//  - otherwise (dense contours) each row of LANES pixels walks the tree,
+//    starting from the nearest segments of the row below and the leaf that
+//    holds them, then the sibling subtree of each ancestor of that leaf:
+//    every leaf once, skipping the subtrees beyond reach.
+// Rounding is covered by `reach`: a node is skipped only when its computed
+// bound exceeds the computed best distance by REACH_RELATIVE and slackMm,
+// each far above the rounding of both (a few ulps of the coordinates'
+// magnitude, which the host passes in slackMm). Ties go to the lower segment
+// index, whatever order segments are met in: the result is that of a scan in
+// segment order keeping the first strict minimum. Work per row of LANES
+// pixels: the tile's list, or O(depth + the segments of leaves within the
+// lanes' nearest distance).
 #ifndef TILE
 #define TILE 8
 #endif
@@ -36,7 +46,7 @@
 // Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
 // SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
 // the tree together: a subtree is entered when any lane may find a nearer
-// segment in it.
+// (or tied) segment in it.
 #ifndef LANES
 #define LANES 1
 #endif
@@ -74,8 +84,8 @@
 #define LANE_MIN(v) fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3))
 #elif LANES == 8
 #define LANE_OFFSETS ((INTV)(0, 1, 2, 3, 4, 5, 6, 7))
-#define LANE_MIN(v)                                                 \
-    fmin(fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3)),         \
+#define LANE_MIN(v)                                        \
+    fmin(fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3)), \
          fmin(fmin((v).s4, (v).s5), fmin((v).s6, (v).s7)))
 #else
 #error "LANES must be 1, 4 or 8"
@@ -135,8 +145,8 @@ inline void updateReach(Nearest* n, REAL slackMm) {
     n->reach2 = n->reach * n->reach;
 }
 
-inline void visitLeaf(Nearest* n, __global const REAL4* segments, uint first, uint count,
-                      uint leaf, REALV px, REAL py) {
+inline void visitLeaf(Nearest* n, __global const REAL4* segments, uint first, uint count, uint leaf,
+                      REALV px, REAL py) {
     const uint begin = first + leaf * LEAF;
     for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
         consider(n, segments, seg, px, py);
@@ -189,8 +199,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
                               __global const REAL4* chords, __global const REAL* devs,
                               __global const uint* treeFirst, __global const uint* leafBase,
                               const uint width, const uint height, const REAL pixelMm,
-                              const REAL slackMm, const uint capacity,
-                              __global uint* candidates, __global uint* candidateCount) {
+                              const REAL slackMm, const uint capacity, __global uint* candidates,
+                              __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
@@ -215,10 +225,10 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
     uint node = 1;
     while (node < leaves) {
         const REAL4 l = box[2 * node], r = box[2 * node + 1];
-        const REAL dl = fmax(fmax(l.x - c.x, c.x - l.z), (REAL)0) +
-                        fmax(fmax(l.y - c.y, c.y - l.w), (REAL)0);
-        const REAL dr = fmax(fmax(r.x - c.x, c.x - r.z), (REAL)0) +
-                        fmax(fmax(r.y - c.y, c.y - r.w), (REAL)0);
+        const REAL dl =
+            fmax(fmax(l.x - c.x, c.x - l.z), (REAL)0) + fmax(fmax(l.y - c.y, c.y - l.w), (REAL)0);
+        const REAL dr =
+            fmax(fmax(r.x - c.x, c.x - r.z), (REAL)0) + fmax(fmax(r.y - c.y, c.y - r.w), (REAL)0);
         node = 2 * node + (dr < dl ? 1 : 0);
     }
     for (uint seg = first + (node - leaves) * LEAF;
@@ -265,7 +275,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
 }
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
-// rows j0 .. j0+TILE-1 of slice s of the batch, row after row: each row
+// rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
+// the tile's list when it has one, else the walk of the tree, where each row
 // starts from the nearest segments of the row below, so its bound is tight
 // from the start. ids[k] = (segment id, id of its end vertex); the start
 // vertex id is segment id | 1.
@@ -282,8 +293,8 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const REAL* devs, __global const uint* treeFirst, __global const uint* leafBase,
     __global const uint* rowFirst, __global const int2* crossings, const uint width,
     const uint height, const REAL pixelMm, const REAL slackMm, const uint capacity,
-    __global const uint* candidates, __global const uint* candidateCount,
-    __global float* distance, __global uint* nearestId) {
+    __global const uint* candidates, __global const uint* candidateCount, __global float* distance,
+    __global uint* nearestId) {
     const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
     if (i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;

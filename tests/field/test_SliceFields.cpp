@@ -58,7 +58,8 @@ void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid
                                   << dk << " vs " << dr;
                 if (kernel.nearestId[k] == reference.nearestId[k]) continue;
                 const Point2 p = grid.pixelCentre(i, j);
-                const double named = distanceToPrimitive(p, slices[s].contours, kernel.nearestId[k]);
+                const double named =
+                    distanceToPrimitive(p, slices[s].contours, kernel.nearestId[k]);
                 const double nearest =
                     distanceToPrimitive(p, slices[s].contours, reference.nearestId[k]);
                 const double tiePx = options.singlePrecision ? 1e-5 + 2 * slackPx : 1e-9;
@@ -77,9 +78,9 @@ void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
     const SliceFields reference = computeSliceFieldsReference(slices, grid);
     for (const FieldKernelOptions options :
          {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
-          FieldKernelOptions{8, true}, FieldKernelOptions{1, true},
-          FieldKernelOptions{8, false, 0}, FieldKernelOptions{1, true, 0},
-          FieldKernelOptions{8, false, 4096}, FieldKernelOptions{1, true, 4096}}) {
+          FieldKernelOptions{8, true}, FieldKernelOptions{1, true}, FieldKernelOptions{8, false, 0},
+          FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096},
+          FieldKernelOptions{1, true, 4096}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
                      (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
                      std::to_string(options.tileListCapacity));
@@ -229,9 +230,9 @@ TEST(SliceFields, PixelCentresOnEdgesAndVertices) {
 // and a contour that doubles back on itself along a line.
 TEST(SliceFields, DegenerateShortSegments) {
     Slice slice;
-    slice.contours = {{{0, 0}, {0, 0}, {3, 0}, {3, 1e-9}, {3, 2e-9}, {3, 3}, {3, 3}, {3, 3},
-                       {1e-7, 3}, {0, 3}},
-                      {{5, 0}, {8, 0}, {6, 0}, {9, 0}, {9, 2}, {5, 2}}};
+    slice.contours = {
+        {{0, 0}, {0, 0}, {3, 0}, {3, 1e-9}, {3, 2e-9}, {3, 3}, {3, 3}, {3, 3}, {1e-7, 3}, {0, 3}},
+        {{5, 0}, {8, 0}, {6, 0}, {9, 0}, {9, 2}, {5, 2}}};
     const std::vector<Slice> slices{slice};
     expectAgreement(slices, gridForSlices(slices, 0.11));
 }
