@@ -102,15 +102,16 @@ inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
     return dx * dx + dy * dy;
 }
 
-// Squared distance from the lanes' points to segment (ax, ay, bx, by).
-inline REALV chordDistance2(REAL4 c, REALV px, REAL py) {
-    const REAL abx = c.z - c.x, aby = c.w - c.y;
+// Squared distance from the lanes' points to segment (ax, ay, bx, by); *t
+// receives the parameter of the nearest point (0 = a, 1 = b).
+inline REALV segmentDistance2(REAL4 s, REALV px, REAL py, REALV* t) {
+    const REAL abx = s.z - s.x, aby = s.w - s.y;
     const REAL len2 = abx * abx + aby * aby;
     const REAL inverse = len2 > 0 ? 1 / len2 : 0;
-    const REALV apx = px - c.x;
-    const REAL apy = py - c.y;
-    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
-    const REALV qx = apx - t * abx, qy = apy - t * aby;
+    const REALV apx = px - s.x;
+    const REAL apy = py - s.y;
+    *t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    const REALV qx = apx - *t * abx, qy = apy - *t * aby;
     return qx * qx + qy * qy;
 }
 
@@ -124,15 +125,8 @@ typedef struct {
 } Nearest;
 
 inline void consider(Nearest* n, __global const REAL4* segments, uint seg, REALV px, REAL py) {
-    const REAL4 sg = segments[seg];
-    const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
-    const REAL len2 = abx * abx + aby * aby;
-    const REAL inverse = len2 > 0 ? 1 / len2 : 0;
-    const REALV apx = px - sg.x;
-    const REAL apy = py - sg.y;
-    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
-    const REALV qx = apx - t * abx, qy = apy - t * aby;
-    const REALV d2 = qx * qx + qy * qy;
+    REALV t;
+    const REALV d2 = segmentDistance2(segments[seg], px, py, &t);
     const MASKV better =
         isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
     n->best2 = PICK(n->best2, d2, better);
@@ -160,7 +154,8 @@ inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
     const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
     if (!ANY(inBox)) return false;
     const REALV capsule = n->reach + devs[node];
-    return ANY(inBox & islessequal(chordDistance2(chords[node], px, py), capsule * capsule));
+    REALV t;
+    return ANY(inBox & islessequal(segmentDistance2(chords[node], px, py, &t), capsule * capsule));
 }
 
 // Squared distance from point c to segment s = (ax, ay, bx, by).
