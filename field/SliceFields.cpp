@@ -13,17 +13,14 @@ namespace dfrecon {
 
 namespace {
 
-// Culling levels: coarse tiles scan all segments of a slice, fine tiles
-// (the kernel's TILE, one work-group each) scan their coarse tile's list.
-constexpr std::uint32_t kCoarseTile = 32;
-constexpr std::uint32_t kTile = 8;
-constexpr cl_uint kCoarseCapacity = 4096, kFineCapacity = 1024;
-constexpr std::size_t kCandidateBytes = 128u << 20;  // candidate lists per launch
-
-std::size_t tilesOf(const SliceGrid& grid, std::uint32_t tile) {
-    return ((std::size_t(grid.width) + tile - 1) / tile) *
-           ((std::size_t(grid.height) + tile - 1) / tile);
-}
+constexpr std::uint32_t kTile = 8;  // work-group side in pixels
+constexpr std::uint32_t kLeaf = 8;  // segments per leaf of the box tree
+// Candidates a tile lists at most; beyond, its pixels walk the tree (about
+// where that gets cheaper than scanning the list).
+constexpr int kListCapacity = 48;
+// Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
+// progress reports between launches.
+constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
 
 void checkLimits(const std::vector<Slice>& slices) {
     for (const Slice& slice : slices) {
@@ -39,25 +36,114 @@ void checkLimits(const std::vector<Slice>& slices) {
 }
 
 // Segments of a run of slices, flattened in (slice, contour, index) order:
-// endpoints relative to the grid origin and the ids the kernel reports.
+// endpoints relative to the grid origin and the ids the kernel reports; per
+// slice a heap of boxes and capsules over leaves of kLeaf consecutive
+// segments (the kernel's header says how it is read).
 template <class Real4>
 struct FlatSegments {
     std::vector<Real4> segments;
     std::vector<cl_uint2> ids;  // (segment id, end vertex id)
     std::vector<cl_uint> sliceFirst, sliceCount;
+    std::vector<Real4> boxes;   // (xmin, ymin, xmax, ymax) per node
+    std::vector<Real4> chords;  // per node: (ax, ay, bx, by), a segment that lies within
+    std::vector<double> devs;   // dev of all its segments (in the Real coordinates)
+    std::vector<cl_uint> treeFirst, leafBase;  // per slice: its heap in boxes, first leaf node
+    double magnitudeMm = 0;                    // largest coordinate, for the rounding slack
 };
 
 template <class Real4>
+Real4 emptyBox() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    Real4 box;
+    box.s[0] = inf, box.s[1] = inf, box.s[2] = -inf, box.s[3] = -inf;
+    return box;
+}
+
+template <class Real4>
+Real4 unite(Real4 a, Real4 b) {
+    Real4 box;
+    box.s[0] = std::min(a.s[0], b.s[0]), box.s[1] = std::min(a.s[1], b.s[1]);
+    box.s[2] = std::max(a.s[2], b.s[2]), box.s[3] = std::max(a.s[3], b.s[3]);
+    return box;
+}
+
+// The tree of segments[first, first + count): O(count). Capsules are
+// computed in double from the coordinates the kernel reads; a dev rounded
+// down to float is covered by the kernel's slack.
+template <class Real4>
+void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count) {
+    std::size_t leaves = 1;
+    while (leaves * kLeaf < count) leaves *= 2;
+    // Beyond, the kernel's uint node indices (up to 2·leaves) would overflow.
+    if (leaves > (std::size_t(1) << 30))
+        throw PrimitiveLimitExceeded("a slice has too many segments for the field kernel");
+    flat.treeFirst.push_back(cl_uint(flat.boxes.size()));
+    flat.leafBase.push_back(cl_uint(leaves));
+    const std::size_t heap = flat.boxes.size();
+    flat.boxes.resize(heap + 2 * leaves, emptyBox<Real4>());
+    flat.chords.resize(heap + 2 * leaves, Real4{});
+    flat.devs.resize(heap + 2 * leaves, 0.0);
+    Real4* box = flat.boxes.data() + heap;
+    Real4* chord = flat.chords.data() + heap;
+    double* dev = flat.devs.data() + heap;
+    const auto point = [](const Real4& r, int end) {
+        return Point2{double(r.s[2 * end]), double(r.s[2 * end + 1])};
+    };
+    const auto chordOf = [&](Point2 a, Point2 b) {
+        Real4 r;
+        r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
+        return r;
+    };
+    for (std::size_t leaf = 0; leaf * kLeaf < count; ++leaf) {
+        const std::size_t begin = first + leaf * kLeaf,
+                          end = std::min(begin + kLeaf, first + count);
+        const Point2 a = point(flat.segments[begin], 0), b = point(flat.segments[end - 1], 1);
+        Real4& into = box[leaves + leaf];
+        double& radius = dev[leaves + leaf];
+        for (std::size_t k = begin; k < end; ++k) {
+            const Real4 s = flat.segments[k];
+            Real4 segmentBox;
+            segmentBox.s[0] = std::min(s.s[0], s.s[2]), segmentBox.s[1] = std::min(s.s[1], s.s[3]);
+            segmentBox.s[2] = std::max(s.s[0], s.s[2]), segmentBox.s[3] = std::max(s.s[1], s.s[3]);
+            into = unite(into, segmentBox);
+            // Distance to a segment is convex: the ends bound the segment.
+            radius = std::max({radius, distanceToSegment(point(s, 0), a, b),
+                               distanceToSegment(point(s, 1), a, b)});
+        }
+        chord[leaves + leaf] = chordOf(a, b);
+    }
+    for (std::size_t n = leaves - 1; n >= 1; --n) {
+        const std::size_t l = 2 * n, r = l + 1;
+        box[n] = unite(box[l], box[r]);
+        if (!(box[r].s[0] <= box[r].s[2])) {  // right side empty
+            chord[n] = chord[l], dev[n] = dev[l];
+            continue;
+        }
+        // Each child's segments lie within its dev of its chord, whose
+        // points lie within the larger distance of its ends from ours.
+        const Point2 a = point(chord[l], 0), b = point(chord[r], 1);
+        chord[n] = chordOf(a, b);
+        for (const std::size_t c : {l, r})
+            dev[n] =
+                std::max(dev[n], dev[c] + std::max(distanceToSegment(point(chord[c], 0), a, b),
+                                                   distanceToSegment(point(chord[c], 1), a, b)));
+    }
+}
+
+template <class Real4>
 FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin, std::size_t end,
-                            Point2 origin) {
+                            const SliceGrid& grid) {
     FlatSegments<Real4> flat;
+    flat.magnitudeMm = double(std::max(grid.width, grid.height)) * grid.pixelMm;
     for (std::size_t s = begin; s < end; ++s) {
-        flat.sliceFirst.push_back(cl_uint(flat.segments.size()));
+        const std::size_t first = flat.segments.size();
         const auto& contours = slices[s].contours;
         for (std::uint32_t c = 0; c < contours.size(); ++c) {
             const std::uint32_t n = std::uint32_t(contours[c].size());
             for (std::uint32_t k = 0; k < n; ++k) {
-                const Point2 a = contours[c][k] - origin, b = contours[c][(k + 1) % n] - origin;
+                const Point2 a = contours[c][k] - grid.originMm,
+                             b = contours[c][(k + 1) % n] - grid.originMm;
+                flat.magnitudeMm = std::max({flat.magnitudeMm, std::abs(a.x), std::abs(a.y)});
                 Real4 r;
                 r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
                 flat.segments.push_back(r);
@@ -65,13 +151,19 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
                                      PrimitiveId{c, (k + 1) % n, true}.encode()}});
             }
         }
-        flat.sliceCount.push_back(cl_uint(flat.segments.size()) - flat.sliceFirst.back());
+        flat.sliceFirst.push_back(cl_uint(first));
+        flat.sliceCount.push_back(cl_uint(flat.segments.size() - first));
+        appendTree(flat, first, flat.segments.size() - first);
     }
     return flat;
 }
 
-// Where each contour crosses each pixel row, as (first pixel to the right,
-// direction), in double precision with the half-open rule of windingNumber().
+// Where the contours cross each pixel row, as the kernel reads them: per row
+// sorted by k, each (k, w) with windingCrossing() counting the edge for
+// pixels i < k exactly (the same double arithmetic as windingNumber() at
+// each pixel centre, so the sign is the reference's everywhere, on the
+// contour too), w the sum of the directions from this crossing to the row's
+// end. O(segments · rows they span + crossings · log).
 struct RowCrossings {
     std::vector<cl_uint> rowFirst;  // size rows + 1
     std::vector<cl_int2> crossings;
@@ -86,126 +178,139 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
                 const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
                 if (a.y == b.y) continue;
                 const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-                const int j0 =
-                    std::max(0, int(std::floor((lo - grid.originMm.y) / grid.pixelMm - 0.5)));
-                const int j1 = std::min(
-                    grid.height - 1, int(std::ceil((hi - grid.originMm.y) / grid.pixelMm - 0.5)));
+                // A row or so more on each side; the half-open test decides.
+                const int j0 = int(std::clamp(std::floor((lo - grid.originMm.y) / grid.pixelMm) - 1,
+                                              0.0, double(grid.height)));
+                const int j1 = int(std::clamp(std::ceil((hi - grid.originMm.y) / grid.pixelMm) + 1,
+                                              -1.0, double(grid.height - 1)));
                 for (int j = j0; j <= j1; ++j) {
                     const double y = grid.pixelCentre(0, j).y;
                     const bool up = a.y <= y && y < b.y, down = b.y <= y && y < a.y;
                     if (!up && !down) continue;
+                    const auto counted = [&](int i) {
+                        return windingCrossing(grid.pixelCentre(i, j), a, b) != 0;
+                    };
+                    // Counted for i < k: the rounded side test is monotone in
+                    // x, so start at the interpolated crossing and settle.
                     const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
-                    const double k0 = std::floor((x - grid.originMm.x) / grid.pixelMm - 0.5) + 1;
-                    const int first = int(std::clamp(k0, 0.0, double(grid.width)));
-                    perRow[(s - begin) * std::size_t(grid.height) + std::size_t(j)].push_back(
-                        {{first, up ? 1 : -1}});
+                    int first =
+                        int(std::clamp(std::floor((x - grid.originMm.x) / grid.pixelMm - 0.5) + 1,
+                                       0.0, double(grid.width)));
+                    while (first > 0 && !counted(first - 1)) --first;
+                    while (first < grid.width && counted(first)) ++first;
+                    if (first > 0)
+                        perRow[(s - begin) * std::size_t(grid.height) + std::size_t(j)].push_back(
+                            {{first, up ? 1 : -1}});
                 }
             }
     RowCrossings rows;
     rows.rowFirst.push_back(0);
-    for (const auto& row : perRow) {
+    for (auto& row : perRow) {
+        std::sort(row.begin(), row.end(),
+                  [](const cl_int2& a, const cl_int2& b) { return a.s[0] < b.s[0]; });
+        for (std::size_t c = row.size(); c-- > 1;) row[c - 1].s[1] += row[c].s[1];
         rows.crossings.insert(rows.crossings.end(), row.begin(), row.end());
         rows.rowFirst.push_back(cl_uint(rows.crossings.size()));
     }
     return rows;
 }
 
+template <class T>
+void download(ocl::Runtime& runtime, const ocl::DeviceBuffer<T>& buffer, T* to, bool blocking) {
+    runtime.queue().enqueueReadBuffer(buffer.get(), blocking ? CL_TRUE : CL_FALSE, 0,
+                                      sizeof(T) * buffer.size(), to);
+}
+
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
-              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, SliceFields& out) {
-    const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid.originMm);
+              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
+              SliceFields& out) {
+    const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
-    const cl_uint maxCount = *std::max_element(flat.sliceCount.begin(), flat.sliceCount.end());
-    const cl_uint coarseCapacity = std::max<cl_uint>(1, std::min(maxCount, kCoarseCapacity));
-    const cl_uint fineCapacity = std::max<cl_uint>(1, std::min(maxCount, kFineCapacity));
 
     ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
     ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
     ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst),
         sliceCount(runtime, flat.sliceCount);
+    ocl::DeviceBuffer<Real4> boxes(runtime, flat.boxes), chords(runtime, flat.chords);
+    ocl::DeviceBuffer<Real> devs(runtime, std::vector<Real>(flat.devs.begin(), flat.devs.end()));
+    ocl::DeviceBuffer<cl_uint> treeFirst(runtime, flat.treeFirst), leafBase(runtime, flat.leafBase);
     ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
     ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
-    const std::size_t coarseTiles = tilesOf(grid, kCoarseTile) * batch;
-    const std::size_t fineTiles = tilesOf(grid, kTile) * batch;
-    ocl::DeviceBuffer<cl_uint> coarse(runtime, coarseTiles * coarseCapacity);
-    ocl::DeviceBuffer<cl_uint> coarseCount(runtime, coarseTiles);
-    ocl::DeviceBuffer<cl_uint> fine(runtime, fineTiles * fineCapacity);
-    ocl::DeviceBuffer<cl_uint> fineCount(runtime, fineTiles);
+    const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
+    const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+    ocl::DeviceBuffer<cl_uint> candidates(runtime, tilesX * tilesY * batch * capacity);
+    ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     ocl::DeviceBuffer<cl_float> distance(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
     ocl::DeviceBuffer<cl_uint> nearest(runtime, batch * grid.pixelCount(), CL_MEM_WRITE_ONLY);
 
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
-                                " -DLANES=" + std::to_string(lanes);
+                                " -DLANES=" + std::to_string(lanes) +
+                                " -DLEAF=" + std::to_string(kLeaf);
     const cl::Program& program =
         runtime.program({"real.cl", "closest_point.cl", "closest_segment_2d.cl"}, options);
+    // Far above the rounding of coordinates of this size (kernel header).
+    const Real slackMm =
+        Real(64 * double(std::numeric_limits<Real>::epsilon()) * (flat.magnitudeMm + grid.pixelMm));
+    const std::size_t offset = begin * grid.pixelCount();
     try {
-        auto cull = [&](std::uint32_t tile, std::uint32_t parentTile,
-                        const ocl::DeviceBuffer<cl_uint>& parent,
-                        const ocl::DeviceBuffer<cl_uint>& parentCount, cl_uint parentCapacity,
-                        cl_uint capacity, const ocl::DeviceBuffer<cl_uint>& list,
-                        const ocl::DeviceBuffer<cl_uint>& listCount) {
-            cl::Kernel kernel(program, "tile_candidates");
-            int a = 0;
-            kernel.setArg(a++, segments.get());
-            kernel.setArg(a++, sliceFirst.get());
-            kernel.setArg(a++, sliceCount.get());
-            kernel.setArg(a++, cl_uint(grid.width));
-            kernel.setArg(a++, cl_uint(grid.height));
-            kernel.setArg(a++, Real(grid.pixelMm));
-            kernel.setArg(a++, cl_uint(tile));
-            kernel.setArg(a++, cl_uint(parentTile));
-            kernel.setArg(a++, parent.get());
-            kernel.setArg(a++, parentCount.get());
-            kernel.setArg(a++, parentCapacity);
-            kernel.setArg(a++, capacity);
-            kernel.setArg(a++, list.get());
-            kernel.setArg(a++, listCount.get());
-            // Work-groups of a fixed 4 × 4 tiles (padding tiles return at
-            // once): PoCL builds one work-group function per local size, and
-            // windows of every size would each get a new one.
-            runtime.queue().enqueueNDRangeKernel(
-                kernel, cl::NullRange,
-                cl::NDRange(ocl::roundUp((std::size_t(grid.width) + tile - 1) / tile, 4),
-                            ocl::roundUp((std::size_t(grid.height) + tile - 1) / tile, 4), batch),
-                cl::NDRange(4, 4, 1));
-        };
-        // The coarse level has no parent; it gets its own buffers as dummies.
-        cull(kCoarseTile, 0, coarse, coarseCount, 0, coarseCapacity, coarse, coarseCount);
-        cull(kTile, kCoarseTile, coarse, coarseCount, coarseCapacity, fineCapacity, fine,
-             fineCount);
+        cl::Kernel cull(program, "tile_candidates");
+        int a = 0;
+        cull.setArg(a++, segments.get());
+        cull.setArg(a++, sliceFirst.get());
+        cull.setArg(a++, sliceCount.get());
+        cull.setArg(a++, boxes.get());
+        cull.setArg(a++, chords.get());
+        cull.setArg(a++, devs.get());
+        cull.setArg(a++, treeFirst.get());
+        cull.setArg(a++, leafBase.get());
+        cull.setArg(a++, cl_uint(grid.width));
+        cull.setArg(a++, cl_uint(grid.height));
+        cull.setArg(a++, Real(grid.pixelMm));
+        cull.setArg(a++, slackMm);
+        cull.setArg(a++, capacity);
+        cull.setArg(a++, candidates.get());
+        cull.setArg(a++, candidateCount.get());
+        // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
+        // PoCL builds one work-group function per local size, and windows of
+        // every size would each get a new one.
+        runtime.queue().enqueueNDRangeKernel(
+            cull, cl::NullRange,
+            cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
+            cl::NDRange(4, 4, 1));
 
         cl::Kernel field(program, "signed_distance_2d");
-        int a = 0;
+        a = 0;
         field.setArg(a++, segments.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
+        field.setArg(a++, boxes.get());
+        field.setArg(a++, chords.get());
+        field.setArg(a++, devs.get());
+        field.setArg(a++, treeFirst.get());
+        field.setArg(a++, leafBase.get());
         field.setArg(a++, rowFirst.get());
         field.setArg(a++, crossings.get());
         field.setArg(a++, cl_uint(grid.width));
         field.setArg(a++, cl_uint(grid.height));
         field.setArg(a++, Real(grid.pixelMm));
-        field.setArg(a++, fineCapacity);
-        field.setArg(a++, fine.get());
-        field.setArg(a++, fineCount.get());
+        field.setArg(a++, slackMm);
+        field.setArg(a++, capacity);
+        field.setArg(a++, candidates.get());
+        field.setArg(a++, candidateCount.get());
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
-        // Work-groups of one fine tile, so a group walks one candidate list;
-        // each work-item computes `lanes` pixels of a row.
-        const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
-        const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-        runtime.queue().enqueueNDRangeKernel(
-            field, cl::NullRange, cl::NDRange(tilesX * kTile / lanes, tilesY * kTile, batch),
-            cl::NDRange(kTile / lanes, kTile, 1));
+        // A work-item computes `lanes` pixels of a tile's rows, row after row.
+        runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
+                                             cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
+                                             cl::NDRange(kTile / lanes, 1, 1));
+        download(runtime, distance, out.distanceMm.data() + offset, false);
+        download(runtime, nearest, out.nearestId.data() + offset, true);
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
-    const std::vector<cl_float> d = distance.download(runtime);
-    const std::vector<cl_uint> id = nearest.download(runtime);
-    const std::size_t offset = begin * grid.pixelCount();
-    std::copy(d.begin(), d.end(), out.distanceMm.begin() + std::ptrdiff_t(offset));
-    std::copy(id.begin(), id.end(), out.nearestId.begin() + std::ptrdiff_t(offset));
 }
 
 SliceFields emptyFields(const std::vector<Slice>& slices, const SliceGrid& grid) {
@@ -228,11 +333,11 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
     if (lanes == 0) lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
     if (lanes != 1 && lanes != 4 && lanes != 8)
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
+    const cl_uint capacity = cl_uint(
+        options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
     SliceFields fields = emptyFields(slices, grid);
-    const std::size_t listBytesPerSlice =
-        (tilesOf(grid, kTile) * kFineCapacity + tilesOf(grid, kCoarseTile) * kCoarseCapacity) *
-        sizeof(cl_uint);
-    const std::size_t perBatch = std::max<std::size_t>(1, kCandidateBytes / listBytesPerSlice);
+    const std::size_t perBatch =
+        std::max<std::size_t>(1, kPixelsPerBatch / std::max<std::size_t>(1, grid.pixelCount()));
     const bool fp64 = runtime.device().doublePrecision && !options.singlePrecision;
     for (std::size_t begin = 0; begin < slices.size();) {
         // Slices without contours keep +inf / kNoPrimitive; batches skip them.
@@ -245,7 +350,7 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
             runBatch<decltype(real), decltype(real4)>(runtime, slices, begin, end, grid, lanes,
-                                                      fields);
+                                                      capacity, fields);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));

@@ -38,16 +38,28 @@ struct FieldKernelOptions {
     /// Float arithmetic, what devices without fp64 get (about 1e-6 relative
     /// error instead of 1e-12).
     bool singlePrecision = false;
+    /// Candidates a tile of 8×8 pixels lists at most before its pixels walk
+    /// the segment tree instead: -1 = the default. Results are the same
+    /// (0: always walk; tests run both ways).
+    int tileListCapacity = -1;
 };
 
 /// Fields of all `slices` on `grid` with the OpenCL kernels of
-/// kernels/closest_segment_2d.cl (two-level tile culling, 32×32 then 8×8;
-/// batches of slices per launch; fp64 on devices that have it). Sign from
-/// the winding number of all contours, so holes, islands and touching
-/// contours come out right. Work: O(tiles·segments + pixels·candidates) per
-/// slice. `progress`, if set, receives the fraction of slices done after
-/// each batch. Throws std::invalid_argument beyond the PrimitiveId limits,
-/// ClError on device failure.
+/// kernels/closest_segment_2d.cl: a tree of boxes and capsules over runs of
+/// consecutive segments per slice; each 8×8 tile lists the segments that can
+/// be nearest to one of its pixels (when few), else its pixels walk the tree
+/// row by row from the row below's nearest. Both only skip what is provably
+/// farther than the best, so the result is the brute-force scan's (ties to
+/// the lower segment index). Many slices per launch; fp64 on devices that
+/// have it. Sign from the winding number of all contours, from each row's
+/// crossings found with windingCrossing() (so exactly windingNumber()'s, on
+/// the contour too): holes, islands and touching contours come out right.
+/// Work per slice: O(segments · rows they span) on the host; per tile
+/// O(depth + its list); per pixel its tile's list (at most
+/// tileListCapacity) or O(depth + the segments near it). `progress`, if
+/// set, receives the fraction of slices done after each batch. Throws
+/// PrimitiveLimitExceeded beyond the PrimitiveId limits, ClError on device
+/// failure.
 SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& slices,
                                const SliceGrid& grid,
                                const std::function<void(double)>& progress = {},

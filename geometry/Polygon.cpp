@@ -18,19 +18,10 @@ double signedArea(const Polygon& polygon) {
 }
 
 int windingNumber(Point2 p, const Polygon& polygon) {
-    // Sunday's crossing rule: count upward crossings left of p minus
-    // downward crossings right of p; no trigonometry, no division.
     int winding = 0;
     const std::size_t n = polygon.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        const Point2 a = polygon[i], b = polygon[(i + 1) % n];
-        const double side = cross(b - a, p - a);
-        if (a.y <= p.y) {
-            if (b.y > p.y && side > 0) ++winding;
-        } else if (b.y <= p.y && side < 0) {
-            --winding;
-        }
-    }
+    for (std::size_t i = 0; i < n; ++i)
+        winding += windingCrossing(p, polygon[i], polygon[(i + 1) % n]);
     return winding;
 }
 

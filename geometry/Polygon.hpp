@@ -45,8 +45,21 @@ using Polygon = std::vector<Point2>;
 bool allCollinear(const Polygon& polygon);
 double signedArea(const Polygon& polygon);
 
-/// Winding number of `polygon` around `p` (non-zero inside, 0 outside);
-/// undefined for p exactly on the boundary. O(n).
+/// What edge a→b adds to the winding number of `p`, by Sunday's crossing
+/// rule: +1 if it goes up across the horizontal line through p (half-open:
+/// a.y <= p.y < b.y) with p on its left, -1 if it goes down (b.y <= p.y <
+/// a.y) with p on its right, else 0. So it counts crossings strictly right
+/// of p, and for fixed a, b and p.y the rounded side test is monotone in p.x:
+/// along a row it changes once. No trigonometry, no division. O(1).
+inline int windingCrossing(Point2 p, Point2 a, Point2 b) {
+    const double side = cross(b - a, p - a);
+    if (a.y <= p.y) return b.y > p.y && side > 0 ? 1 : 0;
+    return b.y <= p.y && side < 0 ? -1 : 0;
+}
+
+/// Winding number of `polygon` around `p` (non-zero inside, 0 outside): the
+/// sum of windingCrossing over its edges; undefined for p exactly on the
+/// boundary. O(n).
 int windingNumber(Point2 p, const Polygon& polygon);
 
 /// Parameter t in [0, 1] of the point a + t·(b − a) of segment ab nearest

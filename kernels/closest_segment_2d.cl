@@ -4,40 +4,74 @@
 // (the third global dimension).
 //
 // Needs real.cl and closest_point.cl first. Coordinates are millimetres
-// relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its centre at
-// ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the fine tile and
-// work-group side) and LANES come from the host too.
+// relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its
+// centre at ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the work-group
+// side in pixels), LANES and LEAF come from the host too.
 //
-// Culling (tile_candidates, run coarse then fine): pixels are grouped in
-// square tiles. For a tile with centre c and half-diagonal h (over its pixel
-// centres), every pixel p in it has |p - c| <= h, so
-//   d(p, s) >= d(c, s) - h   and   min_s d(p, s) <= min_s d(c, s) + h.
-// Only segments with d(c, s) <= min_s d(c, s) + 2h can be nearest to any
-// pixel of the tile. The candidate list keeps segment order, so ties resolve
-// as in a brute-force scan.
+// Nearest segment, exactly (the brute-force scan's answer, which
+// tests/field/test_SliceFields.cpp holds it to). The host builds per slice a
+// tree over the segments (field/SliceFields.cpp): leaf k holds segments
+// [k * LEAF, (k + 1) * LEAF) of the slice in (contour, index) order, a short
+// run of a contour; the tree is a heap (node n has children 2n and 2n + 1,
+// leaves at leafBase + k, index 0 unused; missing leaves have empty boxes).
+// Every node has a box holding its segments and a capsule: a chord segment
+// and a radius dev such that every point of its segments lies within dev of
+// the chord. So for any point p and segment s of node N,
+//   d(p, s) >= d(p, box(N))   and   d(p, s) >= d(p, chord(N)) - dev(N),
+// and a node farther than a distance already reached holds no segment nearer
+// than it: branch and bound never drops the nearest segment. Two ways use
+// it, chosen per tile of TILE x TILE pixels:
+//  - tile_candidates lists the segments that can be nearest to some pixel of
+//    the tile (its header says why), when they are at most `capacity`; the
+//    tile's pixels then scan that list, like a brute-force scan of a few
+//    segments (contours sparse next to the pixels);
+//  - otherwise (dense contours) each row of LANES pixels walks the tree,
+//    starting from the nearest segments of the row below and the leaf that
+//    holds them, then the sibling subtree of each ancestor of that leaf:
+//    every leaf once, skipping the subtrees beyond reach.
+// Rounding is covered by `reach`: a node is skipped only when its computed
+// bound exceeds the computed best distance by REACH_RELATIVE and slackMm,
+// each far above the rounding of both (a few ulps of the coordinates'
+// magnitude, which the host passes in slackMm). Ties go to the lower segment
+// index, whatever order segments are met in: the result is that of a scan in
+// segment order keeping the first strict minimum. Work per row of LANES
+// pixels: the tile's list, or O(depth + the segments of leaves within the
+// lanes' nearest distance).
 #ifndef TILE
 #define TILE 8
 #endif
-// Pixels per work-item in the field kernel, as vector lanes: 8 suits CPU
-// devices (explicit SIMD), 1 suits GPUs (many small work-items).
+#ifndef LEAF
+#define LEAF 8
+#endif
+// Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
+// SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
+// the tree together: a subtree is entered when any lane may find a nearer
+// (or tied) segment in it.
 #ifndef LANES
 #define LANES 1
+#endif
+#if defined(REAL_IS_DOUBLE)
+#define REACH_RELATIVE (1 + 64 * DBL_EPSILON)
+#else
+#define REACH_RELATIVE (1 + 64 * FLT_EPSILON)
 #endif
 #if LANES == 1
 #define REALV REAL
 #define INTV int
 #define CONVERT_REALV(x) ((REAL)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
-#define MASKV int  // scalar isless() gives int whatever the operand type
+#define MASKV int  // scalar comparisons give int whatever the operand type
 #define MASK_SCALAR int
 #define LANE_OFFSETS 0
 #define PICK(a, b, mask) ((mask) ? (b) : (a))
+#define ANY(mask) (mask)
+#define LANE_MIN(v) (v)
 #else
 #define REALV CONCAT(REAL, LANES)
 #define INTV CONCAT(int, LANES)
 #define CONVERT_REALV CONCAT(convert_, REALV)
 #define VSTORE CONCAT(vstore, LANES)
-// Vector isless()/select() masks have the lane type's width.
+// Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
 #define MASKV CONCAT(long, LANES)
 #define MASK_SCALAR long
@@ -47,156 +81,316 @@
 #endif
 #if LANES == 4
 #define LANE_OFFSETS ((INTV)(0, 1, 2, 3))
+#define LANE_MIN(v) fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3))
 #elif LANES == 8
 #define LANE_OFFSETS ((INTV)(0, 1, 2, 3, 4, 5, 6, 7))
+#define LANE_MIN(v)                                        \
+    fmin(fmin(fmin((v).s0, (v).s1), fmin((v).s2, (v).s3)), \
+         fmin(fmin((v).s4, (v).s5), fmin((v).s6, (v).s7)))
 #else
 #error "LANES must be 1, 4 or 8"
 #endif
 #define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
+#define ANY(mask) any(mask)
 #endif
 
-// Squared distance from p to segment s = (ax, ay, bx, by); t receives the
-// clamped parameter of the nearest point (0 = start vertex, 1 = end vertex).
-inline REAL segmentDistance2(REAL2 p, REAL4 s, REAL* t) {
-    const REAL2 a = s.xy, ab = s.zw - s.xy, ap = p - a;
-    const REAL u = segment_parameter(ap.x, ap.y, ab.x, ab.y);
-    *t = u;
-    const REAL2 q = ap - u * ab;
+// Squared distance from the lanes' points (px, py) to box (xmin, ymin, xmax,
+// ymax); +inf for an empty box (xmin = +inf, xmax = -inf).
+inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
+    const REALV dx = fmax(fmax(box.x - px, px - box.z), (REALV)(0));
+    const REAL dy = fmax(fmax(box.y - py, py - box.w), (REAL)0);
+    return dx * dx + dy * dy;
+}
+
+// Squared distance from the lanes' points to segment (ax, ay, bx, by); *t
+// receives the parameter of the nearest point (0 = a, 1 = b).
+inline REALV segmentDistance2(REAL4 s, REALV px, REAL py, REALV* t) {
+    const REAL abx = s.z - s.x, aby = s.w - s.y;
+    const REAL len2 = abx * abx + aby * aby;
+    const REAL inverse = len2 > 0 ? 1 / len2 : 0;
+    const REALV apx = px - s.x;
+    const REAL apy = py - s.y;
+    *t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    const REALV qx = apx - *t * abx, qy = apy - *t * aby;
+    return qx * qx + qy * qy;
+}
+
+// The lanes' nearest segment so far: (squared distance, segment index)
+// compared lexicographically, so the lower index wins ties in any order of
+// visits; bestT is its parameter; reach and reach2 say how far a box may be
+// and still hold a segment that beats or ties it.
+typedef struct {
+    REALV best2, bestT, reach, reach2;
+    MASKV bestSeg;
+} Nearest;
+
+inline void consider(Nearest* n, __global const REAL4* segments, uint seg, REALV px, REAL py) {
+    REALV t;
+    const REALV d2 = segmentDistance2(segments[seg], px, py, &t);
+    const MASKV better =
+        isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
+    n->best2 = PICK(n->best2, d2, better);
+    n->bestT = PICK(n->bestT, t, better);
+    n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
+}
+
+inline void updateReach(Nearest* n, REAL slackMm) {
+    n->reach = sqrt(n->best2) * REACH_RELATIVE + slackMm;
+    n->reach2 = n->reach * n->reach;
+}
+
+inline void visitLeaf(Nearest* n, __global const REAL4* segments, uint first, uint count, uint leaf,
+                      REALV px, REAL py) {
+    const uint begin = first + leaf * LEAF;
+    for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
+        consider(n, segments, seg, px, py);
+}
+
+// Whether any lane may find a segment of node `node` that beats or ties its
+// best: the node's box and capsule (chord widened by dev) both within reach.
+inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
+                          __global const REAL4* chords, __global const REAL* devs, uint node,
+                          REALV px, REAL py) {
+    const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
+    if (!ANY(inBox)) return false;
+    const REALV capsule = n->reach + devs[node];
+    REALV t;
+    return ANY(inBox & islessequal(segmentDistance2(chords[node], px, py, &t), capsule * capsule));
+}
+
+// Squared distance from point c to segment s = (ax, ay, bx, by).
+inline REAL pointSegmentDistance2(REAL2 c, REAL4 s) {
+    const REAL2 a = s.xy, ab = s.zw - s.xy, ap = c - a;
+    const REAL2 q = ap - segment_parameter(ap.x, ap.y, ab.x, ab.y) * ab;
     return dot(q, q);
 }
 
-// One work-item per (tile x, tile y, slice of the batch) for tiles of
-// `tile` pixels. Scans the candidates of the enclosing parent tile (a
-// coarser level of the same kind; parentTile = 0 for none, or when that list
-// overflowed: the whole slice). Writes up to `capacity` candidate segment
-// indices (global, in segment order) and the full count, which may exceed
-// capacity: users then scan the whole slice.
+// The same tests for one point c (scalar): whether node `node` may hold a
+// segment within `reach` of c.
+inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
+                       __global const REAL4* chords, __global const REAL* devs, uint node) {
+    const REAL4 b = boxes[node];
+    const REAL dx = fmax(fmax(b.x - c.x, c.x - b.z), (REAL)0);
+    const REAL dy = fmax(fmax(b.y - c.y, c.y - b.w), (REAL)0);
+    if (dx * dx + dy * dy > reach * reach) return false;
+    const REAL4 k = chords[node];
+    const REAL capsule = reach + devs[node];
+    return pointSegmentDistance2(c, k) <= capsule * capsule;
+}
+
+// One work-item per (tile x, tile y, slice of the batch): the segments that
+// can be nearest to a pixel of the TILE x TILE tile, when there are at most
+// `capacity`. For the tile's centre c and half-diagonal h (over its pixel
+// centres) every pixel p has |p - c| <= h, so d(p, s) >= d(c, s) - h and
+// min_s d(p, s) <= min_s d(c, s) + h: only segments with
+// d(c, s) <= min_s d(c, s) + 2h can be nearest to one of its pixels. Both the
+// minimum and the list come from branch and bound over the tree (nodes whose
+// box or capsule is beyond the limit hold none), with the rounding slack of
+// the field kernel. Writes the count, or capacity + 1 when there are more:
+// the field kernel then walks the tree for each pixel instead. O(depth +
+// capacity) nodes per tile for contours no denser than its pixels.
 __kernel void tile_candidates(__global const REAL4* segments, __global const uint* sliceFirst,
-                              __global const uint* sliceCount, const uint width, const uint height,
-                              const REAL pixelMm, const uint tile, const uint parentTile,
-                              __global const uint* parentCandidates,
-                              __global const uint* parentCount, const uint parentCapacity,
-                              const uint capacity, __global uint* candidates,
+                              __global const uint* sliceCount, __global const REAL4* boxes,
+                              __global const REAL4* chords, __global const REAL* devs,
+                              __global const uint* treeFirst, __global const uint* leafBase,
+                              const uint width, const uint height, const REAL pixelMm,
+                              const REAL slackMm, const uint capacity, __global uint* candidates,
                               __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
-    const uint tilesX = (width + tile - 1) / tile, tilesY = (height + tile - 1) / tile;
+    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
-    const uint i0 = tx * tile, j0 = ty * tile;
-    const uint i1 = min(i0 + tile, width) - 1, j1 = min(j0 + tile, height) - 1;
-    // The box of the tile's pixel centres: fields are only sampled there.
+    const uint i0 = tx * TILE, j0 = ty * TILE;
+    const uint i1 = min(i0 + TILE, width) - 1, j1 = min(j0 + TILE, height) - 1;
     const REAL2 lo = (REAL2)((i0 + (REAL)0.5) * pixelMm, (j0 + (REAL)0.5) * pixelMm);
     const REAL2 hi = (REAL2)((i1 + (REAL)0.5) * pixelMm, (j1 + (REAL)0.5) * pixelMm);
-    const REAL2 centre = (lo + hi) / 2;
+    const REAL2 c = (lo + hi) / 2;
     const REAL halfDiagonal = length(hi - lo) / 2;
-
-    // Where to look: the parent's list, or every segment of the slice.
-    const uint first = sliceFirst[s];
-    uint count = sliceCount[s];
-    __global const uint* from = 0;
-    if (parentTile > 0) {
-        const uint parentsX = (width + parentTile - 1) / parentTile;
-        const uint parentsY = (height + parentTile - 1) / parentTile;
-        const size_t parent = ((size_t)s * parentsY + j0 / parentTile) * parentsX + i0 / parentTile;
-        if (parentCount[parent] <= parentCapacity) {
-            count = parentCount[parent];
-            from = parentCandidates + parent * parentCapacity;
-        }
-    }
-
-    REAL best2 = INFINITY, t;
-    for (uint k = 0; k < count; ++k) {
-        const uint seg = from ? from[k] : first + k;
-        best2 = fmin(best2, segmentDistance2(centre, segments[seg], &t));
-    }
-    // Compared squared; relative slack so rounding never drops the nearest.
-    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * (REAL)(1 + 1e-5) + (REAL)1e-6 * pixelMm;
-    const REAL reach2 = reach * reach;
-
+    const uint first = sliceFirst[s], count = sliceCount[s];
+    const uint tree = treeFirst[s];
+    __global const REAL4* box = boxes + tree;
+    __global const REAL4* chord = chords + tree;
+    __global const REAL* dev = devs + tree;
+    const uint leaves = leafBase[s];
     const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
     __global uint* list = candidates + at * capacity;
-    uint n = 0;
-    for (uint k = 0; k < count; ++k) {
-        const uint seg = from ? from[k] : first + k;
-        if (segmentDistance2(centre, segments[seg], &t) <= reach2) {
-            if (n < capacity) list[n] = seg;
-            ++n;
+
+    // min_s d(c, s): the leaf down the nearer side, then depth first (left
+    // before right, without a stack) through what may still be nearer.
+    REAL best2 = INFINITY;
+    uint node = 1;
+    while (node < leaves) {
+        const REAL4 l = box[2 * node], r = box[2 * node + 1];
+        const REAL dl =
+            fmax(fmax(l.x - c.x, c.x - l.z), (REAL)0) + fmax(fmax(l.y - c.y, c.y - l.w), (REAL)0);
+        const REAL dr =
+            fmax(fmax(r.x - c.x, c.x - r.z), (REAL)0) + fmax(fmax(r.y - c.y, c.y - r.w), (REAL)0);
+        node = 2 * node + (dr < dl ? 1 : 0);
+    }
+    for (uint seg = first + (node - leaves) * LEAF;
+         seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
+        best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
+    node = count > 0 ? 1 : 0;
+    while (node != 0) {
+        if (nodeWithin(c, sqrt(best2) * REACH_RELATIVE + slackMm, box, chord, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            for (uint seg = first + (node - leaves) * LEAF;
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
+                best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
         }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
+    }
+
+    // The candidates, in segment order (a left-first walk visits leaves in
+    // order).
+    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * REACH_RELATIVE + slackMm;
+    uint n = 0;
+    node = count > 0 ? 1 : 0;
+    while (node != 0 && n <= capacity) {
+        if (nodeWithin(c, reach, box, chord, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            for (uint seg = first + (node - leaves) * LEAF;
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
+                 ++seg)
+                if (pointSegmentDistance2(c, segments[seg]) <= reach * reach) {
+                    if (n < capacity) list[n] = seg;
+                    ++n;
+                }
+        }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
     }
     candidateCount[at] = n;
 }
 
-// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1, j) of slice
-// s of the batch, computed in vector lanes (explicit SIMD for CPU devices;
-// GPUs scalarise it); a work-group is one TILE x TILE tile, so every loop
-// bound is the same for all its work-items. ids[k] = (segment id, id of its
-// end vertex); the start vertex id is segment id | 1.
-// Crossings of row j: crossings[rowFirst[r] .. rowFirst[r + 1]) with
-// r = s * height + j, each (k, dir): the contour crosses the row between
-// pixel k - 1 and k going up (dir = +1) or down (-1). The winding number at
-// pixel i is the sum of dir over crossings with k > i (Sunday's rule with
-// the ray to +x), non-zero meaning inside.
-__kernel __attribute__((reqd_work_group_size(TILE / LANES, TILE, 1))) void signed_distance_2d(
+// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
+// rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
+// the tile's list when it has one, else the walk of the tree, where each row
+// starts from the nearest segments of the row below, so its bound is tight
+// from the start. ids[k] = (segment id, id of its end vertex); the start
+// vertex id is segment id | 1.
+// Sign: the crossings of row j are crossings[rowFirst[r] .. rowFirst[r + 1])
+// with r = s * height + j, sorted by k, each (k, w): the contour crosses the
+// row between pixel k - 1 and k (windingCrossing() counts it for pixels
+// i < k), and w is the winding those crossings from this one to the row's
+// end add. So the winding number at pixel i is the w of the first crossing
+// with k > i (0 if none), found by binary search: O(log crossings) per
+// work-item and row plus the crossings among its own pixels.
+__kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
     __global const REAL4* segments, __global const uint2* ids, __global const uint* sliceFirst,
-    __global const uint* sliceCount, __global const uint* rowFirst, __global const int2* crossings,
-    const uint width, const uint height, const REAL pixelMm, const uint capacity,
+    __global const uint* sliceCount, __global const REAL4* boxes, __global const REAL4* chords,
+    __global const REAL* devs, __global const uint* treeFirst, __global const uint* leafBase,
+    __global const uint* rowFirst, __global const int2* crossings, const uint width,
+    const uint height, const REAL pixelMm, const REAL slackMm, const uint capacity,
     __global const uint* candidates, __global const uint* candidateCount, __global float* distance,
     __global uint* nearestId) {
-    const uint i0 = get_global_id(0) * LANES, j = get_global_id(1), s = get_global_id(2);
-    if (j >= height) return;  // padding rows of the last tile row (no barriers below)
-    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
-    const size_t tile = ((size_t)s * tilesY + j / TILE) * tilesX + i0 / TILE;
+    const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
+    if (i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;
     const REALV px = (CONVERT_REALV(lane) + (REAL)0.5) * pixelMm;
-    const REAL py = (j + (REAL)0.5) * pixelMm;
-
+    const uint first = sliceFirst[s], count = sliceCount[s];
+    const uint tree = treeFirst[s];
+    __global const REAL4* box = boxes + tree;
+    __global const REAL4* chord = chords + tree;
+    __global const REAL* dev = devs + tree;
+    const uint leaves = leafBase[s];
+    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
+    const size_t tile = ((size_t)s * tilesY + j0 / TILE) * tilesX + i0 / TILE;
     const uint listed = candidateCount[tile];
-    const bool useList = listed <= capacity;
-    const uint n = useList ? listed : sliceCount[s];
     __global const uint* list = candidates + tile * capacity;
-    // Per lane: the nearest segment so far and its parameter; ids are looked
-    // up once at the end.
-    REALV best2 = (REALV)(INFINITY), bestT = (REALV)(0);
-    MASKV bestSeg = (MASKV)(0);
-    for (uint k = 0; k < n; ++k) {
-        const uint seg = useList ? list[k] : sliceFirst[s] + k;
-        const REAL4 sg = segments[seg];
-        const REAL abx = sg.z - sg.x, aby = sg.w - sg.y;
-        const REAL len2 = abx * abx + aby * aby;
-        const REAL inverse = len2 > 0 ? 1 / len2 : 0;
-        const REALV apx = px - sg.x;
-        const REAL apy = py - sg.y;
-        const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
-        const REALV qx = apx - t * abx, qy = apy - t * aby;
-        const REALV d2 = qx * qx + qy * qy;
-        const MASKV better = isless(d2, best2);
-        best2 = PICK(best2, d2, better);
-        bestT = PICK(bestT, t, better);
-        bestSeg = PICK(bestSeg, (MASKV)(seg), better);
-    }
 
-    const size_t row = (size_t)s * height + j;
-    INTV winding = (INTV)(0);
-    for (uint c = rowFirst[row]; c < rowFirst[row + 1]; ++c) {
-        const int2 crossing = crossings[c];
-        winding += PICK((INTV)(0), (INTV)(crossing.y), (INTV)(crossing.x) > lane);
-    }
-
-    REAL d[LANES], tl[LANES];
-    int w[LANES];
     MASK_SCALAR segs[LANES];
-    VSTORE(sqrt(best2), 0, d);
-    VSTORE(bestT, 0, tl);
-    VSTORE(winding, 0, w);
-    VSTORE(bestSeg, 0, segs);
-    for (int l = 0; l < LANES; ++l) {
-        if (i0 + l >= width) break;
-        uint id = 0xffffffffu;
-        if (n > 0) {
-            const uint2 e = ids[(uint)segs[l]];
-            id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
+    for (uint j = j0; j < min(j0 + TILE, height); ++j) {
+        const REAL py = (j + (REAL)0.5) * pixelMm;
+        Nearest n;
+        n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
+        n.bestSeg = (MASKV)(0);
+        if (listed <= capacity) {
+            for (uint k = 0; k < listed; ++k) consider(&n, segments, list[k], px, py);
+        } else if (count > 0) {
+            uint start;  // a leaf near the lanes, where the walk starts
+            if (j == j0) {
+                // No row below: the leaf down the nearer side of each node.
+                start = 1;
+                while (start < leaves) {
+                    const REAL left = LANE_MIN(boxDistance2(box[2 * start], px, py));
+                    const REAL right = LANE_MIN(boxDistance2(box[2 * start + 1], px, py));
+                    start = 2 * start + (right < left ? 1 : 0);
+                }
+            } else {
+                for (int l = 0; l < LANES; ++l)
+                    if (l == 0 || segs[l] != segs[l - 1])
+                        consider(&n, segments, (uint)segs[l], px, py);
+                start = leaves + ((uint)segs[LANES / 2] - first) / LEAF;
+            }
+            updateReach(&n, slackMm);
+            // The start leaf, then the sibling subtree of each of its
+            // ancestors, nearest first: every leaf once. Depth first within a
+            // subtree, left before right, without a stack: after a node,
+            // climb past right children and step to the sibling.
+            if (worthVisiting(&n, box, chord, dev, start, px, py)) {
+                visitLeaf(&n, segments, first, count, start - leaves, px, py);
+                updateReach(&n, slackMm);
+            }
+            for (uint below = start; below > 1; below >>= 1) {
+                const uint root = below ^ 1;
+                uint node = root;
+                for (;;) {
+                    if (worthVisiting(&n, box, chord, dev, node, px, py)) {
+                        if (node < leaves) {
+                            node *= 2;
+                            continue;
+                        }
+                        visitLeaf(&n, segments, first, count, node - leaves, px, py);
+                        updateReach(&n, slackMm);
+                    }
+                    while (node != root && (node & 1)) node >>= 1;
+                    if (node == root) break;
+                    ++node;
+                }
+            }
         }
-        const size_t pixel = row * width + i0 + l;
-        distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
-        nearestId[pixel] = id;
+
+        // Winding numbers from the row's crossings right of each lane.
+        const size_t row = (size_t)s * height + j;
+        uint lo = rowFirst[row], hi = rowFirst[row + 1];
+        const uint rowEnd = hi;
+        while (lo < hi) {  // first crossing with k > i0
+            const uint mid = (lo + hi) / 2;
+            if ((uint)crossings[mid].x > i0)
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
+        for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
+            // Lanes at or right of this crossing no longer count it.
+            const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
+            winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
+        }
+
+        REAL d[LANES], tl[LANES];
+        int w[LANES];
+        VSTORE(sqrt(n.best2), 0, d);
+        VSTORE(n.bestT, 0, tl);
+        VSTORE(winding, 0, w);
+        VSTORE(n.bestSeg, 0, segs);
+        for (int l = 0; l < LANES; ++l) {
+            if (i0 + l >= width) break;
+            uint id = 0xffffffffu;
+            if (count > 0) {
+                const uint2 e = ids[(uint)segs[l]];
+                id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
+            }
+            const size_t pixel = row * width + i0 + l;
+            distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
+            nearestId[pixel] = id;
+        }
     }
 }

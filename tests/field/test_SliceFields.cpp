@@ -1,9 +1,10 @@
 // The 2D field kernel against the brute-force reference on the PoCL CPU
-// device. Agreement (double precision): distance within 1e-4 px, sign exact,
-// and the id the kernel reports names a primitive at the nearest distance
-// (within 1e-5 px), which is the id itself except at ties. Sign is not
-// compared at pixel centres within 1e-6 px of a contour, where it is a
-// matter of rounding. Float variants get 1e-6 of the coordinates' size more.
+// device. Agreement (double precision): distance within 1e-4 px, the sign
+// bit equal at every pixel (the winding numbers are the reference's exactly,
+// on the contour too), and the id the kernel reports names a primitive at the
+// nearest distance: the reference's own id, or within 1e-9 px of it (ties
+// and near-ties resolved by rounding). Float variants get 1e-6 of the
+// coordinates' size more.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,29 +53,37 @@ void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid
                 if (error > 1e-4 + slackPx && worst++ < 5)
                     ADD_FAILURE() << "slice " << s << " pixel " << i << "," << j << ": " << dk
                                   << " vs " << dr;
-                // Pixel centres on a contour (to rounding) have no meaningful sign.
-                const bool onContour = std::abs(dr) <= (1e-6 + slackPx) * pixel;
-                if (!onContour && (dk < 0) != (dr < 0) && worst++ < 5)
-                    ADD_FAILURE() << "sign at slice " << s << " pixel " << i << "," << j;
-                const double named = distanceToPrimitive(grid.pixelCentre(i, j), slices[s].contours,
-                                                         kernel.nearestId[k]);
-                if (std::abs(named - std::abs(double(dr))) > (1e-5 + 2 * slackPx) * pixel &&
-                    worst++ < 5)
+                if (std::signbit(dk) != std::signbit(dr) && worst++ < 5)
+                    ADD_FAILURE() << "sign at slice " << s << " pixel " << i << "," << j << ": "
+                                  << dk << " vs " << dr;
+                if (kernel.nearestId[k] == reference.nearestId[k]) continue;
+                const Point2 p = grid.pixelCentre(i, j);
+                const double named =
+                    distanceToPrimitive(p, slices[s].contours, kernel.nearestId[k]);
+                const double nearest =
+                    distanceToPrimitive(p, slices[s].contours, reference.nearestId[k]);
+                const double tiePx = options.singlePrecision ? 1e-5 + 2 * slackPx : 1e-9;
+                if (std::abs(named - nearest) > tiePx * pixel && worst++ < 5)
                     ADD_FAILURE() << "id at slice " << s << " pixel " << i << "," << j << " names "
-                                  << named << " mm away, nearest is " << dr;
+                                  << named << " mm away, nearest is " << nearest;
             }
     EXPECT_EQ(worst, 0);
 }
 
 // Every kernel variant: 8, 4 and 1 pixels per work-item (CPU and GPU
-// shapes) in double precision, and float (devices without fp64).
+// shapes) in double precision, and float (devices without fp64) in 8 and 1;
+// and both ways to the nearest segment: every tile walking the tree per
+// pixel row (lists of 0) and every tile scanning its list (lists of 4096).
 void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
     const SliceFields reference = computeSliceFieldsReference(slices, grid);
     for (const FieldKernelOptions options :
          {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
-          FieldKernelOptions{8, true}}) {
+          FieldKernelOptions{8, true}, FieldKernelOptions{1, true}, FieldKernelOptions{8, false, 0},
+          FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096},
+          FieldKernelOptions{1, true, 4096}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
-                     (options.singlePrecision ? ", float" : ", double"));
+                     (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
+                     std::to_string(options.tileListCapacity));
         expectVariantAgrees(slices, grid, reference, options);
     }
 }
@@ -169,6 +178,63 @@ TEST(SliceFields, CircleDistancesAreExactToThePolygon) {
     EXPECT_LE(std::max(grid.width, grid.height), kDefaultGridPixels);
     EXPECT_GE(std::max(grid.width, grid.height), kDefaultGridPixels - 2);
     expectAgreement(slices, grid);
+}
+
+// Contours denser than the pixels (several segments per pixel), where many
+// segments are nearly as near as the nearest: a jagged outline with a hole,
+// an island in the hole, and a smooth circle touching nothing.
+TEST(SliceFields, ContoursWithThousandsOfSegments) {
+    std::mt19937 random(5);
+    Slice slice;
+    slice.contours = {star(random, {0, 0}, 2500, 38, 40, true),
+                      star(random, {-5, 3}, 1200, 20, 21, false),
+                      star(random, {-5, 3}, 400, 6, 9, true)};
+    Polygon circle;
+    for (int k = 0; k < 3000; ++k) {
+        const double t = 2 * M_PI * k / 3000;
+        circle.push_back({70 + 15 * std::cos(t), 10 + 15 * std::sin(t)});
+    }
+    slice.contours.push_back(circle);
+    ASSERT_FALSE(findContourDefect(slice.contours).has_value());
+    const std::vector<Slice> slices{slice};
+    expectAgreement(slices, gridForSlices(slices, 0.9));
+}
+
+// Pixel centres exactly on edges and vertices (1 mm pixels from 0: centres
+// at k + 0.5): edges along rows and columns of centres, a diagonal through
+// centres, a hole whose vertex touches its outer contour at a centre, two
+// squares sharing a corner on a centre. Distances are 0 there and the sign is
+// whatever windingNumber() says, which the kernel must match bit for bit.
+TEST(SliceFields, PixelCentresOnEdgesAndVertices) {
+    Slice slice;
+    slice.contours = {{{2.5, 2.5}, {12.5, 2.5}, {12.5, 12.5}, {2.5, 12.5}},
+                      {{12.5, 12.5}, {20.5, 12.5}, {20.5, 20.5}, {12.5, 20.5}},
+                      {{24.5, 2.5}, {34.5, 12.5}, {24.5, 12.5}},
+                      {{38.5, 2.5}, {50.5, 2.5}, {50.5, 14.5}, {38.5, 14.5}},
+                      {{38.5, 2.5}, {44.5, 8.5}, {46.5, 4.5}}};
+    normaliseOrientation(slice);
+    SliceGrid grid;
+    grid.originMm = {0, 0};
+    grid.pixelMm = 1;
+    grid.width = 56;
+    grid.height = 24;
+    const std::vector<Slice> slices{slice};
+    expectAgreement(slices, grid);
+    const SliceFields f = computeSliceFieldsReference(slices, grid);
+    int onContour = 0;
+    for (const float d : f.distanceMm) onContour += d == 0;
+    EXPECT_GT(onContour, 80);  // the case is what it says
+}
+
+// Zero-length segments (repeated points), segments far shorter than a pixel,
+// and a contour that doubles back on itself along a line.
+TEST(SliceFields, DegenerateShortSegments) {
+    Slice slice;
+    slice.contours = {
+        {{0, 0}, {0, 0}, {3, 0}, {3, 1e-9}, {3, 2e-9}, {3, 3}, {3, 3}, {3, 3}, {1e-7, 3}, {0, 3}},
+        {{5, 0}, {8, 0}, {6, 0}, {9, 0}, {9, 2}, {5, 2}}};
+    const std::vector<Slice> slices{slice};
+    expectAgreement(slices, gridForSlices(slices, 0.11));
 }
 
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
