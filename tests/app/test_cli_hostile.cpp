@@ -179,7 +179,7 @@ TEST(HostileInputs, ContourOverTheFieldIdLimitIsBadInputNotUsage) {
         }
     }
     expectRefused(dir, path, "reconstruct " + path + " -o " + dir / "out.ply",
-                  "has over 524287 points, the most the distance fields can index", 2, 5.0);
+                  "has over 524287 points, the most the distance fields can index");
 }
 
 TEST(HostileInputs, OutOfMemoryNamesTheFile) {
