@@ -72,12 +72,9 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
                                                    : nlohmann::ordered_json(entry.roi)}};
         appendItems(options, reconstructSettingsJson(settings));
 
-        nlohmann::ordered_json record{{"format", kRecordFormat},
-                                      {"id", entry.id},
-                                      {"entry", entry.number},
-                                      {"input", entry.input},
-                                      {"inputFiles", nullptr},
-                                      {"options", options},
+        nlohmann::ordered_json record{{"format", kRecordFormat}, {"id", entry.id},
+                                      {"entry", entry.number},   {"input", entry.input},
+                                      {"inputFiles", nullptr},   {"options", options},
                                       {"version", version}};
         std::optional<Failure> entryFailure;
         try {
@@ -143,8 +140,8 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
                     tally.failed += (tally.failed.empty() ? "" : ", ") + name;
                     if (tally.firstFailure == 0) {
                         tally.firstFailure = roi.failure;
-                        tally.firstError = "ROI '" + name + "': " +
-                                           roi.report.value("error", std::string());
+                        tally.firstError =
+                            "ROI '" + name + "': " + roi.report.value("error", std::string());
                     }
                     tally.lasting = tally.lasting && isLastingFailure(roi.failure);
                 } else if (roi.invalid) {
@@ -166,22 +163,22 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
             outcome.status = EntryOutcome::Status::Failed;
             outcome.exitCode = tally.firstFailure;
             outcome.error = tally.firstError;
-            outcome.summary = std::to_string(tally.done) + " of " + std::to_string(rois.size()) +
-                              " ROIs done; failed: " + tally.failed +
-                              (tally.invalid.empty() ? "" : "; not a valid closed solid: " +
-                                                                tally.invalid);
+            outcome.summary =
+                std::to_string(tally.done) + " of " + std::to_string(rois.size()) +
+                " ROIs done; failed: " + tally.failed +
+                (tally.invalid.empty() ? "" : "; not a valid closed solid: " + tally.invalid);
         } else if (!tally.invalid.empty()) {
             outcome.status = EntryOutcome::Status::Failed;
             outcome.exitCode = kExitInvalidResult;
             outcome.error = "not a valid closed solid: " + tally.invalid;
             outcome.summary = std::to_string(rois.size()) + " ROIs done; " + outcome.error;
         } else {
-            outcome.summary = std::to_string(rois.size()) + " ROI" +
-                              (rois.size() == 1 ? "" : "s") + " done";
+            outcome.summary =
+                std::to_string(rois.size()) + " ROI" + (rois.size() == 1 ? "" : "s") + " done";
         }
         outcome.seconds = watch.total();
-        record["complete"] = entryFailure ? isLastingFailure(entryFailure->exitCode)
-                                          : tally.lasting;
+        record["complete"] =
+            entryFailure ? isLastingFailure(entryFailure->exitCode) : tally.lasting;
         record["exitCode"] = outcome.exitCode;
         record["error"] = entryFailure ? nlohmann::ordered_json(entryFailure->message)
                                        : nlohmann::ordered_json(nullptr);

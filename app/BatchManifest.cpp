@@ -77,15 +77,14 @@ ManifestEntry makeEntry(std::size_t number, const std::vector<Field>& fields,
     entry.number = number;
     entry.id = std::to_string(number);
     entry.line = line;
-    entry.where = line > 0 ? file + ":" + std::to_string(line)
-                           : file + ": entry " + std::to_string(number);
+    entry.where =
+        line > 0 ? file + ":" + std::to_string(line) : file + ": entry " + std::to_string(number);
     auto fail = [&](const Field& field, const std::string& problem) {
         throw InputError(file, field.line, field.where + ": " + problem);
     };
     for (const Field& field : fields) {
         if (field.value.size() > kMaxManifestValueBytes)
-            fail(field, "a value longer than " + std::to_string(kMaxManifestValueBytes) +
-                            " bytes");
+            fail(field, "a value longer than " + std::to_string(kMaxManifestValueBytes) + " bytes");
         if (field.key == "input") {
             if (field.value.empty()) fail(field, "an empty input");
             entry.input = field.value;
@@ -256,7 +255,7 @@ std::vector<ManifestEntry> parseCsv(const std::string& text, const std::string& 
     while (reader.nextRow(row)) {
         if (isBlankRow(row)) continue;
         if (row.size() != keys.size())
-            reader.fail(row[std::min(row.size(), keys.size()) - 1],
+            reader.fail(row.size() > keys.size() ? row[keys.size()] : row.back(),
                         std::to_string(row.size()) + " cells where the header has " +
                             std::to_string(keys.size()));
         if (entries.size() == kMaxManifestEntries)
@@ -264,9 +263,9 @@ std::vector<ManifestEntry> parseCsv(const std::string& text, const std::string& 
         std::vector<Field> fields;
         for (std::size_t c = 0; c < row.size(); ++c)
             if (!row[c].text.empty())  // an empty cell: the default
-                fields.push_back({keys[c], row[c].text, row[c].line,
-                                  "column " + std::to_string(row[c].column) + " (" + keys[c] +
-                                      ")"});
+                fields.push_back(
+                    {keys[c], row[c].text, row[c].line,
+                     "column " + std::to_string(row[c].column) + " (" + keys[c] + ")"});
         entries.push_back(makeEntry(entries.size() + 1, fields, file, row[0].line, folder));
     }
     return entries;
@@ -293,7 +292,8 @@ std::vector<ManifestEntry> parseJson(const std::string& text, const std::string&
             return true;
         });
     } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(file, lineOfByte(text, e.byte), std::string("not valid JSON: ") + e.what());
+        throw InputError(file, lineOfByte(text, e.byte),
+                         std::string("not valid JSON: ") + e.what());
     }
     if (!list.is_array())
         throw InputError(file, 0, "a JSON manifest is a list of objects, one per entry");
@@ -302,8 +302,7 @@ std::vector<ManifestEntry> parseJson(const std::string& text, const std::string&
     std::vector<ManifestEntry> entries;
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string entryName = "entry " + std::to_string(i + 1);
-        if (!list[i].is_object())
-            throw InputError(file, 0, entryName + ": not an object");
+        if (!list[i].is_object()) throw InputError(file, 0, entryName + ": not an object");
         std::vector<Field> fields;
         for (const auto& [key, value] : list[i].items()) {
             const std::string where = entryName + ", key '" + key + "'";
@@ -318,7 +317,8 @@ std::vector<ManifestEntry> parseJson(const std::string& text, const std::string&
             else if (value.is_number())
                 textValue = value.dump();
             else
-                throw InputError(file, 0, where + ": a value that is no string, number, boolean or null");
+                throw InputError(file, 0,
+                                 where + ": a value that is no string, number, boolean or null");
             fields.push_back({key, textValue, 0, where});
         }
         entries.push_back(makeEntry(i + 1, fields, file, 0, folder));
@@ -341,14 +341,13 @@ std::vector<ManifestEntry> parseManifest(const std::string& text, const std::str
         const auto [it, fresh] = byId.emplace(lowerCase(entry.id), &entry);
         if (fresh) continue;
         const ManifestEntry& first = *it->second;
-        throw InputError(
-            file, entry.line,
-            (entry.line > 0 ? "" : "entry " + std::to_string(entry.number) + ": ") + "the id '" +
-                entry.id + "' is already " +
-                (first.line > 0 ? "line " + std::to_string(first.line)
-                                : "entry " + std::to_string(first.number)) +
-                "'s" + (first.id == entry.id ? "" : " ('" + first.id + "')") +
-                " (ids name folders, so they must differ in more than case)");
+        throw InputError(file, entry.line,
+                         (entry.line > 0 ? "" : "entry " + std::to_string(entry.number) + ": ") +
+                             "the id '" + entry.id + "' is already " +
+                             (first.line > 0 ? "line " + std::to_string(first.line)
+                                             : "entry " + std::to_string(first.number)) +
+                             "'s" + (first.id == entry.id ? "" : " ('" + first.id + "')") +
+                             " (ids name folders, so they must differ in more than case)");
     }
     if (entries.empty()) throw InputError(file, 0, "no entries");
     return entries;

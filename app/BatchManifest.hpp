@@ -13,15 +13,15 @@
 namespace dfrecon::app {
 
 struct ManifestEntry {
-    std::size_t number = 0;  // 1-based position in the manifest
-    std::string id;          // the entry's folder name under the output folder
-    std::string input;       // as the manifest gives it
-    std::string inputPath;   // resolved against the manifest's folder
-    std::string roi;         // a name or number; "" = every ROI with contours
+    std::size_t number = 0;            // 1-based position in the manifest
+    std::string id;                    // the entry's folder name under the output folder
+    std::string input;                 // as the manifest gives it
+    std::string inputPath;             // resolved against the manifest's folder
+    std::string roi;                   // a name or number; "" = every ROI with contours
     std::vector<GivenOption> options;  // in column or key order; where: "column C (KEY)" or
                                        // "entry N, key 'KEY'"
-    int line = 0;            // CSV: the line its row starts on; JSON: 0
-    std::string where;       // "FILE:LINE" (CSV) or "FILE: entry N" (JSON), for messages
+    int line = 0;                      // CSV: the line its row starts on; JSON: 0
+    std::string where;                 // "FILE:LINE" (CSV) or "FILE: entry N" (JSON), for messages
 };
 
 /// Limits a manifest is held to; beyond them it is refused as bad input.

@@ -22,8 +22,7 @@ ResumeDecision decide(const std::string& recordText, const nlohmann::ordered_jso
                       const std::function<bool(const std::string&)>& meshExists) {
     // Compared as plain JSON: object keys unordered, 1 and 1.0 alike.
     const nlohmann::json record = nlohmann::json::parse(recordText, nullptr, false);
-    if (record.is_discarded() || !record.is_object() ||
-        record.value("format", "") != kRecordFormat)
+    if (record.is_discarded() || !record.is_object() || record.value("format", "") != kRecordFormat)
         return {false, "its record is unreadable"};
     if (!record.value("complete", false))
         return {false, "its record is incomplete (a failure a rerun may not meet again)"};
@@ -45,8 +44,7 @@ ResumeDecision decide(const std::string& recordText, const nlohmann::ordered_jso
 
 }  // namespace
 
-ResumeDecision decideResume(const std::string* recordText,
-                            const nlohmann::ordered_json& inputFiles,
+ResumeDecision decideResume(const std::string* recordText, const nlohmann::ordered_json& inputFiles,
                             const nlohmann::ordered_json& options, const std::string& version,
                             const std::function<bool(const std::string&)>& meshExists) {
     if (!recordText) return {false, "no record yet"};

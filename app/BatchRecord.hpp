@@ -36,8 +36,7 @@ struct ResumeDecision {
 /// version, options and inputFiles equal the ones given (as JSON values:
 /// key order and number spelling aside), and every mesh it lists (rois[].mesh,
 /// relative to the entry's folder) exists by `meshExists`. O(record size).
-ResumeDecision decideResume(const std::string* recordText,
-                            const nlohmann::ordered_json& inputFiles,
+ResumeDecision decideResume(const std::string* recordText, const nlohmann::ordered_json& inputFiles,
                             const nlohmann::ordered_json& options, const std::string& version,
                             const std::function<bool(const std::string&)>& meshExists);
 

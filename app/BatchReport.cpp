@@ -14,8 +14,8 @@ namespace dfrecon::app {
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kBatchReportColumns{
-    "entry",     "roi",     "mesh",     "volumeCc", "contourVolumeCc", "validSolid",
-    "triangles", "seconds", "exitCode", "error"};
+    "entry",      "roi",       "mesh",    "volumeCc", "contourVolumeCc",
+    "validSolid", "triangles", "seconds", "exitCode", "error"};
 
 std::vector<nlohmann::json> readBatchRecords(const std::string& outputFolder) {
     std::vector<nlohmann::json> records;
@@ -31,12 +31,12 @@ std::vector<nlohmann::json> readBatchRecords(const std::string& outputFolder) {
         text << in.rdbuf();
         if (!in && !in.eof()) throw InputError(file.string(), 0, "cannot read file");
         nlohmann::json record = nlohmann::json::parse(text.str(), nullptr, false);
-        if (record.is_discarded() || !record.is_object() ||
-            !record.contains("format") || record["format"] != kRecordFormat ||
-            !record.contains("id") || !record["id"].is_string() || !record.contains("entry") ||
+        if (record.is_discarded() || !record.is_object() || !record.contains("format") ||
+            record["format"] != kRecordFormat || !record.contains("id") ||
+            !record["id"].is_string() || !record.contains("entry") ||
             !record["entry"].is_number_unsigned())
-            throw InputError(file.string(), 0, std::string("not a batch record (") +
-                                                   kRecordFormat + ")");
+            throw InputError(file.string(), 0,
+                             std::string("not a batch record (") + kRecordFormat + ")");
         records.push_back(std::move(record));
     }
     if (error) throw InputError(outputFolder, 0, "cannot list folder: " + error.message());
@@ -61,8 +61,8 @@ nlohmann::ordered_json row(const nlohmann::json& record, const nlohmann::json* r
     const std::string id = record["id"].get<std::string>();
     out["entry"] = id;
     if (!roi) {
-        for (const char* key : {"roi", "mesh", "volumeCc", "contourVolumeCc", "validSolid",
-                                "triangles"})
+        for (const char* key :
+             {"roi", "mesh", "volumeCc", "contourVolumeCc", "validSolid", "triangles"})
             out[key] = nullptr;
         if (withSeconds) out["seconds"] = field(record, "seconds");
         out["exitCode"] = field(record, "exitCode");
@@ -81,9 +81,9 @@ nlohmann::ordered_json row(const nlohmann::json& record, const nlohmann::json* r
     const nlohmann::ordered_json failure = field(*roi, "exitCode");
     const bool invalid = !failure.is_number() && out["validSolid"] == false;
     out["exitCode"] = failure.is_number() ? failure : nlohmann::ordered_json(invalid ? 4 : 0);
-    out["error"] = failure.is_number()
-                       ? field(*roi, "error")
-                       : nlohmann::ordered_json(invalid ? "not a valid closed solid" : nullptr);
+    out["error"] = failure.is_number() ? field(*roi, "error")
+                   : invalid           ? nlohmann::ordered_json("not a valid closed solid")
+                                       : nlohmann::ordered_json(nullptr);
     return out;
 }
 
@@ -109,7 +109,8 @@ nlohmann::ordered_json batchReportRows(const std::vector<nlohmann::json>& record
             rows.push_back(row(record, nullptr, withSeconds));
             continue;
         }
-        for (const nlohmann::json& roi : record["rois"]) rows.push_back(row(record, &roi, withSeconds));
+        for (const nlohmann::json& roi : record["rois"])
+            rows.push_back(row(record, &roi, withSeconds));
     }
     return rows;
 }

@@ -8,7 +8,8 @@ namespace {
 
 // A count or index in decimal digits, at most kMaxShards; `what` names it.
 std::size_t parseCount(const std::string& text, const std::string& what) {
-    if (text.empty() || text.size() > 7 || text.find_first_not_of("0123456789") != std::string::npos)
+    if (text.empty() || text.size() > 7 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
         throw std::invalid_argument(what + ": '" + text + "' is not a whole number");
     const std::size_t value = std::stoul(text);
     if (value > kMaxShards)
@@ -36,8 +37,9 @@ Shard parseShard(const std::string& text) {
                    parseCount(text.substr(slash + 1), "--shard"), "--shard " + text);
 }
 
-Shard chooseShard(const std::string& shardOption, std::optional<std::size_t> shards,
-                  const std::function<std::optional<std::string>(const std::string&)>& environment) {
+Shard chooseShard(
+    const std::string& shardOption, std::optional<std::size_t> shards,
+    const std::function<std::optional<std::string>(const std::string&)>& environment) {
     if (!shardOption.empty()) {
         if (shards) throw std::invalid_argument("--shard and --shards exclude each other");
         return parseShard(shardOption);
@@ -45,8 +47,9 @@ Shard chooseShard(const std::string& shardOption, std::optional<std::size_t> sha
     if (const auto id = environment("SLURM_ARRAY_TASK_ID")) {
         const auto count = environment("SLURM_ARRAY_TASK_COUNT");
         if (!count)
-            throw std::invalid_argument("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT "
-                                        "is not");
+            throw std::invalid_argument(
+                "SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT "
+                "is not");
         const std::size_t task = parseCount(*id, "SLURM_ARRAY_TASK_ID");
         const auto minText = environment("SLURM_ARRAY_TASK_MIN");
         const auto stepText = environment("SLURM_ARRAY_TASK_STEP");
@@ -67,9 +70,9 @@ Shard chooseShard(const std::string& shardOption, std::optional<std::size_t> sha
         if (!shards)
             throw std::invalid_argument(
                 "JOB_COMPLETION_INDEX is set: give --shards N, the Job's completions");
-        return checked(parseCount(*index, "JOB_COMPLETION_INDEX"), *shards,
-                       "JOB_COMPLETION_INDEX " + *index + " of --shards " +
-                           std::to_string(*shards));
+        return checked(
+            parseCount(*index, "JOB_COMPLETION_INDEX"), *shards,
+            "JOB_COMPLETION_INDEX " + *index + " of --shards " + std::to_string(*shards));
     }
     if (shards)
         throw std::invalid_argument("--shards " + std::to_string(*shards) +

@@ -48,18 +48,18 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const Stopwatch watch;
     const std::vector<ManifestEntry> entries = readManifest(args.manifest);
-    const Shard shard = chooseShard(
-        args.shard, args.shards > 0 ? std::optional(args.shards) : std::nullopt,
-        [](const std::string& name) -> std::optional<std::string> {
-            const char* value = std::getenv(name.c_str());
-            return value ? std::optional<std::string>(value) : std::nullopt;
-        });
+    const Shard shard =
+        chooseShard(args.shard, args.shards > 0 ? std::optional(args.shards) : std::nullopt,
+                    [](const std::string& name) -> std::optional<std::string> {
+                        const char* value = std::getenv(name.c_str());
+                        return value ? std::optional<std::string>(value) : std::nullopt;
+                    });
     std::vector<const ManifestEntry*> mine;
     for (const ManifestEntry& entry : entries)
         if (shard.has(entry.number)) mine.push_back(&entry);
     fs::create_directories(args.output);
 
-    const std::size_t jobs = mine.empty()  ? 1
+    const std::size_t jobs = mine.empty()    ? 1
                              : args.jobs > 0 ? std::min<std::size_t>(args.jobs, mine.size())
                                              : defaultJobs(mine.size());
     if (!global.quiet)
@@ -129,11 +129,11 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
                   << " skipped, " << failed << " failed, " << watch.total() << " s\n";
     }
     if (!failedIds.empty())
-        throw ItemsFailed("failed entries: " + failedIds +
-                              (invalidIds.empty() ? ""
-                                                  : "; not a valid closed solid in: " + invalidIds) +
-                              " (the other entries were done)",
-                          firstFailure);
+        throw ItemsFailed(
+            "failed entries: " + failedIds +
+                (invalidIds.empty() ? "" : "; not a valid closed solid in: " + invalidIds) +
+                " (the other entries were done)",
+            firstFailure);
     if (!invalidIds.empty())
         throw InvalidResult("not a valid closed solid in entries: " + invalidIds);
 }
@@ -162,8 +162,7 @@ void addBatchCommand(CLI::App& root, const GlobalOptions& global) {
         "docs/cli.md and docs/cluster.md.");
     cmd->add_option("manifest", args->manifest, "Manifest: CSV with a header row, or JSON list")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output folder: one folder per entry")
-        ->required();
+    cmd->add_option("-o,--output", args->output, "Output folder: one folder per entry")->required();
     cmd->add_option("--shard", args->shard,
                     "Run only shard I of N (I from 0): entries I+1, I+1+N, I+1+2N, ... "
                     "(default: from SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, or "

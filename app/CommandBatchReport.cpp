@@ -32,12 +32,12 @@ void runBatchReport(const BatchReportArgs& args) {
     const nlohmann::ordered_json rows = batchReportRows(records, withSeconds);
     const std::string base =
         args.output.empty() ? (fs::path(args.folder) / "batch-report").string() : args.output;
-    const nlohmann::ordered_json report{{"format", "dfrecon-batch-report 1"},
-                                        {"entries", records.size()},
-                                        {"rows", rows}};
+    const nlohmann::ordered_json report{
+        {"format", "dfrecon-batch-report 1"}, {"entries", records.size()}, {"rows", rows}};
     writeStreamAtomically(base + ".csv",
                           [&](std::ostream& out) { out << batchReportCsv(rows, withSeconds); });
-    writeStreamAtomically(base + ".json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+    writeStreamAtomically(base + ".json",
+                          [&](std::ostream& out) { out << report.dump(2) << "\n"; });
     std::size_t failed = 0, invalid = 0;
     for (const auto& row : rows) {
         const int code = row["exitCode"].is_number() ? row["exitCode"].get<int>() : 0;
@@ -56,8 +56,8 @@ void runBatchReport(const BatchReportArgs& args) {
                   << "\n";
     else
         std::cout << records.size() << " entries, " << rows.size() << " rows (" << failed
-                  << " failed, " << invalid << " not a valid closed solid) -> " << base
-                  << ".csv, " << base << ".json\n";
+                  << " failed, " << invalid << " not a valid closed solid) -> " << base << ".csv, "
+                  << base << ".json\n";
 }
 
 }  // namespace

@@ -96,7 +96,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                             {"format", load.format},
                                             {"device", runtime.device().deviceName},
                                             {"maxDepth", args.settings.options.maxDepth},
-                                            {"contourErrorMm", args.settings.options.contourErrorMm},
+                                            {"contourErrorMm",
+                                             args.settings.options.contourErrorMm},
                                             {"seconds", watch.total()},
                                             {"rois", reports},
                                             {"emptyRois", empty}}
@@ -109,8 +110,9 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                           firstFailure);
     if (!invalid.empty())
         throw InvalidResult("not a valid closed solid: " + invalid +
-                            (args.settings.allowInvalid ? " (written anyway: --allow-invalid)"
-                                               : " (not written; --allow-invalid writes it)"));
+                            (args.settings.allowInvalid
+                                 ? " (written anyway: --allow-invalid)"
+                                 : " (not written; --allow-invalid writes it)"));
 }
 
 }  // namespace

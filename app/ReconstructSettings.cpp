@@ -35,8 +35,7 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
     cmd.add_option_function<std::string>(
            "--interpolation",
            [&options](const std::string& name) {
-               options.interpolation =
-                   parseEnum(kInterpolationNames, name, "--interpolation");
+               options.interpolation = parseEnum(kInterpolationNames, name, "--interpolation");
            },
            "Between planes: 'linear' runs straight from contour to contour; 'smooth' "
            "bends the strips onto a monotone cubic in z of the planes' distance fields "
@@ -92,10 +91,8 @@ ReconstructSettings withGivenOptions(const ReconstructSettings& base,
         std::vector<std::string> args{"--" + option.name + "=" + option.value};
         try {
             app.parse(args);
-        } catch (const CLI::ParseError& e) {
-            throw std::invalid_argument(where + option.name + ": " + e.what());
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(where + option.name + ": " + e.what());
+        } catch (const CLI::ParseError& e) {  // its message names the option
+            throw std::invalid_argument(where + e.what());
         }
     }
     return settings;

@@ -47,8 +47,8 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const std::stri
     Reconstruction result;
     {
         Progress progress("reconstructing " + roi.name, showProgress && !global.quiet);
-        result =
-            reconstructSurface(runtime, roi, settings.options, [&](double f) { progress.update(f); });
+        result = reconstructSurface(runtime, roi, settings.options,
+                                    [&](double f) { progress.update(f); });
     }
     // Sagittal, coronal and oblique stacks were reconstructed in their planes.
     toPatient(result.surface, roi.frame);

@@ -47,9 +47,8 @@ std::vector<InputFile> inputFiles(const std::string& path) {
                         path);
         if (error) throw InputError(path, 0, "cannot list folder: " + error.message());
     } else if (endsWithIgnoringCase(path, ".nhdr") || endsWithIgnoringCase(path, ".json")) {
-        const fs::path folder = fs::path(path).parent_path().empty()
-                                    ? fs::path(".")
-                                    : fs::path(path).parent_path();
+        const fs::path folder =
+            fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
         for (fs::directory_iterator it(folder, error), end; !error && it != end;
              it.increment(error))
             if (it->is_regular_file(error))

@@ -12,30 +12,17 @@
 #include "io/MeshIO.hpp"
 #include "shapes/MeshShapes.hpp"
 #include "tests/TempDir.hpp"
+#include "tests/app/RunDfrecon.hpp"
 
 namespace fs = std::filesystem;
 using dfrecon::testing::TempDir;
 
 namespace {
 
-struct Result {
-    int exitCode;
-    std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using Result = dfrecon::testing::Run;
 
 Result run(const TempDir& dir, const std::string& args) {
-    const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string command =
-        std::string(DFRECON_BINARY) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return dfrecon::testing::runDfrecon(dir, args);
 }
 
 /// An ASCII PLY: its header lines and, per element, its rows of numbers.
@@ -140,12 +127,12 @@ TEST(CliSegment, VtkOutputCarriesTheSameArrays) {
     dfrecon::writeMesh(dfrecon::toTriMesh(dfrecon::geodesicSphere(4)), dir / "s.ply");
     const std::string mesh = dir / "s.ply";
     ASSERT_EQ(run(dir, "geodesic " + mesh + " --from 0 -o " + (dir / "d.vtk")).exitCode, 0);
-    const std::string distances = slurp(dir / "d.vtk");
+    const std::string distances = dfrecon::testing::slurp(dir / "d.vtk");
     EXPECT_NE(distances.find("SCALARS distance float 1"), std::string::npos);
     EXPECT_NE(distances.find("SCALARS source int 1"), std::string::npos);
     ASSERT_EQ(run(dir, "segment " + mesh + " -k 3 --iterations 1 -o " + (dir / "r.vtk")).exitCode,
               0);
-    const std::string regions = slurp(dir / "r.vtk");
+    const std::string regions = dfrecon::testing::slurp(dir / "r.vtk");
     EXPECT_NE(regions.find("CELL_DATA"), std::string::npos);
     EXPECT_NE(regions.find("SCALARS region int 1"), std::string::npos);
 }
