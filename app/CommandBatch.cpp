@@ -69,7 +69,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     std::unique_ptr<WorkerRuntimes> runtimes;
     if (!mine.empty()) runtimes = std::make_unique<WorkerRuntimes>(global.device, jobs);
 
-    std::size_t done = 0, skipped = 0, failed = 0;
+    std::size_t done = 0, skipped = 0, failed = 0, invalid = 0;
     int firstFailure = 0;
     std::string failedIds, invalidIds;
     nlohmann::ordered_json results = nlohmann::ordered_json::array();
@@ -86,6 +86,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
             if (outcome.status == EntryOutcome::Status::Skipped) ++skipped;
             if (outcome.status == EntryOutcome::Status::Done) ++done;
             if (outcome.exitCode == kExitInvalidResult) {
+                ++invalid;
                 invalidIds += (invalidIds.empty() ? "" : ", ") + entry.id;
             } else if (outcome.exitCode != 0) {
                 ++failed;
@@ -119,6 +120,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
                                             {"done", done},
                                             {"skipped", skipped},
                                             {"failed", failed},
+                                            {"notValidSolid", invalid},
                                             {"seconds", watch.total()},
                                             {"results", results}}
                          .dump(2)
@@ -126,7 +128,8 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     } else {
         std::cout << "batch: " << mine.size() << " of " << entries.size() << " entries (shard "
                   << shard.index << "/" << shard.count << "): " << done << " done, " << skipped
-                  << " skipped, " << failed << " failed, " << watch.total() << " s\n";
+                  << " skipped; " << failed << " failed, " << invalid
+                  << " not a valid closed solid; " << watch.total() << " s\n";
     }
     if (!failedIds.empty())
         throw ItemsFailed(
