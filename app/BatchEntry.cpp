@@ -49,12 +49,86 @@ EntryOutcome outcomeOfRecord(const std::string& recordText) {
 }
 
 struct RoiTally {
-    std::size_t done = 0;
+    nlohmann::ordered_json reports = nlohmann::ordered_json::array();  // per ROI, in order
+    std::size_t rois = 0, done = 0;
     std::string failed, invalid;  // names, comma-separated
     std::string firstError;
     int firstFailure = 0;
     bool lasting = true;  // no failure a rerun may not meet again
 };
+
+// Every ROI of `rois` into FOLDER/STEM.ply, one after the other on
+// `runtime`; one that fails is reported and the others go on.
+RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
+                         const ContourInput& input, const ReconstructSettings& settings,
+                         const fs::path& folder) {
+    GlobalOptions quiet;  // nothing on stderr: the record says it all
+    quiet.quiet = true;
+    RoiTally tally;
+    tally.rois = rois.size();
+    const std::vector<std::string> stems = uniqueFileStems(rois);
+    for (std::size_t i = 0; i < rois.size(); ++i) {
+        const Stopwatch watch;
+        const std::string mesh = stems[i] + ".ply";
+        // A mesh of an earlier run must not pass for this run's.
+        std::error_code ignored;
+        fs::remove(folder / mesh, ignored);
+        RoiOutcome roi;
+        try {
+            if (rois[i]->defect) throw *rois[i]->defect;
+            roi = reconstructRoi(runtime, *rois[i], (folder / mesh).string(), input, settings,
+                                 quiet, false);
+        } catch (...) {
+            roi = failedRoi(*rois[i], std::current_exception());
+        }
+        roi.report["mesh"] = roi.report.value("written", false) ? nlohmann::ordered_json(mesh)
+                                                                : nlohmann::ordered_json(nullptr);
+        roi.report["seconds"]["total"] = watch.total();
+        const std::string& name = rois[i]->name;
+        if (roi.failure != 0) {
+            tally.failed += (tally.failed.empty() ? "" : ", ") + name;
+            if (tally.firstFailure == 0) {
+                tally.firstFailure = roi.failure;
+                tally.firstError =
+                    "ROI '" + name + "': " + roi.report.value("error", std::string());
+            }
+            tally.lasting = tally.lasting && isLastingFailure(roi.failure);
+        } else {
+            ++tally.done;
+            if (roi.invalid) tally.invalid += (tally.invalid.empty() ? "" : ", ") + name;
+        }
+        tally.reports.push_back(std::move(roi.report));
+    }
+    return tally;
+}
+
+// The outcome of an entry that ran: its own failure if it had one, else its ROIs'.
+EntryOutcome outcomeOf(const std::optional<Failure>& entryFailure, const RoiTally& tally) {
+    EntryOutcome outcome;
+    if (entryFailure) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = entryFailure->exitCode;
+        outcome.error = entryFailure->message;
+        outcome.summary = "failed: " + entryFailure->message;
+    } else if (tally.firstFailure != 0) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = tally.firstFailure;
+        outcome.error = tally.firstError;
+        outcome.summary =
+            std::to_string(tally.done) + " of " + std::to_string(tally.rois) +
+            " ROIs done; failed: " + tally.failed +
+            (tally.invalid.empty() ? "" : "; not a valid closed solid: " + tally.invalid);
+    } else if (!tally.invalid.empty()) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = kExitInvalidResult;
+        outcome.error = "not a valid closed solid: " + tally.invalid;
+        outcome.summary = std::to_string(tally.rois) + " ROIs done; " + outcome.error;
+    } else {
+        outcome.summary =
+            std::to_string(tally.rois) + " ROI" + (tally.rois == 1 ? "" : "s") + " done";
+    }
+    return outcome;
+}
 
 }  // namespace
 
@@ -110,72 +184,14 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
                 entryFailure = describeFailure(std::current_exception());
             }
 
-        nlohmann::ordered_json roiReports = nlohmann::ordered_json::array(),
-                               warnings = nlohmann::ordered_json::array();
+        nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         RoiTally tally;
         if (input) {
             record["inputFormat"] = input->format;
             for (const InputWarning& w : input->warnings) warnings.push_back(w.toString());
-            const std::vector<std::string> stems = uniqueFileStems(rois);
-            for (std::size_t i = 0; i < rois.size(); ++i) {
-                Stopwatch roiWatch;
-                const std::string mesh = stems[i] + ".ply";
-                RoiOutcome roi;
-                // A mesh of an earlier run must not pass for this run's.
-                std::error_code ignored;
-                fs::remove(folder / mesh, ignored);
-                try {
-                    if (rois[i]->defect) throw *rois[i]->defect;
-                    roi = reconstructRoi(runtime, *rois[i], (folder / mesh).string(), *input,
-                                         settings, quiet, false);
-                } catch (...) {
-                    roi = failedRoi(*rois[i], std::current_exception());
-                }
-                roi.report["mesh"] = roi.report.value("written", false)
-                                         ? nlohmann::ordered_json(mesh)
-                                         : nlohmann::ordered_json(nullptr);
-                roi.report["seconds"]["total"] = roiWatch.total();
-                const std::string& name = rois[i]->name;
-                if (roi.failure != 0) {
-                    tally.failed += (tally.failed.empty() ? "" : ", ") + name;
-                    if (tally.firstFailure == 0) {
-                        tally.firstFailure = roi.failure;
-                        tally.firstError =
-                            "ROI '" + name + "': " + roi.report.value("error", std::string());
-                    }
-                    tally.lasting = tally.lasting && isLastingFailure(roi.failure);
-                } else if (roi.invalid) {
-                    tally.invalid += (tally.invalid.empty() ? "" : ", ") + name;
-                    ++tally.done;
-                } else {
-                    ++tally.done;
-                }
-                roiReports.push_back(std::move(roi.report));
-            }
+            tally = reconstructRois(runtime, rois, *input, settings, folder);
         }
-
-        if (entryFailure) {
-            outcome.status = EntryOutcome::Status::Failed;
-            outcome.exitCode = entryFailure->exitCode;
-            outcome.error = entryFailure->message;
-            outcome.summary = "failed: " + entryFailure->message;
-        } else if (tally.firstFailure != 0) {
-            outcome.status = EntryOutcome::Status::Failed;
-            outcome.exitCode = tally.firstFailure;
-            outcome.error = tally.firstError;
-            outcome.summary =
-                std::to_string(tally.done) + " of " + std::to_string(rois.size()) +
-                " ROIs done; failed: " + tally.failed +
-                (tally.invalid.empty() ? "" : "; not a valid closed solid: " + tally.invalid);
-        } else if (!tally.invalid.empty()) {
-            outcome.status = EntryOutcome::Status::Failed;
-            outcome.exitCode = kExitInvalidResult;
-            outcome.error = "not a valid closed solid: " + tally.invalid;
-            outcome.summary = std::to_string(rois.size()) + " ROIs done; " + outcome.error;
-        } else {
-            outcome.summary =
-                std::to_string(rois.size()) + " ROI" + (rois.size() == 1 ? "" : "s") + " done";
-        }
+        outcome = outcomeOf(entryFailure, tally);
         outcome.seconds = watch.total();
         record["complete"] =
             entryFailure ? isLastingFailure(entryFailure->exitCode) : tally.lasting;
@@ -185,7 +201,7 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
         record["summary"] = outcome.summary;
         record["seconds"] = outcome.seconds;
         record["warnings"] = warnings;
-        record["rois"] = roiReports;
+        record["rois"] = std::move(tally.reports);
         // Written last: a record means every file it names is in place.
         writeStreamAtomically(recordPath.string(),
                               [&](std::ostream& out) { out << record.dump(2) << "\n"; });
