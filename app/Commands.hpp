@@ -20,6 +20,8 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global);
 void addCheckCommand(CLI::App& root, const GlobalOptions& global);
 void addCompareCommand(CLI::App& root, const GlobalOptions& global);
 void addReconstructCommand(CLI::App& root, const GlobalOptions& global);
+void addBatchCommand(CLI::App& root, const GlobalOptions& global);
+void addBatchReportCommand(CLI::App& root, const GlobalOptions& global);
 void addFieldCommand(CLI::App& root, const GlobalOptions& global);
 void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 void addConvertCommand(CLI::App& root, const GlobalOptions& global);

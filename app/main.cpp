@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     addInfoCommand(root, global);
     addFieldsCommand(root, global);
     addReconstructCommand(root, global);
+    addBatchCommand(root, global);
+    addBatchReportCommand(root, global);
     addFieldCommand(root, global);
     addSimplifyCommand(root, global);
     addConvertCommand(root, global);

@@ -128,12 +128,12 @@ TEST(CliSegment, VtkOutputCarriesTheSameArrays) {
     dfrecon::writeMesh(dfrecon::toTriMesh(dfrecon::geodesicSphere(4)), dir / "s.ply");
     const std::string mesh = dir / "s.ply";
     ASSERT_EQ(run(dir, "geodesic " + mesh + " --from 0 -o " + (dir / "d.vtk")).exitCode, 0);
-    const std::string distances = slurp(dir / "d.vtk");
+    const std::string distances = dfrecon::testing::slurp(dir / "d.vtk");
     EXPECT_NE(distances.find("SCALARS distance float 1"), std::string::npos);
     EXPECT_NE(distances.find("SCALARS source int 1"), std::string::npos);
     ASSERT_EQ(run(dir, "segment " + mesh + " -k 3 --iterations 1 -o " + (dir / "r.vtk")).exitCode,
               0);
-    const std::string regions = slurp(dir / "r.vtk");
+    const std::string regions = dfrecon::testing::slurp(dir / "r.vtk");
     EXPECT_NE(regions.find("CELL_DATA"), std::string::npos);
     EXPECT_NE(regions.find("SCALARS region int 1"), std::string::npos);
 }

@@ -1,0 +1,219 @@
+#include "app/BatchEntry.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/BatchRecord.hpp"
+#include "app/ExitCodes.hpp"
+#include "app/Failure.hpp"
+#include "app/Inputs.hpp"
+#include "app/Reports.hpp"
+#include "app/RoiReconstruction.hpp"
+#include "app/Stopwatch.hpp"
+#include "io/AtomicWrite.hpp"
+#include "io/InputDigest.hpp"
+
+namespace dfrecon::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<std::string> readText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// The outcome a record describes, for an entry skipped because of it.
+EntryOutcome outcomeOfRecord(const std::string& recordText) {
+    EntryOutcome outcome;
+    outcome.status = EntryOutcome::Status::Skipped;
+    std::string summary = "done";
+    try {
+        const nlohmann::json record = nlohmann::json::parse(recordText);
+        outcome.exitCode = record.value("exitCode", 0);
+        summary = record.value("summary", summary);
+    } catch (const nlohmann::json::exception&) {
+        // decideResume read it; a value of an odd type here is only not shown
+    }
+    if (outcome.exitCode != 0) outcome.error = summary;
+    outcome.summary = "skipped, unchanged since its record (" + summary + ")";
+    return outcome;
+}
+
+struct RoiTally {
+    nlohmann::ordered_json reports = nlohmann::ordered_json::array();  // per ROI, in order
+    std::size_t rois = 0, done = 0;
+    std::string failed, invalid;  // names, comma-separated
+    std::string firstError;
+    int firstFailure = 0;
+    bool lasting = true;  // no failure a rerun may not meet again
+};
+
+// Every ROI of `rois` into FOLDER/STEM.ply, one after the other on
+// `runtime`; one that fails is reported and the others go on.
+RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
+                         const ContourInput& input, const ReconstructSettings& settings,
+                         const fs::path& folder) {
+    GlobalOptions quiet;  // nothing on stderr: the record says it all
+    quiet.quiet = true;
+    RoiTally tally;
+    tally.rois = rois.size();
+    const std::vector<std::string> stems = uniqueFileStems(rois);
+    for (std::size_t i = 0; i < rois.size(); ++i) {
+        const Stopwatch watch;
+        const std::string mesh = stems[i] + ".ply";
+        // A mesh of an earlier run must not pass for this run's.
+        std::error_code ignored;
+        fs::remove(folder / mesh, ignored);
+        RoiOutcome roi;
+        try {
+            if (rois[i]->defect) throw *rois[i]->defect;
+            roi = reconstructRoi(runtime, *rois[i], MeshOutput{(folder / mesh).string(), ".ply"},
+                                 input, settings, quiet, false);
+        } catch (...) {
+            roi = failedRoi(*rois[i], std::current_exception());
+        }
+        roi.report["mesh"] = roi.report.value("written", false) ? nlohmann::ordered_json(mesh)
+                                                                : nlohmann::ordered_json(nullptr);
+        roi.report["seconds"]["total"] = watch.total();
+        const std::string& name = rois[i]->name;
+        if (roi.failure != 0) {
+            tally.failed += (tally.failed.empty() ? "" : ", ") + name;
+            if (tally.firstFailure == 0) {
+                tally.firstFailure = roi.failure;
+                tally.firstError =
+                    "ROI '" + name + "': " + roi.report.value("error", std::string());
+            }
+            tally.lasting = tally.lasting && isLastingFailure(roi.failure);
+        } else {
+            ++tally.done;
+            if (roi.invalid) tally.invalid += (tally.invalid.empty() ? "" : ", ") + name;
+        }
+        tally.reports.push_back(std::move(roi.report));
+    }
+    return tally;
+}
+
+// The outcome of an entry that ran: its own failure if it had one, else its ROIs'.
+EntryOutcome outcomeOf(const std::optional<Failure>& entryFailure, const RoiTally& tally) {
+    EntryOutcome outcome;
+    if (entryFailure) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = entryFailure->exitCode;
+        outcome.error = entryFailure->message;
+        outcome.summary = "failed: " + entryFailure->message;
+    } else if (tally.firstFailure != 0) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = tally.firstFailure;
+        outcome.error = tally.firstError;
+        outcome.summary =
+            std::to_string(tally.done) + " of " + std::to_string(tally.rois) +
+            " ROIs done; failed: " + tally.failed +
+            (tally.invalid.empty() ? "" : "; not a valid closed solid: " + tally.invalid);
+    } else if (!tally.invalid.empty()) {
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = kExitInvalidResult;
+        outcome.error = "not a valid closed solid: " + tally.invalid;
+        outcome.summary = std::to_string(tally.rois) + " ROIs done; " + outcome.error;
+    } else {
+        outcome.summary =
+            std::to_string(tally.rois) + " ROI" + (tally.rois == 1 ? "" : "s") + " done";
+    }
+    return outcome;
+}
+
+}  // namespace
+
+EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
+                           const ReconstructSettings& base, const std::string& outputFolder,
+                           const std::string& version) {
+    const Stopwatch watch;
+    EntryOutcome outcome;
+    try {
+        const fs::path folder = fs::path(outputFolder) / entry.id;
+        const fs::path recordPath = folder / kRecordFileName;
+        const ReconstructSettings settings = withGivenOptions(base, entry.options);
+        nlohmann::ordered_json options{{"roi", entry.roi.empty()
+                                                   ? nlohmann::ordered_json(nullptr)
+                                                   : nlohmann::ordered_json(entry.roi)}};
+        appendItems(options, reconstructSettingsJson(settings));
+
+        nlohmann::ordered_json record{{"format", kRecordFormat}, {"id", entry.id},
+                                      {"entry", entry.number},   {"input", entry.input},
+                                      {"inputFiles", nullptr},   {"options", options},
+                                      {"version", version}};
+        std::optional<Failure> entryFailure;
+        try {
+            record["inputFiles"] = inputFilesJson(inputFiles(entry.inputPath));
+        } catch (...) {
+            entryFailure = describeFailure(std::current_exception());
+        }
+
+        const std::optional<std::string> previous = readText(recordPath);
+        if (!entryFailure) {
+            const ResumeDecision decision = decideResume(
+                previous ? &*previous : nullptr, record["inputFiles"], options, version,
+                [&](const std::string& mesh) { return fs::exists(folder / mesh); });
+            if (decision.skip) {
+                EntryOutcome skipped = outcomeOfRecord(*previous);
+                skipped.seconds = watch.total();
+                return skipped;
+            }
+        }
+        // Removed first: killed from here on, the entry has no record, and a
+        // rerun does it again.
+        if (previous) fs::remove(recordPath);
+        fs::create_directories(folder);
+
+        GlobalOptions quiet;  // warnings go into the record, progress nowhere
+        quiet.quiet = true;
+        std::optional<ContourInput> input;
+        std::vector<const Roi*> rois;
+        if (!entryFailure) try {
+                input.emplace(loadContours(entry.inputPath, quiet));
+                rois = selectRois(input->contours, entry.roi, entry.roi.empty());
+            } catch (...) {
+                entryFailure = describeFailure(std::current_exception());
+            }
+
+        nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+        RoiTally tally;
+        if (input) {
+            record["inputFormat"] = input->format;
+            for (const InputWarning& w : input->warnings) warnings.push_back(w.toString());
+            tally = reconstructRois(runtime, rois, *input, settings, folder);
+        }
+        outcome = outcomeOf(entryFailure, tally);
+        outcome.seconds = watch.total();
+        record["complete"] =
+            entryFailure ? isLastingFailure(entryFailure->exitCode) : tally.lasting;
+        record["exitCode"] = outcome.exitCode;
+        record["error"] = entryFailure ? nlohmann::ordered_json(entryFailure->message)
+                                       : nlohmann::ordered_json(nullptr);
+        record["summary"] = outcome.summary;
+        record["seconds"] = outcome.seconds;
+        record["warnings"] = warnings;
+        record["rois"] = std::move(tally.reports);
+        // Written last: a record means every file it names is in place.
+        writeStreamAtomically(recordPath.string(),
+                              [&](std::ostream& out) { out << record.dump(2) << "\n"; });
+    } catch (...) {
+        const Failure failure = describeFailure(std::current_exception());
+        outcome.status = EntryOutcome::Status::Failed;
+        outcome.exitCode = failure.exitCode;
+        outcome.error = failure.message;
+        outcome.summary = "failed: " + failure.message;
+        outcome.seconds = watch.total();
+    }
+    return outcome;
+}
+
+}  // namespace dfrecon::app

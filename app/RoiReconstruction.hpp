@@ -1,0 +1,41 @@
+#pragma once
+// One ROI reconstructed, checked, simplified if asked and written, with its
+// report: the step `reconstruct` runs per ROI and `batch` per ROI of every
+// entry, so both write the same files and the same report keys.
+#include <exception>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Commands.hpp"
+#include "app/Inputs.hpp"
+#include "app/ReconstructSettings.hpp"
+#include "app/StandardStreams.hpp"
+#include "cl/Runtime.hpp"
+
+namespace dfrecon::app {
+
+/// What one ROI gives: its report and the lines it would print, held until
+/// the command prints them in ROI order.
+struct RoiOutcome {
+    nlohmann::ordered_json report;
+    std::string out, err;  // for stdout (a summary line) and stderr
+    int failure = 0;       // exit code of the error that stopped this ROI, 0 if none
+    bool invalid = false;  // done, but not a valid closed solid (and open ends not asked for)
+};
+
+/// Reconstructs `roi` (one of input.contours.rois) into `output` as described
+/// in docs/reconstruction.md and returns the report `reconstruct --json`
+/// gives per ROI. A surface that is not a valid closed solid is reported
+/// (`invalid`) and written only with settings.allowInvalid. Throws what the
+/// stages throw (input limits, OpenCL, memory, a write that fails). Safe to
+/// call for several ROIs at once, one runtime each. O(the reconstruction).
+RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
+                          const ContourInput& input, const ReconstructSettings& settings,
+                          const GlobalOptions& global, bool showProgress);
+
+/// The outcome of an ROI that failed with `error` (app/Failure names it):
+/// reported with `error` and `exitCode`, so the other ROIs go on. O(1).
+RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error);
+
+}  // namespace dfrecon::app

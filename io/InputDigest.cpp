@@ -1,0 +1,65 @@
+#include "io/InputDigest.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "io/InputError.hpp"
+#include "io/Sha256.hpp"
+
+namespace dfrecon {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
+    if (text.size() < suffix.size()) return false;
+    return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) ==
+               std::tolower(static_cast<unsigned char>(b));
+    });
+}
+
+void addFile(std::vector<InputFile>& files, const fs::path& file, const std::string& name,
+             const std::string& input) {
+    if (files.size() >= kMaxInputFiles)
+        throw InputError(input, 0,
+                         "more than " + std::to_string(kMaxInputFiles) + " files to checksum");
+    std::error_code error;
+    const std::uintmax_t bytes = fs::file_size(file, error);
+    if (error) throw InputError(file.string(), 0, "cannot read file: " + error.message());
+    files.push_back({name, bytes, sha256OfFile(file.string())});
+}
+
+}  // namespace
+
+std::vector<InputFile> inputFiles(const std::string& path) {
+    std::vector<InputFile> files;
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) return files;
+    if (fs::is_directory(status)) {
+        fs::recursive_directory_iterator it(path, error), end;
+        for (; !error && it != end; it.increment(error))
+            if (it->is_regular_file(error))
+                addFile(files, it->path(), it->path().lexically_relative(path).generic_string(),
+                        path);
+        if (error) throw InputError(path, 0, "cannot list folder: " + error.message());
+    } else if (endsWithIgnoringCase(path, ".nhdr") || endsWithIgnoringCase(path, ".json")) {
+        const fs::path folder =
+            fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+        for (fs::directory_iterator it(folder, error), end; !error && it != end;
+             it.increment(error))
+            if (it->is_regular_file(error))
+                addFile(files, it->path(), it->path().filename().string(), path);
+        if (error) throw InputError(path, 0, "cannot list its folder: " + error.message());
+    } else {
+        addFile(files, path, fs::path(path).filename().string(), path);
+    }
+    std::sort(files.begin(), files.end(),
+              [](const InputFile& a, const InputFile& b) { return a.path < b.path; });
+    return files;
+}
+
+}  // namespace dfrecon
