@@ -9,7 +9,8 @@ head -n 1 "$page" | grep -q '^\.TH DFRECON 1 ' || fail "$page does not start wit
 commands=$("$program" --help | awk '/^Subcommands:/ { on = 1; next } on && /^  [a-z]/ { print $1 }')
 [ -n "$commands" ] || fail "dfrecon --help lists no subcommands"
 for command in $commands; do
-  grep -qF ".SS \"dfrecon $command\"" "$page" || fail "no section for $command"
+  # Hyphens in roff are \-, as in batch\-report.
+  grep -qF ".SS \"dfrecon ${command//-/\\-}\"" "$page" || fail "no section for $command"
   # Options as the page writes them: \fB\-\-name\fR.
   for option in $("$program" "$command" --help | grep -oE '^  (-[a-zA-Z],)?--[a-z0-9-]+' |
     sed 's/.*--//'); do
