@@ -104,7 +104,18 @@ class Parser {
     SlicesLoad run() {
         readAll();
         SlicesLoad result;
-        for (SourceRoi& source : rois_) result.contours.rois.push_back(finish(source));
+        for (SourceRoi& source : rois_) {
+            // A geometric defect (a crossing, too few points) is one ROI's:
+            // the file's other ROIs still load, as from a clinical export.
+            Roi header = source.roi;
+            try {
+                result.contours.rois.push_back(finish(source));
+            } catch (const InputError& e) {
+                header.slices.clear();
+                header.defect = e;
+                result.contours.rois.push_back(std::move(header));
+            }
+        }
         result.warnings = std::move(warnings_);
         return result;
     }

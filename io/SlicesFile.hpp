@@ -32,7 +32,10 @@ struct SlicesLoad {
 };
 
 /// Parses `.slices` text. `fileName` only labels messages. Throws InputError
-/// ("file:line: problem") for any defect listed in docs/formats.md; repairs
+/// ("file:line: problem") for any defect listed in docs/formats.md, except
+/// that a geometric defect of one ROI's contours (too few points, zero area,
+/// a contour crossing itself or another) is kept as that Roi's `defect`,
+/// with no slices, and the other ROIs load; repairs
 /// repeated points, unsorted slices and duplicated z with a warning; orients
 /// contours by nesting depth (outer CCW, holes CW). Time and memory are
 /// linear in the input for valid files and bounded by `limits` otherwise.
