@@ -72,8 +72,14 @@ std::optional<std::vector<Polygon>> evenOddRegion(const Polygon& contour, std::s
     // CGAL gives regions that meet at a point (a figure eight's lobes) as one
     // boundary through that point twice; cut there, each part keeps the
     // direction it ran in, so outer parts stay counter-clockwise.
+    std::vector<Polygon> combined;
+    try {
+        combined = xorRegions(*loops, maxWork);
+    } catch (const TooManyCrossings&) {
+        return std::nullopt;
+    }
     std::vector<Polygon> region;
-    for (const Polygon& boundary : xorRegions(*loops, maxWork))
+    for (const Polygon& boundary : combined)
         for (Polygon& part : splitKeyholes(boundary, 0.0).loops) region.push_back(std::move(part));
     // A path that runs round twice has no odd points: nothing is left to
     // stand for what was drawn, so it is not a repair.

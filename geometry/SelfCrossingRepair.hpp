@@ -29,8 +29,10 @@ std::optional<std::vector<Polygon>> splitAtSelfCrossings(const Polygon& contour,
 /// (outer counter-clockwise, holes clockwise; they may touch at points):
 /// splitAtSelfCrossings, then the exclusive or of the loops (CGAL, exact),
 /// bounded by `maxWork` as xorRegions is. Nothing when the contour cannot
-/// be split, or when its even-odd region is empty (a path drawn round twice). Throws
-/// TooManyCrossings past `maxWork`.
+/// be split, when the loops need more than `maxWork` contours and crossings
+/// combined, or when its even-odd region is empty (a path drawn round
+/// twice): every caller then keeps the contour and reports it as it would
+/// without repair.
 std::optional<std::vector<Polygon>> evenOddRegion(const Polygon& contour, std::size_t maxCuts,
                                                   std::size_t maxWork);
 

@@ -86,12 +86,16 @@ std::size_t normaliseOrientation(Slice& slice) {
     return reversed;
 }
 
-Extent3 extentOf(const Roi& roi) {
+namespace {
+
+// The box of every contour point mapped by `place` (plane x, y, z → Vec3).
+template <class Place>
+Extent3 boxOfPoints(const Roi& roi, Place place) {
     Extent3 e;
     for (const Slice& s : roi.slices)
         for (const Polygon& c : s.contours)
             for (Point2 p : c) {
-                const double v[3] = {p.x, p.y, s.zMm};
+                const Vec3 v = place(Vec3{p.x, p.y, s.zMm});
                 for (int k = 0; k < 3; ++k) {
                     e.min[k] = e.empty ? v[k] : std::min(e.min[k], v[k]);
                     e.max[k] = e.empty ? v[k] : std::max(e.max[k], v[k]);
@@ -101,19 +105,14 @@ Extent3 extentOf(const Roi& roi) {
     return e;
 }
 
+}  // namespace
+
+Extent3 extentOf(const Roi& roi) {
+    return boxOfPoints(roi, [](Vec3 p) { return p; });
+}
+
 Extent3 patientExtentOf(const Roi& roi) {
-    Extent3 e;
-    for (const Slice& s : roi.slices)
-        for (const Polygon& c : s.contours)
-            for (Point2 p : c) {
-                const Vec3 v = roi.frame.toPatient({p.x, p.y, s.zMm});
-                for (int k = 0; k < 3; ++k) {
-                    e.min[k] = e.empty ? v[k] : std::min(e.min[k], v[k]);
-                    e.max[k] = e.empty ? v[k] : std::max(e.max[k], v[k]);
-                }
-                e.empty = false;
-            }
-    return e;
+    return boxOfPoints(roi, [&](Vec3 p) { return roi.frame.toPatient(p); });
 }
 
 void changeFrame(Roi& roi, const PlaneFrame& target) {

@@ -543,7 +543,8 @@ class Reader {
         }
         const std::optional<ContourDefect> defect = findContourDefect({polygon});
         if (defect && defect->contact == SegmentContact::Cross && repair_.selfCrossings)
-            if (std::optional<std::vector<Polygon>> region = repairedRegion(polygon)) {
+            if (std::optional<std::vector<Polygon>> region =
+                    evenOddRegion(polygon, kMaxSelfCrossingCuts, limits_.maxXorCrossings)) {
                 warn(roiLabel(r) + ": contour " + std::to_string(item) +
                      " crosses itself; replaced by the " + std::to_string(region->size()) +
                      " contour(s) of its even-odd region (--repair-contours)");
@@ -554,16 +555,6 @@ class Reader {
         KeyholeSplit split = splitKeyholes(polygon);
         out_.rois[r].keyholeCuts += split.cuts;
         return std::move(split.loops);
-    }
-
-    // The even-odd region of a self-crossing contour, or nothing where it
-    // cannot be had within the limits (validation then names the crossing).
-    std::optional<std::vector<Polygon>> repairedRegion(const Polygon& polygon) const {
-        try {
-            return evenOddRegion(polygon, kMaxSelfCrossingCuts, limits_.maxXorCrossings);
-        } catch (const TooManyCrossings&) {
-            return std::nullopt;
-        }
     }
 
     void validate(std::size_t r, const Slice& slice, const std::vector<std::size_t>& items) {

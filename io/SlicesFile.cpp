@@ -11,7 +11,6 @@
 #include <sstream>
 
 #include "geometry/ContourValidation.hpp"
-#include "geometry/PolygonXor.hpp"
 #include "geometry/SelfCrossingRepair.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputLimits.hpp"
@@ -396,13 +395,8 @@ class Parser {
             const std::optional<ContourDefect> defect = findContourDefect({c.points});
             std::optional<std::vector<Polygon>> region;
             if (defect && defect->kind == ContourDefect::Kind::SelfIntersection &&
-                defect->contact == SegmentContact::Cross) {
-                try {
-                    region =
-                        evenOddRegion(c.points, kMaxSelfCrossingCuts, kMaxXorCrossingsPerPlane);
-                } catch (const TooManyCrossings&) {
-                }
-            }
+                defect->contact == SegmentContact::Cross)
+                region = evenOddRegion(c.points, kMaxSelfCrossingCuts, kMaxXorCrossingsPerPlane);
             if (!region) {
                 out.push_back(std::move(c));
                 continue;

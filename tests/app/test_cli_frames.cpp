@@ -19,6 +19,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "geometry/Box3.hpp"
 #include "io/LabelVolume.hpp"
 #include "io/LevelSetVdb.hpp"
 #include "io/MeshIO.hpp"
@@ -76,24 +77,15 @@ std::vector<std::uint8_t> boxLabels(std::array<int, 3> size, std::array<int, 3> 
     return labels;
 }
 
-struct Box {
-    std::array<double, 3> min{{INFINITY, INFINITY, INFINITY}},
-        max{{-INFINITY, -INFINITY, -INFINITY}};
-    void add(Vec3 p) {
-        for (int a = 0; a < 3; ++a) {
-            min[std::size_t(a)] = std::min(min[std::size_t(a)], p[a]);
-            max[std::size_t(a)] = std::max(max[std::size_t(a)], p[a]);
-        }
-    }
-};
+using dfrecon::Box3;
 
 // The LPS box the contours of label 1 span: in the plane, voxel centres
 // ± half a voxel (contours pass through the midpoints between inside and
 // outside centres); along the plane normal, the plane centres themselves.
 // With `slabs`, the voxels' own box: also ± half a voxel along the normal.
-Box labelBox(const LabelVolume& volume, bool slabs) {
+Box3 labelBox(const LabelVolume& volume, bool slabs) {
     const dfrecon::VolumeGeometry& g = volume.geometry;
-    Box box;
+    Box3 box;
     for (int k = 0; k < g.size[2]; ++k)
         for (int j = 0; j < g.size[1]; ++j)
             for (int i = 0; i < g.size[0]; ++i)
@@ -208,7 +200,7 @@ TEST_P(CliFrames, InfoFieldsFieldAndMeshAgreeWithTheVoxelsInLps) {
     const std::string nifti = dir / (c.name + ".nii");
     writeNifti(nifti, c.size, c.spacing, c.sform, boxLabels(c.size, c.lo, c.hi));
     const LabelVolume volume = dfrecon::readLabelVolume(nifti);
-    const Box expected = labelBox(volume, false);
+    const Box3 expected = labelBox(volume, false);
 
     // info: the extent in LPS, to rounding (contour points are exact).
     const CliResult info = runCli(dir.str(), "info --json " + nifti);
@@ -216,8 +208,8 @@ TEST_P(CliFrames, InfoFieldsFieldAndMeshAgreeWithTheVoxelsInLps) {
     const auto roi = nlohmann::json::parse(info.out)["rois"][0];
     EXPECT_EQ(roi["planes"], c.planes);
     for (std::size_t a = 0; a < 3; ++a) {
-        EXPECT_NEAR(roi["extentMm"]["min"][a].get<double>(), expected.min[a], 1e-9) << a;
-        EXPECT_NEAR(roi["extentMm"]["max"][a].get<double>(), expected.max[a], 1e-9) << a;
+        EXPECT_NEAR(roi["extentMm"]["min"][a].get<double>(), expected.lo[int(a)], 1e-9) << a;
+        EXPECT_NEAR(roi["extentMm"]["max"][a].get<double>(), expected.hi[int(a)], 1e-9) << a;
     }
 
     // fields: the NRRD's samples sit on the voxels they describe.
@@ -263,12 +255,12 @@ TEST_P(CliFrames, InfoFieldsFieldAndMeshAgreeWithTheVoxelsInLps) {
     const std::string mesh = dir / "mesh.ply";
     const CliResult recon = runCli(dir.str(), "-q reconstruct " + nifti + " -o " + mesh);
     ASSERT_EQ(recon.exitCode, 0) << recon.err;
-    const Box voxels = labelBox(volume, true);
-    Box meshBox;
+    const Box3 voxels = labelBox(volume, true);
+    Box3 meshBox;
     for (const Vec3& p : dfrecon::readTriangleSoup(mesh).points) meshBox.add(p);
     for (std::size_t a = 0; a < 3; ++a) {
-        EXPECT_NEAR(meshBox.min[a], voxels.min[a], 1e-4) << a;
-        EXPECT_NEAR(meshBox.max[a], voxels.max[a], 1e-4) << a;
+        EXPECT_NEAR(meshBox.lo[int(a)], voxels.lo[int(a)], 1e-4) << a;
+        EXPECT_NEAR(meshBox.hi[int(a)], voxels.hi[int(a)], 1e-4) << a;
     }
 }
 
