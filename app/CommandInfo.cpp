@@ -58,8 +58,8 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
         j["contoursRepaired"] = dicom->contoursRepaired;
         j["slabThicknessMm"] = valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm);
     }
-    j["colour"] = roi.colour ? nlohmann::ordered_json{roi.colour->r, roi.colour->g, roi.colour->b}
-                             : nlohmann::ordered_json(nullptr);
+    j["colour"] =
+        roi.colour ? nlohmann::ordered_json(*roi.colour) : nlohmann::ordered_json(nullptr);
     if (!extent.empty) j["extentMm"] = {{"min", xyzJson(extent.min)}, {"max", xyzJson(extent.max)}};
     return j;
 }
@@ -84,8 +84,8 @@ void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
     if (roi.number) std::cout << *roi.number << " ";
     std::cout << "\"" << roi.name << "\"";
     if (roi.colour)
-        std::cout << " (colour " << roi.colour->r << " " << roi.colour->g << " " << roi.colour->b
-                  << ")";
+        std::cout << " (colour " << int((*roi.colour)[0]) << " " << int((*roi.colour)[1]) << " "
+                  << int((*roi.colour)[2]) << ")";
     std::cout << ": " << counted(roi.slices.size(), "slice") << ", "
               << counted(roi.contourCount(), "contour") << ", "
               << counted(roi.pointCount(), "point");
@@ -143,18 +143,20 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
         }
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
-        std::cout << nlohmann::ordered_json{{"command", "info"},
-                                            {"file", path},
-                                            {"format", load.format},
-                                            {"rois", rois},
-                                            {"warnings", warnings}}
-                         .dump(2)
-                  << "\n";
+        nlohmann::ordered_json report{{"command", "info"}, {"file", path}, {"format", load.format}};
+        if (load.format == "label volume")
+            report["labelTable"] = load.labelTable.empty()
+                                       ? nlohmann::ordered_json(nullptr)
+                                       : nlohmann::ordered_json(load.labelTable);
+        report["rois"] = rois;
+        report["warnings"] = warnings;
+        std::cout << report.dump(2) << "\n";
         reportDefects(load.contours);
         return;
     }
-    std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI")
-              << "\n";
+    std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI");
+    if (!load.labelTable.empty()) std::cout << ", names from " << load.labelTable;
+    std::cout << "\n";
     for (const Roi& roi : load.contours.rois) {
         printRoi(roi, load.dicomInfo(roi));
         if (roi.defect) std::cout << "  NOT READ: " << roi.defect->problem() << "\n";

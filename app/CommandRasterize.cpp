@@ -1,12 +1,20 @@
-// dfrecon rasterize IN --roi NAME --like REF -o OUT.nrrd: an ROI as a binary
-// label map on a reference grid, read from its 3D distance field (inside
-// where the field is negative), for 3D Slicer and other label-map tools.
+// dfrecon rasterize IN [--roi NAME | --all] --like REF -o OUT: ROIs as one
+// label map on a reference grid, each read from its 3D distance field
+// (inside where the field is negative), for 3D Slicer, ITK-SNAP and the
+// NIfTI tools, with a label table naming and colouring the labels.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <iostream>
+#include <numeric>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/ExitCodes.hpp"
+#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
@@ -14,6 +22,7 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
+#include "io/LabelTable.hpp"
 #include "io/LabelVolume.hpp"
 
 namespace dfrecon::app {
@@ -21,54 +30,67 @@ namespace dfrecon::app {
 namespace {
 
 struct RasterizeArgs {
-    std::string input, output, roi, like;
+    std::string input, output, roi, like, table;
+    bool all = false;
     double voxelMm = 0, pixelMm = 0;
     bool json = false;
 };
 
-// A grid with cubic voxels of `voxelMm` on the ROI's own axes (its plane
-// frame), covering its contours plus half a slice spacing beyond the ends.
-VolumeGeometry gridAroundRoi(const Roi& roi, double voxelMm) {
-    const Extent3 extent = extentOf(roi);
-    const SpacingStats spacing = spacingOf(roi);
-    const double reach = 0.5 * (spacing.maxMm > 0 ? spacing.maxMm : 1.0);
+// The frame every selected ROI shares, or patient LPS where they differ.
+PlaneFrame sharedFrame(const std::vector<const Roi*>& rois) {
+    for (const Roi* roi : rois)
+        if (!(roi->frame.u == rois.front()->frame.u && roi->frame.v == rois.front()->frame.v &&
+              roi->frame.n == rois.front()->frame.n))
+            return PlaneFrame{};
+    return rois.front()->frame;
+}
+
+// A grid with cubic voxels of `voxelMm` on the ROIs' shared axes (patient
+// LPS where they have none), covering their contours plus half a slice
+// spacing beyond the ends.
+VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelMm) {
+    const PlaneFrame frame = sharedFrame(rois);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (const Roi* roi : rois) {
+        Roi inFrame = *roi;
+        changeFrame(inFrame, frame);
+        const Extent3 extent = extentOf(inFrame);
+        const SpacingStats spacing = spacingOf(inFrame);
+        const double reach = 0.5 * (spacing.maxMm > 0 ? spacing.maxMm : 1.0);
+        // The caps reach half a spacing out along the ROI's own normal.
+        const bool alongZ = std::abs(dot(roi->frame.n, frame.n)) > 0.5;
+        for (int a = 0; a < 3; ++a) {
+            const double margin = voxelMm + (alongZ ? (a == 2 ? reach : 0) : reach);
+            lo[a] = std::min(lo[a], extent.min[a] - margin);
+            hi[a] = std::max(hi[a], extent.max[a] + margin);
+        }
+    }
     VolumeGeometry g;
-    double lo[3];
     for (int a = 0; a < 3; ++a) {
-        const double margin = a == 2 ? reach + voxelMm : voxelMm;
-        lo[a] = extent.min[a] - margin;
-        const double span = extent.max[a] + margin - lo[a];
+        const double span = hi[a] - lo[a];
         if (span / voxelMm > 4096)
             throw std::invalid_argument("--voxel-mm gives over 4096 voxels a side");
         g.size[a] = int(std::ceil(span / voxelMm)) + 1;
         g.spacingMm[a] = voxelMm;
     }
-    const Vec3 origin = roi.frame.toPatient({lo[0], lo[1], lo[2]});
+    const Vec3 origin = frame.toPatient({lo[0], lo[1], lo[2]});
     g.originMm = {origin.x, origin.y, origin.z};
-    const Vec3 axes[3] = {roi.frame.u, roi.frame.v, roi.frame.n};
+    const Vec3 axes[3] = {frame.u, frame.v, frame.n};
     for (int a = 0; a < 3; ++a) g.direction[a] = {axes[a].x, axes[a].y, axes[a].z};
     return g;
 }
 
-void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
-    const Stopwatch watch;
-    if (args.like.empty() == (args.voxelMm <= 0))
-        throw std::invalid_argument(
-            "give the grid with exactly one of --like REF or --voxel-mm MM");
-    if (args.output.size() < 5 || args.output.compare(args.output.size() - 5, 5, ".nrrd") != 0)
-        throw std::invalid_argument("output '" + args.output + "' needs the .nrrd extension");
-    const ContourInput input = loadContours(args.input, global);
-    const Roi& roi = *selectRois(input.contours, args.roi, false).front();
-    const VolumeGeometry grid =
-        args.like.empty() ? gridAroundRoi(roi, args.voxelMm) : readLabelVolume(args.like).geometry;
-
-    ocl::Runtime runtime(global.device);
+// The voxels of `grid` whose centres lie inside `roi`: where its 3D distance
+// field (as `dfrecon field` computes it) is negative. Only the voxels of the
+// field's box are visited. O(field + voxels in that box).
+std::vector<std::size_t> voxelsInside(ocl::Runtime& runtime, const Roi& roi,
+                                      const VolumeGeometry& grid, double pixelMm, bool quiet) {
     const SpacingStats spacing = spacingOf(roi);
     DistanceField3D field;
     {
-        Progress progress("field of " + roi.name, !global.quiet);
+        Progress progress("field of " + roi.name, !quiet);
         const SliceFields fields =
-            computeSliceFields(runtime, roi.slices, gridForSlices(roi.slices, args.pixelMm),
+            computeSliceFields(runtime, roi.slices, gridForSlices(roi.slices, pixelMm),
                                [&](double f) { progress.update(f); });
         field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
         propagateAlongZ(runtime, field);
@@ -77,41 +99,165 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     // the interpolated field decides (its zero set is the surface the
     // reconstruction follows, the flat caps included).
     const SliceGrid& g = field.grid;
-    const double xMin = g.originMm.x, yMin = g.originMm.y;
-    const double xMax = xMin + g.width * g.pixelMm, yMax = yMin + g.height * g.pixelMm;
-    std::vector<std::uint8_t> mask(grid.voxelCount(), 0);
-    std::size_t inside = 0;
-    for (int k = 0; k < grid.size[2]; ++k)
-        for (int j = 0; j < grid.size[1]; ++j)
-            for (int i = 0; i < grid.size[0]; ++i) {
+    const double lo[3] = {g.originMm.x, g.originMm.y, field.zMm.front()};
+    const double hi[3] = {lo[0] + g.width * g.pixelMm, lo[1] + g.height * g.pixelMm,
+                          field.zMm.back()};
+    int first[3] = {grid.size[0], grid.size[1], grid.size[2]}, last[3] = {-1, -1, -1};
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p = roi.frame.toPatient(
+            {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]});
+        const std::array<double, 3> index = grid.indexOfWorld(p);
+        for (int a = 0; a < 3; ++a) {
+            first[a] = std::min(first[a], int(std::max(std::floor(index[a]), 0.0)));
+            last[a] = std::max(last[a], int(std::min(std::ceil(index[a]), grid.size[a] - 1.0)));
+        }
+    }
+    std::vector<std::size_t> inside;
+    for (int k = first[2]; k <= last[2]; ++k)
+        for (int j = first[1]; j <= last[1]; ++j)
+            for (int i = first[0]; i <= last[0]; ++i) {
                 const Vec3 p = roi.frame.fromPatient(grid.worldOfIndex(i, j, k));
-                if (p.z < field.zMm.front() || p.z > field.zMm.back() || p.x < xMin || p.x > xMax ||
-                    p.y < yMin || p.y > yMax)
+                if (p.z < lo[2] || p.z > hi[2] || p.x < lo[0] || p.x > hi[0] || p.y < lo[1] ||
+                    p.y > hi[1])
                     continue;
-                if (sampleField(field, p.x, p.y, p.z) < 0) {
-                    mask[grid.linearIndex(i, j, k)] = 1;
-                    ++inside;
-                }
+                if (sampleField(field, p.x, p.y, p.z) < 0)
+                    inside.push_back(grid.linearIndex(i, j, k));
             }
-    writeMaskNrrd(args.output, grid, mask);
+    return inside;
+}
+
+// Each ROI's label: its number where every selected ROI has a distinct
+// positive one (DICOM ROI numbers, a label volume's values), else its
+// position 1, 2, ...
+std::vector<std::int32_t> labelsOf(const std::vector<const Roi*>& rois) {
+    std::vector<std::int32_t> labels;
+    std::set<int> seen;
+    for (const Roi* roi : rois)
+        if (roi->number && *roi->number > 0 && seen.insert(*roi->number).second)
+            labels.push_back(*roi->number);
+    if (labels.size() == rois.size()) return labels;
+    labels.clear();
+    for (std::size_t i = 0; i < rois.size(); ++i) labels.push_back(std::int32_t(i + 1));
+    return labels;
+}
+
+bool endsWith(const std::string& text, const std::string& end) {
+    return text.size() >= end.size() &&
+           std::equal(end.rbegin(), end.rend(), text.rbegin(), [](char a, char b) {
+               return a == std::tolower(static_cast<unsigned char>(b));
+           });
+}
+
+// STEM.txt beside `output` (STEM: the name without .nrrd, .nii, .nii.gz).
+std::string tableBeside(const std::string& output) {
+    for (const char* end : {".nii.gz", ".nii", ".nrrd"})
+        if (endsWith(output, end))
+            return output.substr(0, output.size() - std::strlen(end)) + ".txt";
+    return output + ".txt";
+}
+
+void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
+    const Stopwatch watch;
+    if (args.like.empty() == (args.voxelMm <= 0))
+        throw std::invalid_argument(
+            "give the grid with exactly one of --like REF or --voxel-mm MM");
+    const bool segmentation = endsWith(args.output, ".seg.nrrd");
+    if (!endsWith(args.output, ".nrrd") && !endsWith(args.output, ".nii") &&
+        !endsWith(args.output, ".nii.gz"))
+        throw std::invalid_argument("output '" + args.output +
+                                    "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
+    if (args.all && !args.roi.empty())
+        throw std::invalid_argument("give --roi NAME or --all, not both");
+    const ContourInput input = loadContours(args.input, global);
+    std::vector<const Roi*> rois;
+    std::vector<std::string> notRead;
+    for (const Roi* roi : selectRois(input.contours, args.roi, args.all)) {
+        if (!roi->defect) {
+            rois.push_back(roi);
+        } else if (!args.all) {
+            throw *roi->defect;
+        } else {
+            std::cerr << "dfrecon: " << roi->defect->what() << "\n";
+            notRead.push_back(roi->name);
+        }
+    }
+    if (rois.empty()) throw InputError(args.input, 0, "no ROI could be read");
+    const VolumeGeometry grid = args.like.empty() ? gridAroundRois(rois, args.voxelMm)
+                                                  : readLabelVolume(args.like).geometry;
+
+    // Larger structures are painted first so that a structure inside
+    // another (an organ inside the body outline) keeps its voxels: a label
+    // map holds one label per voxel.
+    ocl::Runtime runtime(global.device);
+    const std::vector<std::int32_t> labels = labelsOf(rois);
+    std::vector<std::vector<std::size_t>> inside(rois.size());
+    for (std::size_t r = 0; r < rois.size(); ++r)
+        inside[r] = voxelsInside(runtime, *rois[r], grid, args.pixelMm, global.quiet);
+    std::vector<std::size_t> order(rois.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return inside[a].size() > inside[b].size();
+    });
+    LabelVolume map;
+    map.geometry = grid;
+    map.labels.assign(grid.voxelCount(), 0);
+    std::vector<std::int32_t> owner(grid.voxelCount(), -1);
+    for (std::size_t r : order)
+        for (std::size_t v : inside[r]) {
+            map.labels[v] = labels[r];
+            owner[v] = std::int32_t(r);
+        }
+    LabelTable table;
+    for (std::size_t r = 0; r < rois.size(); ++r)
+        table[labels[r]] = LabelEntry{rois[r]->name, rois[r]->colour};
+    if (segmentation) map.keyValues = segmentationKeys(table, grid.size);
+    const std::string tablePath = !args.table.empty() ? args.table
+                                  : segmentation      ? std::string()
+                                                      : tableBeside(args.output);
+    writeLabelVolume(args.output, map);
+    if (!tablePath.empty()) writeLabelTable(tablePath, table);
+
     const double voxelMm3 = grid.spacingMm[0] * grid.spacingMm[1] * grid.spacingMm[2];
+    nlohmann::ordered_json roiReports = nlohmann::ordered_json::array();
+    for (std::size_t r = 0; r < rois.size(); ++r) {
+        const std::size_t kept =
+            std::size_t(std::count_if(inside[r].begin(), inside[r].end(),
+                                      [&](std::size_t v) { return owner[v] == std::int32_t(r); }));
+        roiReports.push_back({{"roi", rois[r]->name},
+                              {"label", labels[r]},
+                              {"insideVoxels", inside[r].size()},
+                              {"volumeCc", double(inside[r].size()) * voxelMm3 / 1000},
+                              {"voxelsGivenToSmallerRois", inside[r].size() - kept}});
+        if (!args.json)
+            std::cout << rois[r]->name << ": label " << labels[r] << ", " << inside[r].size()
+                      << " voxels inside (" << double(inside[r].size()) * voxelMm3 / 1000 << " cc)"
+                      << (kept < inside[r].size() ? ", " + std::to_string(inside[r].size() - kept) +
+                                                        " of them labelled as a smaller ROI"
+                                                  : std::string())
+                      << "\n";
+    }
     if (args.json)
         std::cout << nlohmann::ordered_json{{"command", "rasterize"},
                                             {"input", args.input},
-                                            {"roi", roi.name},
                                             {"output", args.output},
+                                            {"labelTable", tablePath.empty()
+                                                               ? nlohmann::ordered_json(nullptr)
+                                                               : nlohmann::ordered_json(tablePath)},
                                             {"grid",
-                                             args.like.empty() ? "around the ROI" : args.like},
+                                             args.like.empty() ? "around the ROIs" : args.like},
                                             {"size", xyzJson(grid.size)},
                                             {"spacingMm", xyzJson(grid.spacingMm)},
-                                            {"insideVoxels", inside},
-                                            {"volumeCc", double(inside) * voxelMm3 / 1000},
+                                            {"rois", roiReports},
+                                            {"notRead", notRead},
                                             {"seconds", watch.total()}}
                          .dump(2)
                   << "\n";
     else
-        std::cout << roi.name << ": " << inside << " voxels inside ("
-                  << double(inside) * voxelMm3 / 1000 << " cc) -> " << args.output << "\n";
+        std::cout << "-> " << args.output << (tablePath.empty() ? "" : " and " + tablePath) << "\n";
+    if (!notRead.empty())
+        throw ItemsFailed(std::to_string(notRead.size()) +
+                              " ROI(s) could not be read; the others were rasterized",
+                          kExitBadInput);
 }
 
 }  // namespace
@@ -119,32 +265,44 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
 void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
     auto args = std::make_shared<RasterizeArgs>();
     CLI::App* cmd = root.add_subcommand(
-        "rasterize", "Write an ROI as a binary label map (NRRD) on a reference grid");
+        "rasterize",
+        "Write ROIs as a label map (NRRD, Slicer .seg.nrrd or NIfTI) on a reference grid");
     cmd->footer(
-        "A voxel is inside when the ROI's 3D distance field (as `dfrecon field` computes it) is "
-        "negative at its centre: on a contour plane that is the exact inside of the contours, "
-        "between planes the field's interpolation, at the ends the flat caps half a spacing "
-        "out. The NRRD (uint8 0/1, gzip, LPS space directions and origin) opens in 3D Slicer "
-        "as a label map or segmentation. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime "
-        "failure.");
+        "A voxel is inside an ROI when the ROI's 3D distance field (as `dfrecon field` computes "
+        "it) is negative at its centre: on a contour plane that is the exact inside of the "
+        "contours, between planes the field's interpolation, at the ends the flat caps half a "
+        "spacing out. Each ROI's label is its number where the ROIs have distinct positive "
+        "numbers (DICOM ROI Number, a label volume's value), else its position 1, 2, ...; where "
+        "ROIs overlap the smaller one keeps the voxel (an organ inside the body outline). "
+        "Outputs (gzip, LPS geometry): .nrrd (a label map for 3D Slicer, ITK-SNAP), .seg.nrrd "
+        "(a 3D Slicer segmentation with each ROI's name and colour), .nii / .nii.gz (NIfTI-1, "
+        "RAS sform and qform, for FSL, ANTs, ITK-SNAP). Except for .seg.nrrd a label table "
+        "(ITK-SNAP format, names and colours) is written beside it as STEM.txt, which dfrecon "
+        "and ITK-SNAP read back. Exit codes: 0 done, 1 usage, 2 bad input (with --all: some "
+        "ROIs could not be read; the others are in the map), 3 runtime failure.");
     cmd->add_option("file", args->input,
                     "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT "
                     "(.dcm) or a label volume")
         ->required();
-    cmd->add_option("-o,--output", args->output, "Output label map (.nrrd)")
+    cmd->add_option("-o,--output", args->output,
+                    "Output label map: .nrrd, .seg.nrrd, .nii or .nii.gz")
         ->required()
         ->check(kNotStandardStream);
     cmd->add_option("--roi", args->roi,
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
+    cmd->add_flag("--all", args->all, "Every ROI of the file, in one label map");
     cmd->add_option("--like", args->like,
                     "Reference grid: a NRRD or NIfTI volume (e.g. the CT or a segmentation) whose "
                     "size, spacing, origin and directions the output takes");
     cmd->add_option("--voxel-mm", args->voxelMm,
-                    "Or a grid of cubic voxels this size (mm) on the ROI's axes, around its "
-                    "contours")
+                    "Or a grid of cubic voxels this size (mm) on the ROIs' axes (patient LPS "
+                    "where they differ), around their contours")
         ->check(kPositive);
+    cmd->add_option("--label-table-out", args->table,
+                    "Label table to write (.txt ITK-SNAP, .ctbl or .lut VALUE NAME R G B A; "
+                    "default: STEM.txt beside the map, none for .seg.nrrd)");
     cmd->add_option("--pixel-mm", args->pixelMm,
-                    "Field pixel size in mm (default 0: the ROI's extent fits 512 px)")
+                    "Field pixel size in mm (default 0: each ROI's extent fits 512 px)")
         ->capture_default_str()
         ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");

@@ -8,9 +8,11 @@ namespace dfrecon::app {
 
 /// Options every subcommand shares.
 struct GlobalOptions {
-    std::string device;           // --device, falls back to $DFRECON_DEVICE
-    bool quiet = false;           // --quiet: no progress bar, no warnings on stderr
-    bool repairContours = false;  // --repair-contours: self-crossing contours by even-odd
+    std::string device;            // --device, falls back to $DFRECON_DEVICE
+    bool quiet = false;            // --quiet: no progress bar, no warnings on stderr
+    bool repairContours = false;   // --repair-contours: self-crossing contours by even-odd
+    std::string labelTable;        // --label-table: names and colours of label-volume labels
+    bool acceptIntensity = false;  // --accept-intensity: contour a scan's every value
 };
 
 void addSynthCommand(CLI::App& root, const GlobalOptions& global);

@@ -31,7 +31,9 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global) 
     } else if (isLabelInputPath(path)) {
         Progress progress("reading " + path, !global.quiet);
         input.format = "label volume";
-        input.contours = readLabelContours(path);
+        input.contours =
+            readLabelContours(path, LabelInputOptions{global.labelTable, global.acceptIntensity});
+        input.labelTable = labelTableSource(path, {global.labelTable});
     } else if (isDicomFile(path)) {
         RtStructLoad load;
         {

@@ -17,6 +17,7 @@ struct ContourInput {
     ContourSet contours;
     std::vector<InputWarning> warnings;
     std::vector<RtStructRoiInfo> dicomRois;  // per ROI, DICOM input only
+    std::string labelTable;                  // label volumes: where ROI names came from ("" none)
 
     /// What DICOM reading found about `roi` (one of contours.rois), or nullptr.
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;

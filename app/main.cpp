@@ -30,6 +30,16 @@ int main(int argc, char** argv) {
                   "Resolve a contour that crosses itself (a figure eight, a loop drawn over its "
                   "start) into the simple contours of its even-odd region, with a warning naming "
                   "it, instead of refusing its ROI (.slices and RTSTRUCT input)");
+    root.add_option("--label-table", global.labelTable,
+                    "Names and colours of a label volume's labels: an ITK-SNAP label description, "
+                    "a FreeSurfer LUT or Slicer colour table (VALUE NAME R G B A), or a list of "
+                    "VALUE NAME lines (default: a .seg.nrrd's own segments, else STEM.txt, "
+                    "STEM.ctbl, STEM.lut or STEM-labels.txt beside the volume, else label_N)")
+        ->check(CLI::ExistingFile);
+    root.add_flag("--accept-intensity", global.acceptIntensity,
+                  "Contour every value of a label volume that looks like an intensity image "
+                  "(32 or more values changing between most neighbouring voxels) instead of "
+                  "refusing it");
     root.fallthrough();
 
     addSynthCommand(root, global);

@@ -8,13 +8,10 @@
 
 #include "geometry/PlaneFrame.hpp"
 #include "geometry/Polygon.hpp"
+#include "io/Colours.hpp"
 #include "io/InputError.hpp"
 
 namespace dfrecon {
-
-struct Rgb {
-    int r = 0, g = 0, b = 0;  // 0..255
-};
 
 /// The closed polygons of one plane z = zMm. After loading and
 /// normaliseOrientation(), outer contours are counter-clockwise, holes

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
+#include <unordered_set>
 
-#include "io/LabelVolume.hpp"
+#include "io/LabelTable.hpp"
 #include "io/MaskContours.hpp"
 #include "io/MaskStack.hpp"
 
@@ -24,20 +26,86 @@ bool isLabelVolumeName(const std::string& path) {
     return false;
 }
 
+bool hasSegments(const LabelVolume& volume) {
+    return std::any_of(volume.keyValues.begin(), volume.keyValues.end(),
+                       [](const auto& kv) { return kv.first.rfind("Segment0_", 0) == 0; });
+}
+
+// The names and colours of `table` as contouring options.
+void applyTable(const LabelTable& table, MaskContourOptions& options) {
+    for (const auto& [label, entry] : table) {
+        options.names[label] = entry.name;
+        if (entry.colour) options.colours[label] = *entry.colour;
+    }
+}
+
 }  // namespace
 
 bool isLabelInputPath(const std::string& path) {
     return isLabelVolumeName(path) || isMaskStackPath(path);
 }
 
-ContourSet readLabelContours(const std::string& path) {
-    MaskContourOptions options;
-    options.sourceName = path;
-    if (isLabelVolumeName(path)) return contoursFromLabels(readLabelVolume(path), options);
-    MaskStack stack = readMaskStack(path);
-    options.names = std::move(stack.labelNames);
-    options.planePositionsMm = std::move(stack.slicePositionsMm);
-    return contoursFromLabels(stack.volume, options);
+std::optional<std::string> intensityImageEvidence(const LabelVolume& volume) {
+    const auto& g = volume.geometry;
+    const auto& labels = volume.labels;
+    std::unordered_set<std::int32_t> values;
+    std::size_t pairs = 0, changes = 0;
+    for (std::size_t at = 0; at < labels.size(); ++at) {
+        const std::int32_t v = labels[at];
+        if (v == 0) continue;
+        if (values.size() < kIntensityMinValues) values.insert(v);
+        const std::size_t i = at % std::size_t(g.size[0]);
+        const std::size_t j = at / std::size_t(g.size[0]) % std::size_t(g.size[1]);
+        if (i + 1 < std::size_t(g.size[0]) && labels[at + 1] != 0) {
+            ++pairs;
+            changes += labels[at + 1] != v;
+        }
+        const std::size_t below = at + std::size_t(g.size[0]);
+        if (j + 1 < std::size_t(g.size[1]) && labels[below] != 0) {
+            ++pairs;
+            changes += labels[below] != v;
+        }
+    }
+    if (values.size() < kIntensityMinValues || pairs == 0) return std::nullopt;
+    const double fraction = double(changes) / double(pairs);
+    if (fraction <= kIntensityChangeFraction) return std::nullopt;
+    std::ostringstream why;
+    why << "looks like an intensity image, not a label map: " << kIntensityMinValues
+        << " or more distinct values, and " << int(fraction * 100 + 0.5)
+        << " % of neighbouring non-zero voxels differ (a label map changes only on region "
+           "borders). Segment or threshold it first, or pass --accept-intensity to contour every "
+           "value";
+    return why.str();
+}
+
+std::string labelTableSource(const std::string& path, const LabelInputOptions& options) {
+    if (!options.labelTablePath.empty()) return options.labelTablePath;
+    if (endsWith(path, ".seg.nrrd")) return "segmentation header";
+    return labelTableBeside(path).value_or("");
+}
+
+ContourSet readLabelContours(const std::string& path, const LabelInputOptions& options) {
+    MaskContourOptions contouring;
+    contouring.sourceName = path;
+    if (!isLabelVolumeName(path)) {
+        MaskStack stack = readMaskStack(path);
+        contouring.names = std::move(stack.labelNames);
+        contouring.planePositionsMm = std::move(stack.slicePositionsMm);
+        if (!options.labelTablePath.empty())
+            applyTable(readLabelTable(options.labelTablePath), contouring);
+        return contoursFromLabels(stack.volume, contouring);
+    }
+    const LabelVolume volume = readLabelVolume(path);
+    if (!options.acceptIntensityImages)
+        if (const auto evidence = intensityImageEvidence(volume))
+            throw InputError(path, 0, *evidence);
+    if (!options.labelTablePath.empty())
+        applyTable(readLabelTable(options.labelTablePath), contouring);
+    else if (hasSegments(volume))
+        applyTable(labelTableFromSegmentation(path, volume.keyValues), contouring);
+    else if (const auto beside = labelTableBeside(path))
+        applyTable(readLabelTable(*beside), contouring);
+    return contoursFromLabels(volume, contouring);
 }
 
 }  // namespace dfrecon

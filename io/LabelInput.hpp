@@ -1,10 +1,13 @@
 #pragma once
 // Label images as contour input: label volume files (NRRD, NIfTI) and mask
 // stacks (images + stack.json) turned into ROIs of contour slices, for the
-// command-line program's input dispatch.
+// command-line program's input dispatch, with the names and colours of a
+// label table (io/LabelTable).
+#include <optional>
 #include <string>
 
 #include "io/ContourSet.hpp"
+#include "io/LabelVolume.hpp"
 
 namespace dfrecon {
 
@@ -13,10 +16,39 @@ namespace dfrecon {
 /// (isMaskStackPath). Reads no file contents. O(1).
 bool isLabelInputPath(const std::string& path);
 
+struct LabelInputOptions {
+    /// A label table file naming and colouring the labels; empty: the
+    /// volume's own (a .seg.nrrd's segments) or the one beside it
+    /// (labelTableBeside), else names "label_N" and no colours.
+    std::string labelTablePath;
+    /// Contour a volume that looks like an intensity image (see
+    /// intensityImageEvidence) instead of refusing it.
+    bool acceptIntensityImages = false;
+};
+
+/// Why `volume` looks like an intensity image (a scan) rather than a label
+/// map, or nullopt. A label map is piecewise constant: neighbouring voxels
+/// differ only on region borders. The evidence is at least
+/// kIntensityMinValues distinct non-zero values and, among pairs of
+/// neighbouring voxels (along x and y) that are both non-zero, more than
+/// kIntensityChangeFraction with different values. Atlases with hundreds of
+/// labels change on a few percent of pairs; scans on most. O(voxels).
+std::optional<std::string> intensityImageEvidence(const LabelVolume& volume);
+inline constexpr std::size_t kIntensityMinValues = 32;
+inline constexpr double kIntensityChangeFraction = 0.25;
+
+/// Where the names of `path`'s labels come from: options.labelTablePath,
+/// "segmentation header" for a volume carrying Slicer segments, the table
+/// beside it, or "" for none. O(1) file-system checks (the volume is not
+/// read).
+std::string labelTableSource(const std::string& path, const LabelInputOptions& options = {});
+
 /// Reads the label volume or mask stack at `path` and contours every label
 /// other than 0 (contoursFromLabels; a stack's label names and exact slice
-/// positions are used). Throws InputError for unreadable or invalid input
-/// and for sheared volumes. O(voxels).
-ContourSet readLabelContours(const std::string& path);
+/// positions are used), naming and colouring ROIs from the label table
+/// (LabelInputOptions). Throws InputError for unreadable or invalid input,
+/// sheared volumes, a bad label table, and volumes that look like intensity
+/// images unless accepted. O(voxels).
+ContourSet readLabelContours(const std::string& path, const LabelInputOptions& options = {});
 
 }  // namespace dfrecon

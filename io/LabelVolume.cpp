@@ -367,30 +367,53 @@ std::vector<T> narrowed(const std::vector<std::int32_t>& labels) {
 
 }  // namespace
 
-void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
+namespace {
+
+// Writes volume's labels in the narrowest type that holds them all, through
+// `write(data, type)`. The narrowest type keeps files small and is what
+// Slicer writes for label maps (unsigned char, short); the values never
+// change.
+template <class Write>
+void writeNarrowest(const std::string& path, const char* function, const LabelVolume& volume,
+                    Write write) {
     using labelvolume::SampleType;
+    const std::string problem = labelvolume::geometryProblem(volume.geometry);
+    if (!problem.empty()) throw std::invalid_argument(std::string(function) + ": " + problem);
+    if (volume.labels.size() != volume.geometry.voxelCount())
+        throw std::invalid_argument(std::string(function) + ": " + path +
+                                    ": label count does not match the geometry");
+    const auto [low, high] = std::minmax_element(volume.labels.begin(), volume.labels.end());
+    if (*low >= 0 && *high <= 255) {
+        write(narrowed<std::uint8_t>(volume.labels).data(), SampleType::UInt8);
+    } else if (*low >= 0 && *high <= 65535) {
+        write(narrowed<std::uint16_t>(volume.labels).data(), SampleType::UInt16);
+    } else if (*low >= -32768 && *high <= 32767) {
+        write(narrowed<std::int16_t>(volume.labels).data(), SampleType::Int16);
+    } else {
+        write(volume.labels.data(), SampleType::Int32);
+    }
+}
+
+}  // namespace
+
+void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
     if (!endsWith(path, ".nrrd"))
         throw std::invalid_argument("writeLabelNrrd: " + path + " does not end in .nrrd");
-    const std::string problem = labelvolume::geometryProblem(volume.geometry);
-    if (!problem.empty()) throw std::invalid_argument("writeLabelNrrd: " + problem);
-    if (volume.labels.size() != volume.geometry.voxelCount())
-        throw std::invalid_argument("writeLabelNrrd: label count does not match the geometry");
-    const auto [low, high] = std::minmax_element(volume.labels.begin(), volume.labels.end());
-    // The narrowest type keeps files small and is what Slicer writes for
-    // label maps (unsigned char, short); the values never change.
-    if (*low >= 0 && *high <= 255) {
-        const auto samples = narrowed<std::uint8_t>(volume.labels);
-        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::UInt8);
-    } else if (*low >= 0 && *high <= 65535) {
-        const auto samples = narrowed<std::uint16_t>(volume.labels);
-        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::UInt16);
-    } else if (*low >= -32768 && *high <= 32767) {
-        const auto samples = narrowed<std::int16_t>(volume.labels);
-        labelvolume::writeNrrdSamples(path, volume.geometry, samples.data(), SampleType::Int16);
-    } else {
-        labelvolume::writeNrrdSamples(path, volume.geometry, volume.labels.data(),
-                                      SampleType::Int32);
-    }
+    writeNarrowest(
+        path, "writeLabelNrrd", volume, [&](const void* data, labelvolume::SampleType type) {
+            labelvolume::writeNrrdSamples(path, volume.geometry, data, type, volume.keyValues);
+        });
+}
+
+void writeLabelVolume(const std::string& path, const LabelVolume& volume) {
+    if (endsWith(path, ".nrrd")) return writeLabelNrrd(path, volume);
+    if (!endsWith(path, ".nii") && !endsWith(path, ".nii.gz"))
+        throw std::invalid_argument("label map '" + path +
+                                    "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
+    writeNarrowest(path, "writeLabelVolume", volume,
+                   [&](const void* data, labelvolume::SampleType type) {
+                       labelvolume::writeNiftiSamples(path, volume.geometry, data, type);
+                   });
 }
 
 }  // namespace dfrecon

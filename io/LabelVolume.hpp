@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/Vec3.hpp"
@@ -47,6 +48,10 @@ struct VolumeGeometry {
 struct LabelVolume {
     VolumeGeometry geometry;
     std::vector<std::int32_t> labels;  // geometry.voxelCount() values, x fastest
+    /// NRRD header key/value pairs (`key:=value`: a 3D Slicer
+    /// segmentation's segment names and colours), in file order; read from
+    /// and written to NRRD only.
+    std::vector<std::pair<std::string, std::string>> keyValues;
 };
 
 /// Reads a 3-D label volume, choosing the format by the name's ending
@@ -84,7 +89,15 @@ void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
                    const std::vector<std::uint8_t>& mask);
 
 /// Same for a label map, stored in the smallest of uchar, ushort, short and
-/// int that holds every label. O(voxels).
+/// int that holds every label, with volume.keyValues in the header. O(voxels).
 void writeLabelNrrd(const std::string& path, const LabelVolume& volume);
+
+/// Writes a label map by the extension of `path`: .nrrd as writeLabelNrrd,
+/// .nii or .nii.gz as single-file NIfTI-1 (niftilib) in the same narrowest
+/// type, sform and qform both set (code 1, scanner anatomical) to the
+/// geometry in NIfTI's RAS, units mm; keyValues are not written there.
+/// Atomic; throws std::invalid_argument for another extension or a volume
+/// that does not fit, std::runtime_error on a failed write. O(voxels).
+void writeLabelVolume(const std::string& path, const LabelVolume& volume);
 
 }  // namespace dfrecon

@@ -86,6 +86,11 @@ LabelVolume readNiftiLabelVolume(const std::string& path);
 /// Writes geometry.voxelCount() samples of `type` (UInt8, UInt16, Int16 or
 /// Int32) as an attached gzip NRRD in LPS, atomically.
 void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
-                      SampleType type);
+                      SampleType type,
+                      const std::vector<std::pair<std::string, std::string>>& keyValues = {});
+/// The same as a single-file NIfTI-1 (.nii or .nii.gz by the name), RAS
+/// sform and qform, atomically.
+void writeNiftiSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
+                       SampleType type);
 
 }  // namespace dfrecon::labelvolume

@@ -17,8 +17,10 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
+#include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
@@ -248,6 +250,72 @@ LabelVolume readNiftiLabelVolume(const std::string& path) {
     volume.geometry = geometry;
     volume.labels = labelsFromSamples(path, image->data, type, geometry, scale);
     return volume;
+}
+
+namespace {
+
+int niftiTypeOf(SampleType type) {
+    switch (type) {
+        case SampleType::UInt8:
+            return DT_UINT8;
+        case SampleType::UInt16:
+            return DT_UINT16;
+        case SampleType::Int16:
+            return DT_INT16;
+        case SampleType::Int32:
+            return DT_INT32;
+        default:
+            throw std::invalid_argument("writeNiftiSamples: unsupported sample type");
+    }
+}
+
+}  // namespace
+
+void writeNiftiSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
+                       SampleType type) {
+    const int datatype = niftiTypeOf(type);
+    std::lock_guard<std::mutex> lock(niftiMutex());
+    nifti_set_debug_level(0);
+    writeAtomically(path, [&](const std::string& temporary) {
+        const std::int64_t dims[8] = {
+            3, geometry.size[0], geometry.size[1], geometry.size[2], 1, 1, 1, 1};
+        Image image(nifti_make_new_nim(dims, datatype, 0));
+        if (!image) throw std::bad_alloc();
+        const std::size_t bytes = geometry.voxelCount() * sampleBytes(type);
+        image->data = std::malloc(bytes);  // nifti_image_free releases it
+        if (!image->data) throw std::bad_alloc();
+        std::memcpy(image->data, data, bytes);
+        // Index → RAS: the LPS steps and origin with x and y negated.
+        nifti_dmat44 m{};
+        for (int c = 0; c < 3; ++c) {
+            for (int a = 0; a < 3; ++a)
+                m.m[c][a] = kRasToLps[c] * geometry.spacingMm[a] * geometry.direction[a][c];
+            m.m[c][3] = kRasToLps[c] * geometry.originMm[c];
+        }
+        m.m[3][3] = 1;
+        image->sto_xyz = m;
+        image->sto_ijk = nifti_dmat44_inverse(m);
+        image->sform_code = NIFTI_XFORM_SCANNER_ANAT;
+        // The qform too, for readers that ignore the sform; exact for the
+        // orthogonal grids written here.
+        nifti_dmat44_to_quatern(m, &image->quatern_b, &image->quatern_c, &image->quatern_d,
+                                &image->qoffset_x, &image->qoffset_y, &image->qoffset_z, nullptr,
+                                nullptr, nullptr, &image->qfac);
+        image->qform_code = NIFTI_XFORM_SCANNER_ANAT;
+        image->qto_xyz = m;
+        image->qto_ijk = image->sto_ijk;
+        image->dx = image->pixdim[1] = geometry.spacingMm[0];
+        image->dy = image->pixdim[2] = geometry.spacingMm[1];
+        image->dz = image->pixdim[3] = geometry.spacingMm[2];
+        image->xyz_units = NIFTI_UNITS_MM;
+        image->nifti_type = NIFTI_FTYPE_NIFTI1_1;
+        if (nifti_set_filenames(image.get(), temporary.c_str(), 0, 1) != 0)
+            throw std::runtime_error("cannot write " + path + ": niftilib refused the name");
+        nifti_image_write(image.get());  // reports nothing; the file is read back instead
+        Image back(nifti_image_read(temporary.c_str(), 0));
+        return back && back->nx == geometry.size[0] && back->ny == geometry.size[1] &&
+               back->nz == geometry.size[2] && back->datatype == datatype;
+    });
 }
 
 }  // namespace dfrecon::labelvolume

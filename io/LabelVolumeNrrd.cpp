@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -361,12 +362,22 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
         throw InputError(path, 0, "changed while being read");
     LabelVolume volume;
     volume.geometry = geometry;
+    nrrdStateKeyValueReturnInternalPointers = AIR_FALSE;
     volume.labels = labelsFromSamples(path, full->data, type, geometry, LinearScale{});
+    for (unsigned i = 0; i < nrrdKeyValueSize(full.get()); ++i) {
+        char* key = nullptr;
+        char* value = nullptr;
+        nrrdKeyValueIndex(full.get(), &key, &value, i);  // copies: the state is set above
+        if (key && value) volume.keyValues.emplace_back(key, value);
+        std::free(key);
+        std::free(value);
+    }
     return volume;
 }
 
 void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
-                      SampleType type) {
+                      SampleType type,
+                      const std::vector<std::pair<std::string, std::string>>& keyValues) {
     const int teemType = teemTypeOf(type);
     std::lock_guard<std::mutex> lock(teemMutex());
     nrrdStateVerboseIO = 0;
@@ -392,6 +403,9 @@ void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, c
         nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoKind, nrrdKindDomain, nrrdKindDomain,
                            nrrdKindDomain);
         for (int c = 0; c < 3; ++c) nrrd->spaceUnits[c] = airStrdup("mm");
+        for (const auto& [key, value] : keyValues)
+            if (nrrdKeyValueAdd(nrrd.get(), key.c_str(), value.c_str()))
+                throw std::runtime_error("cannot write " + path + ": " + teemError());
         io->format = nrrdFormatNRRD;  // attached header whatever the name
         io->encoding = nrrdEncodingGzip;
         io->zlibLevel = 6;

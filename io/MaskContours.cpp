@@ -118,6 +118,8 @@ ContourSet contoursFromLabels(const LabelVolume& volume, const MaskContourOption
     for (auto& [label, roi] : rois) {
         const auto name = options.names.find(label);
         roi.name = name != options.names.end() ? name->second : "label_" + std::to_string(label);
+        if (const auto colour = options.colours.find(label); colour != options.colours.end())
+            roi.colour = colour->second;
         roi.number = label;
         roi.frame = frame;
         roi.slabThicknessMm = geometry.spacingMm[2];

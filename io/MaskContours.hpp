@@ -16,6 +16,8 @@ namespace dfrecon {
 struct MaskContourOptions {
     /// ROI names by label; labels not listed are named "label_N".
     std::map<std::int32_t, std::string> names;
+    /// ROI display colours by label; labels not listed get none.
+    std::map<std::int32_t, Rgb> colours;
     /// The label that is no structure (no ROI is made for it).
     std::int32_t backgroundLabel = 0;
     /// When not empty: the position along the frame's normal of each plane

@@ -223,7 +223,8 @@ class Reader {
                 warn(where + ": " + tagName(DCM_ROIDisplayColor) + " outside 0..255; ignored");
                 return;
             }
-        out_.contours.rois[r].colour = Rgb{rgb[0], rgb[1], rgb[2]};
+        out_.contours.rois[r].colour =
+            Rgb{std::uint8_t(rgb[0]), std::uint8_t(rgb[1]), std::uint8_t(rgb[2])};
     }
 
     void readContours(DcmSequenceOfItems& sequence, std::size_t r, const std::string& parent) {

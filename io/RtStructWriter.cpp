@@ -70,8 +70,8 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
     check(rt.getROIContourSequence().addItem(item), "ROIContourSequence");
     check(item->setReferencedROINumber(numberText), "ReferencedROINumber");
     const Rgb colour = roi.colour.value_or(Rgb{255, 0, 0});
-    check(item->setROIDisplayColor((std::to_string(colour.r) + "\\" + std::to_string(colour.g) +
-                                    "\\" + std::to_string(colour.b))
+    check(item->setROIDisplayColor((std::to_string(colour[0]) + "\\" + std::to_string(colour[1]) +
+                                    "\\" + std::to_string(colour[2]))
                                        .c_str()),
           "ROIDisplayColor");
     int contourNumber = 0;

@@ -267,9 +267,9 @@ class Parser {
                 fail(lineNo_, "duplicate ROI name '" + source.roi.name + "' (first at line " +
                                   std::to_string(other.line) + ")");
         if (tok_.tokens.size() == 5)
-            source.roi.colour = Rgb{int(integer(tok_.tokens[2], "red", 0, 255)),
-                                    int(integer(tok_.tokens[3], "green", 0, 255)),
-                                    int(integer(tok_.tokens[4], "blue", 0, 255))};
+            source.roi.colour = Rgb{std::uint8_t(integer(tok_.tokens[2], "red", 0, 255)),
+                                    std::uint8_t(integer(tok_.tokens[3], "green", 0, 255)),
+                                    std::uint8_t(integer(tok_.tokens[4], "blue", 0, 255))};
         rois_.push_back(std::move(source));
     }
 
@@ -518,7 +518,9 @@ void formatSlices(const ContourSet& contours, std::ostream& out) {
     out << "dfrecon-slices 1\nunits mm\n";
     for (const Roi& roi : contours.rois) {
         out << "roi " << quotedName(roi.name);
-        if (roi.colour) out << ' ' << roi.colour->r << ' ' << roi.colour->g << ' ' << roi.colour->b;
+        if (roi.colour)
+            out << ' ' << int((*roi.colour)[0]) << ' ' << int((*roi.colour)[1]) << ' '
+                << int((*roi.colour)[2]);
         out << '\n';
         for (const Slice& slice : roi.slices) {
             out << "slice " << exactNumber(slice.zMm) << '\n';

@@ -198,7 +198,7 @@ TEST(RtStruct, RoundTripKeepsEveryPoint) {
     ASSERT_EQ(load.rois.size(), 2u);
     EXPECT_EQ(load.rois[0].number, 1);  // the torus had no number: its position
     EXPECT_EQ(load.rois[1].number, 7);
-    EXPECT_EQ(load.contours.rois[1].colour->g, 100);
+    EXPECT_EQ((*load.contours.rois[1].colour)[1], 100);
     EXPECT_EQ(load.rois[0].holes, HoleConvention::Nested);  // torus slices through the hole
     EXPECT_FALSE(load.frameOfReferenceUid.empty());
 
@@ -225,7 +225,7 @@ TEST(RtStruct, JitteredPlanesGroupIntoSlices) {
     EXPECT_NEAR(read.slices[0].zMm, 2.4991, 1e-9);
     EXPECT_EQ(read.slices[2].zMm, 8.0);
     EXPECT_TRUE(anyWarning(load, "uneven slice spacing"));
-    EXPECT_EQ(read.colour->b, 30);
+    EXPECT_EQ((*read.colour)[2], 30);
     EXPECT_EQ(read.number, 1);
     fs::remove(path);
 }

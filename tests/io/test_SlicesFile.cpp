@@ -55,7 +55,7 @@ TEST(SlicesParser, ReadsNamesColoursCommentsAndSeveralRois) {
     const Roi& lung = load.contours.rois[0];
     EXPECT_EQ(lung.name, "Left Lung #2");
     ASSERT_TRUE(lung.colour.has_value());
-    EXPECT_EQ(lung.colour->b, 30);
+    EXPECT_EQ((*lung.colour)[2], 30);
     ASSERT_EQ(lung.slices.size(), 1u);
     EXPECT_EQ(lung.slices[0].zMm, -2.5);
     EXPECT_EQ(lung.slices[0].contours[0].size(), 4u);
@@ -153,7 +153,7 @@ TEST(SlicesWriter, RoundTripsExactly) {
         ASSERT_EQ(back.contours.rois.size(), 1u);
         const Roi &a = original.rois[0], &b = back.contours.rois[0];
         EXPECT_EQ(a.name, b.name);
-        EXPECT_EQ(b.colour->g, 2);
+        EXPECT_EQ((*b.colour)[1], 2);
         ASSERT_EQ(a.slices.size(), b.slices.size()) << name;
         for (std::size_t s = 0; s < a.slices.size(); ++s) {
             EXPECT_EQ(a.slices[s].zMm, b.slices[s].zMm);

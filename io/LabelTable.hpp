@@ -1,0 +1,76 @@
+#pragma once
+// Label tables: what each value of a label volume stands for (a structure's
+// name and display colour), in the files the tools beside dfrecon write and
+// read:
+//   ITK-SNAP label description (.txt)   IDX R G B A VIS MSH "LABEL"
+//   FreeSurfer LUT / 3D Slicer colour table (.lut, .ctbl, .txt)
+//                                       VALUE NAME R G B [A]
+//   plain lists (AAL3, many atlases)    VALUE NAME [anything]
+//   AAL (v4) lists                      ABBREVIATION NAME VALUE
+//   3D Slicer segmentations (.seg.nrrd) SegmentN_LabelValue / _Name / _Color
+//                                       in the NRRD header
+// Blank lines and lines starting with '#' are skipped in the text forms.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/ContourSet.hpp"
+
+namespace dfrecon {
+
+/// One label's meaning; the colour is optional (plain lists have none).
+struct LabelEntry {
+    std::string name;
+    std::optional<Rgb> colour;
+};
+
+/// Label value → meaning. Values not listed have no name.
+using LabelTable = std::map<std::int32_t, LabelEntry>;
+
+/// Most bytes of a label table file (FreeSurfer's full LUT is ~70 kB) and
+/// most characters of one name.
+inline constexpr std::uintmax_t kMaxLabelTableBytes = 16u << 20;
+inline constexpr std::size_t kMaxLabelNameBytes = 256;
+
+/// Reads a text label table in any of the forms above, recognised per line.
+/// Throws InputError(path, line, what) for a missing or oversized file, a
+/// line that fits no form, a value outside int32, a colour component
+/// outside 0..255, an empty or over-long name, or one value listed twice.
+/// O(file size · log entries).
+LabelTable readLabelTable(const std::string& path);
+
+/// The table a 3D Slicer segmentation's header holds (NRRD key/value pairs
+/// `SegmentN_LabelValue`, `SegmentN_Name`, `SegmentN_Color` with components
+/// in 0..1, `SegmentN_Layer`); empty when there are no segments. Throws
+/// InputError(path, 0, what) for a malformed entry, segments on more than
+/// one layer (a 4-D segmentation, which readLabelVolume refuses anyway) or
+/// two segments with one label value. O(pairs · log pairs).
+LabelTable labelTableFromSegmentation(const std::string& path,
+                                      const std::vector<std::pair<std::string, std::string>>& keys);
+
+/// The NRRD header pairs of a Slicer segmentation for `table`, as Slicer
+/// writes them for one layer: one segment per entry in value order, with
+/// its label value, name, colour (a generated one where the entry has none)
+/// and extent `0 size0-1 0 size1-1 0 size2-1`. O(entries).
+std::vector<std::pair<std::string, std::string>> segmentationKeys(const LabelTable& table,
+                                                                  const std::array<int, 3>& size);
+
+/// Writes `table` atomically by the extension of `path`: .txt an ITK-SNAP
+/// label description (with "Clear Label" 0 first, as ITK-SNAP writes it),
+/// .ctbl or .lut a colour table `VALUE NAME R G B A` (names with spaces
+/// written with underscores, which both formats need). Entries without a
+/// colour get categoricalColour(value). Throws std::invalid_argument for
+/// another extension, std::runtime_error on a failed write. O(entries).
+void writeLabelTable(const std::string& path, const LabelTable& table);
+
+/// The label table that sits beside label volume `volumePath`: the first of
+/// STEM.txt, STEM.ctbl, STEM.lut, STEM-labels.txt that exists, where STEM
+/// is the path without .nii.gz, .nii, .nrrd, .nhdr (and .seg before them);
+/// nullopt when none does. O(1) file-system checks.
+std::optional<std::string> labelTableBeside(const std::string& volumePath);
+
+}  // namespace dfrecon
