@@ -177,7 +177,8 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         } else if (!args.all) {
             throw *roi->defect;
         } else {
-            std::cerr << "dfrecon: " << roi->defect->what() << "\n";
+            std::cerr << "dfrecon: ROI " << roi->name << " not read: " << roi->defect->what()
+                      << "\n";
             notRead.push_back(roi->name);
         }
     }

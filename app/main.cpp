@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     root.add_flag("--accept-intensity", global.acceptIntensity,
                   "Contour every value of a label volume that looks like an intensity image "
-                  "(32 or more values changing between most neighbouring voxels) instead of "
+                  "(32 or more values, changing between most neighbouring voxels) instead of "
                   "refusing it");
     root.fallthrough();
 

@@ -35,7 +35,7 @@ struct LabelInputOptions {
 /// labels change on a few percent of pairs; scans on most. O(voxels).
 std::optional<std::string> intensityImageEvidence(const LabelVolume& volume);
 inline constexpr std::size_t kIntensityMinValues = 32;
-inline constexpr double kIntensityChangeFraction = 0.25;
+inline constexpr double kIntensityChangeFraction = 0.5;
 
 /// Where the names of `path`'s labels come from: options.labelTablePath,
 /// "segmentation header" for a volume carrying Slicer segments, the table

@@ -727,27 +727,41 @@ TEST(Cli, BadRtStructExitsTwoNamingTheTag) {
 
 // A 20 MB structure set: minutes in a sanitized binary, so release runs only.
 #ifndef DFRECON_SANITIZE_BUILD
-TEST(Cli, RasterizeOnTheLabelVolumeGivesBackTheLabel) {
-    // plastimatch's contours of label 4, rasterised on the label volume's own
-    // grid: the contour planes hold the voxel centres, so every voxel agrees.
+TEST(Cli, RasterizeAllOnTheLabelVolumeGivesBackTheLabels) {
+    // plastimatch's contours of every label, rasterised on the label
+    // volume's own grid into one NIfTI map: the contour planes hold the
+    // voxel centres, so every voxel of the labels away from the image's
+    // border (4, 5, 6) agrees. ROI numbers start at 0 here, so labels are
+    // positions: label_N gets N + 1.
     const fs::path study = fs::path(DFRECON_FIXTURES) / "kmeans_axial";
     ASSERT_TRUE(fs::exists(study / "rtstruct.dcm")) << "run make setup";
-    const fs::path out = scratch() / "label4.nrrd";
-    const Result run = runDfrecon("rasterize -q --json " + (study / "rtstruct.dcm").string() +
-                                  " --roi label_4 --like " + (study / "labels.nii.gz").string() +
-                                  " -o " + out.string());
+    const fs::path out = scratch() / "kmeans-all.nii.gz";
+    const Result run =
+        runDfrecon("rasterize -q --json --all " + (study / "rtstruct.dcm").string() + " --like " +
+                   (study / "labels.nii.gz").string() + " -o " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    const dfrecon::LabelVolume mask = dfrecon::readLabelVolume(out.string());
+    const dfrecon::LabelVolume map = dfrecon::readLabelVolume(out.string());
     const dfrecon::LabelVolume labels =
         dfrecon::readLabelVolume((study / "labels.nii.gz").string());
-    ASSERT_EQ(mask.labels.size(), labels.labels.size());
-    std::size_t differ = 0, inside = 0;
-    for (std::size_t v = 0; v < mask.labels.size(); ++v) {
-        differ += (mask.labels[v] == 1) != (labels.labels[v] == 4);
-        inside += labels.labels[v] == 4;
+    ASSERT_EQ(map.labels.size(), labels.labels.size());
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    for (int label : {4, 5, 6}) {
+        std::size_t differ = 0, inside = 0;
+        for (std::size_t v = 0; v < map.labels.size(); ++v) {
+            differ += (map.labels[v] == label + 1) != (labels.labels[v] == label);
+            inside += labels.labels[v] == label;
+        }
+        EXPECT_EQ(differ, 0u) << "label " << label << ": of " << inside;
+        const nlohmann::json& roi = report["rois"][label];
+        EXPECT_EQ(roi["roi"], "label_" + std::to_string(label));
+        EXPECT_EQ(roi["label"], label + 1);
+        EXPECT_EQ(roi["insideVoxels"], inside);
     }
-    EXPECT_EQ(differ, 0u) << "of " << inside;
-    EXPECT_EQ(nlohmann::json::parse(run.out)["insideVoxels"], inside);
+    // The table beside it names the labels when the map is read back.
+    EXPECT_EQ(report["labelTable"], (scratch() / "kmeans-all.txt").string());
+    const Result info = runDfrecon("info --json " + out.string());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_EQ(nlohmann::json::parse(info.out)["rois"][4]["name"], "label_4");
 }
 #endif
 
@@ -758,9 +772,62 @@ TEST(Cli, RasterizedSphereHasTheBallsVolume) {
         runDfrecon("rasterize --json -q " + slices.string() + " --voxel-mm 1 -o " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const double ballCc = 4.0 / 3.0 * M_PI * 20 * 20 * 20 / 1000;
-    EXPECT_NEAR(nlohmann::json::parse(run.out)["volumeCc"].get<double>(), ballCc, 0.02 * ballCc);
+    EXPECT_NEAR(nlohmann::json::parse(run.out)["rois"][0]["volumeCc"].get<double>(), ballCc,
+                0.02 * ballCc);
     EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " -o " + out.string()).exitCode, 1);
     EXPECT_EQ(runDfrecon("rasterize " + slices.string() + " --voxel-mm 1 -o x.vdb").exitCode, 1);
+}
+
+TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
+    // A 40 mm square prism with a 10 mm one inside it, and an ROI whose
+    // contour crosses itself: the map holds both good ROIs, the inner one
+    // whole, and the run says the third could not be read (exit 2).
+    std::string text = "dfrecon-slices 1\nunits mm\n";
+    const auto square = [&](double halfMm) {
+        std::string slices;
+        for (int z = 0; z <= 10; z += 2)
+            slices += "slice " + std::to_string(z) + "\ncontour 4\n" + std::to_string(-halfMm) +
+                      " " + std::to_string(-halfMm) + "\n" + std::to_string(halfMm) + " " +
+                      std::to_string(-halfMm) + "\n" + std::to_string(halfMm) + " " +
+                      std::to_string(halfMm) + "\n" + std::to_string(-halfMm) + " " +
+                      std::to_string(halfMm) + "\n";
+        return slices;
+    };
+    text += "roi Body 10 200 30\n" + square(20) + "roi Organ\n" + square(5) +
+            "roi Knot\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 10\n";
+    const fs::path slices = scratch() / "nested.slices", out = scratch() / "nested.seg.nrrd";
+    std::ofstream(slices) << text;
+    const Result run = runDfrecon("rasterize -q --json --all " + slices.string() +
+                                  " --voxel-mm 1 -o " + out.string());
+    ASSERT_EQ(run.exitCode, 2) << run.err;
+    EXPECT_NE(run.err.find("Knot"), std::string::npos) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    EXPECT_EQ(report["notRead"], nlohmann::json::array({"Knot"}));
+    EXPECT_TRUE(report["labelTable"].is_null());  // the segmentation holds its names
+    const nlohmann::json &body = report["rois"][0], &organ = report["rois"][1];
+    // The flat caps lie half a spacing beyond the end planes, at z = -1 and
+    // 11, where the grid (a voxel plus half a spacing around the contours)
+    // puts voxel centres: on the surface, so not inside. Inside are the 11
+    // planes of centres from 0 to 10.
+    EXPECT_NEAR(body["volumeCc"].get<double>(), 40 * 40 * 11 / 1000.0, 0.03 * 17.6);
+    EXPECT_NEAR(organ["volumeCc"].get<double>(), 10 * 10 * 11 / 1000.0, 0.15 * 1.1);
+    EXPECT_EQ(organ["voxelsGivenToSmallerRois"], 0);
+    EXPECT_EQ(body["voxelsGivenToSmallerRois"], organ["insideVoxels"]);
+    const dfrecon::LabelVolume map = dfrecon::readLabelVolume(out.string());
+    EXPECT_EQ(std::count(map.labels.begin(), map.labels.end(), 2),
+              organ["insideVoxels"].get<long>());
+
+    const Result info = runDfrecon("info --json " + out.string());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const nlohmann::json named = nlohmann::json::parse(info.out);
+    EXPECT_EQ(named["labelTable"], "segmentation header");
+    EXPECT_EQ(named["rois"][0]["name"], "Body");
+    EXPECT_EQ(named["rois"][0]["colour"], nlohmann::json::array({10, 200, 30}));
+    EXPECT_EQ(named["rois"][1]["name"], "Organ");
+    EXPECT_EQ(runDfrecon("rasterize --all --roi Body " + slices.string() + " --voxel-mm 1 -o " +
+                         out.string())
+                  .exitCode,
+              1);
 }
 
 TEST(Cli, SdmWritesMapsMeshesAndAPairReport) {
