@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "io/InputError.hpp"
+#include "io/LabelInput.hpp"
+#include "io/LabelTable.hpp"
 #include "io/Sha256.hpp"
 
 namespace dfrecon {
@@ -56,6 +58,10 @@ std::vector<InputFile> inputFiles(const std::string& path) {
         if (error) throw InputError(path, 0, "cannot list its folder: " + error.message());
     } else {
         addFile(files, path, fs::path(path).filename().string(), path);
+        // The table beside a label volume names its ROIs and so the outputs.
+        if (isLabelInputPath(path))
+            if (const auto table = labelTableBeside(path))
+                addFile(files, *table, fs::path(*table).filename().string(), path);
     }
     std::sort(files.begin(), files.end(),
               [](const InputFile& a, const InputFile& b) { return a.path < b.path; });

@@ -20,7 +20,8 @@ struct InputFile {
 /// The files that make up the input at `path`, sorted by path: a folder
 /// (DICOM series, mask stack) gives every regular file under it; a header
 /// that names other files (.nhdr, a mask stack's .json) gives itself and
-/// every other regular file of its folder; any other file gives itself. A
+/// every other regular file of its folder; any other file gives itself (a
+/// label volume also the label table beside it, io/LabelTable). A
 /// path that does not exist gives none. Throws InputError naming the path
 /// when a file cannot be read or a folder holds more than kMaxInputFiles
 /// files. O(total bytes).
