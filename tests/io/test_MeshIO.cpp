@@ -35,14 +35,30 @@ fs::path scratchDir(const std::string& name) {
     return dir;
 }
 
+// Every format OpenMesh reads, binary and ASCII where it has both.
+using FormatParam = std::pair<std::string, bool>;  // extension, binary
+const auto kReadableFormats = ::testing::Values(
+    FormatParam{".ply", true}, FormatParam{".ply", false}, FormatParam{".obj", false},
+    FormatParam{".off", false}, FormatParam{".stl", true}, FormatParam{".stl", false});
+
+std::string formatTestName(const ::testing::TestParamInfo<FormatParam>& info) {
+    return info.param.first.substr(1) + (info.param.second ? "_binary" : "_ascii");
+}
+
+// A fresh folder for a format's test, and the file NAME.EXT in it.
+std::pair<fs::path, std::string> formatFile(const std::string& prefix, const std::string& name,
+                                            const FormatParam& format) {
+    const fs::path dir = scratchDir(prefix + format.first.substr(1) + (format.second ? "b" : "a"));
+    return {dir, (dir / (name + format.first)).string()};
+}
+
 }  // namespace
 
-class MeshRoundTrip : public ::testing::TestWithParam<std::pair<std::string, bool>> {};
+class MeshRoundTrip : public ::testing::TestWithParam<FormatParam> {};
 
 TEST_P(MeshRoundTrip, KeepsTopologyAndPositions) {
     const auto [extension, binary] = GetParam();
-    const fs::path dir = scratchDir("mesh-" + extension.substr(1) + (binary ? "b" : "a"));
-    const std::string path = (dir / ("octa" + extension)).string();
+    const auto [dir, path] = formatFile("mesh-", "octa", GetParam());
     const TriMesh original = octahedron();
     MeshWriteOptions options;
     options.binary = binary;
@@ -61,14 +77,7 @@ TEST_P(MeshRoundTrip, KeepsTopologyAndPositions) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllFormats, MeshRoundTrip,
-                         ::testing::Values(std::pair{".ply", true}, std::pair{".ply", false},
-                                           std::pair{".obj", false}, std::pair{".off", false},
-                                           std::pair{".stl", true}, std::pair{".stl", false}),
-                         [](const auto& testInfo) {
-                             return testInfo.param.first.substr(1) +
-                                    (testInfo.param.second ? "_binary" : "_ascii");
-                         });
+INSTANTIATE_TEST_SUITE_P(AllFormats, MeshRoundTrip, kReadableFormats, formatTestName);
 
 TEST(MeshIO, FailedWriteLeavesNoFile) {
     const fs::path dir = scratchDir("mesh-fail");
@@ -144,14 +153,13 @@ void expectSamePoints(const TriMesh& written, const TriangleSoup& read) {
 
 }  // namespace
 
-class TaggedMesh : public ::testing::TestWithParam<std::pair<std::string, bool>> {};
+class TaggedMesh : public ::testing::TestWithParam<FormatParam> {};
 
 // Every readable format reads back with the very same points (STL: merged
 // by position, in its own order) and the structure where the format keeps it.
 TEST_P(TaggedMesh, CarriesTheStructureAndExactPoints) {
     const auto [extension, binary] = GetParam();
-    const fs::path dir = scratchDir("tagged-" + extension.substr(1) + (binary ? "b" : "a"));
-    const std::string path = (dir / ("lung" + extension)).string();
+    const auto [dir, path] = formatFile("tagged-", "lung", GetParam());
     const TriMesh mesh = patientOctahedron();
     writeMesh(mesh, path, tagged(binary));
     const std::string text = slurp(path);
@@ -183,14 +191,7 @@ TEST_P(TaggedMesh, CarriesTheStructureAndExactPoints) {
               extension == ".obj" ? 2 : 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(ReadableFormats, TaggedMesh,
-                         ::testing::Values(std::pair{".ply", true}, std::pair{".ply", false},
-                                           std::pair{".obj", false}, std::pair{".off", false},
-                                           std::pair{".stl", true}, std::pair{".stl", false}),
-                         [](const auto& testInfo) {
-                             return testInfo.param.first.substr(1) +
-                                    (testInfo.param.second ? "_binary" : "_ascii");
-                         });
+INSTANTIATE_TEST_SUITE_P(ReadableFormats, TaggedMesh, kReadableFormats, formatTestName);
 
 TEST(MeshIO, VtkAndVtpCarryTheStructureAndExactPoints) {
     const fs::path dir = scratchDir("tagged-vtk");
