@@ -26,8 +26,8 @@ namespace dfrecon {
 /// their order to `out`, with the colours and every scalar and label as a
 /// property under its name (vectors are left out), per-vertex normals if
 /// `vertexNormals`, and the structure's name and colour as header comments
-/// after the format line. Coordinates are exact (binary doubles, or
-/// kAsciiMeshDigits digits). Throws std::invalid_argument when an array's
+/// after the format line. Coordinates are floats (OpenMesh's writer; ASCII
+/// with kAsciiMeshDigits digits, each float exactly). Throws std::invalid_argument when an array's
 /// size is not the vertex or face count (before writing anything),
 /// std::runtime_error when OpenMesh fails.
 void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& attributes,

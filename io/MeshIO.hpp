@@ -55,7 +55,8 @@ TriangleSoup readTriangleSoup(const std::string& path);
 /// Writes `mesh` by extension (any of isMeshOutputPath) through a temporary
 /// file and a rename, so a failure leaves no partial file; an OBJ with a
 /// coloured structure gets its material library first, the same way.
-/// Coordinates are exact in every format but STL (floats). Throws
+/// PLY, OBJ, OFF and STL hold floats (OpenMesh's writers; ASCII with
+/// kAsciiMeshDigits, so each float exactly), VTK and VTP doubles. Throws
 /// std::runtime_error on failure, std::invalid_argument for an unsupported
 /// extension. O(vertices + faces).
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options = {});
