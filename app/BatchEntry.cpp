@@ -57,7 +57,7 @@ struct RoiTally {
     bool lasting = true;  // no failure a rerun may not meet again
 };
 
-// Every ROI of `rois` into FOLDER/STEM.ply, one after the other on
+// Every ROI of `rois` into FOLDER/STEM.EXT (the folder format), one after the other on
 // `runtime`; one that fails is reported and the others go on.
 RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
                          const ContourInput& input, const ReconstructSettings& settings,
@@ -69,14 +69,15 @@ RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& r
     const std::vector<std::string> stems = uniqueFileStems(rois);
     for (std::size_t i = 0; i < rois.size(); ++i) {
         const Stopwatch watch;
-        const std::string mesh = stems[i] + ".ply";
+        const std::string mesh = stems[i] + meshFormatExtension(settings.folderFormat());
         // A mesh of an earlier run must not pass for this run's.
         std::error_code ignored;
         fs::remove(folder / mesh, ignored);
         RoiOutcome roi;
         try {
             if (rois[i]->defect) throw *rois[i]->defect;
-            roi = reconstructRoi(runtime, *rois[i], MeshOutput{(folder / mesh).string(), ".ply"},
+            roi = reconstructRoi(runtime, *rois[i],
+                                 MeshOutput{(folder / mesh).string(), settings.folderFormat()},
                                  input, settings, quiet, false);
         } catch (...) {
             roi = failedRoi(*rois[i], std::current_exception());

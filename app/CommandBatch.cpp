@@ -153,6 +153,7 @@ void addBatchCommand(CLI::App& root, const GlobalOptions& global) {
         "id (default: the entry's number; names its folder), roi (default: every ROI with "
         "contours) and any option below without its dashes (cap, max-error, ...), which "
         "overrides the command line's for that entry. Each entry writes OUT/ID/NAME.ply per ROI "
+        "(--format: another mesh format) "
         "and OUT/ID/record.json (input checksums, options, version, every ROI's result or "
         "error, seconds), the record last and atomically. A rerun skips an entry whose record "
         "is complete (no device, memory or disk failure) and whose input bytes, options and "

@@ -138,13 +138,15 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->footer(
         "Fast marching on the triangles with obtuse angles unfolded, or the OpenCL fast "
         "iterative method where it is faster (on a GPU, large meshes; both give the same "
-        "distances). Writes a PLY (or VTK) with vertex properties 'distance' (mm; the weighted "
+        "distances). Writes a PLY with vertex properties 'distance' (mm; the weighted "
         "distance ∫ds/F for a non-uniform speed; -1 where unreached) and 'source' (index into "
-        "--from), and colours. Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
+        "--from), and colours, or a VTK (.vtk) or VTK XML (.vtp) file with the same as point "
+        "arrays 'distance', 'source' and 'colour'. Exit codes: 0 done, 1 usage, 2 bad input, 3 "
+        "runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
         ->required()
         ->check(kNotStandardStream);
-    cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply or .vtk)")
+    cmd->add_option("-o,--output", args->output, "Output mesh with distances (.ply, .vtk or .vtp)")
         ->required()
         ->check(kNotStandardStream);
     cmd->add_option("--from", args->from, "Source vertex indices (0-based), comma-separated")

@@ -22,19 +22,20 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi, format;
+    std::string input, output, roi;
     bool all = false, json = false;
     unsigned jobs = 0;  // ROIs at once; 0: defaultJobs()
     ReconstructSettings settings;
 };
 
 // Where the ROI with file stem `stem` goes: `single` for one ROI, else
-// OUTPUT/STEM.ply (the folder's name cannot give an extension).
+// OUTPUT/STEM.EXT in the folder format (a folder's name gives no extension).
 MeshOutput outputFor(const ReconstructArgs& args, const MeshOutput& single, const std::string& stem,
                      bool several) {
     namespace fs = std::filesystem;
     if (!several) return single;
-    return {(fs::path(args.output) / (stem + ".ply")).string(), ".ply"};
+    const MeshFormat format = args.settings.folderFormat();
+    return {(fs::path(args.output) / (stem + meshFormatExtension(format))).string(), format};
 }
 
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
@@ -42,17 +43,15 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     const Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
-    const bool several = rois.size() > 1 || (args.all && !isMeshExtension(args.output) &&
+    const bool several = rois.size() > 1 || (args.all && !isMeshOutputPath(args.output) &&
                                              !isStandardStream(args.output));
     MeshOutput single;
     if (several) {
         if (isStandardStream(args.output))
             throw std::invalid_argument("-o - takes one ROI's mesh; several ROIs need a folder");
-        if (!args.format.empty())
-            throw std::invalid_argument("--format is for -o -; several ROIs are written as .ply");
         fs::create_directories(args.output);
     } else {
-        single = meshOutput(args.output, args.format, args.json);
+        single = meshOutput(args.output, args.settings.format, args.json);
     }
     const std::vector<std::string> stems = uniqueFileStems(rois);
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
@@ -130,8 +129,11 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     CLI::App* cmd = root.add_subcommand(
         "reconstruct", "Reconstruct a closed triangle surface from the contours of an ROI");
     cmd->footer(
-        "One ROI: OUT is a mesh file (.ply .stl .obj .off). Several ROIs (--all): OUT is a "
-        "folder that gets NAME.ply per ROI (NAME_NUMBER.ply where names repeat). Coordinates "
+        "One ROI: OUT is a mesh file (.ply .stl .obj .off .vtk .vtp). Several ROIs (--all): OUT "
+        "is a folder that gets NAME.ply per ROI (NAME_NUMBER.ply where names repeat; --format "
+        "picks another format). Every format but OFF names the ROI, and PLY, OBJ (with "
+        "NAME.mtl beside it), VTK and VTP carry its colour where the contours give one "
+        "(docs/formats.md). Coordinates "
         "are the contours' (DICOM: patient LPS mm; sagittal, coronal and oblique stacks are "
         "reconstructed in their planes and written back in patient space). Contour points "
         "are mesh vertices; normals point "
@@ -151,7 +153,6 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "Output mesh file, - for standard output (with --format), or folder with "
                     "--all")
         ->required();
-    addMeshFormatOption(*cmd, args->format);
     cmd->add_option("--roi", args->roi,
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file that has contours");

@@ -36,7 +36,15 @@ struct SdmArgs {
     double maxErrorMm = 0;
     double maxDistanceMm = 0;
     bool json = false, noImages = false, noPairs = false;
+    std::vector<std::string> meshFormats{"ply", "vtk"};
 };
+
+// NAME.FORMAT for each of `formats`, in their order.
+nlohmann::ordered_json meshFiles(const std::string& name, const std::vector<std::string>& formats) {
+    nlohmann::ordered_json files = nlohmann::ordered_json::array();
+    for (const std::string& format : formats) files.push_back(name + "." + format);
+    return files;
+}
 
 // File stems of the inputs, made unique with _2, _3... when they repeat.
 std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
@@ -53,7 +61,8 @@ std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
 
 void writeObjectOutputs(const std::filesystem::path& dir, const std::string& name,
                         const SurfaceScene& scene, std::size_t o, const ObjectSamples& samples,
-                        const ObjectDistanceMap& map, double colourFarMm, bool images) {
+                        const ObjectDistanceMap& map, double colourFarMm,
+                        const std::vector<std::string>& formats, bool images) {
     const TriangleSoup& soup = scene.object(o);
     MeshAttributes data;
     std::vector<float> distance(soup.points.size());
@@ -69,12 +78,16 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
         data.vertexColours.push_back(
             divergingColour(c.object < 0 ? INFINITY : c.distanceMm, colourFarMm));
     }
-    data.vertexScalars = {{"distance", distance}, {"quality", distance}};
+    data.vertexScalars = {{"distance", distance}};
     data.vertexLabels = {{"nearest_object", nearest}};
-    writeAttributedPly(soup, data, (dir / (name + ".ply")).string());
-    data.vertexScalars.pop_back();  // "quality" is for MeshLab only
-    data.vertexVectors = {{"to_nearest", direction}};
-    writeAttributedVtk(soup, data, (dir / (name + ".vtk")).string());
+    for (const std::string& format : formats) {
+        MeshAttributes file = data;
+        if (format == "ply")
+            file.vertexScalars.push_back({"quality", distance});  // what MeshLab colours by
+        else
+            file.vertexVectors = {{"to_nearest", direction}};  // PLY has no vectors
+        writeAttributedMesh(soup, file, (dir / (name + "." + format)).string());
+    }
     if (!images) return;
     const int w = samples.atlas.width, h = samples.atlas.height;
     const std::vector<float> d = distanceImage(samples, map);
@@ -148,7 +161,7 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
     nlohmann::ordered_json objects = nlohmann::ordered_json::array();
     for (std::size_t o = 0; o < scene.objectCount(); ++o) {
         writeObjectOutputs(dir, names[o], scene, o, samples[o], maps[o], colourFarMm,
-                           !args.noImages);
+                           args.meshFormats, !args.noImages);
         double nearestMm = INFINITY;
         std::size_t inside = 0;
         for (const ClosestPrimitive& c : maps[o].texels) {
@@ -166,7 +179,7 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
                            {"usedTexels", samples[o].texelCount()},
                            {"minDistanceMm", valueOrNull(std::isfinite(nearestMm), nearestMm)},
                            {"texelsInsideOthers", inside},
-                           {"outputs", {names[o] + ".ply", names[o] + ".vtk"}}});
+                           {"outputs", meshFiles(names[o], args.meshFormats)}});
     }
     nlohmann::ordered_json pairReport = nlohmann::ordered_json::array();
     for (const PairProximity& p : pairs)
@@ -231,9 +244,10 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
         "(negative inside a closed one), which mesh that is, and the direction to its closest "
         "point. Each mesh's atlas maps every triangle to its own texels; every point of the "
         "surface is within the sampling bound (sqrt(2) x texel size) of a sample, so the maps "
-        "are exact at samples and within that bound everywhere. Writes into DIR: NAME.ply "
-        "(vertex properties distance, quality, nearest_object and colours: MeshLab, Blender), "
-        "NAME.vtk (the same as point arrays plus to_nearest vectors: ParaView, 3D Slicer), "
+        "are exact at samples and within that bound everywhere. Writes into DIR, per "
+        "--mesh-formats: NAME.ply (vertex properties distance, quality, nearest_object and "
+        "colours: MeshLab, Blender), NAME.vtk and NAME.vtp (the same as point arrays plus "
+        "to_nearest vectors: ParaView, 3D Slicer), "
         "NAME_distance.tif / NAME_nearest.tif / NAME_direction.tif (32-bit float atlas maps, NaN "
         "or -1 at unused texels) with PNG previews, and report.json (per mesh and per pair: "
         "separation with its bound, closest points, collision, deepest penetrating point). "
@@ -257,6 +271,12 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
                     "Clearance band in mm: look no farther (faster); points with nothing "
                     "closer get distance inf and nearest_object -1 (default: no limit)")
         ->check(kPositive);
+    cmd->add_option("--mesh-formats", args->meshFormats,
+                    "The mesh files written per input, comma-separated: ply, vtk (legacy VTK) "
+                    "and/or vtp (VTK XML)")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::IsMember({"ply", "vtk", "vtp"}));
     cmd->add_flag("--no-images", args->noImages, "Skip the atlas TIFF and PNG maps");
     cmd->add_flag("--no-pairs", args->noPairs, "Skip the pairwise proximity queries");
     cmd->add_flag("--json", args->json, "Print the JSON report to stdout too");

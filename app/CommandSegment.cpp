@@ -105,13 +105,13 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         "(default) seeds are sampled with the edge-repulsive speed and regions use the "
         "edge-attractive one, so borders settle on sharp creases; uniform and repulsive use that "
         "speed throughout. A region that is not a topological disk gets an extra seed. The PLY "
-        "(or VTK) holds a face property 'region' and face colours. Exit codes: 0 done, 1 usage, 2 "
-        "bad "
-        "input, 3 runtime failure.");
+        "holds a face property 'region' and face colours (MeshLab, Blender); the VTK (.vtk) or "
+        "VTK XML (.vtp) file holds them as cell arrays 'region' and 'colour' (ParaView, 3D "
+        "Slicer). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
     cmd->add_option("file", args->input, "Input triangle mesh (.ply .stl .obj .off), mm")
         ->required()
         ->check(kNotStandardStream);
-    cmd->add_option("-o,--output", args->output, "Output mesh with region ids (.ply or .vtk)")
+    cmd->add_option("-o,--output", args->output, "Output mesh with region ids (.ply, .vtk or .vtp)")
         ->required()
         ->check(kNotStandardStream);
     cmd->add_option("-k,--regions", args->regions, "Number of regions (seeds) to start from")

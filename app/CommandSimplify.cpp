@@ -10,6 +10,7 @@
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
+#include "app/RoiReconstruction.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
@@ -64,6 +65,7 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
     const MeshCheckReport after = checkMesh(surface);
     MeshWriteOptions write;
     write.binary = !args.ascii;
+    if (request.contours) write.structure = structureTagOf(*request.contours);
     writeMeshOutput(toTriMesh(surface), output, write);
     if (!args.json) {
         reportStream(output.toStandardOutput())
@@ -103,10 +105,13 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global) {
         ->required()
         ->check(kNotStandardStream);
     cmd->add_option("-o,--output", args->output,
-                    "Output mesh file (.ply .stl .obj .off), or - for standard output (with "
-                    "--format)")
+                    "Output mesh file (.ply .stl .obj .off .vtk .vtp), or - for standard output "
+                    "(with --format); with --contours it is named after that ROI, and coloured "
+                    "where the ROI has a colour")
         ->required();
-    addMeshFormatOption(*cmd, args->format);
+    addMeshFormatOption(*cmd, args->format,
+                        "Mesh format for -o - (standard output; with a file the extension "
+                        "decides)");
     cmd->add_option("--max-error", args->options.maxErrorMm,
                     "The two-sided bound in mm (every point of either surface this close to the "
                     "other)")

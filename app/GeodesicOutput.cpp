@@ -24,8 +24,8 @@ GeodesicInput readGeodesicInput(const std::string& path) {
 void requireAttributedMeshOutput(const std::string& path) {
     if (!isAttributedMeshPath(path))
         throw std::invalid_argument("output '" + path +
-                                    "' must be .ply or .vtk (the mesh formats here that carry "
-                                    "per-face and per-vertex values)");
+                                    "' must be .ply, .vtk or .vtp (the mesh formats here that "
+                                    "carry per-face and per-vertex values)");
 }
 
 void writeRegions(TriMesh mesh, const std::vector<int>& faceRegion, const std::string& path,

@@ -20,17 +20,17 @@ struct GeodesicInput {
 };
 GeodesicInput readGeodesicInput(const std::string& path);
 
-/// Throws std::invalid_argument (exit 1) unless `path` ends in .ply or
-/// .vtk: the mesh formats that carry per-face and per-vertex values.
+/// Throws std::invalid_argument (exit 1) unless `path` ends in .ply, .vtk
+/// or .vtp: the mesh formats that carry per-face and per-vertex values.
 void requireAttributedMeshOutput(const std::string& path);
 
-/// Writes `mesh` (PLY or VTK by the extension; `binary` for PLY) with an
+/// Writes `mesh` (PLY, VTK or VTP by the extension; `binary` for PLY) with an
 /// int face property "region" (-1: unreached) and face colours, one
 /// categorical colour per region. O(V + F).
 void writeRegions(TriMesh mesh, const std::vector<int>& faceRegion, const std::string& path,
                   bool binary);
 
-/// Writes `mesh` (PLY or VTK by the extension; `binary` for PLY) with float
+/// Writes `mesh` (PLY, VTK or VTP by the extension; `binary` for PLY) with float
 /// vertex property "distance" (mm, or the weighted distance for a
 /// non-uniform speed; -1 where unreached), int "source" (the index of the
 /// nearest source), and vertex colours on the sequential ramp from 0 to the

@@ -5,6 +5,7 @@
 
 #include "app/EnumNames.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/StandardStreams.hpp"
 
 namespace dfrecon::app {
 
@@ -63,6 +64,15 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
                  "Write a surface that is not a valid closed solid anyway (it is reported, "
                  "and the exit code is still 4)");
     cmd.add_flag("--ascii", settings.ascii, "ASCII PLY/STL instead of binary");
+    addMeshFormatOption(cmd, settings.format,
+                        "Mesh format where no file extension names one: -o - (standard output, "
+                        "required there) and the per-ROI files written into a folder (--all, "
+                        "batch; default ply); a -o file's extension decides, and --format must "
+                        "agree with it");
+}
+
+MeshFormat ReconstructSettings::folderFormat() const {
+    return meshFormatNamed(format).value_or(MeshFormat::Ply);
 }
 
 std::vector<std::string> reconstructSettingsNames() {
@@ -110,7 +120,8 @@ nlohmann::ordered_json reconstructSettingsJson(const ReconstructSettings& settin
                                              : nlohmann::ordered_json(o.capOffsetMm)},
             {"max-error", settings.maxErrorMm},
             {"allow-invalid", settings.allowInvalid},
-            {"ascii", settings.ascii}};
+            {"ascii", settings.ascii},
+            {"format", meshFormatName(settings.folderFormat())}};
 }
 
 }  // namespace dfrecon::app

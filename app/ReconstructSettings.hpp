@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "io/MeshFormat.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon::app {
@@ -18,11 +19,16 @@ struct ReconstructSettings {
     ReconstructionOptions options;
     double maxErrorMm = 0;  // 0: no simplification
     bool allowInvalid = false, ascii = false;
+    std::string format;  // --format: a MeshFormat's name, "" when not given
+
+    /// The format of the per-ROI files written into a folder (reconstruct
+    /// --all, batch): --format, else PLY. O(1).
+    MeshFormat folderFormat() const;
 };
 
 /// Adds --pixel-mm, --contour-error, --max-depth, --cap, --interpolation,
-/// --smooth-tolerance, --cap-offset, --max-error, --allow-invalid and
-/// --ascii to `cmd`, each writing into `settings` (which must outlive
+/// --smooth-tolerance, --cap-offset, --max-error, --allow-invalid, --ascii
+/// and --format to `cmd`, each writing into `settings` (which must outlive
 /// `cmd`); --help shows `settings`' values as the defaults. O(1).
 void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings);
 
@@ -44,8 +50,8 @@ ReconstructSettings withGivenOptions(const ReconstructSettings& base,
                                      const std::vector<GivenOption>& given);
 
 /// Every option's value, keyed by reconstructSettingsNames() in that order
-/// (cap-offset null when automatic): what a batch record keeps to tell
-/// whether the options of an entry changed. O(1).
+/// (cap-offset null when automatic, format the folder format's name): what a batch record keeps to
+/// tell whether the options of an entry changed. O(1).
 nlohmann::ordered_json reconstructSettingsJson(const ReconstructSettings& settings);
 
 }  // namespace dfrecon::app

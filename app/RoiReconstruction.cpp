@@ -24,6 +24,13 @@ std::mutex meshWriting;
 
 }  // namespace
 
+StructureTag structureTagOf(const Roi& roi) {
+    StructureTag tag{roi.name, std::nullopt};
+    if (const std::optional<Rgb>& c = roi.colour)
+        tag.colour = {std::uint8_t(c->r), std::uint8_t(c->g), std::uint8_t(c->b)};
+    return tag;
+}
+
 RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
     const Failure failure = describeFailure(error);
     RoiOutcome outcome;
@@ -79,6 +86,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
         const TriMesh mesh = toTriMesh(result.surface, &refused);
         MeshWriteOptions write;
         write.binary = !settings.ascii;
+        write.structure = structureTagOf(roi);
         const std::lock_guard<std::mutex> lock(meshWriting);
         writeMeshOutput(mesh, output, write);
     }

@@ -24,6 +24,10 @@ struct RoiOutcome {
     bool invalid = false;  // done, but not a valid closed solid (and open ends not asked for)
 };
 
+/// The name and colour of `roi` as mesh files carry them (io/StructureTag).
+/// O(name length).
+StructureTag structureTagOf(const Roi& roi);
+
 /// Reconstructs `roi` (one of input.contours.rois) into `output` as described
 /// in docs/reconstruction.md and returns the report `reconstruct --json`
 /// gives per ROI. A surface that is not a valid closed solid is reported

@@ -1,6 +1,7 @@
 #include "app/StandardStreams.hpp"
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 namespace dfrecon::app {
@@ -21,37 +22,36 @@ std::string MeshOutput::label() const {
     return toStandardOutput() ? "standard output" : path;
 }
 
-void addMeshFormatOption(CLI::App& command, std::string& format) {
-    command
-        .add_option("--format", format,
-                    "Mesh format for -o - (standard output): ply, obj, off or stl (with a file "
-                    "the extension decides)")
-        ->check(CLI::IsMember({"ply", "obj", "off", "stl"}));
+void addMeshFormatOption(CLI::App& command, std::string& format, const std::string& description) {
+    command.add_option("--format", format, description + ": " + meshFormatList(false))
+        ->check(CLI::IsMember(meshFormatNames(false)));
 }
 
 MeshOutput meshOutput(const std::string& output, const std::string& format, bool json) {
     if (isStandardStream(output)) {
-        if (format.empty())
-            throw std::invalid_argument("-o - (standard output) needs --format ply|obj|off|stl");
+        const std::optional<MeshFormat> named = meshFormatNamed(format);
+        if (!named)
+            throw std::invalid_argument("-o - (standard output) needs --format (" +
+                                        meshFormatList(false) + ")");
         if (json)
             throw std::invalid_argument(
                 "-o - and --json would both write to standard output: give one");
-        return {output, "." + format};
+        return {output, *named};
     }
-    if (!isMeshExtension(output))
-        throw std::invalid_argument("output '" + output +
-                                    "' needs a mesh extension (.ply .stl .obj .off)");
-    const std::string extension = lowerExtension(output);
-    if (!format.empty() && extension != "." + format)
+    const std::optional<MeshFormat> extension = meshFormatOfPath(output);
+    if (!extension)
+        throw std::invalid_argument("output '" + output + "' needs a mesh extension (" +
+                                    meshExtensionList(false) + ")");
+    if (!format.empty() && meshFormatNamed(format) != extension)
         throw std::invalid_argument("--format " + format + " disagrees with output '" + output +
-                                    "' (--format is for -o -)");
-    return {output, extension};
+                                    "' (the extension names the format of a file)");
+    return {output, *extension};
 }
 
 void writeMeshOutput(const TriMesh& mesh, const MeshOutput& output,
                      const MeshWriteOptions& options) {
     if (output.toStandardOutput())
-        writeMesh(mesh, std::cout, output.extension, options);
+        writeMesh(mesh, std::cout, output.format, options);
     else
         writeMesh(mesh, output.path, options);
 }

@@ -27,15 +27,17 @@ extern const CLI::Validator kNotStandardStream;
 
 /// Where a mesh-writing command writes one mesh.
 struct MeshOutput {
-    std::string path;       // as given: a file, or "-"
-    std::string extension;  // ".ply" .obj .off .stl: the file's, or --format's for "-"
+    std::string path;                     // as given: a file, or "-"
+    MeshFormat format = MeshFormat::Ply;  // the file's extension's, or --format's for "-"
     bool toStandardOutput() const { return isStandardStream(path); }
     /// The path, or "standard output", for messages.
     std::string label() const;
 };
 
-/// Adds --format (ply, obj, off, stl) to a command whose -o may be "-".
-void addMeshFormatOption(CLI::App& command, std::string& format);
+/// Adds --format (every format io/MeshFormat writes: ply obj off stl vtk
+/// vtp) to a command that writes meshes, into `format` ("" when not
+/// given), described by `description` with the list of names appended.
+void addMeshFormatOption(CLI::App& command, std::string& format, const std::string& description);
 
 /// -o and --format together: a mesh file (--format, if given, must agree
 /// with its extension) or "-" (--format required; not with --json). Throws

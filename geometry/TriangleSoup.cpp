@@ -52,8 +52,21 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     return mesh;
 }
 
+namespace {
+
+// GCC 12.2 at -O3 vectorizes a point's x and y as one pair and drops their
+// double -> float -> double round trip (in the loop's scalar tail only z
+// was rounded): a volatile float keeps every conversion.
+double toFloatPrecision(double v) {
+    volatile float rounded = static_cast<float>(v);
+    return rounded;
+}
+
+}  // namespace
+
 void roundPointsToFloat(TriangleSoup& soup) {
-    for (Vec3& p : soup.points) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
+    for (Vec3& p : soup.points)
+        p = {toFloatPrecision(p.x), toFloatPrecision(p.y), toFloatPrecision(p.z)};
 }
 
 void toPatient(TriangleSoup& soup, const PlaneFrame& frame) {

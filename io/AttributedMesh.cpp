@@ -1,43 +1,18 @@
 #include "io/AttributedMesh.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <algorithm>
-#include <cctype>
-#include <cmath>
-#include <filesystem>
-#include <iomanip>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/MeshFormat.hpp"
 #include "io/MeshIO.hpp"
+#include "io/VtkPolyData.hpp"
 
 namespace dfrecon {
 
 namespace {
-
-template <class Values>
-void checkSize(const std::string& what, const std::string& name, const Values& values,
-               std::size_t count) {
-    if (values.size() != count)
-        throw std::invalid_argument(what + " data '" + name + "' has " +
-                                    std::to_string(values.size()) + " values for " +
-                                    std::to_string(count) + " " + what + "s");
-}
-
-void checkSizes(const MeshAttributes& a, std::size_t vertices, std::size_t faces) {
-    for (const auto& [name, v] : a.vertexScalars) checkSize("vertex", name, v, vertices);
-    for (const auto& [name, v] : a.vertexLabels) checkSize("vertex", name, v, vertices);
-    for (const auto& [name, v] : a.vertexVectors) checkSize("vertex", name, v, vertices);
-    if (!a.vertexColours.empty()) checkSize("vertex", "colours", a.vertexColours, vertices);
-    for (const auto& [name, v] : a.faceLabels) checkSize("face", name, v, faces);
-    if (!a.faceColours.empty()) checkSize("face", "colours", a.faceColours, faces);
-}
-
-bool hasFaceData(const MeshAttributes& a) {
-    return !a.faceLabels.empty() || !a.faceColours.empty();
-}
 
 // Persistent properties are what OpenMesh's PLY writer emits as custom
 // properties, under their names.
@@ -49,13 +24,45 @@ void addProperty(TriMesh& mesh, const std::string& name, Range elements, const V
     for (auto e : elements) mesh.property(handle, e) = values[std::size_t(e.idx())];
 }
 
+// A header comment runs to the end of its line.
+std::string oneLine(const std::string& text) {
+    std::string line = text;
+    for (char& c : line)
+        if (static_cast<unsigned char>(c) < ' ') c = ' ';
+    return line;
+}
+
+// The structure's comments go right after the format line: OpenMesh's
+// reader finds binary data from the last token before end_header, which
+// a comment there would move (io/PlyFileCheck).
+std::string withStructureComments(const std::string& ply, const StructureTag& structure) {
+    if (structure.empty()) return ply;
+    std::string comments;
+    if (!structure.name.empty()) comments += "comment roi_name " + oneLine(structure.name) + "\n";
+    if (const auto& c = structure.colour)
+        comments += "comment roi_colour " + std::to_string((*c)[0]) + " " +
+                    std::to_string((*c)[1]) + " " + std::to_string((*c)[2]) + "\n";
+    const std::size_t formatLine = ply.find('\n');
+    const std::size_t afterFormat =
+        formatLine == std::string::npos ? std::string::npos : ply.find('\n', formatLine + 1);
+    if (afterFormat == std::string::npos)
+        throw std::runtime_error("OpenMesh wrote a PLY without a format line");
+    return ply.substr(0, afterFormat + 1) + comments + ply.substr(afterFormat + 1);
+}
+
 }  // namespace
 
-void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
-                        bool binary) {
-    checkSizes(attributes, mesh.n_vertices(), mesh.n_faces());
+void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& attributes,
+                        bool binary, bool vertexNormals) {
+    checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
     OpenMesh::IO::Options flags = OpenMesh::IO::Options::Custom;
     if (binary) flags += OpenMesh::IO::Options::Binary;
+    if (vertexNormals) {
+        mesh.request_face_normals();
+        mesh.request_vertex_normals();
+        mesh.update_normals();
+        flags += OpenMesh::IO::Options::VertexNormal;
+    }
     if (!attributes.vertexColours.empty()) {
         mesh.request_vertex_colors();
         for (auto v : mesh.vertices()) {
@@ -78,94 +85,75 @@ void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const st
         addProperty<OpenMesh::VPropHandleT<int>>(mesh, name, mesh.vertices(), values);
     for (const auto& [name, values] : attributes.faceLabels)
         addProperty<OpenMesh::FPropHandleT<int>>(mesh, name, mesh.faces(), values);
-    writeAtomically(path, [&](const std::string& temporary) {
-        return OpenMesh::IO::write_mesh(mesh, temporary, flags, kAsciiMeshDigits);
+    std::ostringstream ply;
+    if (!OpenMesh::IO::write_mesh(mesh, ply, ".ply", flags, kAsciiMeshDigits))
+        throw std::runtime_error("OpenMesh could not write the PLY");
+    out << withStructureComments(ply.str(), attributes.structure);
+}
+
+void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
+                        bool binary) {
+    checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
+    writeStreamAtomically(path, [&](std::ostream& out) {
+        writeAttributedPly(out, std::move(mesh), attributes, binary);
     });
 }
 
 void writeAttributedPly(const TriangleSoup& soup, const MeshAttributes& attributes,
                         const std::string& path, bool binary) {
-    checkSizes(attributes, soup.points.size(), soup.triangles.size());
+    checkAttributeSizes(attributes, soup.points.size(), soup.triangles.size());
     // toTriMesh keeps the points in order, so vertex arrays line up.
     std::size_t refused = 0;
     TriMesh mesh = toTriMesh(soup, &refused);
-    if (refused > 0 && hasFaceData(attributes))
+    if (refused > 0 && attributes.hasFaceData())
         throw std::invalid_argument(std::to_string(refused) +
                                     " non-manifold triangles cannot go into a PLY with face data");
     writeAttributedPly(std::move(mesh), attributes, path, binary);
 }
 
-void writeAttributedVtk(const TriangleSoup& soup, const MeshAttributes& attributes,
-                        const std::string& path) {
-    checkSizes(attributes, soup.points.size(), soup.triangles.size());
+bool isAttributedMeshPath(const std::string& path) {
+    const std::optional<MeshFormat> format = meshFormatOfPath(path);
+    return format == MeshFormat::Ply || format == MeshFormat::Vtk || format == MeshFormat::Vtp;
+}
+
+namespace {
+
+void requireAttributedMeshPath(const std::string& path) {
+    if (!isAttributedMeshPath(path))
+        throw std::invalid_argument("'" + path +
+                                    "': meshes with attributes are .ply, .vtk or .vtp");
+}
+
+void writeVtkFile(const TriangleSoup& soup, const MeshAttributes& attributes,
+                  const std::string& path) {
+    checkAttributeSizes(attributes, soup.points.size(), soup.triangles.size());
+    const bool xml = meshFormatOfPath(path) == MeshFormat::Vtp;
     writeStreamAtomically(path, [&](std::ostream& out) {
-        out << "# vtk DataFile Version 3.0\ndfrecon mesh with per-vertex and per-face data\n"
-               "ASCII\nDATASET POLYDATA\nPOINTS "
-            << soup.points.size() << " double\n"
-            << std::setprecision(17);
-        for (const Vec3& p : soup.points) out << p.x << ' ' << p.y << ' ' << p.z << '\n';
-        out << "POLYGONS " << soup.triangles.size() << ' ' << 4 * soup.triangles.size() << '\n';
-        for (const auto& t : soup.triangles)
-            out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-        // VTK's legacy reader takes "nan" and "inf" spelled this way.
-        auto number = [&](float v) {
-            if (std::isnan(v)) return std::string("nan");
-            if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
-            std::ostringstream s;
-            s << std::setprecision(9) << v;
-            return s.str();
-        };
-        auto labels = [&](const std::vector<NamedArray<std::int32_t>>& arrays) {
-            for (const auto& [name, values] : arrays) {
-                out << "SCALARS " << name << " int 1\nLOOKUP_TABLE default\n";
-                for (std::int32_t v : values) out << v << '\n';
-            }
-        };
-        auto colours = [&](const std::vector<Rgb>& values) {
-            if (values.empty()) return;
-            out << "COLOR_SCALARS colour 3\n" << std::setprecision(4);
-            for (const Rgb& c : values)
-                out << c[0] / 255.0 << ' ' << c[1] / 255.0 << ' ' << c[2] / 255.0 << '\n';
-        };
-        out << "POINT_DATA " << soup.points.size() << '\n';
-        for (const auto& [name, values] : attributes.vertexScalars) {
-            out << "SCALARS " << name << " float 1\nLOOKUP_TABLE default\n";
-            for (float v : values) out << number(v) << '\n';
-        }
-        labels(attributes.vertexLabels);
-        for (const auto& [name, values] : attributes.vertexVectors) {
-            out << "VECTORS " << name << " float\n";
-            for (const Vec3& v : values)
-                out << number(float(v.x)) << ' ' << number(float(v.y)) << ' ' << number(float(v.z))
-                    << '\n';
-        }
-        colours(attributes.vertexColours);
-        if (!hasFaceData(attributes)) return;
-        out << "CELL_DATA " << soup.triangles.size() << '\n';
-        labels(attributes.faceLabels);
-        colours(attributes.faceColours);
+        if (xml)
+            writeVtkXml(out, soup, attributes);
+        else
+            writeVtkLegacy(out, soup, attributes);
     });
 }
 
-void writeAttributedVtk(const TriMesh& mesh, const MeshAttributes& attributes,
-                        const std::string& path) {
-    writeAttributedVtk(toTriangleSoup(mesh), attributes, path);
-}
+}  // namespace
 
-bool isAttributedMeshPath(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    return ext == ".ply" || ext == ".vtk";
-}
-
-void writeAttributedMesh(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
-                         bool binary) {
-    const std::string ext = lowerExtension(path);
-    if (ext == ".ply")
-        writeAttributedPly(std::move(mesh), attributes, path, binary);
-    else if (ext == ".vtk")
-        writeAttributedVtk(mesh, attributes, path);
+void writeAttributedMesh(const TriMesh& mesh, const MeshAttributes& attributes,
+                         const std::string& path, bool binary) {
+    requireAttributedMeshPath(path);
+    if (meshFormatOfPath(path) == MeshFormat::Ply)
+        writeAttributedPly(mesh, attributes, path, binary);
     else
-        throw std::invalid_argument("'" + path + "': meshes with attributes are .ply or .vtk");
+        writeVtkFile(toTriangleSoup(mesh), attributes, path);
+}
+
+void writeAttributedMesh(const TriangleSoup& soup, const MeshAttributes& attributes,
+                         const std::string& path, bool binary) {
+    requireAttributedMeshPath(path);
+    if (meshFormatOfPath(path) == MeshFormat::Ply)
+        writeAttributedPly(soup, attributes, path, binary);
+    else
+        writeVtkFile(soup, attributes, path);
 }
 
 }  // namespace dfrecon

@@ -9,12 +9,17 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/AttributedMesh.hpp"
 #include "io/InputError.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/MeshFileCheck.hpp"
+#include "io/VtkPolyData.hpp"
 
 namespace dfrecon {
 
@@ -27,15 +32,17 @@ namespace dfrecon {
     return true;
 }();
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
+bool isMeshExtension(const std::string& path) {
+    const std::optional<MeshFormat> format = meshFormatOfPath(path);
+    return format && isReadableMeshFormat(*format);
 }
 
-bool isMeshExtension(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".stl";
+bool isMeshOutputPath(const std::string& path) {
+    return meshFormatOfPath(path).has_value();
+}
+
+std::string materialLibraryPath(const std::string& objPath) {
+    return std::filesystem::path(objPath).replace_extension(".mtl").string();
 }
 
 namespace {
@@ -45,7 +52,8 @@ namespace {
 // as written (io/MeshFileCheck).
 void requireMeshFile(const std::string& path) {
     if (!isMeshExtension(path))
-        throw InputError(path, 0, "unsupported mesh extension (use .ply .obj .off .stl)");
+        throw InputError(path, 0,
+                         "unsupported mesh extension (use " + meshExtensionList(true) + ")");
     if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
     checkMeshFileBeforeReading(path);
 }
@@ -69,50 +77,151 @@ TriMesh readMesh(const std::string& path) {
 
 namespace {
 
-// What a mesh file of extension `ext` holds: a copy of `mesh` with its
-// normals where the format keeps them (the caller's mesh stays const), and
-// OpenMesh's flags for it.
-struct MeshToWrite {
-    TriMesh mesh;
-    OpenMesh::IO::Options flags;
-};
+// The structure's name as one word: OBJ and MTL names end at white space.
+std::string objName(const StructureTag& structure) {
+    std::string name = structure.name.empty() ? "surface" : structure.name;
+    for (char& c : name)
+        if (static_cast<unsigned char>(c) <= ' ') c = '_';
+    return name;
+}
 
-MeshToWrite prepareMesh(const TriMesh& mesh, const std::string& ext,
-                        const MeshWriteOptions& options) {
-    if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
-        throw std::invalid_argument("unsupported mesh format '" + ext +
-                                    "' (use .ply .obj .off .stl)");
-    MeshToWrite out{mesh, {}};
-    if (options.binary && (ext == ".ply" || ext == ".stl"))
-        out.flags += OpenMesh::IO::Options::Binary;
-    if (options.vertexNormals && ext != ".stl") {
-        out.mesh.request_face_normals();
-        out.mesh.request_vertex_normals();
-        out.mesh.update_normals();
-        out.flags += OpenMesh::IO::Options::VertexNormal;
+// What OpenMesh writes for `format` (obj off stl), into memory: the
+// structure goes into those bytes before they reach the stream.
+std::string openMeshBytes(const TriMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
+    TriMesh copy = mesh;  // normals are added to a copy: the caller's stays const
+    OpenMesh::IO::Options flags;
+    if (options.binary && format == MeshFormat::Stl) flags += OpenMesh::IO::Options::Binary;
+    if (options.vertexNormals && format != MeshFormat::Stl) {
+        copy.request_face_normals();
+        copy.request_vertex_normals();
+        copy.update_normals();
+        flags += OpenMesh::IO::Options::VertexNormal;
+    }
+    std::ostringstream bytes;
+    if (!OpenMesh::IO::write_mesh(copy, bytes, meshFormatExtension(format), flags,
+                                  kAsciiMeshDigits))
+        throw std::runtime_error(std::string("OpenMesh could not write the ") +
+                                 meshFormatName(format) + " mesh");
+    return bytes.str();
+}
+
+// OBJ: the object and group named after the structure, and its material
+// where a library beside the file holds it.
+std::string objWithStructure(const std::string& obj, const StructureTag& structure,
+                             const std::string& materialLibrary) {
+    if (structure.empty()) return obj;
+    const std::string name = objName(structure);
+    std::string head;
+    if (!materialLibrary.empty()) head += "mtllib " + materialLibrary + "\n";
+    head += "o " + name + "\ng " + name + "\n";
+    if (!materialLibrary.empty()) head += "usemtl " + name + "\n";
+    return head + obj;
+}
+
+// STL: a binary file's 80-byte header, or an ASCII file's solid name. A
+// binary header must not start with "solid" (readers would take the file
+// for ASCII), which "dfrecon ROI" never does.
+std::string stlWithStructure(std::string stl, const StructureTag& structure, bool binary) {
+    if (structure.name.empty()) return stl;
+    if (binary) {
+        std::string header = "dfrecon ROI " + structure.name;
+        header.resize(80, ' ');
+        if (stl.size() < 80) throw std::runtime_error("OpenMesh wrote an STL without a header");
+        stl.replace(0, 80, header);
+        return stl;
+    }
+    std::string name = structure.name;
+    for (char& c : name)
+        if (static_cast<unsigned char>(c) < ' ') c = ' ';
+    const std::size_t firstLineEnd = stl.find('\n');
+    if (stl.compare(0, 5, "solid") != 0 || firstLineEnd == std::string::npos)
+        throw std::runtime_error("OpenMesh wrote an ASCII STL without 'solid'");
+    std::string out = "solid " + name + stl.substr(firstLineEnd);
+    const std::size_t end = out.rfind("endsolid");
+    if (end != std::string::npos) {
+        const std::size_t endLineEnd = out.find('\n', end);
+        out.replace(end, endLineEnd == std::string::npos ? std::string::npos : endLineEnd - end,
+                    "endsolid " + name);
     }
     return out;
+}
+
+// The vertex colours and field data a structure gives PLY and VTK files.
+MeshAttributes structureAttributes(std::size_t vertices, const StructureTag& structure) {
+    MeshAttributes attributes;
+    attributes.structure = structure;
+    if (structure.colour) attributes.vertexColours.assign(vertices, *structure.colour);
+    return attributes;
+}
+
+void writeMeshBytes(const TriMesh& mesh, std::ostream& out, MeshFormat format,
+                    const MeshWriteOptions& options, const std::string& materialLibrary) {
+    const StructureTag& structure = options.structure;
+    switch (format) {
+        case MeshFormat::Ply:
+            writeAttributedPly(out, mesh, structureAttributes(mesh.n_vertices(), structure),
+                               options.binary, options.vertexNormals);
+            return;
+        case MeshFormat::Obj:
+            out << objWithStructure(openMeshBytes(mesh, format, options), structure,
+                                    materialLibrary);
+            return;
+        case MeshFormat::Off:
+            out << openMeshBytes(mesh, format, options);
+            return;
+        case MeshFormat::Stl:
+            out << stlWithStructure(openMeshBytes(mesh, format, options), structure,
+                                    options.binary);
+            return;
+        case MeshFormat::Vtk:
+        case MeshFormat::Vtp: {
+            const TriangleSoup soup = toTriangleSoup(mesh);
+            const MeshAttributes attributes = structureAttributes(soup.points.size(), structure);
+            if (format == MeshFormat::Vtk)
+                writeVtkLegacy(out, soup, attributes);
+            else
+                writeVtkXml(out, soup, attributes);
+            return;
+        }
+    }
+}
+
+// An MTL file with the structure's colour as the diffuse colour of one
+// material named like it (Blender and MeshLab read Kd).
+void writeMaterialLibrary(const std::string& path, const StructureTag& structure) {
+    const auto& c = *structure.colour;
+    writeStreamAtomically(path, [&](std::ostream& out) {
+        out << "# dfrecon: the display colour of ROI " << objName(structure) << "\nnewmtl "
+            << objName(structure) << "\nKd " << std::setprecision(6) << c[0] / 255.0 << ' '
+            << c[1] / 255.0 << ' ' << c[2] / 255.0 << "\n";
+    });
 }
 
 }  // namespace
 
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options) {
-    if (!isMeshExtension(path))
-        throw std::invalid_argument(path +
-                                    ": unsupported mesh extension (use .ply .obj .off .stl)");
-    const MeshToWrite prepared = prepareMesh(mesh, lowerExtension(path), options);
-    writeAtomically(path, [&](const std::string& temporary) {
-        return OpenMesh::IO::write_mesh(prepared.mesh, temporary, prepared.flags, kAsciiMeshDigits);
+    const std::optional<MeshFormat> format = meshFormatOfPath(path);
+    if (!format)
+        throw std::invalid_argument(path + ": unsupported mesh extension (use " +
+                                    meshExtensionList(false) + ")");
+    std::string materialLibrary;
+    if (*format == MeshFormat::Obj && options.structure.colour) {
+        // First, so that an OBJ that names its library never lacks it.
+        const std::string library = materialLibraryPath(path);
+        writeMaterialLibrary(library, options.structure);
+        materialLibrary = std::filesystem::path(library).filename().string();
+    }
+    writeStreamAtomically(path, [&](std::ostream& out) {
+        writeMeshBytes(mesh, out, *format, options, materialLibrary);
     });
 }
 
-void writeMesh(const TriMesh& mesh, std::ostream& out, const std::string& extension,
+void writeMesh(const TriMesh& mesh, std::ostream& out, MeshFormat format,
                const MeshWriteOptions& options) {
-    const MeshToWrite prepared = prepareMesh(mesh, extension, options);
-    if (!OpenMesh::IO::write_mesh(prepared.mesh, out, extension, prepared.flags,
-                                  kAsciiMeshDigits) ||
-        !out.flush())
-        throw std::runtime_error("cannot write the " + extension.substr(1) + " mesh to the stream");
+    writeMeshBytes(mesh, out, format, options, "");
+    if (!out.flush())
+        throw std::runtime_error(std::string("cannot write the ") + meshFormatName(format) +
+                                 " mesh to the stream");
 }
 
 namespace {

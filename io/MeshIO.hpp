@@ -1,11 +1,16 @@
 #pragma once
 // Triangle meshes (OpenMesh half-edge structure, double precision in mm) and
-// their files: PLY (binary or ASCII), OBJ, OFF, STL, chosen by extension.
+// their files, the format chosen by extension (io/MeshFormat): PLY (binary
+// or ASCII), OBJ, OFF, STL read and written through OpenMesh; legacy VTK and
+// VTK XML PolyData written (io/VtkPolyData). docs/formats.md says what each
+// file carries.
 #include <iosfwd>
 #include <string>
 
 #include "geometry/TriMesh.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "io/MeshFormat.hpp"
+#include "io/StructureTag.hpp"
 
 namespace dfrecon {
 
@@ -18,13 +23,24 @@ inline constexpr int kAsciiMeshDigits = 17;
 struct MeshWriteOptions {
     bool binary = true;         // PLY and STL: binary (smaller, exact floats)
     bool vertexNormals = true;  // PLY, OBJ, OFF: per-vertex normals
+    /// The ROI the mesh is the surface of, where the format has a place for
+    /// it: PLY header comments and vertex colours; OBJ "o"/"g" names and,
+    /// with a colour, a material in NAME.mtl beside the file (not on a
+    /// stream); VTK and VTP field data and a vertex colour array; the binary
+    /// STL header and ASCII STL's solid name (no colour); nothing in OFF.
+    /// Without a colour no colour is written.
+    StructureTag structure;
 };
 
-/// The file name's extension in lower case, dot included ("" for none).
-std::string lowerExtension(const std::string& path);
-
-/// True for .ply .obj .off .stl (any letter case).
+/// True for the formats dfrecon reads: .ply .obj .off .stl (any letter case).
 bool isMeshExtension(const std::string& path);
+
+/// True for the formats writeMesh writes: those and .vtk .vtp.
+bool isMeshOutputPath(const std::string& path);
+
+/// The material library writeMesh puts beside an OBJ file with a coloured
+/// structure: the same path with the extension .mtl.
+std::string materialLibraryPath(const std::string& objPath);
 
 /// Reads a mesh; throws InputError naming the file when it cannot be read,
 /// has an unsupported extension, or holds no triangles.
@@ -36,16 +52,20 @@ TriMesh readMesh(const std::string& path);
 /// Throws InputError naming the file when it cannot be read.
 TriangleSoup readTriangleSoup(const std::string& path);
 
-/// Writes `mesh` by extension through a temporary file and a rename, so a
-/// failure leaves no partial file. Throws std::runtime_error on failure,
-/// std::invalid_argument for an unsupported extension.
+/// Writes `mesh` by extension (any of isMeshOutputPath) through a temporary
+/// file and a rename, so a failure leaves no partial file; an OBJ with a
+/// coloured structure gets its material library first, the same way.
+/// PLY, OBJ, OFF and STL hold floats (OpenMesh's writers; ASCII with
+/// kAsciiMeshDigits, so each float exactly), VTK and VTP doubles. Throws
+/// std::runtime_error on failure, std::invalid_argument for an unsupported
+/// extension. O(vertices + faces).
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options = {});
 
-/// Writes `mesh` to a stream (standard output: `-o -`) in the format of
-/// `extension` (".ply" .obj .off .stl), the same bytes writeMesh would put in
-/// a file. Throws std::runtime_error when the stream fails (checked after a
-/// flush), std::invalid_argument for an unsupported extension.
-void writeMesh(const TriMesh& mesh, std::ostream& out, const std::string& extension,
+/// Writes `mesh` to a stream (standard output: `-o -`) in `format`, the same
+/// bytes writeMesh would put in a file, except that an OBJ names no material
+/// library (there is no file beside a stream to hold it). Throws
+/// std::runtime_error when the stream fails (checked after a flush).
+void writeMesh(const TriMesh& mesh, std::ostream& out, MeshFormat format,
                const MeshWriteOptions& options = {});
 
 }  // namespace dfrecon

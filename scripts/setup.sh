@@ -21,13 +21,15 @@ packages=(
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
 # imgcodecs only. python3 makes the man page and bash completion at build
-# time (scripts/help_pages.py). The rest make the RTSTRUCT test fixtures
+# time (scripts/help_pages.py); python3-vtk9 reads our .vtk and .vtp files
+# with VTK's own readers in the tests (tests/VtkRead.hpp; its recommends are
+# Qt and MPI tooling). The rest make the RTSTRUCT test fixtures
 # (scripts/fixtures.sh) and need none of theirs (pydicom's would add
 # python3-pil, dicom3tools' ghostscript and netpbm). The Slurm daemons,
 # client and munge run the array-job test (tests/app/slurm_array_test.sh) on
 # a single-node Slurm; their recommends are the plugin development headers.
 packages_no_recommends=(
-  libopencv-dev python3
+  libopencv-dev python3 python3-vtk9
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge

@@ -1,6 +1,7 @@
 // Meshes with per-vertex and per-face data: every array reaches the PLY
-// header or the VTK sections under its name, and a wrong size or format is
-// refused before anything is written.
+// header or the VTK and VTP files under its name (read back by VTK's own
+// readers), and a wrong size or format is refused before anything is
+// written.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,7 +9,9 @@
 #include <sstream>
 
 #include "io/AttributedMesh.hpp"
+#include "io/MeshIO.hpp"
 #include "tests/TempDir.hpp"
+#include "tests/VtkRead.hpp"
 
 using namespace dfrecon;
 using dfrecon::testing::TempDir;
@@ -57,31 +60,49 @@ TEST(AttributedMesh, PlyCarriesVertexAndFaceProperties) {
     EXPECT_TRUE(contains(ply, " 40 50 60 8\n")) << ply;
 }
 
-TEST(AttributedMesh, VtkCarriesPointAndCellData) {
+TEST(AttributedMesh, PlyNamesItsStructureInTheHeader) {
+    TempDir dir("attributed-structure");
+    MeshAttributes a = everything();
+    a.structure = {"Left\nlung", std::array<std::uint8_t, 3>{200, 100, 7}};
+    writeAttributedPly(toTriMesh(square()), a, dir / "m.ply", true);
+    const std::string ply = slurp(dir / "m.ply");
+    // Right after the format line; a line break in the name is a space.
+    EXPECT_EQ(ply.find("comment roi_name Left lung\ncomment roi_colour 200 100 7\n"),
+              ply.find("format binary_little_endian 1.0\n") + 32)
+        << ply.substr(0, 200);
+    const TriangleSoup back = readTriangleSoup(dir / "m.ply");  // through io/PlyFileCheck
+    EXPECT_EQ(back.points, square().points);
+}
+
+TEST(AttributedMesh, VtkAndVtpCarryPointAndCellData) {
     TempDir dir("attributed-vtk");
-    writeAttributedVtk(square(), everything(), dir / "m.vtk");
-    const std::string vtk = slurp(dir / "m.vtk");
-    for (const char* line :
-         {"POINT_DATA 4\n", "SCALARS distance float 1\n", "SCALARS source int 1\n",
-          "VECTORS to_nearest float\n", "CELL_DATA 2\n",
-          "SCALARS region int 1\nLOOKUP_TABLE "
-          "default\n7\n8\n"})
-        EXPECT_TRUE(contains(vtk, line)) << line;
-    // Without face data there is no CELL_DATA section.
+    writeAttributedMesh(square(), everything(), dir / "m.vtk");
+    writeAttributedMesh(toTriMesh(square()), everything(), dir / "m.VTP");
     MeshAttributes vertexOnly = everything();
     vertexOnly.faceLabels.clear();
     vertexOnly.faceColours.clear();
-    writeAttributedVtk(toTriMesh(square()), vertexOnly, dir / "v.vtk");
-    EXPECT_FALSE(contains(slurp(dir / "v.vtk"), "CELL_DATA"));
+    writeAttributedMesh(toTriMesh(square()), vertexOnly, dir / "v.vtk");
+    DFRECON_READ_WITH_VTK(read, {dir / "m.vtk", dir / "m.VTP", dir / "v.vtk"});
+    for (int k = 0; k < 2; ++k) {
+        const nlohmann::json& file = read.files[std::size_t(k)];
+        EXPECT_EQ(file["points"].size(), 4u);
+        for (const char* name : {"distance", "source", "to_nearest", "colour"})
+            EXPECT_TRUE(file["pointData"].contains(name)) << name;
+        EXPECT_EQ(file["cellData"]["region"]["values"], nlohmann::json::parse("[7, 8]"));
+    }
+    EXPECT_TRUE(read.files[2]["cellData"].empty());
 }
 
 TEST(AttributedMesh, ExtensionChoosesTheFormat) {
     TempDir dir("attributed-ext");
     EXPECT_TRUE(isAttributedMeshPath("a.PLY"));
     EXPECT_TRUE(isAttributedMeshPath("a.vtk"));
+    EXPECT_TRUE(isAttributedMeshPath("a.vtp"));
     EXPECT_FALSE(isAttributedMeshPath("a.obj"));
     writeAttributedMesh(toTriMesh(square()), everything(), dir / "m.vtk");
     EXPECT_TRUE(contains(slurp(dir / "m.vtk"), "DATASET POLYDATA"));
+    writeAttributedMesh(toTriMesh(square()), everything(), dir / "m.vtp");
+    EXPECT_TRUE(contains(slurp(dir / "m.vtp"), "<VTKFile type=\"PolyData\""));
     EXPECT_THROW(writeAttributedMesh(toTriMesh(square()), everything(), dir / "m.obj"),
                  std::invalid_argument);
     EXPECT_FALSE(fs::exists(dir / "m.obj"));
@@ -92,9 +113,11 @@ TEST(AttributedMesh, WrongSizesAndDroppedFacesAreRefused) {
     MeshAttributes shortLabels = everything();
     shortLabels.faceLabels[0].values.pop_back();
     EXPECT_THROW(writeAttributedPly(square(), shortLabels, dir / "m.ply"), std::invalid_argument);
-    EXPECT_THROW(writeAttributedVtk(square(), shortLabels, dir / "m.vtk"), std::invalid_argument);
+    EXPECT_THROW(writeAttributedMesh(square(), shortLabels, dir / "m.vtk"), std::invalid_argument);
+    EXPECT_THROW(writeAttributedMesh(square(), shortLabels, dir / "m.vtp"), std::invalid_argument);
     EXPECT_FALSE(fs::exists(dir / "m.ply"));
     EXPECT_FALSE(fs::exists(dir / "m.vtk"));
+    EXPECT_FALSE(fs::exists(dir / "m.vtp"));
 
     // A third triangle on the shared edge is non-manifold: OpenMesh drops
     // it, so face values would no longer line up.
