@@ -132,9 +132,9 @@ inline constexpr std::array<Rgb, 12> kDefaultRoiColours{{{255, 0, 0},
                                                          {100, 180, 255},
                                                          {128, 128, 0}}};
 
-/// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated
-/// (a standalone structure set with its own study and frame of reference;
-/// empty study date and time become the time of writing).
+/// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated:
+/// without a study UID the structure set makes a study of its own, dated
+/// when it is written; without a frame of reference UID, a frame of its own.
 struct RtStructWriteOptions {
     DicomPatientStudy patientStudy;
     std::string frameOfReferenceUid;
