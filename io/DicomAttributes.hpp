@@ -5,6 +5,7 @@
 // (forward declarations only), so that this installed header needs none.
 #include <string>
 
+class DcmDataset;
 class DcmItem;
 class DcmTagKey;
 
@@ -17,6 +18,24 @@ std::string dicomTagName(const DcmTagKey& key);
 /// The value of `key` in `item` (not its sub-items), all values joined by
 /// backslashes as stored; "" when absent or empty. O(value length).
 std::string dicomText(DcmItem& item, const DcmTagKey& key);
+
+/// Converts every string of `dataset` from its SpecificCharacterSet to
+/// UTF-8 (nothing to do for ASCII), so that values copied into a file
+/// written as ISO_IR 192 (an RTSTRUCT) say the same. Returns "" when done,
+/// else what is wrong, naming the tag (an unknown character set: the
+/// strings are then left as stored). O(dataset).
+std::string convertDicomTextToUtf8(DcmDataset& dataset);
+
+/// Whether `value` can be one value of a text attribute (LO, SH, PN) in a
+/// UTF-8 file (ISO_IR 192): well-formed UTF-8 without control characters or
+/// backslashes (the value separator). DCMTK's own checker knows only ASCII
+/// and Latin-1 and refuses every other non-ASCII byte. O(length).
+bool isValidDicomText(const std::string& value);
+
+/// `value` made valid as isValidDicomText requires: control characters,
+/// backslashes and bytes that are not part of well-formed UTF-8 become '_'.
+/// O(length).
+std::string mendedDicomText(std::string value);
 
 /// The Patient and General Study modules' attributes, which an object made
 /// to belong with others (an RT Structure Set on a CT) copies from them.

@@ -180,6 +180,8 @@ FileLook lookAt(const std::string& path, const DicomSeriesLimits& limits) {
     if (status.bad())
         throw InputError(path, 0, std::string("not a readable DICOM file (") + status.text() + ")");
     DcmDataset& data = *file.getDataset();
+    if (const std::string problem = convertDicomTextToUtf8(data); !problem.empty())
+        throw InputError(path, 0, problem);
     // Structure sets, plans, DICOMDIRs and reports have no plane: they sit
     // beside the images in exported folders.
     if (!data.tagExists(DCM_ImagePositionPatient)) {

@@ -65,6 +65,9 @@ class Reader {
                                                        DCM_MaxReadLength, ERM_autoDetect);
         if (status.bad()) fail("not a readable DICOM file (" + std::string(status.text()) + ")");
         DcmDataset& data = *fileFormat.getDataset();
+        // Names are written back as UTF-8 (ISO_IR 192): read them as such.
+        if (const std::string problem = convertDicomTextToUtf8(data); !problem.empty())
+            warn(problem + "; names are read as stored");
         checkModality(data);
         readIdentity(data);
         readRoiList(data);
@@ -161,14 +164,15 @@ class Reader {
     // character limit), so a name that is not one is mended here, with a
     // warning, rather than make every file read from it unwritable (found by
     // fuzzing: a control character in ROIName made writeRtStruct throw).
+    // Names are UTF-8 by now, which DCMTK's checker does not know
+    // (isValidDicomText).
     std::string validRoiName(std::string name, const std::string& where) {
-        if (DcmLongString::checkStringValue(name.c_str(), "1").good()) return name;
-        for (char& c : name)
-            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') c = '_';
-        if (DcmLongString::checkStringValue(name.c_str(), "1").bad()) name.clear();
+        if (isValidDicomText(name)) return name;
+        name = mendedDicomText(std::move(name));
         warn(where + ": " + tagName(DCM_ROIName) +
-             " is not a valid LO value (control characters or backslashes); " +
-             (name.empty() ? std::string("replaced") : "read as '" + name + "'"));
+             " is not a valid LO value (control characters, backslashes or malformed UTF-8); "
+             "read as '" +
+             name + "'");
         return name;
     }
 

@@ -50,6 +50,15 @@ void check(const OFCondition& status, const char* what) {
                                  status.text());
 }
 
+// A text value for a setter called without DCMTK's check, which takes every
+// non-ASCII byte for an error although the file says UTF-8.
+OFString text(const std::string& value, const char* what) {
+    if (!isValidDicomText(value))
+        throw std::runtime_error(std::string("cannot write RTSTRUCT: ") + what + " '" + value +
+                                 "' holds control characters, a backslash or malformed UTF-8");
+    return value.c_str();
+}
+
 // Contour points in patient coordinates, and those as ContourData.
 std::vector<Vec3> patientPoints(const Polygon& polygon, double zMm, const PlaneFrame& frame) {
     std::vector<Vec3> points;
@@ -105,7 +114,7 @@ void addRoi(DRTStructureSetIOD& rt, const RoiToWrite& what, const std::string& f
     check(info->setROINumber(numberText), "ROINumber");
     check(info->setReferencedFrameOfReferenceUID(frameUid.c_str()),
           "ReferencedFrameOfReferenceUID");
-    check(info->setROIName(roi.name.c_str()), "ROIName");
+    check(info->setROIName(text(roi.name, "ROIName"), OFFalse), "ROIName");
     check(info->setROIGenerationAlgorithm("SEMIAUTOMATIC"), "ROIGenerationAlgorithm");
 
     DRTROIContourSequence::Item* item = nullptr;
@@ -201,6 +210,8 @@ RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
                              std::string("not a readable DICOM file (") + status.text() + ")");
         DcmDataset& data = *file.getDataset();
         if (!data.tagExists(DCM_ImagePositionPatient)) {
+            if (const std::string problem = convertDicomTextToUtf8(data); !problem.empty())
+                throw InputError(dicomPath, 0, problem);
             options.patientStudy = dicomPatientStudy(data);
             options.frameOfReferenceUid = dicomText(data, DCM_FrameOfReferenceUID);
             DcmItem* frame = nullptr;
@@ -254,19 +265,22 @@ RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string
     check(rt.setSOPClassUID(UID_RTStructureSetStorage), "SOPClassUID");
     check(rt.setSOPInstanceUID(newUid().c_str()), "SOPInstanceUID");
     check(rt.setInstanceCreationDate(date), "InstanceCreationDate");
-    check(rt.setPatientName(ps.patientName.c_str()), "PatientName");
-    check(rt.setPatientID(ps.patientId.c_str()), "PatientID");
+    check(rt.setPatientName(text(ps.patientName, "PatientName"), OFFalse), "PatientName");
+    check(rt.setPatientID(text(ps.patientId, "PatientID"), OFFalse), "PatientID");
     check(rt.setPatientBirthDate(ps.patientBirthDate.c_str()), "PatientBirthDate");
     check(rt.setPatientSex(ps.patientSex.c_str()), "PatientSex");
     check(rt.setStudyInstanceUID(studyUid.c_str()), "StudyInstanceUID");
     check(rt.setStudyDate(ownStudy ? date : ps.studyDate.c_str()), "StudyDate");
     check(rt.setStudyTime(ownStudy ? time : ps.studyTime.c_str()), "StudyTime");
-    check(rt.setStudyID(ps.studyId.c_str()), "StudyID");
-    check(rt.setAccessionNumber(ps.accessionNumber.c_str()), "AccessionNumber");
-    check(rt.setReferringPhysicianName(ps.referringPhysicianName.c_str()),
+    check(rt.setStudyID(text(ps.studyId, "StudyID"), OFFalse), "StudyID");
+    check(rt.setAccessionNumber(text(ps.accessionNumber, "AccessionNumber"), OFFalse),
+          "AccessionNumber");
+    check(rt.setReferringPhysicianName(text(ps.referringPhysicianName, "ReferringPhysicianName"),
+                                       OFFalse),
           "ReferringPhysicianName");
     if (!ps.studyDescription.empty())
-        check(rt.setStudyDescription(ps.studyDescription.c_str()), "StudyDescription");
+        check(rt.setStudyDescription(text(ps.studyDescription, "StudyDescription"), OFFalse),
+              "StudyDescription");
     check(rt.setModality("RTSTRUCT"), "Modality");
     // The Frame of Reference module is part of the RTSTRUCT IOD since 2019
     // (dciodvfy asks for it); the UID is the one the contours refer to.
@@ -274,9 +288,11 @@ RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string
     check(rt.setPositionReferenceIndicator(""), "PositionReferenceIndicator");
     check(rt.setSeriesInstanceUID(newUid().c_str()), "SeriesInstanceUID");
     check(rt.setSeriesNumber("1"), "SeriesNumber");
-    check(rt.setSeriesDescription(options.seriesDescription.c_str()), "SeriesDescription");
+    check(rt.setSeriesDescription(text(options.seriesDescription, "SeriesDescription"), OFFalse),
+          "SeriesDescription");
     check(rt.setManufacturer("dfrecon"), "Manufacturer");
-    check(rt.setStructureSetLabel(options.structureSetLabel.c_str()), "StructureSetLabel");
+    check(rt.setStructureSetLabel(text(options.structureSetLabel, "StructureSetLabel"), OFFalse),
+          "StructureSetLabel");
     check(rt.setStructureSetDate(date), "StructureSetDate");
     check(rt.setStructureSetTime(time), "StructureSetTime");
     DRTReferencedFrameOfReferenceSequence::Item* frame = nullptr;

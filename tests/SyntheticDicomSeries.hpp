@@ -24,6 +24,8 @@ struct SyntheticImage {
     std::array<double, 2> pixelSpacingMm{{0.5, 0.75}};  // between rows, between columns
     int rows = 3, columns = 4;
     std::string numberOfFrames;  // empty: not written
+    std::string characterSet;    // SpecificCharacterSet; empty: not written (ASCII)
+    std::string patientName = "SYNTHETIC^SERIES";  // in characterSet's encoding
     bool withPosition = true;
 };
 
@@ -53,7 +55,8 @@ inline void writeSyntheticImage(const std::string& path, const SyntheticImage& i
     put(DCM_SeriesInstanceUID, image.seriesUid);
     put(DCM_FrameOfReferenceUID, image.frameUid);
     put(DCM_Modality, "CT");
-    put(DCM_PatientName, "SYNTHETIC^SERIES");
+    if (!image.characterSet.empty()) put(DCM_SpecificCharacterSet, image.characterSet);
+    put(DCM_PatientName, image.patientName);
     put(DCM_PatientID, "synthetic-series");
     put(DCM_PatientBirthDate, "19700101");
     put(DCM_PatientSex, "O");

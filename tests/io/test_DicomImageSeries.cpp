@@ -329,3 +329,13 @@ TEST(DicomImageSeries, GridNeedsEvenSpacingAndAStraightStack) {
     EXPECT_EQ(grid.spacingMm[2], 2);
     EXPECT_EQ(grid.originMm[2], 3);
 }
+
+TEST(DicomImageSeries, PatientNamesComeAsUtf8) {
+    // ISO_IR 100 is Latin-1: u-umlaut is the byte FC, in UTF-8 C3 BC.
+    TempDir dir("series-latin1");
+    SyntheticImage image;
+    image.characterSet = "ISO_IR 100";
+    image.patientName = "M\xfcller^Anna";
+    writeSyntheticSeries(dir.str(), 2, 0, 1, image);
+    EXPECT_EQ(readDicomImageSeries(dir.str()).patientStudy.patientName, "M\xc3\xbcller^Anna");
+}

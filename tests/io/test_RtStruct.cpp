@@ -712,3 +712,34 @@ TEST(RtStruct, ReferenceFromAStructureSetTakesItsFrameAndStudy) {
     std::ofstream(dir / "text.dcm") << "no DICOM here";
     EXPECT_THROW(referenceFrom(dir / "text.dcm"), InputError);
 }
+
+TEST(RtStruct, Latin1NamesAreReadAsUtf8) {
+    // A planning system's ISO_IR 100 file: u-umlaut is the byte FC, and the
+    // name must reach our UTF-8 output as C3 BC.
+    const std::string path = tempPath("latin1");
+    writeRtStruct(ringsAndIslands(), path);
+    {
+        DcmFileFormat file;
+        ASSERT_TRUE(file.loadFile(path.c_str()).good());
+        DcmDataset& data = *file.getDataset();
+        ASSERT_TRUE(data.putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 100").good());
+        DcmItem* roi = itemOf(data, DCM_StructureSetROISequence);
+        ASSERT_NE(roi, nullptr);
+        ASSERT_TRUE(roi->putAndInsertString(DCM_ROIName,
+                                            "H\xfc"
+                                            "fte")
+                        .good());
+        ASSERT_TRUE(file.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+    }
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_EQ(load.contours.rois[0].name,
+              "H\xc3\xbc"
+              "fte");
+    EXPECT_TRUE(load.warnings.empty()) << load.warnings.front().toString();
+    // and written back as UTF-8, which reads back the same.
+    writeRtStruct(load.contours, path);
+    EXPECT_EQ(readRtStruct(path).contours.rois[0].name,
+              "H\xc3\xbc"
+              "fte");
+    fs::remove(path);
+}
