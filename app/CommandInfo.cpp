@@ -60,6 +60,8 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
     }
     j["colour"] =
         roi.colour ? nlohmann::ordered_json(*roi.colour) : nlohmann::ordered_json(nullptr);
+    if (dicom)
+        j["interpretedType"] = valueOrNull(!roi.interpretedType.empty(), roi.interpretedType);
     if (!extent.empty) j["extentMm"] = {{"min", xyzJson(extent.min)}, {"max", xyzJson(extent.max)}};
     return j;
 }

@@ -27,6 +27,11 @@ struct Roi {
     std::string name;
     std::optional<int> number;  // DICOM ROI Number, where the ROI came from DICOM
     std::optional<Rgb> colour;
+    /// DICOM RTROIInterpretedType (ORGAN, PTV, ...) where the source gave
+    /// one (an RTSTRUCT's RTROIObservationsSequence); empty otherwise, and
+    /// the RTSTRUCT writer then writes its default. .slices files do not
+    /// hold it.
+    std::string interpretedType;
     std::vector<Slice> slices;
     PlaneFrame frame;  // slice coordinates → patient coordinates (identity: axial)
     /// DICOM Contour Slab Thickness where the source gave one (0: none); a

@@ -3,11 +3,14 @@
 // contour data model and writing it back. Coordinates are patient (LPS)
 // millimetres, as in the file.
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "io/ContourSet.hpp"
+#include "io/DicomAttributes.hpp"
+#include "io/DicomImageSeries.hpp"
 #include "io/InputError.hpp"
 #include "io/InputLimits.hpp"
 
@@ -83,28 +86,103 @@ RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits 
 /// magic at byte 128).
 bool isDicomFile(const std::string& path);
 
-/// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated
-/// (a standalone structure set with its own frame of reference).
+/// The defined terms of RTROIInterpretedType (3006,00A4), PS3.3 C.8.8.8.
+inline constexpr std::array<const char*, 24> kRoiInterpretedTypes{"EXTERNAL",
+                                                                  "PTV",
+                                                                  "CTV",
+                                                                  "GTV",
+                                                                  "TREATED_VOLUME",
+                                                                  "IRRAD_VOLUME",
+                                                                  "OAR",
+                                                                  "BOLUS",
+                                                                  "AVOIDANCE",
+                                                                  "ORGAN",
+                                                                  "MARKER",
+                                                                  "REGISTRATION",
+                                                                  "ISOCENTER",
+                                                                  "CONTRAST_AGENT",
+                                                                  "CAVITY",
+                                                                  "BRACHY_CHANNEL",
+                                                                  "BRACHY_ACCESSORY",
+                                                                  "BRACHY_SRC_APP",
+                                                                  "BRACHY_CHNL_SHLD",
+                                                                  "SUPPORT",
+                                                                  "FIXATION",
+                                                                  "DOSE_REGION",
+                                                                  "CONTROL",
+                                                                  "DOSE_MEASUREMENT"};
+/// Whether `type` is one of kRoiInterpretedTypes (exactly, upper case). O(1).
+bool isRoiInterpretedType(const std::string& type);
+
+/// The display colours of ROIs that come without one, in order: ROI i (its
+/// position in the written set, from 0) gets kDefaultRoiColours[i % 12].
+/// Twelve hues far apart (red, green, blue, yellow, magenta, cyan, orange,
+/// violet, spring green, pink, sky blue, olive), so that neighbouring
+/// structures differ in a planning system's view.
+inline constexpr std::array<Rgb, 12> kDefaultRoiColours{{{255, 0, 0},
+                                                         {0, 200, 0},
+                                                         {0, 96, 255},
+                                                         {255, 255, 0},
+                                                         {255, 0, 255},
+                                                         {0, 220, 220},
+                                                         {255, 128, 0},
+                                                         {140, 60, 255},
+                                                         {0, 255, 128},
+                                                         {255, 105, 180},
+                                                         {100, 180, 255},
+                                                         {128, 128, 0}}};
+
+/// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated:
+/// without a study UID the structure set makes a study of its own, dated
+/// when it is written; without a frame of reference UID, a frame of its own.
 struct RtStructWriteOptions {
-    std::string frameOfReferenceUid, studyInstanceUid, patientId, patientName;
+    DicomPatientStudy patientStudy;
+    std::string frameOfReferenceUid;
     std::string structureSetLabel = "dfrecon";
     std::string seriesDescription = "dfrecon contours";
+    /// RTROIInterpretedType of ROIs without one of their own (Roi::interpretedType).
+    std::string defaultRoiType = "ORGAN";
+    /// The image series the contours were drawn on: every image is listed in
+    /// the Referenced Frame of Reference Sequence (RT Referenced Study >
+    /// RT Referenced Series > Contour Image Sequence), and each contour whose
+    /// points all lie within kSamePlaneToleranceMm of an image's plane refers
+    /// to that image in its own Contour Image Sequence.
+    std::optional<DicomImageSeries> imageSeries;
 };
 
-/// The patient, study and frame of reference of an existing DICOM file (an
-/// image of the planning CT, or another RTSTRUCT), so that written contours
-/// belong with it. Throws InputError naming the file and tag when it is not
-/// DICOM or has no frame of reference.
+/// What `--like PATH` refers the output to. A folder, or a file that is an
+/// image (it has ImagePositionPatient), is read as an image series
+/// (readDicomImageSeries): its patient, study and frame of reference, and
+/// the series itself. Any other DICOM file (an RTSTRUCT, an RT Plan) gives
+/// its patient, study and frame of reference (FrameOfReferenceUID, else the
+/// first ReferencedFrameOfReferenceSequence item's), and no images. Throws
+/// InputError naming the file and tag when it is not DICOM, has no frame of
+/// reference or study, or is not a readable series.
 RtStructWriteOptions referenceFrom(const std::string& dicomPath);
+
+/// What writeRtStruct wrote.
+struct RtStructWriteSummary {
+    std::size_t rois = 0, contours = 0;
+    /// With an image series: contours referring to an image, and those in no
+    /// image's plane (they refer to none).
+    std::size_t contoursOnImages = 0, contoursOffImages = 0;
+    /// ROIs whose planes are not parallel to the images' (none of their
+    /// contours can lie in an image plane), and ROIs with contours off the
+    /// images, one line each.
+    std::vector<std::string> warnings;
+};
 
 /// Writes `contours` as an RTSTRUCT (through a temporary file and a rename):
 /// one ROI per Roi (its number, or its position from 1), CLOSED_PLANAR
 /// contours in patient coordinates via each ROI's frame, DS values in at most
-/// 16 characters, exactly the read values wherever they fit. Throws
+/// 16 characters, exactly the read values wherever they fit; ROIDisplayColor
+/// Roi::colour, else kDefaultRoiColours by position; RTROIInterpretedType
+/// Roi::interpretedType, else options.defaultRoiType. Throws
+/// std::invalid_argument if defaultRoiType is not in kRoiInterpretedTypes,
 /// std::runtime_error if `contours` has no ROIs (the IOD needs one) or
-/// DCMTK cannot write.
-void writeRtStruct(const ContourSet& contours, const std::string& path,
-                   const RtStructWriteOptions& options = {});
+/// DCMTK cannot write. O(points + contours · log images).
+RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string& path,
+                                   const RtStructWriteOptions& options = {});
 
 /// The shortest decimal string (at most 16 characters, the DS limit) that
 /// reads back as `value`, or the closest that fits.

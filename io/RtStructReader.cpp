@@ -2,7 +2,6 @@
 // by tag so that a message can name the one that is wrong.
 #include <dcmtk/config/osconfig.h>  // first, as DCMTK requires
 #include <dcmtk/dcmdata/dctk.h>
-#include <dcmtk/oflog/oflog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "geometry/KeyholeSplit.hpp"
 #include "geometry/PolygonXor.hpp"
 #include "geometry/SelfCrossingRepair.hpp"
+#include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
@@ -38,22 +38,10 @@ bool isDicomFile(const std::string& path) {
     return in.seekg(128) && in.read(magic, 4) && std::string(magic, 4) == "DICM";
 }
 
-/// DCMTK logs parser complaints to stderr by default; our messages say what
-/// matters, with the file and tag, so its logger stays quiet.
-void silenceDcmtkLog() {
-    static const bool once = [] {
-        OFLog::getLogger("dcmtk").setLogLevel(OFLogger::OFF_LOG_LEVEL);
-        return true;
-    }();
-    (void)once;
-}
-
 namespace {
 
 std::string tagName(const DcmTagKey& key) {
-    char text[16];
-    std::snprintf(text, sizeof text, "(%04X,%04X)", key.getGroup(), key.getElement());
-    return std::string(text) + " " + DcmTag(key).getTagName();
+    return dicomTagName(key);
 }
 
 // One closed contour as read, in patient coordinates.
@@ -77,10 +65,14 @@ class Reader {
                                                        DCM_MaxReadLength, ERM_autoDetect);
         if (status.bad()) fail("not a readable DICOM file (" + std::string(status.text()) + ")");
         DcmDataset& data = *fileFormat.getDataset();
+        // Names are written back as UTF-8 (ISO_IR 192): read them as such.
+        if (const std::string problem = convertDicomTextToUtf8(data); !problem.empty())
+            warn(problem + "; names are read as stored");
         checkModality(data);
         readIdentity(data);
         readRoiList(data);
         readRoiContours(data);
+        readRoiObservations(data);
         // A structure whose contours cannot be made valid (a loop crossing
         // itself, planes that are not planes) is that structure's problem:
         // it is kept with its defect and no slices, the others load.
@@ -106,10 +98,7 @@ class Reader {
         return "ROI " + std::to_string(out_.rois[r].number) + " '" + out_.rois[r].name + "'";
     }
 
-    std::string text(DcmItem& item, const DcmTagKey& key) {
-        OFString value;
-        return item.findAndGetOFStringArray(key, value).good() ? std::string(value.c_str()) : "";
-    }
+    static std::string text(DcmItem& item, const DcmTagKey& key) { return dicomText(item, key); }
 
     void checkModality(DcmDataset& data) {
         const std::string sopClass = text(data, DCM_SOPClassUID);
@@ -175,14 +164,15 @@ class Reader {
     // character limit), so a name that is not one is mended here, with a
     // warning, rather than make every file read from it unwritable (found by
     // fuzzing: a control character in ROIName made writeRtStruct throw).
+    // Names are UTF-8 by now, which DCMTK's checker does not know
+    // (isValidDicomText).
     std::string validRoiName(std::string name, const std::string& where) {
-        if (DcmLongString::checkStringValue(name.c_str(), "1").good()) return name;
-        for (char& c : name)
-            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') c = '_';
-        if (DcmLongString::checkStringValue(name.c_str(), "1").bad()) name.clear();
+        if (isValidDicomText(name)) return name;
+        name = mendedDicomText(std::move(name));
         warn(where + ": " + tagName(DCM_ROIName) +
-             " is not a valid LO value (control characters or backslashes); " +
-             (name.empty() ? std::string("replaced") : "read as '" + name + "'"));
+             " is not a valid LO value (control characters, backslashes or malformed UTF-8); "
+             "read as '" +
+             name + "'");
         return name;
     }
 
@@ -211,6 +201,31 @@ class Reader {
             DcmSequenceOfItems* contours = nullptr;
             if (item.findAndGetSequence(DCM_ContourSequence, contours).good() && contours)
                 readContours(*contours, found->second, where);
+        }
+    }
+
+    // RTROIInterpretedType is the one observation kept: writing the set
+    // again must not turn a PTV into an ORGAN. Values that are not valid CS
+    // (the writer could not write them) are dropped with a warning.
+    void readRoiObservations(DcmDataset& data) {
+        DcmSequenceOfItems* list = nullptr;
+        if (data.findAndGetSequence(DCM_RTROIObservationsSequence, list).bad() || !list) return;
+        for (unsigned long i = 0; i < list->card(); ++i) {
+            DcmItem& item = *list->getItem(i);
+            const std::string where =
+                tagName(DCM_RTROIObservationsSequence) + " item " + std::to_string(i + 1);
+            Sint32 number = 0;
+            const std::string type = text(item, DCM_RTROIInterpretedType);
+            if (type.empty() || item.findAndGetSint32(DCM_ReferencedROINumber, number).bad())
+                continue;
+            const auto found = indexOfNumber_.find(number);
+            if (found == indexOfNumber_.end()) continue;
+            if (DcmCodeString::checkStringValue(type.c_str(), "1").bad()) {
+                warn(where + ": " + tagName(DCM_RTROIInterpretedType) +
+                     " is not a valid CS value; ignored");
+                continue;
+            }
+            out_.contours.rois[found->second].interpretedType = type;
         }
     }
 

@@ -4,18 +4,25 @@
 #include <dcmtk/dcmdata/dctk.h>
 #include <dcmtk/dcmrt/drtstrct.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
 
-void silenceDcmtkLog();  // RtStructReader.cpp
+bool isRoiInterpretedType(const std::string& type) {
+    return std::any_of(kRoiInterpretedTypes.begin(), kRoiInterpretedTypes.end(),
+                       [&](const char* defined) { return type == defined; });
+}
 
 std::string formatDecimalString(double value) {
     if (value == 0) return "0";  // also turns -0 into 0
@@ -43,37 +50,85 @@ void check(const OFCondition& status, const char* what) {
                                  status.text());
 }
 
-std::string contourData(const Polygon& polygon, double zMm, const PlaneFrame& frame) {
+// A text value for a setter called without DCMTK's check, which takes every
+// non-ASCII byte for an error although the file says UTF-8.
+OFString text(const std::string& value, const char* what) {
+    if (!isValidDicomText(value))
+        throw std::runtime_error(std::string("cannot write RTSTRUCT: ") + what + " '" + value +
+                                 "' holds control characters, a backslash or malformed UTF-8");
+    return value.c_str();
+}
+
+// Contour points in patient coordinates, and those as ContourData.
+std::vector<Vec3> patientPoints(const Polygon& polygon, double zMm, const PlaneFrame& frame) {
+    std::vector<Vec3> points;
+    points.reserve(polygon.size());
+    for (const Point2& p : polygon)
+        points.push_back(frame.toPatient({p.x, p.y, zMm}));  // exact for the identity
+    return points;
+}
+
+std::string contourData(const std::vector<Vec3>& points) {
     std::string data;
-    data.reserve(polygon.size() * 3 * 12);
-    for (const Point2& p : polygon) {
-        const Vec3 patient = frame.toPatient({p.x, p.y, zMm});  // exact for the identity
+    data.reserve(points.size() * 3 * 12);
+    for (const Vec3& p : points)
         for (int a = 0; a < 3; ++a) {
             if (!data.empty()) data += '\\';
-            data += formatDecimalString(patient[a]);
+            data += formatDecimalString(p[a]);
         }
-    }
     return data;
 }
 
-void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::string& frameUid) {
-    const OFString numberText = std::to_string(number).c_str();
+std::string colourText(const Rgb& colour) {
+    return std::to_string(colour[0]) + "\\" + std::to_string(colour[1]) + "\\" +
+           std::to_string(colour[2]);
+}
+
+template <class Sequence>
+void addImageReference(Sequence& sequence, const DicomImage& image) {
+    typename Sequence::Item* reference = nullptr;
+    check(sequence.addItem(reference), "ContourImageSequence");
+    check(reference->setReferencedSOPClassUID(image.sopClassUid.c_str()), "ReferencedSOPClassUID");
+    check(reference->setReferencedSOPInstanceUID(image.sopInstanceUid.c_str()),
+          "ReferencedSOPInstanceUID");
+}
+
+// Planes whose normals differ by more than this (about 0.08 degrees) are
+// not parallel: a contour that spans a few centimetres already leaves its
+// image's plane by more than the 0.01 mm that finds it.
+constexpr double kParallelCosine = 1 - 1e-6;
+
+struct RoiToWrite {
+    const Roi& roi;
+    int number;
+    Rgb colour;
+    std::string type;
+};
+
+void addRoi(DRTStructureSetIOD& rt, const RoiToWrite& what, const std::string& frameUid,
+            const DicomImageSeries* series, RtStructWriteSummary& summary) {
+    const Roi& roi = what.roi;
+    const OFString numberText = std::to_string(what.number).c_str();
     DRTStructureSetROISequence::Item* info = nullptr;
     check(rt.getStructureSetROISequence().addItem(info), "StructureSetROISequence");
     check(info->setROINumber(numberText), "ROINumber");
     check(info->setReferencedFrameOfReferenceUID(frameUid.c_str()),
           "ReferencedFrameOfReferenceUID");
-    check(info->setROIName(roi.name.c_str()), "ROIName");
+    check(info->setROIName(text(roi.name, "ROIName"), OFFalse), "ROIName");
     check(info->setROIGenerationAlgorithm("SEMIAUTOMATIC"), "ROIGenerationAlgorithm");
 
     DRTROIContourSequence::Item* item = nullptr;
     check(rt.getROIContourSequence().addItem(item), "ROIContourSequence");
     check(item->setReferencedROINumber(numberText), "ReferencedROINumber");
-    const Rgb colour = roi.colour.value_or(Rgb{255, 0, 0});
-    check(item->setROIDisplayColor((std::to_string(colour[0]) + "\\" + std::to_string(colour[1]) +
-                                    "\\" + std::to_string(colour[2]))
-                                       .c_str()),
-          "ROIDisplayColor");
+    check(item->setROIDisplayColor(colourText(what.colour).c_str()), "ROIDisplayColor");
+    const std::string label = "ROI " + std::to_string(what.number) + " '" + roi.name + "'";
+    const bool parallel = series && roi.contourCount() > 0 &&
+                          std::abs(dot(roi.frame.n, series->normal)) >= kParallelCosine;
+    if (series && roi.contourCount() > 0 && !parallel)
+        summary.warnings.push_back(label + " lies in " + roi.frame.orientationName() +
+                                   " planes, not parallel to the images' planes: its contours "
+                                   "refer to no image");
+    std::size_t offImages = 0;
     int contourNumber = 0;
     for (const Slice& slice : roi.slices)
         for (const Polygon& polygon : slice.contours) {
@@ -81,62 +136,110 @@ void addRoi(DRTStructureSetIOD& rt, const Roi& roi, int number, const std::strin
             check(item->getContourSequence().addItem(contour), "ContourSequence");
             check(contour->setContourNumber(std::to_string(++contourNumber).c_str()),
                   "ContourNumber");
+            const std::vector<Vec3> points = patientPoints(polygon, slice.zMm, roi.frame);
+            if (series) {
+                const DicomImage* image =
+                    parallel ? imageHolding(*series, points, kSamePlaneToleranceMm) : nullptr;
+                if (image)
+                    addImageReference(contour->getContourImageSequence(), *image);
+                else
+                    ++offImages;
+            }
             check(contour->setContourGeometricType("CLOSED_PLANAR"), "ContourGeometricType");
             check(contour->setNumberOfContourPoints(std::to_string(polygon.size()).c_str()),
                   "NumberOfContourPoints");
             // The value is checked below by the IOD's write; checking here
             // would scan every number twice.
-            check(contour->setContourData(contourData(polygon, slice.zMm, roi.frame).c_str(),
-                                          OFFalse),
-                  "ContourData");
+            check(contour->setContourData(contourData(points).c_str(), OFFalse), "ContourData");
             if (roi.slabThicknessMm > 0)
                 check(contour->setContourSlabThickness(
                           formatDecimalString(roi.slabThicknessMm).c_str()),
                       "ContourSlabThickness");
         }
+    summary.contours += std::size_t(contourNumber);
+    if (series) {
+        summary.contoursOffImages += offImages;
+        summary.contoursOnImages += std::size_t(contourNumber) - offImages;
+        if (parallel && offImages > 0)
+            summary.warnings.push_back(
+                label + ": " + std::to_string(offImages) + " of " + std::to_string(contourNumber) +
+                " contours lie in no image's plane (within " +
+                formatDecimalString(kSamePlaneToleranceMm) + " mm) and refer to no image");
+    }
 
     DRTRTROIObservationsSequence::Item* observation = nullptr;
     check(rt.getRTROIObservationsSequence().addItem(observation), "RTROIObservationsSequence");
     check(observation->setObservationNumber(numberText), "ObservationNumber");
     check(observation->setReferencedROINumber(numberText), "ReferencedROINumber");
-    check(observation->setRTROIInterpretedType(""), "RTROIInterpretedType");
+    check(observation->setRTROIInterpretedType(what.type.c_str()), "RTROIInterpretedType");
     check(observation->setROIInterpreter(""), "ROIInterpreter");
+}
+
+// The series in the Referenced Frame of Reference Sequence: every image,
+// whether a contour lies on it or not, as planning systems list them.
+void addReferencedSeries(DRTReferencedFrameOfReferenceSequence::Item& frame,
+                         const std::string& studyUid, const DicomImageSeries& series) {
+    DRTRTReferencedStudySequence::Item* study = nullptr;
+    check(frame.getRTReferencedStudySequence().addItem(study), "RTReferencedStudySequence");
+    // Detached Study Management SOP Class (retired, but what RT Referenced
+    // Study Sequence items name by convention: the study has no SOP instance).
+    check(study->setReferencedSOPClassUID("1.2.840.10008.3.1.2.3.1"), "ReferencedSOPClassUID");
+    check(study->setReferencedSOPInstanceUID(studyUid.c_str()), "ReferencedSOPInstanceUID");
+    DRTRTReferencedSeriesSequence::Item* referenced = nullptr;
+    check(study->getRTReferencedSeriesSequence().addItem(referenced), "RTReferencedSeriesSequence");
+    check(referenced->setSeriesInstanceUID(series.seriesInstanceUid.c_str()), "SeriesInstanceUID");
+    for (const DicomImage& image : series.images)
+        addImageReference(referenced->getContourImageSequence(), image);
 }
 
 }  // namespace
 
 RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
-    const ReadingInput reading(dicomPath);
-    silenceDcmtkLog();
-    checkDicomNesting(dicomPath, kMaxDicomNestingDepth);
-    DcmFileFormat file;
-    const OFCondition status = file.loadFile(dicomPath.c_str());
-    if (status.bad())
-        throw InputError(dicomPath, 0,
-                         std::string("not a readable DICOM file (") + status.text() + ")");
-    DcmDataset& data = *file.getDataset();
-    auto text = [](DcmItem& item, const DcmTagKey& key) {
-        OFString value;
-        return item.findAndGetOFStringArray(key, value).good() ? std::string(value.c_str()) : "";
-    };
+    std::error_code error;
     RtStructWriteOptions options;
-    options.patientName = text(data, DCM_PatientName);
-    options.patientId = text(data, DCM_PatientID);
-    options.studyInstanceUid = text(data, DCM_StudyInstanceUID);
-    options.frameOfReferenceUid = text(data, DCM_FrameOfReferenceUID);  // images
-    DcmItem* frame = nullptr;
-    if (options.frameOfReferenceUid.empty() &&
-        data.findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0).good())
-        options.frameOfReferenceUid = text(*frame, DCM_FrameOfReferenceUID);  // structure sets
-    if (options.frameOfReferenceUid.empty())
-        throw InputError(dicomPath, 0, "no (0020,0052) FrameOfReferenceUID to refer to");
-    if (options.studyInstanceUid.empty())
-        throw InputError(dicomPath, 0, "no (0020,000D) StudyInstanceUID to refer to");
+    if (!std::filesystem::is_directory(dicomPath, error)) {
+        const ReadingInput reading(dicomPath);
+        silenceDcmtkLog();
+        checkDicomNesting(dicomPath, kMaxDicomNestingDepth);
+        DcmFileFormat file;
+        // Only the header matters: nothing past the pixel data is read.
+        const OFCondition status = file.loadFileUntilTag(
+            dicomPath.c_str(), EXS_Unknown, EGL_noChange, 4096, ERM_autoDetect, DCM_PixelData);
+        if (status.bad())
+            throw InputError(dicomPath, 0,
+                             std::string("not a readable DICOM file (") + status.text() + ")");
+        DcmDataset& data = *file.getDataset();
+        if (!data.tagExists(DCM_ImagePositionPatient)) {
+            if (const std::string problem = convertDicomTextToUtf8(data); !problem.empty())
+                throw InputError(dicomPath, 0, problem);
+            options.patientStudy = dicomPatientStudy(data);
+            options.frameOfReferenceUid = dicomText(data, DCM_FrameOfReferenceUID);
+            DcmItem* frame = nullptr;
+            if (options.frameOfReferenceUid.empty() &&
+                data.findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0)
+                    .good())
+                options.frameOfReferenceUid = dicomText(*frame, DCM_FrameOfReferenceUID);
+            if (options.frameOfReferenceUid.empty())
+                throw InputError(dicomPath, 0,
+                                 "no " + dicomTagName(DCM_FrameOfReferenceUID) + " to refer to");
+            if (options.patientStudy.studyInstanceUid.empty())
+                throw InputError(dicomPath, 0,
+                                 "no " + dicomTagName(DCM_StudyInstanceUID) + " to refer to");
+            return options;
+        }
+    }
+    DicomImageSeries series = readDicomImageSeries(dicomPath);
+    options.patientStudy = series.patientStudy;
+    options.frameOfReferenceUid = series.frameOfReferenceUid;
+    options.imageSeries = std::move(series);
     return options;
 }
 
-void writeRtStruct(const ContourSet& contours, const std::string& path,
-                   const RtStructWriteOptions& options) {
+RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string& path,
+                                   const RtStructWriteOptions& options) {
+    if (!isRoiInterpretedType(options.defaultRoiType))
+        throw std::invalid_argument("'" + options.defaultRoiType +
+                                    "' is not a DICOM RT ROI Interpreted Type");
     // The IOD requires at least one StructureSetROISequence item; say so
     // rather than let DCMTK's check fail with "Invalid Value" (found by
     // fuzzing: a file with an empty sequence reads as no ROIs).
@@ -152,20 +255,32 @@ void writeRtStruct(const ContourSet& contours, const std::string& path,
     std::strftime(time, sizeof time, "%H%M%S", &local);
     const std::string frameUid =
         options.frameOfReferenceUid.empty() ? newUid() : options.frameOfReferenceUid;
+    const DicomPatientStudy& ps = options.patientStudy;
+    // A study of its own is made now; an existing one keeps its attributes.
+    const bool ownStudy = ps.studyInstanceUid.empty();
+    const std::string studyUid = ownStudy ? newUid() : ps.studyInstanceUid;
 
     DRTStructureSetIOD rt;
     check(rt.setSpecificCharacterSet("ISO_IR 192"), "SpecificCharacterSet");  // UTF-8 names
     check(rt.setSOPClassUID(UID_RTStructureSetStorage), "SOPClassUID");
     check(rt.setSOPInstanceUID(newUid().c_str()), "SOPInstanceUID");
     check(rt.setInstanceCreationDate(date), "InstanceCreationDate");
-    check(rt.setPatientName(options.patientName.c_str()), "PatientName");
-    check(rt.setPatientID(options.patientId.c_str()), "PatientID");
-    check(rt.setStudyInstanceUID(
-              (options.studyInstanceUid.empty() ? newUid() : options.studyInstanceUid).c_str()),
-          "StudyInstanceUID");
-    check(rt.setStudyDate(date), "StudyDate");
-    check(rt.setStudyTime(time), "StudyTime");
-    check(rt.setStudyID(""), "StudyID");
+    check(rt.setPatientName(text(ps.patientName, "PatientName"), OFFalse), "PatientName");
+    check(rt.setPatientID(text(ps.patientId, "PatientID"), OFFalse), "PatientID");
+    check(rt.setPatientBirthDate(ps.patientBirthDate.c_str()), "PatientBirthDate");
+    check(rt.setPatientSex(ps.patientSex.c_str()), "PatientSex");
+    check(rt.setStudyInstanceUID(studyUid.c_str()), "StudyInstanceUID");
+    check(rt.setStudyDate(ownStudy ? date : ps.studyDate.c_str()), "StudyDate");
+    check(rt.setStudyTime(ownStudy ? time : ps.studyTime.c_str()), "StudyTime");
+    check(rt.setStudyID(text(ps.studyId, "StudyID"), OFFalse), "StudyID");
+    check(rt.setAccessionNumber(text(ps.accessionNumber, "AccessionNumber"), OFFalse),
+          "AccessionNumber");
+    check(rt.setReferringPhysicianName(text(ps.referringPhysicianName, "ReferringPhysicianName"),
+                                       OFFalse),
+          "ReferringPhysicianName");
+    if (!ps.studyDescription.empty())
+        check(rt.setStudyDescription(text(ps.studyDescription, "StudyDescription"), OFFalse),
+              "StudyDescription");
     check(rt.setModality("RTSTRUCT"), "Modality");
     // The Frame of Reference module is part of the RTSTRUCT IOD since 2019
     // (dciodvfy asks for it); the UID is the one the contours refer to.
@@ -173,20 +288,30 @@ void writeRtStruct(const ContourSet& contours, const std::string& path,
     check(rt.setPositionReferenceIndicator(""), "PositionReferenceIndicator");
     check(rt.setSeriesInstanceUID(newUid().c_str()), "SeriesInstanceUID");
     check(rt.setSeriesNumber("1"), "SeriesNumber");
-    check(rt.setSeriesDescription(options.seriesDescription.c_str()), "SeriesDescription");
+    check(rt.setSeriesDescription(text(options.seriesDescription, "SeriesDescription"), OFFalse),
+          "SeriesDescription");
     check(rt.setManufacturer("dfrecon"), "Manufacturer");
-    check(rt.setStructureSetLabel(options.structureSetLabel.c_str()), "StructureSetLabel");
+    check(rt.setStructureSetLabel(text(options.structureSetLabel, "StructureSetLabel"), OFFalse),
+          "StructureSetLabel");
     check(rt.setStructureSetDate(date), "StructureSetDate");
     check(rt.setStructureSetTime(time), "StructureSetTime");
     DRTReferencedFrameOfReferenceSequence::Item* frame = nullptr;
     check(rt.getReferencedFrameOfReferenceSequence().addItem(frame),
           "ReferencedFrameOfReferenceSequence");
     check(frame->setFrameOfReferenceUID(frameUid.c_str()), "FrameOfReferenceUID");
+    const DicomImageSeries* series = options.imageSeries ? &*options.imageSeries : nullptr;
+    if (series) addReferencedSeries(*frame, studyUid, *series);
 
+    RtStructWriteSummary summary;
     for (std::size_t i = 0; i < contours.rois.size(); ++i) {
         const Roi& roi = contours.rois[i];
-        addRoi(rt, roi, roi.number.value_or(int(i) + 1), frameUid);
+        const RoiToWrite what{
+            roi, roi.number.value_or(int(i) + 1),
+            roi.colour.value_or(kDefaultRoiColours[i % kDefaultRoiColours.size()]),
+            roi.interpretedType.empty() ? options.defaultRoiType : roi.interpretedType};
+        addRoi(rt, what, frameUid, series, summary);
     }
+    summary.rois = contours.rois.size();
 
     DcmFileFormat file;
     check(rt.write(*file.getDataset()), "dataset");
@@ -194,6 +319,7 @@ void writeRtStruct(const ContourSet& contours, const std::string& path,
         check(file.saveFile(temp.c_str(), EXS_LittleEndianExplicit), path.c_str());
         return true;
     });
+    return summary;
 }
 
 }  // namespace dfrecon

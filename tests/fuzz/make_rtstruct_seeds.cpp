@@ -35,8 +35,8 @@ void write(const ContourSet& set, const std::string& dir, const char* name) {
     RtStructWriteOptions options;
     // Fixed UIDs keep regenerated seeds byte-stable apart from dates.
     options.frameOfReferenceUid = "1.2.826.0.1.3680043.10.1";
-    options.studyInstanceUid = "1.2.826.0.1.3680043.10.2";
-    options.patientId = "FUZZ";
+    options.patientStudy.studyInstanceUid = "1.2.826.0.1.3680043.10.2";
+    options.patientStudy.patientId = "FUZZ";
     writeRtStruct(set, dir + "/" + name);
 }
 

@@ -8,11 +8,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
+#include <tuple>
 
 #include "io/RtStruct.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/HostileDicom.hpp"
+#include "tests/SyntheticDicomSeries.hpp"
+#include "tests/TempDir.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;
@@ -500,15 +504,13 @@ TEST(RtStruct, ExclusiveOrWorkIsBoundedPerPlaneAndPerFile) {
     fs::remove(path);
 }
 
-TEST(RtStruct, WrittenFilesPassDciodvfy) {
-    // dicom3tools' IOD checker (installed by `make setup`): no errors; the
-    // only warnings are the empty Patient ID and Study ID of a standalone set.
-    ASSERT_EQ(std::system("command -v dciodvfy >/dev/null"), 0)
+// dicom3tools' IOD checker (installed by `make setup`) on `path`: its
+// lines starting with "Error", and everything it said.
+std::pair<std::size_t, std::string> dciodvfyErrors(const std::string& path) {
+    EXPECT_EQ(std::system("command -v dciodvfy >/dev/null"), 0)
         << "dciodvfy missing: run make setup";
-    const std::string path = tempPath("dciodvfy");
     const std::string report = path + ".txt";
-    writeRtStruct(ringsAndIslands(), path);
-    ASSERT_EQ(std::system(("dciodvfy " + path + " >" + report + " 2>&1").c_str()) == -1, false);
+    EXPECT_NE(std::system(("dciodvfy " + path + " >" + report + " 2>&1").c_str()), -1);
     std::ifstream in(report);
     std::string line, all;
     std::size_t errors = 0;
@@ -516,8 +518,228 @@ TEST(RtStruct, WrittenFilesPassDciodvfy) {
         all += line + "\n";
         errors += line.rfind("Error", 0) == 0;
     }
+    fs::remove(report);
+    return {errors, all};
+}
+
+TEST(RtStruct, WrittenFilesPassDciodvfy) {
+    // No errors; the only warnings are the empty Patient ID and Study ID of
+    // a standalone set.
+    const std::string path = tempPath("dciodvfy");
+    writeRtStruct(ringsAndIslands(), path);
+    const auto [errors, all] = dciodvfyErrors(path);
     EXPECT_EQ(errors, 0u) << all;
     EXPECT_NE(all.find("RTStructureSet"), std::string::npos) << all;  // it checked the right IOD
     fs::remove(path);
-    fs::remove(report);
+}
+
+// ---- references to an image series (convert --like CTFOLDER) ---------------
+
+namespace {
+
+Roi squaresAt(const std::string& name, std::vector<double> zs) {
+    Roi roi;
+    roi.name = name;
+    for (double z : zs) roi.slices.push_back({z, {{{0, 0}, {4, 0}, {4, 3}, {0, 3}}}});
+    return roi;
+}
+
+std::string itemText(DcmItem& item, const DcmTagKey& key) {
+    OFString value;
+    item.findAndGetOFStringArray(key, value);
+    return value.c_str();
+}
+
+DcmItem* itemOf(DcmItem& parent, const DcmTagKey& sequence, unsigned long index = 0) {
+    DcmItem* item = nullptr;
+    parent.findAndGetSequenceItem(sequence, item, long(index));
+    return item;
+}
+
+unsigned long itemCount(DcmItem& parent, const DcmTagKey& key) {
+    DcmSequenceOfItems* sequence = nullptr;
+    return parent.findAndGetSequence(key, sequence).good() && sequence ? sequence->card() : 0;
+}
+
+}  // namespace
+
+TEST(RtStruct, ContoursReferToTheImagesOfTheirPlanes) {
+    dfrecon::testing::TempDir dir("rt-series");
+    const std::string ct = dir / "ct";
+    fs::create_directories(ct);
+    dfrecon::testing::writeSyntheticSeries(ct, 5, 0, 2);  // z = 0, 2, 4, 6, 8
+    ContourSet set;
+    set.rois.push_back(squaresAt("tumour", {2, 4.004, 5}));  // z = 5 lies between images
+    set.rois.back().colour = Rgb{1, 2, 3};
+    set.rois.back().interpretedType = "PTV";
+    set.rois.push_back(squaresAt("cord", {0, 8}));
+    Roi sagittal = squaresAt("sagittal", {1});
+    sagittal.frame = canonicalFrame(frameWithNormal({1, 0, 0}));
+    set.rois.push_back(sagittal);
+
+    RtStructWriteOptions options = referenceFrom(ct);
+    ASSERT_TRUE(options.imageSeries.has_value());
+    options.defaultRoiType = "OAR";
+    const std::string path = dir / "rt.dcm";
+    const RtStructWriteSummary summary = writeRtStruct(set, path, options);
+    EXPECT_EQ(summary.contours, 6u);
+    EXPECT_EQ(summary.contoursOnImages, 4u);
+    EXPECT_EQ(summary.contoursOffImages, 2u);
+    ASSERT_EQ(summary.warnings.size(), 2u);
+    EXPECT_NE(summary.warnings[0].find("ROI 1 'tumour': 1 of 3 contours lie in no image's plane"),
+              std::string::npos)
+        << summary.warnings[0];
+    EXPECT_NE(summary.warnings[1].find("ROI 3 'sagittal' lies in sagittal planes, not parallel"),
+              std::string::npos)
+        << summary.warnings[1];
+
+    // Read back with dcmdata: every image listed under the series, each
+    // contour on the image of its z.
+    DcmFileFormat file;
+    ASSERT_TRUE(file.loadFile(path.c_str()).good());
+    DcmDataset& data = *file.getDataset();
+    const DicomImageSeries& series = *options.imageSeries;
+    EXPECT_EQ(itemText(data, DCM_StudyInstanceUID), series.patientStudy.studyInstanceUid);
+    EXPECT_EQ(itemText(data, DCM_PatientID), "synthetic-series");
+    EXPECT_EQ(itemText(data, DCM_PatientBirthDate), "19700101");
+    EXPECT_EQ(itemText(data, DCM_StudyDate), "20240102");
+    EXPECT_EQ(itemText(data, DCM_AccessionNumber), "A1");
+    EXPECT_EQ(itemText(data, DCM_FrameOfReferenceUID), series.frameOfReferenceUid);
+    DcmItem* frame = itemOf(data, DCM_ReferencedFrameOfReferenceSequence);
+    ASSERT_NE(frame, nullptr);
+    EXPECT_EQ(itemText(*frame, DCM_FrameOfReferenceUID), series.frameOfReferenceUid);
+    DcmItem* study = itemOf(*frame, DCM_RTReferencedStudySequence);
+    ASSERT_NE(study, nullptr);
+    EXPECT_EQ(itemText(*study, DCM_ReferencedSOPInstanceUID), series.patientStudy.studyInstanceUid);
+    DcmItem* referenced = itemOf(*study, DCM_RTReferencedSeriesSequence);
+    ASSERT_NE(referenced, nullptr);
+    EXPECT_EQ(itemText(*referenced, DCM_SeriesInstanceUID), series.seriesInstanceUid);
+    ASSERT_EQ(itemCount(*referenced, DCM_ContourImageSequence), 5u);
+    std::map<std::string, double> zOfImage;
+    for (unsigned long i = 0; i < 5; ++i) {
+        DcmItem* image = itemOf(*referenced, DCM_ContourImageSequence, i);
+        EXPECT_EQ(itemText(*image, DCM_ReferencedSOPClassUID), UID_CTImageStorage);
+        zOfImage[itemText(*image, DCM_ReferencedSOPInstanceUID)] = 2.0 * i;
+    }
+    const std::vector<std::vector<double>> imageZ = {{2, 4, NAN}, {0, 8}, {NAN}};
+    for (unsigned long r = 0; r < 3; ++r) {
+        DcmItem* roi = itemOf(data, DCM_ROIContourSequence, r);
+        ASSERT_NE(roi, nullptr);
+        ASSERT_EQ(itemCount(*roi, DCM_ContourSequence), imageZ[r].size());
+        for (unsigned long c = 0; c < imageZ[r].size(); ++c) {
+            DcmItem* contour = itemOf(*roi, DCM_ContourSequence, c);
+            if (std::isnan(imageZ[r][c])) {
+                EXPECT_EQ(itemCount(*contour, DCM_ContourImageSequence), 0u) << r << " " << c;
+                continue;
+            }
+            ASSERT_EQ(itemCount(*contour, DCM_ContourImageSequence), 1u) << r << " " << c;
+            const std::string uid =
+                itemText(*itemOf(*contour, DCM_ContourImageSequence), DCM_ReferencedSOPInstanceUID);
+            ASSERT_EQ(zOfImage.count(uid), 1u) << uid;
+            EXPECT_EQ(zOfImage[uid], imageZ[r][c]) << r << " " << c;
+        }
+    }
+    // Types and colours: the ROI's own, else the default type and the palette.
+    const std::vector<std::string> types = {"PTV", "OAR", "OAR"};
+    for (unsigned long r = 0; r < 3; ++r)
+        EXPECT_EQ(
+            itemText(*itemOf(data, DCM_RTROIObservationsSequence, r), DCM_RTROIInterpretedType),
+            types[r]);
+    EXPECT_EQ(itemText(*itemOf(data, DCM_ROIContourSequence, 0), DCM_ROIDisplayColor), "1\\2\\3");
+    for (unsigned long r = 1; r < 3; ++r) {
+        const Rgb c = kDefaultRoiColours[r];
+        EXPECT_EQ(itemText(*itemOf(data, DCM_ROIContourSequence, r), DCM_ROIDisplayColor),
+                  std::to_string(c[0]) + "\\" + std::to_string(c[1]) + "\\" + std::to_string(c[2]));
+    }
+
+    // Our reader keeps what was written, types included.
+    const RtStructLoad load = readRtStruct(path);
+    ASSERT_EQ(load.contours.rois.size(), 3u);
+    for (std::size_t r = 0; r < 3; ++r) EXPECT_EQ(load.contours.rois[r].interpretedType, types[r]);
+    EXPECT_EQ(load.frameOfReferenceUid, series.frameOfReferenceUid);
+    EXPECT_EQ(load.contours.rois[0].slices.size(), 3u);
+
+    const auto [errors, all] = dciodvfyErrors(path);
+    EXPECT_EQ(errors, 0u) << all;
+    EXPECT_NE(all.find("RTStructureSet"), std::string::npos) << all;
+}
+
+TEST(RtStruct, DefaultColoursDifferAndCycle) {
+    for (std::size_t i = 0; i < kDefaultRoiColours.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j) {
+            const Rgb a = kDefaultRoiColours[i], b = kDefaultRoiColours[j];
+            EXPECT_GE(std::abs(int(a[0]) - int(b[0])) + std::abs(int(a[1]) - int(b[1])) + std::abs(int(a[2]) - int(b[2])), 100)
+                << i << " " << j;
+        }
+    ContourSet set;
+    for (int i = 0; i < 14; ++i) set.rois.push_back(squaresAt("r" + std::to_string(i), {0}));
+    const std::string path = tempPath("palette");
+    writeRtStruct(set, path);
+    const RtStructLoad load = readRtStruct(path);
+    for (std::size_t i = 0; i < 14; ++i) {
+        ASSERT_TRUE(load.contours.rois[i].colour.has_value());
+        const Rgb want = kDefaultRoiColours[i % 12], got = *load.contours.rois[i].colour;
+        EXPECT_EQ(std::tie(got.r, got.g, got.b), std::tie(want.r, want.g, want.b)) << i;
+        EXPECT_EQ(load.contours.rois[i].interpretedType, "ORGAN");
+    }
+    fs::remove(path);
+}
+
+TEST(RtStruct, RoiTypeMustBeADefinedTerm) {
+    EXPECT_TRUE(isRoiInterpretedType("GTV"));
+    EXPECT_TRUE(isRoiInterpretedType("DOSE_MEASUREMENT"));
+    EXPECT_FALSE(isRoiInterpretedType("gtv"));
+    EXPECT_FALSE(isRoiInterpretedType(""));
+    RtStructWriteOptions options;
+    options.defaultRoiType = "TUMOUR";
+    EXPECT_THROW(writeRtStruct(ringsAndIslands(), tempPath("badtype"), options),
+                 std::invalid_argument);
+    EXPECT_FALSE(fs::exists(tempPath("badtype")));
+}
+
+TEST(RtStruct, ReferenceFromAStructureSetTakesItsFrameAndStudy) {
+    dfrecon::testing::TempDir dir("rt-like-rt");
+    RtStructWriteOptions first;
+    first.frameOfReferenceUid = "1.2.826.0.1.3680043.10.5";
+    first.patientStudy.studyInstanceUid = "1.2.826.0.1.3680043.10.6";
+    first.patientStudy.patientId = "P7";
+    writeRtStruct(ringsAndIslands(), dir / "first.dcm", first);
+    const RtStructWriteOptions like = referenceFrom(dir / "first.dcm");
+    EXPECT_FALSE(like.imageSeries.has_value());
+    EXPECT_EQ(like.frameOfReferenceUid, first.frameOfReferenceUid);
+    EXPECT_EQ(like.patientStudy.studyInstanceUid, first.patientStudy.studyInstanceUid);
+    EXPECT_EQ(like.patientStudy.patientId, "P7");
+    std::ofstream(dir / "text.dcm") << "no DICOM here";
+    EXPECT_THROW(referenceFrom(dir / "text.dcm"), InputError);
+}
+
+TEST(RtStruct, Latin1NamesAreReadAsUtf8) {
+    // A planning system's ISO_IR 100 file: u-umlaut is the byte FC, and the
+    // name must reach our UTF-8 output as C3 BC.
+    const std::string path = tempPath("latin1");
+    writeRtStruct(ringsAndIslands(), path);
+    {
+        DcmFileFormat file;
+        ASSERT_TRUE(file.loadFile(path.c_str()).good());
+        DcmDataset& data = *file.getDataset();
+        ASSERT_TRUE(data.putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 100").good());
+        DcmItem* roi = itemOf(data, DCM_StructureSetROISequence);
+        ASSERT_NE(roi, nullptr);
+        ASSERT_TRUE(roi->putAndInsertString(DCM_ROIName,
+                                            "H\xfc"
+                                            "fte")
+                        .good());
+        ASSERT_TRUE(file.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+    }
+    const RtStructLoad load = readRtStruct(path);
+    EXPECT_EQ(load.contours.rois[0].name,
+              "H\xc3\xbc"
+              "fte");
+    EXPECT_TRUE(load.warnings.empty()) << load.warnings.front().toString();
+    // and written back as UTF-8, which reads back the same.
+    writeRtStruct(load.contours, path);
+    EXPECT_EQ(readRtStruct(path).contours.rois[0].name,
+              "H\xc3\xbc"
+              "fte");
+    fs::remove(path);
 }
