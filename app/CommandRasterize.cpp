@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <numeric>
 #include <set>
@@ -22,8 +23,10 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
+#include "io/DicomImageSeries.hpp"
 #include "io/LabelTable.hpp"
 #include "io/LabelVolume.hpp"
+#include "io/RtStruct.hpp"
 
 namespace dfrecon::app {
 
@@ -141,6 +144,14 @@ std::vector<std::int32_t> labelsOf(const std::vector<const Roi*>& rois) {
     return labels;
 }
 
+// The grid of a reference: a DICOM image series (its folder or one of its
+// files: the planning CT) or a NRRD / NIfTI volume.
+VolumeGeometry referenceGrid(const std::string& path) {
+    if (std::filesystem::is_directory(path) || isDicomFile(path))
+        return gridOf(readDicomImageSeries(path));
+    return readLabelVolume(path).geometry;
+}
+
 bool endsWith(const std::string& text, const std::string& end) {
     return text.size() >= end.size() &&
            std::equal(end.rbegin(), end.rend(), text.rbegin(), [](char a, char b) {
@@ -183,8 +194,8 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         }
     }
     if (rois.empty()) throw InputError(args.input, 0, "no ROI could be read");
-    const VolumeGeometry grid = args.like.empty() ? gridAroundRois(rois, args.voxelMm)
-                                                  : readLabelVolume(args.like).geometry;
+    const VolumeGeometry grid =
+        args.like.empty() ? gridAroundRois(rois, args.voxelMm) : referenceGrid(args.like);
 
     // Larger structures are painted first so that a structure inside
     // another (an organ inside the body outline) keeps its voxels: a label
@@ -293,8 +304,9 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file, in one label map");
     cmd->add_option("--like", args->like,
-                    "Reference grid: a NRRD or NIfTI volume (e.g. the CT or a segmentation) whose "
-                    "size, spacing, origin and directions the output takes");
+                    "Reference grid: a DICOM image series (the planning CT's folder, or one of "
+                    "its files) or a NRRD or NIfTI volume (the CT, a segmentation) whose size, "
+                    "spacing, origin and directions the output takes");
     cmd->add_option("--voxel-mm", args->voxelMm,
                     "Or a grid of cubic voxels this size (mm) on the ROIs' axes (patient LPS "
                     "where they differ), around their contours")

@@ -25,10 +25,7 @@ std::mutex meshWriting;
 }  // namespace
 
 StructureTag structureTagOf(const Roi& roi) {
-    StructureTag tag{roi.name, std::nullopt};
-    if (const std::optional<Rgb>& c = roi.colour)
-        tag.colour = {std::uint8_t(c->r), std::uint8_t(c->g), std::uint8_t(c->b)};
-    return tag;
+    return StructureTag{roi.name, roi.colour};
 }
 
 RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {

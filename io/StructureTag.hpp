@@ -4,18 +4,16 @@
 // writers put it where each format has a place (docs/formats.md): a PLY
 // header comment and vertex colours, OBJ object and group names with an MTL
 // material, VTK field data and a colour array, the STL header.
-#include <array>
-#include <cstdint>
 #include <optional>
 #include <string>
+
+#include "io/Colours.hpp"
 
 namespace dfrecon {
 
 struct StructureTag {
-    std::string name;  // "": none
-    /// 0..255 each: io/Colours' Rgb, spelled out because io/ContourSet has
-    /// an Rgb of its own.
-    std::optional<std::array<std::uint8_t, 3>> colour;
+    std::string name;           // "": none
+    std::optional<Rgb> colour;  // 0..255 each
 
     bool empty() const { return name.empty() && !colour; }
 };

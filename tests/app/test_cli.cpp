@@ -730,16 +730,16 @@ TEST(Cli, BadRtStructExitsTwoNamingTheTag) {
 #ifndef DFRECON_SANITIZE_BUILD
 TEST(Cli, RasterizeAllOnTheLabelVolumeGivesBackTheLabels) {
     // plastimatch's contours of every label, rasterised on the label
-    // volume's own grid into one NIfTI map: the contour planes hold the
+    // volume's own grid, taken from the CT series the labels were drawn on
+    // (test_DicomImageSeries: the same grid), into one NIfTI map: the contour planes hold the
     // voxel centres, so every voxel of the labels away from the image's
     // border (4, 5, 6) agrees. ROI numbers start at 0 here, so labels are
     // positions: label_N gets N + 1.
     const fs::path study = fs::path(DFRECON_FIXTURES) / "kmeans_axial";
     ASSERT_TRUE(fs::exists(study / "rtstruct.dcm")) << "run make setup";
     const fs::path out = scratch() / "kmeans-all.nii.gz";
-    const Result run =
-        runDfrecon("rasterize -q --json --all " + (study / "rtstruct.dcm").string() + " --like " +
-                   (study / "labels.nii.gz").string() + " -o " + out.string());
+    const Result run = runDfrecon("rasterize -q --json --all " + (study / "rtstruct.dcm").string() +
+                                  " --like " + (study / "dicom").string() + " -o " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const dfrecon::LabelVolume map = dfrecon::readLabelVolume(out.string());
     const dfrecon::LabelVolume labels =

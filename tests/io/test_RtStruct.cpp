@@ -668,7 +668,9 @@ TEST(RtStruct, DefaultColoursDifferAndCycle) {
     for (std::size_t i = 0; i < kDefaultRoiColours.size(); ++i)
         for (std::size_t j = 0; j < i; ++j) {
             const Rgb a = kDefaultRoiColours[i], b = kDefaultRoiColours[j];
-            EXPECT_GE(std::abs(int(a[0]) - int(b[0])) + std::abs(int(a[1]) - int(b[1])) + std::abs(int(a[2]) - int(b[2])), 100)
+            EXPECT_GE(std::abs(int(a[0]) - int(b[0])) + std::abs(int(a[1]) - int(b[1])) +
+                          std::abs(int(a[2]) - int(b[2])),
+                      100)
                 << i << " " << j;
         }
     ContourSet set;
@@ -679,7 +681,7 @@ TEST(RtStruct, DefaultColoursDifferAndCycle) {
     for (std::size_t i = 0; i < 14; ++i) {
         ASSERT_TRUE(load.contours.rois[i].colour.has_value());
         const Rgb want = kDefaultRoiColours[i % 12], got = *load.contours.rois[i].colour;
-        EXPECT_EQ(std::tie(got.r, got.g, got.b), std::tie(want.r, want.g, want.b)) << i;
+        EXPECT_EQ(got, want) << i;
         EXPECT_EQ(load.contours.rois[i].interpretedType, "ORGAN");
     }
     fs::remove(path);
