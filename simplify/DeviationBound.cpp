@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 
 namespace dfrecon {
 
@@ -14,6 +16,14 @@ int longestEdge(const Vec3 p[3]) {
 
 double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits) {
+    return deviationBoundWithin(bvh, a, b, c, limits, SIZE_MAX).value;
+}
+
+std::size_t dbgCalls[2] = {0, 0}, dbgPieces[2] = {0, 0};
+struct DbgPrint { ~DbgPrint() { if (getenv("DBG_DECIM")) fprintf(stderr, "full calls %zu pieces %zu; budgeted calls %zu pieces %zu\n", dbgCalls[0], dbgPieces[0], dbgCalls[1], dbgPieces[1]); } } dbgPrint;
+DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
+                                       const DeviationLimits& limits, std::size_t maxPieces) {
+    const int dbgK = maxPieces != SIZE_MAX; ++dbgCalls[dbgK];
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
     const TriangleSoup& surface = bvh.soup();
@@ -37,8 +47,11 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
     std::size_t size = 0;
     stack[size++] = {{a, b, c}, SIZE_MAX};
     double bound = 0;
-    while (size > 0) {
+    double lower = 0;  // the largest centre distance met: the bound is at least that
+    for (std::size_t pieces = 0; size > 0; ++pieces) {
+        if (pieces == maxPieces) return {std::max(bound, lower), false};
         const Piece piece = stack[--size];
+        ++dbgPieces[dbgK];
         // Most pieces of a split lie over the same original triangle as their
         // parent: try it before searching.
         if (piece.near != SIZE_MAX) {
@@ -52,7 +65,8 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         double radius = 0;
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
         const TriangleBvh::Nearest nearest = bvh.nearest(centre, piece.near);
-        if (nearest.distance > limit) return nearest.distance;
+        if (nearest.distance > limit) return {nearest.distance, true};
+        lower = std::max(lower, nearest.distance);
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)
             settled = std::min(settled, cornerDistance(piece, nearest.triangle));
@@ -60,7 +74,7 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
             bound = std::max(bound, settled);
             continue;
         }
-        if (radius < finest || size + 2 > stack.size()) return settled;
+        if (radius < finest || size + 2 > stack.size()) return {settled, true};
         // Halve the longest edge: pieces get rounder, so their number grows
         // with area / size², where splitting in four similar triangles keeps
         // a long sliver's shape and grows with length².
@@ -71,7 +85,7 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         stack[size++] = {{piece.p[k], mid, apex}, near};
         stack[size++] = {{mid, piece.p[(k + 1) % 3], apex}, near};
     }
-    return bound;
+    return {bound, true};
 }
 
 }  // namespace dfrecon
