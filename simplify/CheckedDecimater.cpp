@@ -1,7 +1,5 @@
 #include "simplify/CheckedDecimater.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <algorithm>
 #include <limits>
 #include <queue>
@@ -84,7 +82,6 @@ std::size_t CheckedDecimater::decimate() {
         for (auto v : support)
             if (!mesh_.status(v).deleted()) enqueue(v);
     }
-    if (getenv("DBG_DECIM")) fprintf(stderr, "judged %zu collapses %zu stale %zu\n", judged, collapses, staleCollapses);
     return collapses;
 }
 

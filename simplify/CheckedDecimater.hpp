@@ -4,8 +4,8 @@
 // cheap lower bound of its priority; each time an entry reaches the top its
 // bound is tightened (the next, dearer lower bound, at last the judgement of
 // every module), and it goes back unless the new value is still the
-// smallest in the queue; a judged entry at the top is taken. So the collapse taken is always the cheapest legal one, as in
-// DecimaterT, but the expensive judgement runs for the few halfedges that
+// smallest in the queue; a judged entry at the top is taken. So the collapse taken is always the
+// cheapest legal one, as in DecimaterT, but the expensive judgement runs for the few halfedges that
 // reach the top instead of every halfedge around every changed vertex; and
 // a verdict is never stale: a bound that also depends on the faces around a
 // vertex's ring (ModErrorBound's coverage and collision test) is judged

@@ -3,10 +3,21 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
 namespace dfrecon {
+
+namespace straddle {
+using closest::dot3;
+using closest::point_triangle_distance;
+using std::sqrt;
+#define REAL double
+#define REAL4 Vec3
+#define STRADDLE_FN inline
+#include "kernels/straddle_bound.cl"
+#undef STRADDLE_FN
+#undef REAL4
+#undef REAL
+}  // namespace straddle
 
 int longestEdge(const Vec3 p[3]) {
     const double l0 = dot(p[1] - p[0], p[1] - p[0]), l1 = dot(p[2] - p[1], p[2] - p[1]),
@@ -19,11 +30,8 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
     return deviationBoundWithin(bvh, a, b, c, limits, SIZE_MAX).value;
 }
 
-std::size_t dbgCalls[2] = {0, 0}, dbgPieces[2] = {0, 0};
-struct DbgPrint { ~DbgPrint() { if (getenv("DBG_DECIM")) fprintf(stderr, "full calls %zu pieces %zu; budgeted calls %zu pieces %zu\n", dbgCalls[0], dbgPieces[0], dbgCalls[1], dbgPieces[1]); } } dbgPrint;
 DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                                        const DeviationLimits& limits, std::size_t maxPieces) {
-    const int dbgK = maxPieces != SIZE_MAX; ++dbgCalls[dbgK];
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
     const TriangleSoup& surface = bvh.soup();
@@ -51,7 +59,6 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
     for (std::size_t pieces = 0; size > 0; ++pieces) {
         if (pieces == maxPieces) return {std::max(bound, lower), false};
         const Piece piece = stack[--size];
-        ++dbgPieces[dbgK];
         // Most pieces of a split lie over the same original triangle as their
         // parent: try it before searching.
         if (piece.near != SIZE_MAX) {
@@ -70,6 +77,16 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)
             settled = std::min(settled, cornerDistance(piece, nearest.triangle));
+        // Over the edge between the parent's triangle and this one.
+        if (settled > limit && piece.near != SIZE_MAX && nearest.triangle != piece.near) {
+            const auto& s = surface.triangles[piece.near];
+            const auto& t = surface.triangles[nearest.triangle];
+            const auto& q = surface.points;
+            settled = std::min(settled, straddle::straddle_distance(
+                                            piece.p[0], piece.p[1], piece.p[2], q[s[0]], q[s[1]],
+                                            q[s[2]], int(s[0]), int(s[1]), int(s[2]), q[t[0]],
+                                            q[t[1]], q[t[2]], int(t[0]), int(t[1]), int(t[2])));
+        }
         if (settled <= limit) {
             bound = std::max(bound, settled);
             continue;

@@ -1,8 +1,6 @@
 #include "simplify/ModErrorBound.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 
 #include "geometry/MeshCheck.hpp"
@@ -135,8 +133,6 @@ bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriang
     return false;
 }
 
-std::size_t dbgDevIllegal = 0, dbgCovIllegal = 0, dbgCollIllegal = 0;
-struct DbgPrint2 { ~DbgPrint2() { if (getenv("DBG_DECIM")) fprintf(stderr, "illegal dev %zu cov %zu coll %zu\n", dbgDevIllegal, dbgCovIllegal, dbgCollIllegal); } } dbgPrint2;
 float ModErrorBound::deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces) {
     if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
     if (batchValueHolds(ci)) return initial_[std::size_t(ci.v0v1.idx())];
@@ -159,11 +155,11 @@ float ModErrorBound::deviation(const CollapseInfo& ci) {
 
 float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
     const float deviation = this->deviation(ci);  // also fills created_
-    if (deviation < 0) { ++dbgDevIllegal; return ILLEGAL_COLLAPSE; }
+    if (deviation < 0) return ILLEGAL_COLLAPSE;
     // Cheapest first: the deviation is mostly a look-up (batch, cache).
     const double covered = coverage(ci);
-    if (covered > limits_.limitMm) { ++dbgCovIllegal; return ILLEGAL_COLLAPSE; }
-    if (collides(ci, created_)) { ++dbgCollIllegal; return ILLEGAL_COLLAPSE; }
+    if (covered > limits_.limitMm) return ILLEGAL_COLLAPSE;
+    if (collides(ci, created_)) return ILLEGAL_COLLAPSE;
     return std::max(float(covered), deviation);
 }
 
