@@ -45,10 +45,11 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     module.setOriginal(bvh, options.maxErrorMm);
     // Tighter and dearer: the first piece of each created triangle (its
     // centroid distance, or its bound when it settles at once), the first
-    // few, the whole deviation.
+    // 8, the first 64, the whole deviation.
     decimater.setLowerBounds(
         {[&module](const auto& ci) { return module.deviationLowerBound(ci, 1); },
          [&module](const auto& ci) { return module.deviationLowerBound(ci, 8); },
+         [&module](const auto& ci) { return module.deviationLowerBound(ci, 64); },
          [&module](const auto& ci) { return module.deviation(ci); }});
 
     auto start = std::chrono::steady_clock::now();
