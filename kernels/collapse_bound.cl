@@ -3,7 +3,7 @@
 // surfaceDeviation in simplify/CollapseBound.cpp — the largest
 // deviation_bound of the triangles the collapse creates from the original
 // surface — or -1 when one exceeds the limit or is a sliver. Needs
-// closest_triangle_3d.cl first.
+// closest_triangle_3d.cl and straddle_bound.cl first.
 #ifndef PIECE_STACK
 #define PIECE_STACK 64
 #endif
@@ -11,8 +11,8 @@
 // deviationBound (simplify/DeviationBound.cpp), step for step: halve the
 // triangle's longest edge until each piece is settled by the largest corner
 // distance to the triangle nearest its parent's centre, or by
-// dist(centre) + radius or the corner distance to the triangle nearest the
-// centre.
+// dist(centre) + radius, the corner distance to the triangle nearest the
+// centre, or straddle_distance over the edge between those two triangles.
 inline REAL corner_distance(const Surface* s, uint t, REAL4 p0, REAL4 p1, REAL4 p2) {
     const int4 tri = s->triangles[t];
     const REAL4 s0 = s->points[tri.x], s1 = s->points[tri.y], s2 = s->points[tri.z];
@@ -51,6 +51,13 @@ REAL deviation_bound(const Surface* s, REAL4 a, REAL4 b, REAL4 c, REAL limit, RE
         REAL settled = d + radius;
         if (settled > limit && t != hint)
             settled = fmin(settled, corner_distance(s, t, p0, p1, p2));
+        if (settled > limit && hint != UINT_MAX && t != hint) {
+            const int4 ta = s->triangles[hint], tb = s->triangles[t];
+            settled = fmin(settled,
+                           straddle_distance(p0, p1, p2, s->points[ta.x], s->points[ta.y],
+                                             s->points[ta.z], ta.x, ta.y, ta.z, s->points[tb.x],
+                                             s->points[tb.y], s->points[tb.z], tb.x, tb.y, tb.z));
+        }
         if (settled <= limit) {
             bound = fmax(bound, settled);
             continue;

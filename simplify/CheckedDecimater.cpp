@@ -1,5 +1,7 @@
 #include "simplify/CheckedDecimater.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <queue>
 #include <vector>
 
@@ -7,31 +9,33 @@ namespace dfrecon {
 
 std::size_t CheckedDecimater::decimate() {
     if (!is_initialized()) return 0;
+    constexpr std::size_t kNotJudged = std::numeric_limits<std::size_t>::max();
     struct Entry {
-        float priority;
+        float priority;  // lowerBounds_[stage], or the priority when judged
         int halfedge;
         std::uint32_t version;  // of the from-vertex when queued
-        bool operator<(const Entry& other) const { return priority > other.priority; }
+        std::size_t stage;      // lowerBounds_.size() once judged
+        std::size_t judgedAt;   // collapses done when judged, or kNotJudged
+        bool operator<(const Entry& other) const {
+            // Cheapest on top; among equals the lower halfedge index, so runs
+            // are reproducible.
+            if (priority != other.priority) return priority > other.priority;
+            return halfedge > other.halfedge;
+        }
     };
-    std::priority_queue<Entry> queue;  // cheapest on top
+    std::priority_queue<Entry> queue;
     std::vector<std::uint32_t> version(mesh_.n_vertices(), 0);
 
-    // A vertex's cheapest legal collapse enters the queue; older entries of
-    // the vertex are dropped when they surface (their version is behind).
+    // A vertex's collapses enter the queue with their lower bounds; older
+    // entries of the vertex are dropped when they surface (version behind).
     auto enqueue = [&](TriMesh::VertexHandle v) {
         const std::uint32_t now = ++version[std::size_t(v.idx())];
-        float best = -1;
-        TriMesh::HalfedgeHandle bestHalfedge;
         for (auto h : mesh_.voh_range(v)) {
             const CollapseInfo ci(mesh_, h);
             if (!is_collapse_legal(ci)) continue;
-            const float priority = collapse_priority(ci);
-            if (priority >= 0 && (best < 0 || priority < best)) {
-                best = priority;
-                bestHalfedge = h;
-            }
+            const float bound = lowerBounds_.empty() ? 0.0f : lowerBounds_[0](ci);
+            if (bound >= 0) queue.push({bound, h.idx(), now, 0, kNotJudged});
         }
-        if (best >= 0) queue.push({best, bestHalfedge.idx(), now});
     };
     for (auto v : mesh_.vertices())
         if (!mesh_.status(v).deleted()) enqueue(v);
@@ -46,13 +50,28 @@ std::size_t CheckedDecimater::decimate() {
         const auto v0 = mesh_.from_vertex_handle(h);
         if (mesh_.status(v0).deleted() || top.version != version[std::size_t(v0.idx())]) continue;
         CollapseInfo ci(mesh_, h);
-        // Taken now: every module judges it again against the mesh as it is.
-        const float priority = is_collapse_legal(ci) ? collapse_priority(ci) : -1;
-        if (priority < 0 || priority > top.priority) {
-            ++staleCollapses;
-            enqueue(v0);
-            continue;
+        // Tightened until judged in full, while still the cheapest; a verdict
+        // holds while nothing else is collapsed.
+        Entry entry = top;
+        while (entry.judgedAt != collapses) {
+            if (entry.stage + 1 < lowerBounds_.size()) {
+                const float bound = lowerBounds_[++entry.stage](ci);
+                entry.priority = bound < 0 ? bound : std::max(entry.priority, bound);
+            } else {
+                ++judged;
+                if (entry.judgedAt != kNotJudged) ++staleCollapses;
+                entry.stage = lowerBounds_.size();
+                entry.judgedAt = collapses;
+                entry.priority = is_collapse_legal(ci) ? collapse_priority(ci) : -1;
+            }
+            if (entry.priority < 0) break;
+            if (!queue.empty() && entry < queue.top()) {  // no longer the cheapest
+                queue.push(entry);
+                break;
+            }
         }
+        // Illegal until the vertex's ring changes (as in DecimaterT).
+        if (entry.priority < 0 || entry.judgedAt != collapses) continue;
         support.assign(mesh_.vv_begin(v0), mesh_.vv_end(v0));
         preprocess_collapse(ci);
         mesh_.collapse(h);

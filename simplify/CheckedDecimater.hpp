@@ -1,15 +1,22 @@
 #pragma once
-// OpenMesh's greedy decimation loop (DecimaterT::decimate), with one change:
-// a collapse is evaluated again, by every module, at the moment it is taken.
-// DecimaterT evaluates a vertex's collapses when the vertex enters the queue
-// and again only when its own one-ring changes; a bound that also depends on
-// the faces around that ring (ModErrorBound's coverage and collision test)
-// can go stale in between. Here a stale entry is re-queued with its current
-// priority instead of being collapsed. Modules, legality checks and the
+// OpenMesh's greedy decimation loop (DecimaterT::decimate), lazily
+// evaluated and checked when taken. Every halfedge enters the queue with a
+// cheap lower bound of its priority; each time an entry reaches the top its
+// bound is tightened (the next, dearer lower bound, at last the judgement of
+// every module), and it goes back unless the new value is still the
+// smallest in the queue; a judged entry at the top is taken. So the collapse taken is always the
+// cheapest legal one, as in DecimaterT, but the expensive judgement runs for the few halfedges that
+// reach the top instead of every halfedge around every changed vertex; and
+// a verdict is never stale: a bound that also depends on the faces around a
+// vertex's ring (ModErrorBound's coverage and collision test) is judged
+// again unless nothing was collapsed since. Modules, legality checks and the
 // collapse itself are OpenMesh's (BaseDecimaterT).
 #if defined(__GNUC__)
 #pragma GCC system_header  // OpenMesh's headers are not -Wshadow clean
 #endif
+#include <functional>
+#include <vector>
+
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 
 #include "geometry/TriMesh.hpp"
@@ -20,16 +27,30 @@ class CheckedDecimater : public OpenMesh::Decimater::BaseDecimaterT<TriMesh> {
   public:
     explicit CheckedDecimater(TriMesh& mesh) : BaseDecimaterT<TriMesh>(mesh), mesh_(mesh) {}
 
+    /// Lower bounds of the modules' priority of a collapse (what
+    /// collapse_priority would return, if legal), cheapest and loosest
+    /// first, each < 0 when the collapse is surely illegal. A halfedge
+    /// enters the queue with the first; each time it reaches the top it is
+    /// judged by the next, and by collapse_priority after the last. They
+    /// may depend only on the from-vertex's faces (a changed ring re-queues
+    /// the vertex). With none, every queued halfedge is judged in full.
+    using LowerBound = std::function<float(const CollapseInfo&)>;
+    void setLowerBounds(std::vector<LowerBound> lowerBounds) {
+        lowerBounds_ = std::move(lowerBounds);
+    }
+
     /// Collapses the cheapest legal halfedge until none is left; returns the
-    /// number of collapses. Call initialize() first. O(collapses · (valence²
-    /// evaluations + log V)).
+    /// number of collapses. Call initialize() first. O(collapses · valence²
+    /// lower bounds + judged · judgement + pushes · log pushes).
     std::size_t decimate();
 
-    /// Collapses found stale when taken (re-queued instead).
-    std::size_t staleCollapses = 0;
+    /// Collapses judged in full twice with other collapses between, found
+    /// dearer the second time (sent back); halfedges judged in full.
+    std::size_t staleCollapses = 0, judged = 0;
 
   private:
     TriMesh& mesh_;
+    std::vector<LowerBound> lowerBounds_;
 };
 
 }  // namespace dfrecon

@@ -1,7 +1,10 @@
 #include "simplify/CollapseBound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace dfrecon {
 
@@ -27,33 +30,71 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
     return true;
 }
 
+namespace {
+
+constexpr std::uint32_t kIdLimit = 1u << 21;
+
+bool cacheable(const NewTriangle& t) {
+    return t.ids[0] < kIdLimit && t.ids[1] < kIdLimit && t.ids[2] < kIdLimit;
+}
+
+std::uint64_t keyOf(const NewTriangle& t) {
+    std::array<std::uint32_t, 3> ids = t.ids;
+    std::sort(ids.begin(), ids.end());
+    return std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 | std::uint64_t(ids[2]) << 42;
+}
+
+// The largest valueOf(t) over the created triangles, or -1 as soon as one
+// exceeds the limit.
+template <class ValueOf>
+float largestWithin(const std::vector<NewTriangle>& created, double limitMm, ValueOf&& valueOf) {
+    double largest = 0;
+    for (const NewTriangle& t : created) {
+        const double d = valueOf(t);
+        if (d > limitMm) return -1;
+        largest = std::max(largest, d);
+    }
+    return float(largest);
+}
+
+}  // namespace
+
 double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
                              const DeviationLimits& limits) {
-    constexpr std::uint32_t kIdLimit = 1u << 21;
-    std::array<std::uint32_t, 3> ids = t.ids;
-    if (ids[0] >= kIdLimit || ids[1] >= kIdLimit || ids[2] >= kIdLimit)
-        return deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
-    std::sort(ids.begin(), ids.end());
-    const std::uint64_t key =
-        std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 | std::uint64_t(ids[2]) << 42;
-    const auto found = bounds_.find(key);
-    if (found != bounds_.end()) return found->second;
-    const double d = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
-    // Stored rounded up, so the cached value is still an upper bound.
-    bounds_.emplace(key, std::nextafter(float(d), INFINITY));
-    return d;
+    return estimate(t, original, limits, SIZE_MAX);
+}
+
+double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& original,
+                                const DeviationLimits& limits, std::size_t maxPieces) {
+    const auto compute = [&] {
+        return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces);
+    };
+    if (!cacheable(t)) return compute().value;
+    Known& known = bounds_[keyOf(t)];
+    if (known.pieces >= maxPieces) return known.value;
+    const DeviationEstimate e = compute();
+    // Bounds rounded up, so the cached value is still an upper bound, lower
+    // bounds down; returned as stored, so every evaluation of a collapse
+    // sees the same priority.
+    known = e.complete ? Known{std::nextafter(float(e.value), INFINITY), SIZE_MAX}
+                       : Known{std::nextafter(float(e.value), 0.0f), maxPieces};
+    return known.value;
 }
 
 float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
                        const DeviationLimits& limits, DeviationCache* cache) {
-    double deviation = 0;
-    for (const NewTriangle& t : created) {
-        const double d = cache ? cache->bound(t, original, limits)
-                               : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
-        if (d > limits.limitMm) return -1;
-        deviation = std::max(deviation, d);
-    }
-    return float(deviation);
+    return largestWithin(created, limits.limitMm, [&](const NewTriangle& t) {
+        return cache ? cache->bound(t, original, limits)
+                     : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+    });
+}
+
+float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
+                                 const TriangleBvh& original, const DeviationLimits& limits,
+                                 DeviationCache& cache, std::size_t maxPieces) {
+    return largestWithin(created, limits.limitMm, [&](const NewTriangle& t) {
+        return cache.estimate(t, original, limits, maxPieces);
+    });
 }
 
 }  // namespace dfrecon

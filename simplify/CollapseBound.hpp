@@ -31,14 +31,30 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
 /// deviationBound of triangles by vertex ids, remembered: the Decimater
 /// evaluates the same candidate triangle again and again as the queue is
 /// updated around it, and with the original surface fixed its bound never
-/// changes. Only for meshes of fewer than 2^21 vertices (else not used).
+/// changes. Also a lower bound of it, much cheaper, for the lazy queue.
+/// Values are kept as floats rounded outwards (bounds up, lower bounds
+/// down). Only for meshes of fewer than 2^21 vertices (else not used).
 class DeviationCache {
   public:
     /// The cached bound of the triangle with these vertex ids, or computes it.
     double bound(const NewTriangle& t, const TriangleBvh& original, const DeviationLimits& limits);
 
+    /// deviationBoundWithin(t, maxPieces), remembered: the bound when
+    /// known or found within maxPieces pieces, else a lower bound of it (the
+    /// stored one when it came from as many pieces or more). Above
+    /// limits.limitMm only when the bound is. A look-up or
+    /// O(maxPieces · log T).
+    double estimate(const NewTriangle& t, const TriangleBvh& original,
+                    const DeviationLimits& limits, std::size_t maxPieces);
+
   private:
-    std::unordered_map<std::uint64_t, float> bounds_;
+    struct Known {
+        float value;
+        /// The budget a lower bound came from; SIZE_MAX for the bound
+        /// itself, 0 for nothing known yet.
+        std::size_t pieces;
+    };
+    std::unordered_map<std::uint64_t, Known> bounds_;
 };
 
 /// Direction (a) of a collapse's error: the largest deviationBound of the
@@ -47,6 +63,14 @@ class DeviationCache {
 /// O(created · pieces · log T).
 float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
                        const DeviationLimits& limits, DeviationCache* cache = nullptr);
+
+/// A lower bound of surfaceDeviation(created, ..., cache): the largest
+/// DeviationCache::estimate of the created triangles, or -1 when one shows
+/// the deviation over limits.limitMm. O(created) look-ups or
+/// O(created · maxPieces · log T).
+float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
+                                 const TriangleBvh& original, const DeviationLimits& limits,
+                                 DeviationCache& cache, std::size_t maxPieces);
 
 inline Vec3 toVec3(const TriMesh::Point& p) {
     return {p[0], p[1], p[2]};

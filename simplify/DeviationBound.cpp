@@ -6,6 +6,19 @@
 
 namespace dfrecon {
 
+namespace straddle {
+using closest::dot3;
+using closest::point_triangle_distance;
+using std::sqrt;
+#define REAL double
+#define REAL4 Vec3
+#define STRADDLE_FN inline
+#include "kernels/straddle_bound.cl"
+#undef STRADDLE_FN
+#undef REAL4
+#undef REAL
+}  // namespace straddle
+
 int longestEdge(const Vec3 p[3]) {
     const double l0 = dot(p[1] - p[0], p[1] - p[0]), l1 = dot(p[2] - p[1], p[2] - p[1]),
                  l2 = dot(p[0] - p[2], p[0] - p[2]);
@@ -14,6 +27,11 @@ int longestEdge(const Vec3 p[3]) {
 
 double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits) {
+    return deviationBoundWithin(bvh, a, b, c, limits, SIZE_MAX).value;
+}
+
+DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
+                                       const DeviationLimits& limits, std::size_t maxPieces) {
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
     const TriangleSoup& surface = bvh.soup();
@@ -37,7 +55,9 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
     std::size_t size = 0;
     stack[size++] = {{a, b, c}, SIZE_MAX};
     double bound = 0;
-    while (size > 0) {
+    double lower = 0;  // the largest centre distance met: the bound is at least that
+    for (std::size_t pieces = 0; size > 0; ++pieces) {
+        if (pieces == maxPieces) return {std::max(bound, lower), false};
         const Piece piece = stack[--size];
         // Most pieces of a split lie over the same original triangle as their
         // parent: try it before searching.
@@ -52,15 +72,26 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         double radius = 0;
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
         const TriangleBvh::Nearest nearest = bvh.nearest(centre, piece.near);
-        if (nearest.distance > limit) return nearest.distance;
+        if (nearest.distance > limit) return {nearest.distance, true};
+        lower = std::max(lower, nearest.distance);
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)
             settled = std::min(settled, cornerDistance(piece, nearest.triangle));
+        // Over the edge between the parent's triangle and this one.
+        if (settled > limit && piece.near != SIZE_MAX && nearest.triangle != piece.near) {
+            const auto& s = surface.triangles[piece.near];
+            const auto& t = surface.triangles[nearest.triangle];
+            const auto& q = surface.points;
+            settled = std::min(settled, straddle::straddle_distance(
+                                            piece.p[0], piece.p[1], piece.p[2], q[s[0]], q[s[1]],
+                                            q[s[2]], int(s[0]), int(s[1]), int(s[2]), q[t[0]],
+                                            q[t[1]], q[t[2]], int(t[0]), int(t[1]), int(t[2])));
+        }
         if (settled <= limit) {
             bound = std::max(bound, settled);
             continue;
         }
-        if (radius < finest || size + 2 > stack.size()) return settled;
+        if (radius < finest || size + 2 > stack.size()) return {settled, true};
         // Halve the longest edge: pieces get rounder, so their number grows
         // with area / size², where splitting in four similar triangles keeps
         // a long sliver's shape and grows with length².
@@ -71,7 +102,7 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
         stack[size++] = {{piece.p[k], mid, apex}, near};
         stack[size++] = {{mid, piece.p[(k + 1) % 3], apex}, near};
     }
-    return bound;
+    return {bound, true};
 }
 
 }  // namespace dfrecon

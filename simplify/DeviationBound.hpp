@@ -1,6 +1,8 @@
 #pragma once
 // How far a triangle strays from a surface, as a certified upper bound: the
 // direction "simplified → original" of the simplifier's two-sided error.
+#include <cstddef>
+
 #include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
@@ -27,6 +29,17 @@ struct DeviationLimits {
 /// violation). O(pieces · log |S|); pieces grow with area / (limit − dist)².
 double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits);
+
+/// deviationBound, or only a lower bound of it when more than `maxPieces`
+/// pieces would be needed: the largest settling bound and centroid distance
+/// met by then (the bound is at least each). O(min(maxPieces, pieces) ·
+/// log |S|).
+struct DeviationEstimate {
+    double value;
+    bool complete;  ///< value is deviationBound's, not just a lower bound of it
+};
+DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
+                                       const DeviationLimits& limits, std::size_t maxPieces);
 
 /// Which edge of p is longest: k for the edge p[k] → p[(k+1) % 3] (the
 /// first of equal ones).

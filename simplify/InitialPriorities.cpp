@@ -41,8 +41,9 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     ocl::DeviceBuffer<cl_uint> dRingFirst(runtime, ringFirst);
     ocl::DeviceBuffer<cl_int4> dRingFaces(runtime, ringFaces);
     ocl::DeviceBuffer<cl_float> priority(runtime, halfedges.size(), CL_MEM_WRITE_ONLY);
-    const cl::Program& program =
-        runtime.program(surfaceProgramSources("collapse_bound.cl"), ocl::realOptions<Real>());
+    std::vector<std::string> sources = surfaceProgramSources("collapse_bound.cl");
+    sources.insert(sources.end() - 1, "straddle_bound.cl");
+    const cl::Program& program = runtime.program(sources, ocl::realOptions<Real>());
     const DeviationLimits limits{maxErrorMm};
     try {
         cl::Kernel kernel(program, "collapse_bound");

@@ -133,16 +133,28 @@ bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriang
     return false;
 }
 
-float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
+float ModErrorBound::deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces) {
     if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
-    float deviation;
-    if (!initial_.empty() && !touched_[std::size_t(ci.v0.idx())]) {
-        deviation = initial_[std::size_t(ci.v0v1.idx())];
+    if (batchValueHolds(ci)) return initial_[std::size_t(ci.v0v1.idx())];
+    return surfaceDeviationLowerBound(created_, *original_, limits_, cache_, maxPieces);
+}
+
+bool ModErrorBound::batchValueHolds(const CollapseInfo& ci) const {
+    return !initial_.empty() && !touched_[std::size_t(ci.v0.idx())];
+}
+
+float ModErrorBound::deviation(const CollapseInfo& ci) {
+    if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
+    if (batchValueHolds(ci)) {
         ++initialEvaluations;
-    } else {
-        deviation = surfaceDeviation(created_, *original_, limits_, &cache_);
-        ++cpuEvaluations;
+        return initial_[std::size_t(ci.v0v1.idx())];
     }
+    ++cpuEvaluations;
+    return surfaceDeviation(created_, *original_, limits_, &cache_);
+}
+
+float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
+    const float deviation = this->deviation(ci);  // also fills created_
     if (deviation < 0) return ILLEGAL_COLLAPSE;
     // Cheapest first: the deviation is mostly a look-up (batch, cache).
     const double covered = coverage(ci);

@@ -49,6 +49,14 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
 
     void initialize() override;
     float collapse_priority(const CollapseInfo& ci) override;
+    /// Lower bounds of collapse_priority (or < 0 when it is surely
+    /// illegal) for CheckedDecimater's lazy queue, direction (a) only:
+    /// the batch's value, or surfaceDeviationLowerBound from the first
+    /// maxPieces pieces of each created triangle (cached); and the deviation
+    /// itself (surfaceDeviation, cached), which collapse_priority then
+    /// looks up.
+    float deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces);
+    float deviation(const CollapseInfo& ci);
     void preprocess_collapse(const CollapseInfo& ci) override;
     void postprocess_collapse(const CollapseInfo& ci) override;
 
@@ -66,6 +74,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::size_t pieces = 0;
 
   private:
+    bool batchValueHolds(const CollapseInfo& ci) const;
     double coverage(const CollapseInfo& ci);
     void gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip);
     bool collides(const CollapseInfo& ci, const std::vector<NewTriangle>& created);

@@ -43,6 +43,14 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     decimater.module(flips).set_max_normal_deviation(options.maxNormalTurnDeg);
     ModErrorBound& module = decimater.module(bound);
     module.setOriginal(bvh, options.maxErrorMm);
+    // Tighter and dearer: the first piece of each created triangle (its
+    // centroid distance, or its bound when it settles at once), the first
+    // 8, the first 64, the whole deviation.
+    decimater.setLowerBounds(
+        {[&module](const auto& ci) { return module.deviationLowerBound(ci, 1); },
+         [&module](const auto& ci) { return module.deviationLowerBound(ci, 8); },
+         [&module](const auto& ci) { return module.deviationLowerBound(ci, 64); },
+         [&module](const auto& ci) { return module.deviation(ci); }});
 
     auto start = std::chrono::steady_clock::now();
     module.setInitialDeviations(runtime && options.initialBatchOnDevice

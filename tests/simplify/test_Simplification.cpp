@@ -97,26 +97,35 @@ TEST(Simplification, RandomHarshStackStaysWithinTheBound) {
     simplifyAndVerify(c, 0.25);
 }
 
+// A shape reconstructed at 2 mm spacing, its hierarchy and a seeded random
+// source: the deviation tests draw triangles near its surface.
+struct NearSurface {
+    NearSurface(const std::string& shape, unsigned seed)
+        : c(reconstructed(shape, 2.0)), bvh(c.surface), rng(seed) {}
+    double unit() { return std::uniform_real_distribution<double>(-1, 1)(rng); }
+    Case c;
+    TriangleBvh bvh;
+    std::mt19937 rng;
+};
+
 // The deviation bound against brute force: when within the limit it is
 // never below the largest distance found by dense sampling, and it says
 // "over" whenever sampling finds a point over.
 TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
-    const Case c = reconstructed("sphere", 2.0);
-    const TriangleBvh bvh(c.surface);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> unit(-1, 1);
+    NearSurface sphere("sphere", 5);
+    const TriangleBvh& bvh = sphere.bvh;
     const DeviationLimits limits{0.5};
     int over = 0, under = 0;
     for (int trial = 0; trial < 300; ++trial) {
         // A triangle with its corners up to 3 mm from a point of the sphere
         // (radius 20 mm), at radius 20 ± 0.6 mm: some within the limit,
         // some not.
-        const Vec3 dir{unit(rng), unit(rng), unit(rng)};
+        const Vec3 dir{sphere.unit(), sphere.unit(), sphere.unit()};
         const Vec3 centre = (20.0 / length(dir)) * dir;
         Vec3 p[3];
         for (Vec3& q : p) {
-            const Vec3 r = centre + Vec3{3 * unit(rng), 3 * unit(rng), 3 * unit(rng)};
-            q = ((20.0 + 0.6 * unit(rng)) / length(r)) * r;
+            const Vec3 r = centre + Vec3{3 * sphere.unit(), 3 * sphere.unit(), 3 * sphere.unit()};
+            q = ((20.0 + 0.6 * sphere.unit()) / length(r)) * r;
         }
         const double bound = deviationBound(bvh, p[0], p[1], p[2], limits);
         double sampled = 0;
@@ -138,6 +147,37 @@ TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
     }
     EXPECT_GT(under, 20);  // both outcomes exercised
     EXPECT_GT(over, 20);
+}
+
+// The lazy queue's lower bounds: an estimate from a few pieces never
+// exceeds the bound, says "over" only when the bound does, and is the bound
+// when it says it is complete.
+TEST(DeviationBound, EstimatesFromFewPiecesAreLowerBounds) {
+    NearSurface torus("torus", 7);
+    const DeviationLimits limits{0.25};
+    int incomplete = 0, complete = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        // Big triangles through vertices of the surface: many pieces each.
+        const auto& points = torus.c.surface.points;
+        const Vec3 a = points[std::size_t(torus.rng() % points.size())];
+        const Vec3 b = a + Vec3{4 * torus.unit(), 4 * torus.unit(), 2 * torus.unit()};
+        const Vec3 d = a + Vec3{4 * torus.unit(), 4 * torus.unit(), 2 * torus.unit()};
+        const TriangleBvh& bvh = torus.bvh;
+        const double bound = deviationBound(bvh, a, b, d, limits);
+        for (std::size_t pieces : {std::size_t(1), std::size_t(8), std::size_t(64)}) {
+            const DeviationEstimate e = deviationBoundWithin(bvh, a, b, d, limits, pieces);
+            if (e.complete) {
+                EXPECT_EQ(e.value, bound);
+                ++complete;
+            } else {
+                EXPECT_LE(e.value, bound);
+                EXPECT_LE(e.value, limits.limitMm);
+                ++incomplete;
+            }
+        }
+    }
+    EXPECT_GT(complete, 20);  // both outcomes exercised
+    EXPECT_GT(incomplete, 20);
 }
 
 TEST(DeviationBound, FlatTriangleAboveAPlaneIsBoundedByItsHeight) {
