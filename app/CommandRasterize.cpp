@@ -3,9 +3,7 @@
 // (inside where the field is negative), for 3D Slicer, ITK-SNAP and the
 // NIfTI tools, with a label table naming and colouring the labels.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <numeric>
@@ -24,6 +22,7 @@
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
 #include "io/DicomImageSeries.hpp"
+#include "io/FileNames.hpp"
 #include "io/LabelTable.hpp"
 #include "io/LabelVolume.hpp"
 #include "io/RtStruct.hpp"
@@ -55,10 +54,10 @@ VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelM
     const PlaneFrame frame = sharedFrame(rois);
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (const Roi* roi : rois) {
-        Roi inFrame = *roi;
-        changeFrame(inFrame, frame);
-        const Extent3 extent = extentOf(inFrame);
-        const SpacingStats spacing = spacingOf(inFrame);
+        // sharedFrame gives the ROI's own frame or, where frames differ, LPS.
+        const bool ownFrame = roi->frame.u == frame.u && roi->frame.v == frame.v;
+        const Extent3 extent = ownFrame ? extentOf(*roi) : patientExtentOf(*roi);
+        const SpacingStats spacing = spacingOf(*roi);
         const double reach = 0.5 * (spacing.maxMm > 0 ? spacing.maxMm : 1.0);
         // The caps reach half a spacing out along the ROI's own normal.
         const bool alongZ = std::abs(dot(roi->frame.n, frame.n)) > 0.5;
@@ -152,29 +151,14 @@ VolumeGeometry referenceGrid(const std::string& path) {
     return readLabelVolume(path).geometry;
 }
 
-bool endsWith(const std::string& text, const std::string& end) {
-    return text.size() >= end.size() &&
-           std::equal(end.rbegin(), end.rend(), text.rbegin(), [](char a, char b) {
-               return a == std::tolower(static_cast<unsigned char>(b));
-           });
-}
-
-// STEM.txt beside `output` (STEM: the name without .nrrd, .nii, .nii.gz).
-std::string tableBeside(const std::string& output) {
-    for (const char* end : {".nii.gz", ".nii", ".nrrd"})
-        if (endsWith(output, end))
-            return output.substr(0, output.size() - std::strlen(end)) + ".txt";
-    return output + ".txt";
-}
-
 void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     const Stopwatch watch;
     if (args.like.empty() == (args.voxelMm <= 0))
         throw std::invalid_argument(
             "give the grid with exactly one of --like REF or --voxel-mm MM");
-    const bool segmentation = endsWith(args.output, ".seg.nrrd");
-    if (!endsWith(args.output, ".nrrd") && !endsWith(args.output, ".nii") &&
-        !endsWith(args.output, ".nii.gz"))
+    const bool segmentation = endsWithIgnoringCase(args.output, ".seg.nrrd");
+    if (!endsWithIgnoringCase(args.output, ".nrrd") && !endsWithIgnoringCase(args.output, ".nii") &&
+        !endsWithIgnoringCase(args.output, ".nii.gz"))
         throw std::invalid_argument("output '" + args.output +
                                     "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
     if (args.all && !args.roi.empty())
@@ -225,7 +209,7 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     if (segmentation) map.keyValues = segmentationKeys(table, grid.size);
     const std::string tablePath = !args.table.empty() ? args.table
                                   : segmentation      ? std::string()
-                                                      : tableBeside(args.output);
+                                                      : labelVolumeStem(args.output) + ".txt";
     writeLabelVolume(args.output, map);
     if (!tablePath.empty()) writeLabelTable(tablePath, table);
 

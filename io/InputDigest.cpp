@@ -1,4 +1,5 @@
 #include "io/InputDigest.hpp"
+#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -14,14 +15,6 @@ namespace dfrecon {
 namespace fs = std::filesystem;
 
 namespace {
-
-bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
-    if (text.size() < suffix.size()) return false;
-    return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
-        return std::tolower(static_cast<unsigned char>(a)) ==
-               std::tolower(static_cast<unsigned char>(b));
-    });
-}
 
 void addFile(std::vector<InputFile>& files, const fs::path& file, const std::string& name,
              const std::string& input) {

@@ -1,4 +1,5 @@
 #include "io/LabelInput.hpp"
+#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,16 +14,9 @@ namespace dfrecon {
 
 namespace {
 
-bool endsWith(const std::string& text, const std::string& end) {
-    if (text.size() < end.size()) return false;
-    return std::equal(end.rbegin(), end.rend(), text.rbegin(), [](char a, char b) {
-        return a == std::tolower(static_cast<unsigned char>(b));
-    });
-}
-
 bool isLabelVolumeName(const std::string& path) {
     for (const char* end : {".nrrd", ".nhdr", ".nii", ".nii.gz"})
-        if (endsWith(path, end)) return true;
+        if (endsWithIgnoringCase(path, end)) return true;
     return false;
 }
 
@@ -80,7 +74,7 @@ std::optional<std::string> intensityImageEvidence(const LabelVolume& volume) {
 
 std::string labelTableSource(const std::string& path, const LabelInputOptions& options) {
     if (!options.labelTablePath.empty()) return options.labelTablePath;
-    if (endsWith(path, ".seg.nrrd")) return "segmentation header";
+    if (endsWithIgnoringCase(path, ".seg.nrrd")) return "segmentation header";
     return labelTableBeside(path).value_or("");
 }
 

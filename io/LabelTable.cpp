@@ -1,4 +1,5 @@
 #include "io/LabelTable.hpp"
+#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -16,15 +17,6 @@ namespace dfrecon {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower(std::string text) {
-    for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return text;
-}
-
-bool endsWith(const std::string& text, const std::string& end) {
-    return text.size() >= end.size() && lower(text.substr(text.size() - end.size())) == end;
-}
 
 std::optional<long long> integerOf(const std::string& token) {
     long long value = 0;
@@ -241,8 +233,8 @@ std::vector<std::pair<std::string, std::string>> segmentationKeys(const LabelTab
 }
 
 void writeLabelTable(const std::string& path, const LabelTable& table) {
-    const bool itkSnap = endsWith(path, ".txt");
-    if (!itkSnap && !endsWith(path, ".ctbl") && !endsWith(path, ".lut"))
+    const bool itkSnap = endsWithIgnoringCase(path, ".txt");
+    if (!itkSnap && !endsWithIgnoringCase(path, ".ctbl") && !endsWithIgnoringCase(path, ".lut"))
         throw std::invalid_argument("label table '" + path +
                                     "' must end in .txt (ITK-SNAP), .ctbl or .lut");
     writeStreamAtomically(path, [&](std::ostream& out) {
@@ -268,14 +260,19 @@ void writeLabelTable(const std::string& path, const LabelTable& table) {
     });
 }
 
-std::optional<std::string> labelTableBeside(const std::string& volumePath) {
+std::string labelVolumeStem(const std::string& volumePath) {
     std::string stem = volumePath;
     for (const char* end : {".nii.gz", ".nii", ".nrrd", ".nhdr"})
-        if (endsWith(stem, end)) {
+        if (endsWithIgnoringCase(stem, end)) {
             stem.resize(stem.size() - std::string(end).size());
             break;
         }
-    if (endsWith(stem, ".seg")) stem.resize(stem.size() - 4);
+    if (endsWithIgnoringCase(stem, ".seg")) stem.resize(stem.size() - 4);
+    return stem;
+}
+
+std::optional<std::string> labelTableBeside(const std::string& volumePath) {
+    const std::string stem = labelVolumeStem(volumePath);
     std::error_code ec;
     for (const char* end : {".txt", ".ctbl", ".lut", "-labels.txt"})
         if (fs::is_regular_file(stem + end, ec)) return stem + end;

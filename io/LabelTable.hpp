@@ -67,10 +67,14 @@ std::vector<std::pair<std::string, std::string>> segmentationKeys(const LabelTab
 /// another extension, std::runtime_error on a failed write. O(entries).
 void writeLabelTable(const std::string& path, const LabelTable& table);
 
+/// `volumePath` without .nii.gz, .nii, .nrrd or .nhdr (and .seg before
+/// them): STEM, to which the label table beside a volume adds its ending.
+/// O(length).
+std::string labelVolumeStem(const std::string& volumePath);
+
 /// The label table that sits beside label volume `volumePath`: the first of
-/// STEM.txt, STEM.ctbl, STEM.lut, STEM-labels.txt that exists, where STEM
-/// is the path without .nii.gz, .nii, .nrrd, .nhdr (and .seg before them);
-/// nullopt when none does. O(1) file-system checks.
+/// STEM.txt, STEM.ctbl, STEM.lut, STEM-labels.txt that exists (STEM:
+/// labelVolumeStem); nullopt when none does. O(1) file-system checks.
 std::optional<std::string> labelTableBeside(const std::string& volumePath);
 
 }  // namespace dfrecon

@@ -1,4 +1,5 @@
 #include "io/LabelVolume.hpp"
+#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -36,13 +37,6 @@ constexpr double kMinAxisDeterminant = 1e-6;
 // A direction read back from a file is normalised here, but one handed to
 // a writer must already be a unit vector within this.
 constexpr double kUnitTolerance = 1e-6;
-
-bool endsWith(const std::string& text, const std::string& suffix) {
-    if (text.size() < suffix.size()) return false;
-    return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
-        return std::tolower(static_cast<unsigned char>(a)) == b;
-    });
-}
 
 }  // namespace
 
@@ -333,8 +327,8 @@ std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void*
 LabelVolume readLabelVolume(const std::string& path) {
     const ReadingInput reading(path);
     namespace fs = std::filesystem;
-    const bool nrrd = endsWith(path, ".nrrd") || endsWith(path, ".nhdr");
-    const bool nifti = endsWith(path, ".nii") || endsWith(path, ".nii.gz");
+    const bool nrrd = endsWithIgnoringCase(path, ".nrrd") || endsWithIgnoringCase(path, ".nhdr");
+    const bool nifti = endsWithIgnoringCase(path, ".nii") || endsWithIgnoringCase(path, ".nii.gz");
     if (!nrrd && !nifti)
         throw InputError(path, 0,
                          "unknown label volume format; expected .nrrd, .nhdr, .nii or .nii.gz");
@@ -349,7 +343,7 @@ LabelVolume readLabelVolume(const std::string& path) {
 
 void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
                    const std::vector<std::uint8_t>& mask) {
-    if (!endsWith(path, ".nrrd"))
+    if (!endsWithIgnoringCase(path, ".nrrd"))
         throw std::invalid_argument("writeMaskNrrd: " + path + " does not end in .nrrd");
     const std::string problem = labelvolume::geometryProblem(geometry);
     if (!problem.empty()) throw std::invalid_argument("writeMaskNrrd: " + problem);
@@ -397,7 +391,7 @@ void writeNarrowest(const std::string& path, const char* function, const LabelVo
 }  // namespace
 
 void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
-    if (!endsWith(path, ".nrrd"))
+    if (!endsWithIgnoringCase(path, ".nrrd"))
         throw std::invalid_argument("writeLabelNrrd: " + path + " does not end in .nrrd");
     writeNarrowest(
         path, "writeLabelNrrd", volume, [&](const void* data, labelvolume::SampleType type) {
@@ -406,8 +400,8 @@ void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
 }
 
 void writeLabelVolume(const std::string& path, const LabelVolume& volume) {
-    if (endsWith(path, ".nrrd")) return writeLabelNrrd(path, volume);
-    if (!endsWith(path, ".nii") && !endsWith(path, ".nii.gz"))
+    if (endsWithIgnoringCase(path, ".nrrd")) return writeLabelNrrd(path, volume);
+    if (!endsWithIgnoringCase(path, ".nii") && !endsWithIgnoringCase(path, ".nii.gz"))
         throw std::invalid_argument("label map '" + path +
                                     "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
     writeNarrowest(path, "writeLabelVolume", volume,
