@@ -1,10 +1,10 @@
 #include "io/InputDigest.hpp"
-#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
+#include "io/FileNames.hpp"
 #include "io/InputError.hpp"
 #include "io/LabelInput.hpp"
 #include "io/LabelTable.hpp"

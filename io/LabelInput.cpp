@@ -1,11 +1,10 @@
 #include "io/LabelInput.hpp"
-#include "io/FileNames.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 #include <unordered_set>
 
+#include "io/FileNames.hpp"
 #include "io/LabelTable.hpp"
 #include "io/MaskContours.hpp"
 #include "io/MaskStack.hpp"

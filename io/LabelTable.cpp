@@ -1,5 +1,4 @@
 #include "io/LabelTable.hpp"
-#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/FileNames.hpp"
 
 namespace dfrecon {
 

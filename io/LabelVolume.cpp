@@ -1,5 +1,4 @@
 #include "io/LabelVolume.hpp"
-#include "io/FileNames.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "io/FileNames.hpp"
 #include "io/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"

@@ -15,6 +15,7 @@
 #include "geometry/SelfCrossingRepair.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
+#include "io/FileNames.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
@@ -27,12 +28,7 @@ const char* holeConventionName(HoleConvention convention) {
 }
 
 bool isDicomFile(const std::string& path) {
-    const std::string lower = [&] {
-        std::string s = path;
-        for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-        return s;
-    }();
-    if (lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".dcm") == 0) return true;
+    if (endsWithIgnoringCase(path, ".dcm")) return true;
     std::ifstream in(path, std::ios::binary);
     char magic[4] = {};
     return in.seekg(128) && in.read(magic, 4) && std::string(magic, 4) == "DICM";
