@@ -1,46 +1,153 @@
 // Surface distance maps (paper §3-4): for each sample point on an object,
 // the closest primitive (triangle, edge or vertex) of the other objects, its
-// object, the signed distance and the closest point. One work-item per
-// sample; the same steps as closestPrimitivesReference in
-// sdm/ClosestPrimitives.cpp. Needs closest_triangle_3d.cl first.
+// object, the signed distance and the closest point. The same steps as
+// closestPrimitivesReference in sdm/ClosestPrimitives.cpp. Needs
+// closest_triangle_3d.cl and tangent_bound.cl first.
+//
+// Two passes. source_candidates, one work-item per source triangle (a
+// triangle that holds samples), lists the target triangles that can be
+// nearest to some point of it: tangent bounds (tangent_bound.cl) rule out
+// whole subtrees and triangles, and far from the targets they are nearly
+// exact, so a list holds a handful where a search per sample would measure
+// about a hundred. closest_primitive, one work-item per sample, then
+// measures only the listed triangles whose bound at the sample does not
+// rule them out; a source with more than `capacity` candidates, or a sample
+// off its triangle, searches the hierarchies instead.
 //
 // The scene's objects share the Surface arrays; object o's hierarchy starts
 // at node object_root[o] (< 0: empty), and triangles[t].w is t's object.
 // pseudo_normals[7 t + f] is the outward pseudo-normal of feature f of
 // triangle t (FEATURE_* order); distances to objects with object_closed set
 // are negative inside them.
+#pragma OPENCL FP_CONTRACT OFF
+
+inline bool is_candidate(uint object, uint own, int target) {
+    return object != own && (target < 0 || object == (uint)target);
+}
+
+// Source s: corners source_corners[3 s .. 3 s + 2] of a triangle of object
+// source_object[s]. Writes the nearest triangle to its centre (UINT_MAX:
+// none within the band) and its candidates, candidates[s * capacity + k]
+// with bounds[...] (the tangent bound at the centre: normal in xyz, offset
+// in w), k < candidate_count[s]; a count of capacity + 1 means more.
+// O(depth + visited nodes) per source.
+__kernel void source_candidates(
+    __global const REAL4* source_corners, __global const uint* source_object, uint source_count,
+    __global const REAL4* points, __global const int4* triangles, __global const REAL4* node_lo,
+    __global const REAL4* node_hi, __global const int4* node_links, __global const uint* order,
+    __global const REAL4* balls, __global const int* object_root, uint object_count, int target,
+    REAL max_distance, REAL max_distance2, REAL slack, uint capacity, __global uint* candidates,
+    __global REAL4* bounds, __global uint* candidate_count, __global uint* centre_nearest) {
+    const uint s = get_global_id(0);
+    if (s >= source_count) return;
+    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
+    const REAL4 v0 = source_corners[3 * s], v1 = source_corners[3 * s + 1],
+                v2 = source_corners[3 * s + 2];
+    const REAL4 c = ((REAL)1 / 3) * (v0 + v1 + v2);
+    const uint own = source_object[s];
+
+    REAL best2 = max_distance2;
+    uint t1 = UINT_MAX;
+    for (uint o = 0; o < object_count; ++o)
+        if (is_candidate(o, own, target) && object_root[o] >= 0)
+            search_nearest_triangle(&surface, object_root[o], c, &best2, &t1);
+    centre_nearest[s] = t1;
+    REAL u0 = INFINITY, u1 = INFINITY, u2 = INFINITY;
+    if (t1 != UINT_MAX) {
+        u0 = sqrt(triangle_distance2(&surface, t1, v0));
+        u1 = sqrt(triangle_distance2(&surface, t1, v1));
+        u2 = sqrt(triangle_distance2(&surface, t1, v2));
+    }
+
+    __global uint* list = candidates + (size_t)s * capacity;
+    __global REAL4* list_bounds = bounds + (size_t)s * capacity;
+    uint n = 0;
+    for (uint o = 0; o < object_count && n <= capacity; ++o) {
+        if (!is_candidate(o, own, target) || object_root[o] < 0) continue;
+        // Depth first, left before right, as the reference walks.
+        int stack[BVH_STACK];
+        int size = 0;
+        stack[size++] = object_root[o];
+        while (size > 0 && n <= capacity) {
+            const int node = stack[--size];
+            if (tangent_excludes(tangent_bound_of_box(c, node_lo[node], node_hi[node]), v0, v1, v2,
+                                 u0, u1, u2, max_distance, slack))
+                continue;
+            const int4 link = node_links[node];
+            if (link.x >= 0) {
+                stack[size++] = link.y;
+                stack[size++] = link.x;
+                continue;
+            }
+            for (int k = 0; k < link.w && n <= capacity; ++k) {
+                const uint t = order[link.z + k];
+                const int4 tri = triangles[t];
+                const TangentBound bound = tangent_bound(
+                    c, closest_point_on_triangle(c, points[tri.x], points[tri.y], points[tri.z]));
+                if (tangent_excludes(bound, v0, v1, v2, u0, u1, u2, max_distance, slack)) continue;
+                if (n < capacity) {
+                    list[n] = t;
+                    REAL4 b = bound.normal;
+                    b.w = bound.offset;
+                    list_bounds[n] = b;
+                }
+                ++n;
+            }
+        }
+    }
+    candidate_count[s] = n;
+}
+
 __kernel void closest_primitive(
-    __global const REAL4* sample_points, __global const uint* sample_object,
-    __global const uint4* sample_hint, uint sample_count, __global const REAL4* points,
-    __global const int4* triangles, __global const REAL4* node_lo, __global const REAL4* node_hi,
-    __global const int4* node_links, __global const uint* order, __global const REAL4* balls,
-    __global const int* object_root, uint object_count, __global const REAL4* pseudo_normals,
-    __global const uchar* object_closed, int target, REAL max_distance2, __global REAL* distance,
-    __global uint* nearest, __global uchar* feature, __global REAL4* closest) {
+    __global const REAL4* sample_points, __global const uint* sample_source, uint sample_count,
+    __global const REAL4* source_corners, __global const uint* source_object,
+    __global const uint* candidates, __global const REAL4* bounds,
+    __global const uint* candidate_count, __global const uint* centre_nearest, uint capacity,
+    REAL slack, __global const REAL4* points, __global const int4* triangles,
+    __global const REAL4* node_lo, __global const REAL4* node_hi, __global const int4* node_links,
+    __global const uint* order, __global const REAL4* balls, __global const int* object_root,
+    uint object_count, __global const REAL4* pseudo_normals, __global const uchar* object_closed,
+    int target, REAL max_distance2, __global REAL* distance, __global uint* nearest,
+    __global uchar* feature, __global REAL4* closest) {
     const uint k = get_global_id(0);
     if (k >= sample_count) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
     const REAL4 p = sample_points[k];
-    const uint own = sample_object[k];
+    const uint s = sample_source[k];
+    const uint own = source_object[s];
     REAL best2 = max_distance2;
     uint t = UINT_MAX;
-    // The hints first (the nearest triangles to the centre and corners of
-    // the sample's triangle): a tight bound prunes most of every hierarchy.
-    const uint4 hints = sample_hint[k];
-    const uint hint[4] = {hints.x, hints.y, hints.z, hints.w};
-    for (int h = 0; h < 4; ++h) {
-        if (hint[h] == UINT_MAX) continue;
-        const uint o = (uint)triangles[hint[h]].w;
-        if (o == own || (target >= 0 && o != (uint)target)) continue;
-        const REAL d2 = triangle_distance2(&surface, hint[h], p);
+    const uint hint = centre_nearest[s];
+    if (hint != UINT_MAX && is_candidate((uint)triangles[hint].w, own, target)) {
+        const REAL d2 = triangle_distance2(&surface, hint, p);
         if (d2 < best2) {
             best2 = d2;
-            t = hint[h];
+            t = hint;
         }
     }
-    for (uint o = 0; o < object_count; ++o) {
-        if (o == own || (target >= 0 && o != (uint)target) || object_root[o] < 0) continue;
-        search_nearest_triangle(&surface, object_root[o], p, &best2, &t);
+    const uint listed = candidate_count[s];
+    const REAL4 a = source_corners[3 * s], b = source_corners[3 * s + 1],
+                c = source_corners[3 * s + 2];
+    const REAL4 off = p - closest_point_on_triangle(p, a, b, c);
+    if (listed <= capacity && dot3(off, off) <= (REAL)0.25 * slack * slack) {
+        __global const uint* list = candidates + (size_t)s * capacity;
+        __global const REAL4* list_bounds = bounds + (size_t)s * capacity;
+        for (uint i = 0; i < listed; ++i) {
+            TangentBound bound;
+            bound.normal = list_bounds[i];
+            bound.offset = list_bounds[i].w;
+            const REAL lower = tangent_lower(bound, p) - slack;
+            if (lower > 0 && lower * lower >= best2) continue;
+            const REAL d2 = triangle_distance2(&surface, list[i], p);
+            if (d2 < best2) {
+                best2 = d2;
+                t = list[i];
+            }
+        }
+    } else {
+        for (uint o = 0; o < object_count; ++o)
+            if (is_candidate(o, own, target) && object_root[o] >= 0)
+                search_nearest_triangle(&surface, object_root[o], p, &best2, &t);
     }
     nearest[k] = t;
     if (t == UINT_MAX) {

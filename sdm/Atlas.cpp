@@ -203,7 +203,7 @@ Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options) {
 AtlasSamples atlasSamples(const Atlas& atlas, const TriangleSoup& soup) {
     AtlasSamples samples;
     // Chart by chart, so that neighbouring samples (work-items) share a
-    // triangle, its hint and most of their search.
+    // triangle and its list of candidates.
     for (std::size_t t = 0; t < atlas.charts.size(); ++t) {
         const TriangleChart& chart = atlas.charts[t];
         const ChartFrame f = chartFrame(soup, t);

@@ -1,7 +1,11 @@
 #include "sdm/ClosestPrimitives.hpp"
 
-#include <array>
-#include <unordered_map>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
@@ -9,7 +13,24 @@
 
 namespace dfrecon {
 
+namespace tangent {
+using closest::dot3;
+using std::sqrt;
+#define REAL double
+#define REAL4 Vec3
+#define TANGENT_FN inline
+#include "kernels/tangent_bound.cl"
+#undef TANGENT_FN
+#undef REAL4
+#undef REAL
+}  // namespace tangent
+
 namespace {
+
+// Candidates a source triangle lists at most; beyond, its samples search the
+// hierarchies instead (a few source triangles near contact, where many
+// target triangles are equally near).
+constexpr std::size_t kCandidateCapacity = 64;
 
 bool isCandidate(const DistanceQuery& query, std::size_t own, std::size_t object) {
     return object != own && (query.target < 0 || object == std::size_t(query.target));
@@ -47,26 +68,11 @@ struct Found {
     double distance2 = INFINITY;
 };
 
-// Each sample's search starts from the nearest triangles found for its own
-// triangle's centre and corners: the best of them bounds the search.
-constexpr int kHints = 4;
-using Hints = std::array<Found, kHints>;
-
-// The bounded search the kernel makes: the hints first, then each
-// candidate object's hierarchy with the best distance so far as its bound.
-Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, const Hints& hints,
+// The nearest triangle of the candidate objects to p, strictly nearer than
+// `best` (a hint, or none): each object's hierarchy with the best distance
+// so far as its bound, as the kernel's fallback search does.
+Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, Found best,
                     const DistanceQuery& query) {
-    Found best;
-    best.distance2 = bandSquared(query);
-    for (const Found& hint : hints) {
-        if (hint.object == SIZE_MAX || !isCandidate(query, own, hint.object)) continue;
-        const auto& soup = scene.object(hint.object);
-        const auto& tri = soup.triangles[hint.triangle];
-        const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
-                                              soup.points[tri[2]]);
-        if (dot(p - q, p - q) < best.distance2)
-            best = {hint.object, hint.triangle, dot(p - q, p - q)};
-    }
     for (std::size_t o = 0; o < scene.objectCount(); ++o) {
         if (!isCandidate(query, own, o)) continue;
         const TriangleBvh::Nearest n = scene.bvh(o).nearestWithin(p, best.distance2);
@@ -75,39 +81,152 @@ Found searchObjects(const SurfaceScene& scene, Vec3 p, std::size_t own, const Hi
     return best;
 }
 
-std::uint64_t triangleKey(std::size_t object, std::size_t triangle) {
-    return (std::uint64_t(object) << 32) | std::uint64_t(triangle);
+double triangleDistance2(const SurfaceScene& scene, std::size_t object, std::size_t triangle,
+                         Vec3 p) {
+    const TriangleSoup& soup = scene.object(object);
+    const auto& tri = soup.triangles[triangle];
+    const Vec3 q =
+        closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
+    return dot(p - q, p - q);
 }
 
-// Where the hints are looked for: the centre of every triangle that holds a
-// sample and each of its corners, every point once (corners are shared by
-// about six triangles), and which four of them serve each sample.
-struct HintPlan {
-    std::vector<SurfaceSample> points;
-    std::vector<std::array<std::uint32_t, kHints>> ofSample;
+// Starts a search from `hint` (the triangle nearest the sample's triangle's
+// centre) when it is a candidate within the band.
+Found startFrom(const SurfaceScene& scene, Vec3 p, std::size_t own, const Found& hint,
+                const DistanceQuery& query) {
+    Found best;
+    best.distance2 = bandSquared(query);
+    if (hint.object == SIZE_MAX || !isCandidate(query, own, hint.object)) return best;
+    const double d2 = triangleDistance2(scene, hint.object, hint.triangle, p);
+    if (d2 < best.distance2) best = {hint.object, hint.triangle, d2};
+    return best;
+}
+
+// The rounding allowance of the tangent-bound culling (kernels/tangent_bound.cl)
+// for a scene `extentMm` across computed in type Real: far above the
+// rounding of coordinates that size; samples farther than half of it from
+// their own triangle are searched without the culled list.
+template <class Real>
+double cullSlackMm(double extentMm) {
+    return std::max(64 * double(std::numeric_limits<Real>::epsilon()), 1e-9) * (extentMm + 1);
+}
+
+double extentOf(const SurfaceScene& scene) {
+    Box3 box;
+    for (std::size_t o = 0; o < scene.objectCount(); ++o)
+        for (const Vec3& p : scene.object(o).points) box.add(p);
+    return box.lo.x <= box.hi.x ? length(box.hi - box.lo) : 0.0;
+}
+
+// The triangles of the candidate objects that can be nearest to some sample
+// of one source triangle, each with its tangent bound at the centre, when
+// there are at most kCandidateCapacity; the kernel's source_candidates.
+struct Candidate {
+    std::size_t object, triangle;
+    tangent::TangentBound bound;
+};
+struct SourceCandidates {
+    Found centre;  // the triangle nearest to the centre: the search's first bound
+    std::vector<Candidate> list;
+    bool overflow = false;  // too many: its samples search the hierarchies
 };
 
-HintPlan planHints(const SurfaceScene& scene, const std::vector<SurfaceSample>& samples) {
-    HintPlan plan;
-    std::unordered_map<std::uint64_t, std::array<std::uint32_t, kHints>> ofTriangle;
-    std::unordered_map<std::uint64_t, std::uint32_t> ofCorner;
-    plan.ofSample.reserve(samples.size());
-    for (const SurfaceSample& s : samples) {
-        const auto [it, fresh] = ofTriangle.emplace(triangleKey(s.object, s.triangle),
-                                                    std::array<std::uint32_t, kHints>{});
-        if (fresh) {
-            const TriangleSoup& soup = scene.object(s.object);
-            it->second[0] = std::uint32_t(plan.points.size());
-            plan.points.push_back({centroid(soup, s.triangle), s.object, s.triangle});
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t v = soup.triangles[s.triangle][std::size_t(k)];
-                const auto [corner, first] =
-                    ofCorner.emplace(triangleKey(s.object, v), std::uint32_t(plan.points.size()));
-                if (first) plan.points.push_back({soup.points[v], s.object, s.triangle});
-                it->second[std::size_t(k) + 1] = corner->second;
+SourceCandidates sourceCandidates(const SurfaceScene& scene, std::size_t own, std::size_t triangle,
+                                  const DistanceQuery& query, double slackMm) {
+    const TriangleSoup& soup = scene.object(own);
+    const auto& tri = soup.triangles[triangle];
+    const Vec3 v0 = soup.points[tri[0]], v1 = soup.points[tri[1]], v2 = soup.points[tri[2]];
+    const Vec3 c = centroid(soup, triangle);  // as the kernel computes it
+    SourceCandidates source;
+    Found none;
+    none.distance2 = bandSquared(query);
+    source.centre = searchObjects(scene, c, own, none, query);
+    double u0 = INFINITY, u1 = INFINITY, u2 = INFINITY;
+    if (source.centre.object != SIZE_MAX) {
+        const Found& t1 = source.centre;
+        u0 = std::sqrt(triangleDistance2(scene, t1.object, t1.triangle, v0));
+        u1 = std::sqrt(triangleDistance2(scene, t1.object, t1.triangle, v1));
+        u2 = std::sqrt(triangleDistance2(scene, t1.object, t1.triangle, v2));
+    }
+    const double band = query.maxDistanceMm;
+    const auto excludes = [&](const tangent::TangentBound& bound) {
+        return tangent::tangent_excludes(bound, v0, v1, v2, u0, u1, u2, band, slackMm) != 0;
+    };
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        if (!isCandidate(query, own, o)) continue;
+        const TriangleBvh& bvh = scene.bvh(o);
+        if (bvh.nodes().empty()) continue;
+        // Depth first, left before right, as the kernel walks.
+        std::vector<int> stack{0};
+        while (!stack.empty()) {
+            const TriangleBvh::Node& node = bvh.nodes()[std::size_t(stack.back())];
+            stack.pop_back();
+            if (excludes(tangent::tangent_bound_of_box(c, node.box.lo, node.box.hi))) continue;
+            if (node.left >= 0) {
+                stack.push_back(node.right);
+                stack.push_back(node.left);
+                continue;
+            }
+            for (std::size_t k = 0; k < node.count; ++k) {
+                const std::size_t t = bvh.order()[node.first + k];
+                const auto& target = scene.object(o).triangles[t];
+                const TriangleSoup& other = scene.object(o);
+                const Vec3 q = closestPointOnTriangle(
+                    c, other.points[target[0]], other.points[target[1]], other.points[target[2]]);
+                const tangent::TangentBound bound = tangent::tangent_bound(c, q);
+                if (excludes(bound)) continue;
+                if (source.list.size() == kCandidateCapacity) {
+                    source.overflow = true;
+                    source.list.clear();
+                    return source;
+                }
+                source.list.push_back({o, t, bound});
             }
         }
-        plan.ofSample.push_back(it->second);
+    }
+    return source;
+}
+
+// The nearest triangle to sample p of source triangle `triangle` of `own`:
+// the centre's nearest first, then the listed candidates whose bound at p
+// does not rule them out, or the hierarchies when the list overflowed or p
+// is off its triangle.
+Found searchSample(const SurfaceScene& scene, Vec3 p, std::size_t own, std::size_t triangle,
+                   const SourceCandidates& source, const DistanceQuery& query, double slackMm) {
+    Found best = startFrom(scene, p, own, source.centre, query);
+    const bool onTriangle = triangleDistance2(scene, own, triangle, p) <= 0.25 * slackMm * slackMm;
+    if (source.overflow || !onTriangle) return searchObjects(scene, p, own, best, query);
+    for (const Candidate& candidate : source.list) {
+        const double lower = tangent::tangent_lower(candidate.bound, p) - slackMm;
+        if (lower > 0 && lower * lower >= best.distance2) continue;
+        const double d2 = triangleDistance2(scene, candidate.object, candidate.triangle, p);
+        if (d2 < best.distance2) best = {candidate.object, candidate.triangle, d2};
+    }
+    return best;
+}
+
+// The source triangles of a run of samples (every triangle that holds one,
+// once) and which serves each sample.
+struct SourcePlan {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> sources;  // (object, triangle)
+    std::vector<std::uint32_t> ofSample;
+};
+
+SourcePlan planSources(const SurfaceScene& scene, const std::vector<SurfaceSample>& samples) {
+    SourcePlan plan;
+    // Per object and triangle its source index: flat arrays, as a frame's
+    // hundreds of thousands of samples make hashing a visible cost.
+    std::vector<std::vector<std::uint32_t>> index(scene.objectCount());
+    plan.ofSample.reserve(samples.size());
+    for (const SurfaceSample& s : samples) {
+        auto& ofObject = index.at(s.object);
+        if (ofObject.empty()) ofObject.assign(scene.object(s.object).triangles.size(), UINT32_MAX);
+        std::uint32_t& source = ofObject.at(s.triangle);
+        if (source == UINT32_MAX) {
+            source = std::uint32_t(plan.sources.size());
+            plan.sources.emplace_back(s.object, s.triangle);
+        }
+        plan.ofSample.push_back(source);
     }
     return plan;
 }
@@ -117,18 +236,17 @@ HintPlan planHints(const SurfaceScene& scene, const std::vector<SurfaceSample>& 
 std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& scene,
                                                          const std::vector<SurfaceSample>& samples,
                                                          const DistanceQuery& query) {
-    const HintPlan plan = planHints(scene, samples);
-    std::vector<Found> hintAnswers(plan.points.size());
-    for (std::size_t k = 0; k < plan.points.size(); ++k)
-        hintAnswers[k] =
-            searchObjects(scene, plan.points[k].point, plan.points[k].object, Hints{}, query);
+    const SourcePlan plan = planSources(scene, samples);
+    const double slackMm = cullSlackMm<double>(extentOf(scene));
+    std::vector<SourceCandidates> sources;
+    sources.reserve(plan.sources.size());
+    for (const auto& [object, triangle] : plan.sources)
+        sources.push_back(sourceCandidates(scene, object, triangle, query, slackMm));
     std::vector<ClosestPrimitive> answers(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
         const SurfaceSample& s = samples[k];
-        Hints hints;
-        for (int h = 0; h < kHints; ++h)
-            hints[std::size_t(h)] = hintAnswers[plan.ofSample[k][std::size_t(h)]];
-        const Found best = searchObjects(scene, s.point, s.object, hints, query);
+        const Found best = searchSample(scene, s.point, s.object, s.triangle,
+                                        sources[plan.ofSample[k]], query, slackMm);
         if (best.object != SIZE_MAX)
             answers[k] = describe(scene, best.object, best.triangle, s.point);
     }
@@ -194,98 +312,123 @@ class DeviceSceneT final : public DeviceScene {
         objectRoot_ = ocl::DeviceBuffer<cl_int>(runtime, roots_);
         normals_ = ocl::DeviceBuffer<Real4>(runtime, normals);
         closed_ = ocl::DeviceBuffer<cl_uchar>(runtime, closed);
-        program_ = &runtime.program(surfaceProgramSources("surface_distance.cl"),
-                                    ocl::realOptions<Real>());
+        std::vector<std::string> sources = surfaceProgramSources("surface_distance.cl");
+        sources.insert(sources.end() - 1, "tangent_bound.cl");
+        program_ = &runtime.program(sources, ocl::realOptions<Real>());
+        slackMm_ = cullSlackMm<Real>(extentOf(scene));
     }
 
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query) override {
-        // Pass 1: the nearest triangles to the centres and corners of the
-        // samples' triangles, the hints that bound pass 2 from its start.
-        const HintPlan plan = planHints(scene_, samples);
-        const cl_uint4 none{{CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX, CL_UINT_MAX}};
-        const Launch hints =
-            launch(plan.points, std::vector<cl_uint4>(plan.points.size(), none), query);
-        std::vector<cl_uint4> sampleHints(samples.size());
-        for (std::size_t k = 0; k < samples.size(); ++k)
-            for (int h = 0; h < kHints; ++h)
-                sampleHints[k].s[h] = hints.nearest[plan.ofSample[k][std::size_t(h)]];
-        const Launch found = launch(samples, sampleHints, query);
-
         std::vector<ClosestPrimitive> answers(samples.size());
-        for (std::size_t k = 0; k < samples.size(); ++k) {
-            const cl_uint t = found.nearest[k];
-            if (t == CL_UINT_MAX) continue;
-            ClosestPrimitive& a = answers[k];
-            a.object = std::int32_t(objectOfTriangle_[t]);
-            a.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
-            a.distanceMm = double(found.distance[k]);
-            a.feature = TriangleFeature(found.feature[k]);
-            a.point = {double(found.closest[k].s[0]), double(found.closest[k].s[1]),
-                       double(found.closest[k].s[2])};
+        if (samples.empty()) return answers;
+        const SourcePlan plan = planSources(scene_, samples);
+        std::vector<Real4> corners;  // three per source triangle
+        std::vector<cl_uint> sourceObject;
+        corners.reserve(3 * plan.sources.size());
+        for (const auto& [object, triangle] : plan.sources) {
+            const TriangleSoup& soup = scene_.object(object);
+            for (std::uint32_t v : soup.triangles[triangle])
+                corners.push_back(SurfaceArrays<Real4>::real4(soup.points[v]));
+            sourceObject.push_back(object);
         }
-        return answers;
-    }
-
-  private:
-    struct Launch {
-        std::vector<cl_uint> nearest;
-        std::vector<Real> distance;
-        std::vector<cl_uchar> feature;
-        std::vector<Real4> closest;
-    };
-
-    Launch launch(const std::vector<SurfaceSample>& samples, const std::vector<cl_uint4>& hints,
-                  const DistanceQuery& query) {
-        Launch out;
-        if (samples.empty()) return out;
         std::vector<Real4> points(samples.size());
-        std::vector<cl_uint> objects(samples.size());
-        for (std::size_t k = 0; k < samples.size(); ++k) {
+        for (std::size_t k = 0; k < samples.size(); ++k)
             points[k] = SurfaceArrays<Real4>::real4(samples[k].point);
-            objects[k] = samples[k].object;
-        }
+
+        const std::size_t sources = plan.sources.size(), count = samples.size();
+        const cl_uint capacity = cl_uint(kCandidateCapacity);
+        ocl::DeviceBuffer<Real4> dCorners(runtime_, corners);
+        ocl::DeviceBuffer<cl_uint> dSourceObject(runtime_, sourceObject);
+        ocl::DeviceBuffer<cl_uint> dCandidates(runtime_, sources * capacity);
+        ocl::DeviceBuffer<Real4> dBounds(runtime_, sources * capacity);
+        ocl::DeviceBuffer<cl_uint> dCandidateCount(runtime_, sources);
+        ocl::DeviceBuffer<cl_uint> dCentreNearest(runtime_, sources);
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
-        ocl::DeviceBuffer<cl_uint> dObjects(runtime_, objects);
-        ocl::DeviceBuffer<cl_uint4> dHints(runtime_, hints);
-        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real> dDistance(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real4> dClosest(runtime_, samples.size(), CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<cl_uint> dSampleSource(runtime_, plan.ofSample);
+        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
+        const Real band = Real(query.maxDistanceMm), band2 = Real(bandSquared(query));
         try {
-            cl::Kernel kernel(*program_, "closest_primitive");
+            // Pass 1: per source triangle, the candidates of all its samples.
+            cl::Kernel cull(*program_, "source_candidates");
             cl_uint a = 0;
+            cull.setArg(a++, dCorners.get());
+            cull.setArg(a++, dSourceObject.get());
+            cull.setArg(a++, cl_uint(sources));
+            a = surface_.setArgs(cull, a);
+            cull.setArg(a++, objectRoot_.get());
+            cull.setArg(a++, cl_uint(roots_.size()));
+            cull.setArg(a++, cl_int(query.target));
+            cull.setArg(a++, band);
+            cull.setArg(a++, band2);
+            cull.setArg(a++, Real(slackMm_));
+            cull.setArg(a++, capacity);
+            cull.setArg(a++, dCandidates.get());
+            cull.setArg(a++, dBounds.get());
+            cull.setArg(a++, dCandidateCount.get());
+            cull.setArg(a++, dCentreNearest.get());
+            runtime_.queue().enqueueNDRangeKernel(
+                cull, cl::NullRange, cl::NDRange(ocl::roundUp(sources, ocl::kGroupSize1D)),
+                cl::NDRange(ocl::kGroupSize1D));
+
+            // Pass 2: per sample, its source's candidates (or the hierarchies).
+            cl::Kernel kernel(*program_, "closest_primitive");
+            a = 0;
             kernel.setArg(a++, dPoints.get());
-            kernel.setArg(a++, dObjects.get());
-            kernel.setArg(a++, dHints.get());
-            kernel.setArg(a++, cl_uint(samples.size()));
+            kernel.setArg(a++, dSampleSource.get());
+            kernel.setArg(a++, cl_uint(count));
+            kernel.setArg(a++, dCorners.get());
+            kernel.setArg(a++, dSourceObject.get());
+            kernel.setArg(a++, dCandidates.get());
+            kernel.setArg(a++, dBounds.get());
+            kernel.setArg(a++, dCandidateCount.get());
+            kernel.setArg(a++, dCentreNearest.get());
+            kernel.setArg(a++, capacity);
+            kernel.setArg(a++, Real(slackMm_));
             a = surface_.setArgs(kernel, a);
             kernel.setArg(a++, objectRoot_.get());
             kernel.setArg(a++, cl_uint(roots_.size()));
             kernel.setArg(a++, normals_.get());
             kernel.setArg(a++, closed_.get());
             kernel.setArg(a++, cl_int(query.target));
-            kernel.setArg(a++, Real(bandSquared(query)));
+            kernel.setArg(a++, band2);
             kernel.setArg(a++, dDistance.get());
             kernel.setArg(a++, dNearest.get());
             kernel.setArg(a++, dFeature.get());
             kernel.setArg(a++, dClosest.get());
             runtime_.queue().enqueueNDRangeKernel(
-                kernel, cl::NullRange, cl::NDRange(ocl::roundUp(samples.size(), ocl::kGroupSize1D)),
+                kernel, cl::NullRange, cl::NDRange(ocl::roundUp(count, ocl::kGroupSize1D)),
                 cl::NDRange(ocl::kGroupSize1D));
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
         }
-        out.nearest = dNearest.download(runtime_);
-        out.distance = dDistance.download(runtime_);
-        out.feature = dFeature.download(runtime_);
-        out.closest = dClosest.download(runtime_);
-        return out;
+        const std::vector<cl_uint> nearest = dNearest.download(runtime_);
+        const std::vector<Real> distance = dDistance.download(runtime_);
+        const std::vector<cl_uchar> feature = dFeature.download(runtime_);
+        const std::vector<Real4> closest = dClosest.download(runtime_);
+
+        for (std::size_t k = 0; k < count; ++k) {
+            const cl_uint t = nearest[k];
+            if (t == CL_UINT_MAX) continue;
+            ClosestPrimitive& answer = answers[k];
+            answer.object = std::int32_t(objectOfTriangle_[t]);
+            answer.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
+            answer.distanceMm = double(distance[k]);
+            answer.feature = TriangleFeature(feature[k]);
+            answer.point = {double(closest[k].s[0]), double(closest[k].s[1]),
+                            double(closest[k].s[2])};
+        }
+        return answers;
     }
 
+  private:
     ocl::Runtime& runtime_;
     const SurfaceScene& scene_;
     const cl::Program* program_ = nullptr;
+    double slackMm_ = 0;  // the culling's rounding allowance (cullSlackMm)
     std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
     std::vector<cl_int> roots_;
     DeviceSurface<Real4> surface_;

@@ -9,11 +9,11 @@
 //   closestPrimitivesBruteForce every triangle of every other object; the
 //                              independent reference and the benchmark's
 //                              baseline
-// All cull as paper §4.2 does with a hierarchy per object and distance
-// bounds: an object whose root box is farther than the best distance so far
-// is skipped, and hints (the nearest triangles found for the centre and
-// corners of the sample's own triangle) start each search with a tight
-// bound.
+// The kernel and its reference cull once per source triangle (a triangle
+// holding samples): tangent-plane lower bounds (kernels/tangent_bound.cl)
+// rule out the subtrees and triangles of the other objects' hierarchies
+// that cannot be nearest anywhere on it, and each sample measures only the
+// few that remain (docs/surface-distance-maps.md, "The kernel").
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -49,8 +49,9 @@ struct ClosestPrimitive {
     Vec3 point;  // the closest point
 };
 
-/// C++ reference: for each sample, a hierarchy search per candidate object.
-/// O(S log T) typically.
+/// C++ reference: the kernel's steps in C++ (candidates per source triangle,
+/// then per sample). O(F log T + S·c) typically, F source triangles, c
+/// candidates each (about 10).
 std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& scene,
                                                          const std::vector<SurfaceSample>& samples,
                                                          const DistanceQuery& query = {});
@@ -72,8 +73,8 @@ class ClosestPrimitiveKernel {
     /// The same answers as closestPrimitivesReference: distances agree to
     /// rounding in double precision (PoCL) and within 1e-6 of the scene's
     /// extent in single precision; at ties (points equally near two
-    /// primitives) the primitive may differ. Two launches: one for the
-    /// centres of the samples' triangles (the hints), one for the samples.
+    /// primitives) the primitive may differ. Two launches: one per source
+    /// triangle (its candidates), one per sample.
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query = {});
 

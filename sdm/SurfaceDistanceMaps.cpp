@@ -16,7 +16,7 @@ ObjectSamples sampleObject(const SurfaceScene& scene, std::size_t object,
     s.samples.reserve(s.texel.size() + soup.points.size());
     for (std::size_t k = 0; k < s.texel.size(); ++k)
         s.samples.push_back({texels.point[k], std::uint32_t(object), texels.triangle[k]});
-    // Each vertex with one of its triangles, whose hint serves it.
+    // Each vertex with one of its triangles, whose candidates serve it.
     std::vector<std::uint32_t> triangleOf(soup.points.size(), UINT32_MAX);
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
         for (std::uint32_t v : soup.triangles[t])

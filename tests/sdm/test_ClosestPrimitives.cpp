@@ -167,3 +167,35 @@ TEST(ClosestPrimitives, RealMeshesAgreeWithBruteForce) {
     expectSameAnswers(scene, samples, kernel.run(samples), brute,
                       std::max(kernel.toleranceMm(), 1e-12));
 }
+
+TEST(ClosestPrimitives, SamplesOffTheirTrianglesAreSearchedInFull) {
+    // The candidates of a source triangle hold for points on it; callers
+    // may pass any point with any triangle, and those must not be culled.
+    std::mt19937 random(3);
+    SurfaceScene scene({geodesicSphere(8, 6), randomSoup(random, {14, 0, 0}, 200)});
+    std::vector<SurfaceSample> samples = allSamples(scene, 48);
+    std::uniform_real_distribution<double> offset(-3, 3);
+    for (std::size_t k = 0; k < samples.size(); k += 2)
+        samples[k].point = samples[k].point + Vec3{offset(random), offset(random), offset(random)};
+    const auto brute = closestPrimitivesBruteForce(scene, samples);
+    expectSameAnswers(scene, samples, closestPrimitivesReference(scene, samples), brute, 1e-12);
+    ClosestPrimitiveKernel kernel(runtime(), scene);
+    expectSameAnswers(scene, samples, kernel.run(samples), brute,
+                      std::max(kernel.toleranceMm(), 1e-12));
+}
+
+TEST(ClosestPrimitives, TrianglesWithManyEquallyNearCandidatesSearchInFull) {
+    // A small soup at the centre of a fine sphere: every sphere triangle is
+    // about equally near, far more than a source triangle lists, so its
+    // samples take the full search; the sphere's samples take the lists.
+    std::mt19937 random(9);
+    TriangleSoup centre = randomSoup(random, {0, 0, 0}, 20);
+    for (Vec3& p : centre.points) p = 0.1 * p;
+    SurfaceScene scene({geodesicSphere(16, 10), centre});
+    const std::vector<SurfaceSample> samples = allSamples(scene, 96);
+    const auto brute = closestPrimitivesBruteForce(scene, samples);
+    expectSameAnswers(scene, samples, closestPrimitivesReference(scene, samples), brute, 1e-12);
+    ClosestPrimitiveKernel kernel(runtime(), scene);
+    expectSameAnswers(scene, samples, kernel.run(samples), brute,
+                      std::max(kernel.toleranceMm(), 1e-12));
+}
