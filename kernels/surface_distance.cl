@@ -25,21 +25,27 @@ inline bool is_candidate(uint object, uint own, int target) {
     return object != own && (target < 0 || object == (uint)target);
 }
 
-// Source s: corners source_corners[3 s .. 3 s + 2] of a triangle of object
-// source_object[s]. Writes the nearest triangle to its centre (UINT_MAX:
-// none within the band) and its candidates, candidates[s * capacity + k]
-// with bounds[...] (the tangent bound at the centre: normal in xyz, offset
-// in w), k < candidate_count[s]; a count of capacity + 1 means more.
+// Sources run in chunks (the lists take capacity entries each): work-item i
+// takes source s = source_first + i, with corners source_corners[3 s ..
+// 3 s + 2] of a triangle of object source_object[s], and writes, at i of
+// the chunk's arrays, the nearest triangle to its centre (UINT_MAX: none
+// within the band) and its candidates, candidates[i * capacity + k] with
+// bounds[...] (the tangent bound at the centre: normal in xyz, offset in
+// w), k < candidate_count[i]; a count of capacity + 1 means more.
 // O(depth + visited nodes) per source.
-__kernel void source_candidates(
-    __global const REAL4* source_corners, __global const uint* source_object, uint source_count,
-    __global const REAL4* points, __global const int4* triangles, __global const REAL4* node_lo,
-    __global const REAL4* node_hi, __global const int4* node_links, __global const uint* order,
-    __global const REAL4* balls, __global const int* object_root, uint object_count, int target,
-    REAL max_distance, REAL max_distance2, REAL slack, uint capacity, __global uint* candidates,
-    __global REAL4* bounds, __global uint* candidate_count, __global uint* centre_nearest) {
-    const uint s = get_global_id(0);
-    if (s >= source_count) return;
+__kernel void source_candidates(__global const REAL4* source_corners,
+                                __global const uint* source_object, uint source_first,
+                                uint source_count, __global const REAL4* points,
+                                __global const int4* triangles, __global const REAL4* node_lo,
+                                __global const REAL4* node_hi, __global const int4* node_links,
+                                __global const uint* order, __global const REAL4* balls,
+                                __global const int* object_root, uint object_count, int target,
+                                REAL max_distance, REAL max_distance2, REAL slack, uint capacity,
+                                __global uint* candidates, __global REAL4* bounds,
+                                __global uint* candidate_count, __global uint* centre_nearest) {
+    const uint i = get_global_id(0);
+    if (i >= source_count) return;
+    const uint s = source_first + i;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
     const REAL4 v0 = source_corners[3 * s], v1 = source_corners[3 * s + 1],
                 v2 = source_corners[3 * s + 2];
@@ -51,7 +57,7 @@ __kernel void source_candidates(
     for (uint o = 0; o < object_count; ++o)
         if (is_candidate(o, own, target) && object_root[o] >= 0)
             search_nearest_triangle(&surface, object_root[o], c, &best2, &t1);
-    centre_nearest[s] = t1;
+    centre_nearest[i] = t1;
     REAL u0 = INFINITY, u1 = INFINITY, u2 = INFINITY;
     if (t1 != UINT_MAX) {
         u0 = sqrt(triangle_distance2(&surface, t1, v0));
@@ -59,8 +65,8 @@ __kernel void source_candidates(
         u2 = sqrt(triangle_distance2(&surface, t1, v2));
     }
 
-    __global uint* list = candidates + (size_t)s * capacity;
-    __global REAL4* list_bounds = bounds + (size_t)s * capacity;
+    __global uint* list = candidates + (size_t)i * capacity;
+    __global REAL4* list_bounds = bounds + (size_t)i * capacity;
     uint n = 0;
     for (uint o = 0; o < object_count && n <= capacity; ++o) {
         if (!is_candidate(o, own, target) || object_root[o] < 0) continue;
@@ -95,29 +101,32 @@ __kernel void source_candidates(
             }
         }
     }
-    candidate_count[s] = n;
+    candidate_count[i] = n;
 }
 
+// Samples sorted by source, so a chunk's sources serve a run of them:
+// work-item i takes sample k = sample_first + i (k < sample_end), whose
+// source sample_source[k] is source_first + its index in the chunk's lists.
 __kernel void closest_primitive(
-    __global const REAL4* sample_points, __global const uint* sample_source, uint sample_count,
-    __global const REAL4* source_corners, __global const uint* source_object,
-    __global const uint* candidates, __global const REAL4* bounds,
-    __global const uint* candidate_count, __global const uint* centre_nearest, uint capacity,
-    REAL slack, __global const REAL4* points, __global const int4* triangles,
-    __global const REAL4* node_lo, __global const REAL4* node_hi, __global const int4* node_links,
-    __global const uint* order, __global const REAL4* balls, __global const int* object_root,
-    uint object_count, __global const REAL4* pseudo_normals, __global const uchar* object_closed,
-    int target, REAL max_distance2, __global REAL* distance, __global uint* nearest,
-    __global uchar* feature, __global REAL4* closest) {
-    const uint k = get_global_id(0);
-    if (k >= sample_count) return;
+    __global const REAL4* sample_points, __global const uint* sample_source, uint sample_first,
+    uint sample_end, uint source_first, __global const REAL4* source_corners,
+    __global const uint* source_object, __global const uint* candidates,
+    __global const REAL4* bounds, __global const uint* candidate_count,
+    __global const uint* centre_nearest, uint capacity, REAL slack, __global const REAL4* points,
+    __global const int4* triangles, __global const REAL4* node_lo, __global const REAL4* node_hi,
+    __global const int4* node_links, __global const uint* order, __global const REAL4* balls,
+    __global const int* object_root, uint object_count, __global const REAL4* pseudo_normals,
+    __global const uchar* object_closed, int target, REAL max_distance2, __global REAL* distance,
+    __global uint* nearest, __global uchar* feature, __global REAL4* closest) {
+    const uint k = sample_first + get_global_id(0);
+    if (k >= sample_end) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
     const REAL4 p = sample_points[k];
-    const uint s = sample_source[k];
+    const uint s = sample_source[k], in_chunk = s - source_first;
     const uint own = source_object[s];
     REAL best2 = max_distance2;
     uint t = UINT_MAX;
-    const uint hint = centre_nearest[s];
+    const uint hint = centre_nearest[in_chunk];
     if (hint != UINT_MAX && is_candidate((uint)triangles[hint].w, own, target)) {
         const REAL d2 = triangle_distance2(&surface, hint, p);
         if (d2 < best2) {
@@ -125,13 +134,13 @@ __kernel void closest_primitive(
             t = hint;
         }
     }
-    const uint listed = candidate_count[s];
+    const uint listed = candidate_count[in_chunk];
     const REAL4 a = source_corners[3 * s], b = source_corners[3 * s + 1],
                 c = source_corners[3 * s + 2];
     const REAL4 off = p - closest_point_on_triangle(p, a, b, c);
     if (listed <= capacity && dot3(off, off) <= (REAL)0.25 * slack * slack) {
-        __global const uint* list = candidates + (size_t)s * capacity;
-        __global const REAL4* list_bounds = bounds + (size_t)s * capacity;
+        __global const uint* list = candidates + (size_t)in_chunk * capacity;
+        __global const REAL4* list_bounds = bounds + (size_t)in_chunk * capacity;
         for (uint i = 0; i < listed; ++i) {
             TangentBound bound;
             bound.normal = list_bounds[i];

@@ -31,6 +31,10 @@ namespace {
 // hierarchies instead (a few source triangles near contact, where many
 // target triangles are equally near).
 constexpr std::size_t kCandidateCapacity = 64;
+// Source triangles per launch: bounds the lists' memory (36 or 20 bytes per
+// entry, about 38 MB in double precision) on meshes of millions of
+// triangles.
+constexpr std::size_t kSourcesPerLaunch = std::size_t(1) << 14;
 
 bool isCandidate(const DistanceQuery& query, std::size_t own, std::size_t object) {
     return object != own && (query.target < 0 || object == std::size_t(query.target));
@@ -292,8 +296,8 @@ struct DeviceScene {
 template <class Real, class Real4>
 class DeviceSceneT final : public DeviceScene {
   public:
-    DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene)
-        : runtime_(runtime), scene_(scene) {
+    DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene, std::size_t sourcesPerLaunch)
+        : runtime_(runtime), scene_(scene), sourcesPerLaunch_(sourcesPerLaunch) {
         SurfaceArrays<Real4> arrays;
         std::vector<Real4> normals;
         std::vector<cl_uchar> closed;
@@ -332,76 +336,101 @@ class DeviceSceneT final : public DeviceScene {
                 corners.push_back(SurfaceArrays<Real4>::real4(soup.points[v]));
             sourceObject.push_back(object);
         }
-        std::vector<Real4> points(samples.size());
-        for (std::size_t k = 0; k < samples.size(); ++k)
-            points[k] = SurfaceArrays<Real4>::real4(samples[k].point);
-
+        // Samples sorted by source (a counting sort, stable): a chunk of
+        // sources then serves one run of samples, and neighbouring
+        // work-items share a list.
         const std::size_t sources = plan.sources.size(), count = samples.size();
+        std::vector<std::size_t> sampleFirst(sources + 1, 0);
+        for (std::uint32_t source : plan.ofSample) ++sampleFirst[source + 1];
+        for (std::size_t s = 0; s < sources; ++s) sampleFirst[s + 1] += sampleFirst[s];
+        std::vector<std::size_t> sorted(count);  // sorted position -> sample
+        {
+            std::vector<std::size_t> next(sampleFirst.begin(), sampleFirst.end() - 1);
+            for (std::size_t k = 0; k < count; ++k) sorted[next[plan.ofSample[k]]++] = k;
+        }
+        std::vector<Real4> points(count);
+        std::vector<cl_uint> sampleSource(count);
+        for (std::size_t k = 0; k < count; ++k) {
+            points[k] = SurfaceArrays<Real4>::real4(samples[sorted[k]].point);
+            sampleSource[k] = plan.ofSample[sorted[k]];
+        }
+
         const cl_uint capacity = cl_uint(kCandidateCapacity);
+        const std::size_t chunk = std::min(sources, sourcesPerLaunch_);
         ocl::DeviceBuffer<Real4> dCorners(runtime_, corners);
         ocl::DeviceBuffer<cl_uint> dSourceObject(runtime_, sourceObject);
-        ocl::DeviceBuffer<cl_uint> dCandidates(runtime_, sources * capacity);
-        ocl::DeviceBuffer<Real4> dBounds(runtime_, sources * capacity);
-        ocl::DeviceBuffer<cl_uint> dCandidateCount(runtime_, sources);
-        ocl::DeviceBuffer<cl_uint> dCentreNearest(runtime_, sources);
+        ocl::DeviceBuffer<cl_uint> dCandidates(runtime_, chunk * capacity);
+        ocl::DeviceBuffer<Real4> dBounds(runtime_, chunk * capacity);
+        ocl::DeviceBuffer<cl_uint> dCandidateCount(runtime_, chunk);
+        ocl::DeviceBuffer<cl_uint> dCentreNearest(runtime_, chunk);
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
-        ocl::DeviceBuffer<cl_uint> dSampleSource(runtime_, plan.ofSample);
+        ocl::DeviceBuffer<cl_uint> dSampleSource(runtime_, sampleSource);
         ocl::DeviceBuffer<cl_uint> dNearest(runtime_, count, CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
         const Real band = Real(query.maxDistanceMm), band2 = Real(bandSquared(query));
         try {
-            // Pass 1: per source triangle, the candidates of all its samples.
             cl::Kernel cull(*program_, "source_candidates");
-            cl_uint a = 0;
-            cull.setArg(a++, dCorners.get());
-            cull.setArg(a++, dSourceObject.get());
-            cull.setArg(a++, cl_uint(sources));
-            a = surface_.setArgs(cull, a);
-            cull.setArg(a++, objectRoot_.get());
-            cull.setArg(a++, cl_uint(roots_.size()));
-            cull.setArg(a++, cl_int(query.target));
-            cull.setArg(a++, band);
-            cull.setArg(a++, band2);
-            cull.setArg(a++, Real(slackMm_));
-            cull.setArg(a++, capacity);
-            cull.setArg(a++, dCandidates.get());
-            cull.setArg(a++, dBounds.get());
-            cull.setArg(a++, dCandidateCount.get());
-            cull.setArg(a++, dCentreNearest.get());
-            runtime_.queue().enqueueNDRangeKernel(
-                cull, cl::NullRange, cl::NDRange(ocl::roundUp(sources, ocl::kGroupSize1D)),
-                cl::NDRange(ocl::kGroupSize1D));
-
-            // Pass 2: per sample, its source's candidates (or the hierarchies).
             cl::Kernel kernel(*program_, "closest_primitive");
-            a = 0;
-            kernel.setArg(a++, dPoints.get());
-            kernel.setArg(a++, dSampleSource.get());
-            kernel.setArg(a++, cl_uint(count));
-            kernel.setArg(a++, dCorners.get());
-            kernel.setArg(a++, dSourceObject.get());
-            kernel.setArg(a++, dCandidates.get());
-            kernel.setArg(a++, dBounds.get());
-            kernel.setArg(a++, dCandidateCount.get());
-            kernel.setArg(a++, dCentreNearest.get());
-            kernel.setArg(a++, capacity);
-            kernel.setArg(a++, Real(slackMm_));
-            a = surface_.setArgs(kernel, a);
-            kernel.setArg(a++, objectRoot_.get());
-            kernel.setArg(a++, cl_uint(roots_.size()));
-            kernel.setArg(a++, normals_.get());
-            kernel.setArg(a++, closed_.get());
-            kernel.setArg(a++, cl_int(query.target));
-            kernel.setArg(a++, band2);
-            kernel.setArg(a++, dDistance.get());
-            kernel.setArg(a++, dNearest.get());
-            kernel.setArg(a++, dFeature.get());
-            kernel.setArg(a++, dClosest.get());
-            runtime_.queue().enqueueNDRangeKernel(
-                kernel, cl::NullRange, cl::NDRange(ocl::roundUp(count, ocl::kGroupSize1D)),
-                cl::NDRange(ocl::kGroupSize1D));
+            for (std::size_t first = 0; first < sources; first += chunk) {
+                const std::size_t last = std::min(sources, first + chunk);
+                // Pass 1: per source triangle, the candidates of all its samples.
+                cl_uint a = 0;
+                cull.setArg(a++, dCorners.get());
+                cull.setArg(a++, dSourceObject.get());
+                cull.setArg(a++, cl_uint(first));
+                cull.setArg(a++, cl_uint(last - first));
+                a = surface_.setArgs(cull, a);
+                cull.setArg(a++, objectRoot_.get());
+                cull.setArg(a++, cl_uint(roots_.size()));
+                cull.setArg(a++, cl_int(query.target));
+                cull.setArg(a++, band);
+                cull.setArg(a++, band2);
+                cull.setArg(a++, Real(slackMm_));
+                cull.setArg(a++, capacity);
+                cull.setArg(a++, dCandidates.get());
+                cull.setArg(a++, dBounds.get());
+                cull.setArg(a++, dCandidateCount.get());
+                cull.setArg(a++, dCentreNearest.get());
+                runtime_.queue().enqueueNDRangeKernel(
+                    cull, cl::NullRange, cl::NDRange(ocl::roundUp(last - first, ocl::kGroupSize1D)),
+                    cl::NDRange(ocl::kGroupSize1D));
+
+                // Pass 2: per sample of these sources, their candidates (or
+                // the hierarchies).
+                const std::size_t samplesHere = sampleFirst[last] - sampleFirst[first];
+                if (samplesHere == 0) continue;
+                a = 0;
+                kernel.setArg(a++, dPoints.get());
+                kernel.setArg(a++, dSampleSource.get());
+                kernel.setArg(a++, cl_uint(sampleFirst[first]));
+                kernel.setArg(a++, cl_uint(sampleFirst[last]));
+                kernel.setArg(a++, cl_uint(first));
+                kernel.setArg(a++, dCorners.get());
+                kernel.setArg(a++, dSourceObject.get());
+                kernel.setArg(a++, dCandidates.get());
+                kernel.setArg(a++, dBounds.get());
+                kernel.setArg(a++, dCandidateCount.get());
+                kernel.setArg(a++, dCentreNearest.get());
+                kernel.setArg(a++, capacity);
+                kernel.setArg(a++, Real(slackMm_));
+                a = surface_.setArgs(kernel, a);
+                kernel.setArg(a++, objectRoot_.get());
+                kernel.setArg(a++, cl_uint(roots_.size()));
+                kernel.setArg(a++, normals_.get());
+                kernel.setArg(a++, closed_.get());
+                kernel.setArg(a++, cl_int(query.target));
+                kernel.setArg(a++, band2);
+                kernel.setArg(a++, dDistance.get());
+                kernel.setArg(a++, dNearest.get());
+                kernel.setArg(a++, dFeature.get());
+                kernel.setArg(a++, dClosest.get());
+                runtime_.queue().enqueueNDRangeKernel(
+                    kernel, cl::NullRange,
+                    cl::NDRange(ocl::roundUp(samplesHere, ocl::kGroupSize1D)),
+                    cl::NDRange(ocl::kGroupSize1D));
+            }
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
         }
@@ -413,7 +442,7 @@ class DeviceSceneT final : public DeviceScene {
         for (std::size_t k = 0; k < count; ++k) {
             const cl_uint t = nearest[k];
             if (t == CL_UINT_MAX) continue;
-            ClosestPrimitive& answer = answers[k];
+            ClosestPrimitive& answer = answers[sorted[k]];
             answer.object = std::int32_t(objectOfTriangle_[t]);
             answer.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
             answer.distanceMm = double(distance[k]);
@@ -429,6 +458,7 @@ class DeviceSceneT final : public DeviceScene {
     const SurfaceScene& scene_;
     const cl::Program* program_ = nullptr;
     double slackMm_ = 0;  // the culling's rounding allowance (cullSlackMm)
+    std::size_t sourcesPerLaunch_;
     std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
     std::vector<cl_int> roots_;
     DeviceSurface<Real4> surface_;
@@ -445,12 +475,15 @@ struct ClosestPrimitiveKernel::Impl {
     bool doublePrecision = true;
 };
 
-ClosestPrimitiveKernel::ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene)
+ClosestPrimitiveKernel::ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene,
+                                               std::size_t sourcesPerLaunch)
     : impl_(std::make_unique<Impl>()) {
+    if (sourcesPerLaunch == 0) sourcesPerLaunch = kSourcesPerLaunch;
     impl_->doublePrecision = runtime.device().doublePrecision;
     impl_->device = ocl::withRealTypes(
         impl_->doublePrecision, [&](auto real, auto real4) -> std::unique_ptr<DeviceScene> {
-            return std::make_unique<DeviceSceneT<decltype(real), decltype(real4)>>(runtime, scene);
+            return std::make_unique<DeviceSceneT<decltype(real), decltype(real4)>>(
+                runtime, scene, sourcesPerLaunch);
         });
     Box3 box;
     for (std::size_t o = 0; o < scene.objectCount(); ++o)

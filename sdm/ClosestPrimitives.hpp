@@ -14,6 +14,7 @@
 // rule out the subtrees and triangles of the other objects' hierarchies
 // that cannot be nearest anywhere on it, and each sample measures only the
 // few that remain (docs/surface-distance-maps.md, "The kernel").
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -65,7 +66,11 @@ std::vector<ClosestPrimitive> closestPrimitivesBruteForce(const SurfaceScene& sc
 /// number of queries (e.g. one per object's atlas, or per frame).
 class ClosestPrimitiveKernel {
   public:
-    ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene);
+    /// `sourcesPerLaunch` bounds how many sampled triangles get their
+    /// candidate lists at once (0: the default, 16 384, about 38 MB); the
+    /// answers do not depend on it.
+    ClosestPrimitiveKernel(ocl::Runtime& runtime, const SurfaceScene& scene,
+                           std::size_t sourcesPerLaunch = 0);
     ~ClosestPrimitiveKernel();
     ClosestPrimitiveKernel(const ClosestPrimitiveKernel&) = delete;
     ClosestPrimitiveKernel& operator=(const ClosestPrimitiveKernel&) = delete;

@@ -85,6 +85,14 @@ TEST(ClosestPrimitives, RandomSoupsAgreeWithBruteForce) {
     const auto device = kernel.run(samples);
     expectSameAnswers(scene, samples, reference, brute, 1e-12);
     expectSameAnswers(scene, samples, device, brute, std::max(kernel.toleranceMm(), 1e-12));
+    // The lists made a few sources at a time: the same answers.
+    ClosestPrimitiveKernel chunked(runtime(), scene, 7);
+    const auto inChunks = chunked.run(samples);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        EXPECT_EQ(inChunks[k].object, device[k].object) << "sample " << k;
+        EXPECT_EQ(inChunks[k].triangle, device[k].triangle) << "sample " << k;
+        EXPECT_EQ(inChunks[k].distanceMm, device[k].distanceMm) << "sample " << k;
+    }
     for (std::size_t k = 0; k < samples.size(); ++k) {
         EXPECT_NE(std::size_t(device[k].object), samples[k].object);
         EXPECT_GE(device[k].distanceMm, 0) << "open soups are unsigned";
