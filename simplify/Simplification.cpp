@@ -45,9 +45,17 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     module.setOriginal(bvh, options.maxErrorMm);
     // Tighter and dearer: the first piece of each created triangle (its
     // centroid distance, or its bound when it settles at once), the first
-    // 8, the first 64, the whole deviation.
+    // 8, the first 64, the whole deviation. The first also asks the flip
+    // test, which like the bounds depends only on the from-vertex's faces:
+    // a collapse it refuses never enters the queue, where it would cost its
+    // lower bounds until judged illegal. On meshes reconstructed from 2 mm
+    // planes that is a third of the decimation's time.
+    auto& flipTest = decimater.module(flips);
     decimater.setLowerBounds(
-        {[&module](const auto& ci) { return module.deviationLowerBound(ci, 1); },
+        {[&module, &flipTest](const auto& ci) {
+             if (flipTest.collapse_priority(ci) < 0) return float(ModErrorBound::ILLEGAL_COLLAPSE);
+             return module.deviationLowerBound(ci, 1);
+         },
          [&module](const auto& ci) { return module.deviationLowerBound(ci, 8); },
          [&module](const auto& ci) { return module.deviationLowerBound(ci, 64); },
          [&module](const auto& ci) { return module.deviation(ci); }});
