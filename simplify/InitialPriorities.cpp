@@ -11,13 +11,23 @@ namespace dfrecon {
 
 namespace {
 
+bool isWanted(const std::vector<bool>* wanted, TriMesh::HalfedgeHandle h) {
+    return !wanted || (std::size_t(h.idx()) < wanted->size() && (*wanted)[std::size_t(h.idx())]);
+}
+
 template <class Real, class Real4>
 std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const TriangleBvh& original,
-                            double maxErrorMm) {
-    std::vector<cl_int2> halfedges(mesh.n_halfedges());
-    for (auto h : mesh.halfedges())
-        halfedges[std::size_t(h.idx())] = {
-            {mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()}};
+                            double maxErrorMm, const std::vector<bool>* wanted) {
+    // The wanted halfedges, packed: work-item k evaluates halfedge index[k].
+    std::vector<cl_int2> halfedges;
+    std::vector<std::size_t> index;
+    for (auto h : mesh.halfedges()) {
+        if (!isWanted(wanted, h)) continue;
+        halfedges.push_back({{mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()}});
+        index.push_back(std::size_t(h.idx()));
+    }
+    std::vector<float> result(mesh.n_halfedges(), -1.0f);
+    if (halfedges.empty()) return result;
     using Arrays = SurfaceArrays<Real4>;
     std::vector<Real4> meshPoints(mesh.n_vertices());
     std::vector<cl_uint> ringFirst{0};
@@ -64,34 +74,37 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "collapse_bound.cl");
     }
-    std::vector<float> result = priority.download(runtime);
+    std::vector<float> packed = priority.download(runtime);
     if (sizeof(Real) < 8) {
         Box3 box;
         for (const Vec3& p : original.soup().points) box.add(p);
         const float slack = float(1e-6 * length(box.hi - box.lo));
-        for (float& p : result)
+        for (float& p : packed)
             if (p >= 0) p = p + slack > float(maxErrorMm) ? -1.0f : p + slack;
     }
+    for (std::size_t k = 0; k < packed.size(); ++k) result[index[k]] = packed[k];
     return result;
 }
 
 }  // namespace
 
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
-                                     const TriangleBvh& original, double maxErrorMm) {
+                                     const TriangleBvh& original, double maxErrorMm,
+                                     const std::vector<bool>* wanted) {
     if (mesh.n_halfedges() == 0) return {};
     return ocl::withRealTypes(runtime.device().doublePrecision, [&](auto real, auto real4) {
-        return runBatch<decltype(real), decltype(real4)>(runtime, mesh, original, maxErrorMm);
+        return runBatch<decltype(real), decltype(real4)>(runtime, mesh, original, maxErrorMm,
+                                                         wanted);
     });
 }
 
 std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
-                                              double maxErrorMm) {
+                                              double maxErrorMm, const std::vector<bool>* wanted) {
     std::vector<float> result(mesh.n_halfedges(), -1.0f);
     std::vector<NewTriangle> created;
     const DeviationLimits limits{maxErrorMm};
     for (auto h : mesh.halfedges()) {
-        if (!trianglesAfterCollapse(mesh, h, created)) continue;
+        if (!isWanted(wanted, h) || !trianglesAfterCollapse(mesh, h, created)) continue;
         result[std::size_t(h.idx())] = surfaceDeviation(created, original, limits);
     }
     return result;

@@ -19,12 +19,17 @@ namespace dfrecon {
 /// measured against (for simplifySurface: of `mesh` itself). Topology is not
 /// checked (the Decimater does). On a device without fp64 the kernel runs in
 /// float and each bound is raised by 1e-6 of the surface's extent so it
-/// stays an upper bound. O(H · pieces · log T) work, spread over the device.
+/// stays an upper bound. `wanted`, if given (one flag per halfedge), names
+/// the halfedges to evaluate; the others get -1 unevaluated (collapses
+/// refused anyway, e.g. by the normal-flip test). O(H · pieces · log T)
+/// work, spread over the device.
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
-                                     const TriangleBvh& original, double maxErrorMm);
+                                     const TriangleBvh& original, double maxErrorMm,
+                                     const std::vector<bool>* wanted = nullptr);
 
 /// The same on the CPU with surfaceDeviation, in double precision.
 std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
-                                              double maxErrorMm);
+                                              double maxErrorMm,
+                                              const std::vector<bool>* wanted = nullptr);
 
 }  // namespace dfrecon

@@ -61,9 +61,16 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
          [&module](const auto& ci) { return module.deviation(ci); }});
 
     auto start = std::chrono::steady_clock::now();
-    module.setInitialDeviations(runtime && options.initialBatchOnDevice
-                                    ? initialPriorities(*runtime, mesh, bvh, options.maxErrorMm)
-                                    : initialPrioritiesReference(mesh, bvh, options.maxErrorMm));
+    // The batch skips the collapses the flip test refuses: they never enter
+    // the queue (above), so their values would never be read.
+    std::vector<bool> wanted(mesh.n_halfedges());
+    for (auto h : mesh.halfedges())
+        wanted[std::size_t(h.idx())] =
+            flipTest.collapse_priority(ModErrorBound::CollapseInfo(mesh, h)) >= 0;
+    module.setInitialDeviations(
+        runtime && options.initialBatchOnDevice
+            ? initialPriorities(*runtime, mesh, bvh, options.maxErrorMm, &wanted)
+            : initialPrioritiesReference(mesh, bvh, options.maxErrorMm, &wanted));
     attempt.initialSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();

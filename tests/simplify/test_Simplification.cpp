@@ -227,6 +227,28 @@ TEST(InitialPriorities, KernelMatchesReference) {
     }
 }
 
+TEST(InitialPriorities, UnwantedHalfedgesAreSkippedTheOthersUnchanged) {
+    const Case c = reconstructed("torus", 5.0);
+    const TriMesh mesh = toTriMesh(c.surface);
+    const TriangleBvh bvh(c.surface);
+    std::mt19937 random(4);
+    std::vector<bool> wanted(mesh.n_halfedges());
+    for (std::size_t h = 0; h < wanted.size(); ++h) wanted[h] = random() % 3 != 0;
+    const std::vector<float> all = initialPriorities(runtime(), mesh, bvh, 0.5);
+    const std::vector<float> some = initialPriorities(runtime(), mesh, bvh, 0.5, &wanted);
+    const std::vector<float> allReference = initialPrioritiesReference(mesh, bvh, 0.5);
+    const std::vector<float> someReference = initialPrioritiesReference(mesh, bvh, 0.5, &wanted);
+    ASSERT_EQ(some.size(), all.size());
+    ASSERT_EQ(someReference.size(), all.size());
+    std::size_t legal = 0;
+    for (std::size_t h = 0; h < all.size(); ++h) {
+        EXPECT_EQ(some[h], wanted[h] ? all[h] : -1.0f) << "halfedge " << h;
+        EXPECT_EQ(someReference[h], wanted[h] ? allReference[h] : -1.0f) << "halfedge " << h;
+        legal += wanted[h] && all[h] >= 0;
+    }
+    EXPECT_GT(legal, all.size() / 10);
+}
+
 TEST(Simplification, RefusesBadOptionsAndNonManifoldInput) {
     const Case c = reconstructed("sphere", 5.0);
     SimplifyOptions options;
