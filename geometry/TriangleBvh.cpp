@@ -24,6 +24,41 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
     }
     std::iota(order_.begin(), order_.end(), 0);
     if (!boxes_.empty()) build(0, boxes_.size());
+    packForSearch();
+}
+
+void TriangleBvh::packForSearch() {
+    if (nodes_.empty()) return;
+    // Node index -> its reference in the packed arrays.
+    std::vector<int> ref(nodes_.size());
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+        const Node& node = nodes_[n];
+        if (node.left >= 0) {
+            ref[n] = int(searchNodes_.size());
+            searchNodes_.emplace_back();
+            continue;
+        }
+        ref[n] = ~int(searchLeaves_.size());
+        searchLeaves_.push_back(
+            {std::uint32_t(searchTriangles_.size()), std::uint32_t(node.count)});
+        for (std::size_t k = 0; k < node.count; ++k) {
+            const std::size_t t = order_[node.first + k];
+            const auto& tri = soup_.triangles[t];
+            searchTriangles_.push_back(
+                {{soup_.points[tri[0]], soup_.points[tri[1]], soup_.points[tri[2]]}, balls_[t], t});
+        }
+    }
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+        const Node& node = nodes_[n];
+        if (node.left < 0) continue;
+        SearchNode& packed = searchNodes_[std::size_t(ref[n])];
+        const std::size_t children[2] = {std::size_t(node.left), std::size_t(node.right)};
+        for (int c = 0; c < 2; ++c) {
+            packed.childBox[c] = nodes_[children[c]].box;
+            packed.child[c] = ref[children[c]];
+        }
+    }
+    searchRoot_ = ref[0];
 }
 
 int TriangleBvh::build(std::size_t first, std::size_t last) {
@@ -79,33 +114,34 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
     // Each entry keeps its box's distance, computed once when pushed.
     std::array<std::pair<int, double>, 128> stack;
     std::size_t size = 0;
-    stack[size++] = {0, nodes_[0].box.distance2(p)};
+    stack[size++] = {searchRoot_, nodes_[0].box.distance2(p)};
     while (size > 0) {
-        const auto [index, boxDistance2] = stack[--size];
+        const auto [ref, boxDistance2] = stack[--size];
         if (boxDistance2 >= best2) continue;
-        const Node& node = nodes_[std::size_t(index)];
-        if (node.left < 0) {
-            for (std::size_t k = 0; k < node.count; ++k) {
-                const std::size_t t = order_[node.first + k];
-                const double reach = length(p - balls_[t].centre) - balls_[t].radius;
+        if (ref < 0) {
+            const SearchLeaf leaf = searchLeaves_[std::size_t(~ref)];
+            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+                const SearchTriangle& candidate = searchTriangles_[k];
+                const double reach = length(p - candidate.ball.centre) - candidate.ball.radius;
                 if (reach > 0 && reach * reach >= best2) continue;
-                const auto& tri = soup_.triangles[t];
-                const Vec3 q = closestPointOnTriangle(p, soup_.points[tri[0]], soup_.points[tri[1]],
-                                                      soup_.points[tri[2]]);
+                const Vec3 q = closestPointOnTriangle(p, candidate.corner[0], candidate.corner[1],
+                                                      candidate.corner[2]);
                 const double d2 = dot(p - q, p - q);
                 if (d2 < best2) {
                     best2 = d2;
-                    best = {t, 0, q};
+                    best = {candidate.triangle, 0, q};
                 }
             }
             continue;
         }
         // Nearer child last, so it is searched first.
-        const double left = nodes_[std::size_t(node.left)].box.distance2(p),
-                     right = nodes_[std::size_t(node.right)].box.distance2(p);
+        const SearchNode& node = searchNodes_[std::size_t(ref)];
+        const double left = node.childBox[0].distance2(p), right = node.childBox[1].distance2(p);
         const bool leftNearer = left < right;
-        stack[size++] = leftNearer ? std::pair{node.right, right} : std::pair{node.left, left};
-        stack[size++] = leftNearer ? std::pair{node.left, left} : std::pair{node.right, right};
+        stack[size++] =
+            leftNearer ? std::pair{node.child[1], right} : std::pair{node.child[0], left};
+        stack[size++] =
+            leftNearer ? std::pair{node.child[0], left} : std::pair{node.child[1], right};
     }
     if (best.triangle != SIZE_MAX) {
         best.distance = std::sqrt(best2);

@@ -62,12 +62,36 @@ class TriangleBvh {
 
   private:
     int build(std::size_t first, std::size_t last);
+    void packForSearch();
 
     const TriangleSoup& soup_;
     std::vector<Box3> boxes_;
     std::vector<Ball> balls_;
     std::vector<Node> nodes_;
     std::vector<std::size_t> order_;
+
+    // The nearest search's own copy of the hierarchy, laid out for it (the
+    // same boxes, corners and balls, so the same answers): both children's
+    // boxes in their parent, so a visit reads one node, not three; and each
+    // leaf's triangles side by side with their corners, so a leaf is one run
+    // of memory instead of a jump per triangle and corner. The search is
+    // most of simplification's time, and it is bound by memory.
+    struct SearchNode {
+        Box3 childBox[2];
+        int child[2];  // >= 0: an inner node; < 0: leaf ~child
+    };
+    struct SearchLeaf {
+        std::uint32_t first, count;  // into searchTriangles_
+    };
+    struct SearchTriangle {
+        Vec3 corner[3];
+        Ball ball;
+        std::size_t triangle;
+    };
+    std::vector<SearchNode> searchNodes_;
+    std::vector<SearchLeaf> searchLeaves_;
+    std::vector<SearchTriangle> searchTriangles_;
+    int searchRoot_ = 0;  // as SearchNode::child
 };
 
 template <class Visit>

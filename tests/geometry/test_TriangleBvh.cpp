@@ -46,3 +46,31 @@ TEST(TriangleBvh, NearestMatchesBruteForce) {
         EXPECT_DOUBLE_EQ(bvh.nearest(p).distance, brute);
     }
 }
+
+TEST(TriangleBvh, SmallSoupsAndBoundedSearchesMatchBruteForce) {
+    // One to nine triangles: the root is a leaf, or one level above leaves.
+    std::mt19937 random(6);
+    std::uniform_real_distribution<double> query(-10, 40);
+    for (int count = 1; count <= 9; ++count) {
+        const TriangleSoup soup =
+            dfrecon::testing::randomTriangles(unsigned(count), std::uint32_t(count), 30, 2);
+        const TriangleBvh bvh(soup);
+        for (int trial = 0; trial < 50; ++trial) {
+            const Vec3 p{query(random), query(random), query(random)};
+            double brute2 = INFINITY;
+            std::size_t nearest = SIZE_MAX;
+            for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+                const auto& tri = soup.triangles[t];
+                const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
+                                                      soup.points[tri[2]]);
+                if (dot(p - q, p - q) < brute2) brute2 = dot(p - q, p - q), nearest = t;
+            }
+            const TriangleBvh::Nearest found = bvh.nearest(p);
+            EXPECT_EQ(found.distance2, brute2) << count << " triangles";
+            EXPECT_EQ(found.triangle, nearest) << count << " triangles";
+            // Bounded: nothing strictly within the answer's own distance.
+            EXPECT_EQ(bvh.nearestWithin(p, brute2).triangle, SIZE_MAX);
+            EXPECT_EQ(bvh.nearestWithin(p, std::nextafter(brute2, INFINITY)).triangle, nearest);
+        }
+    }
+}
