@@ -4,13 +4,17 @@
 // cheap lower bound of its priority; each time an entry reaches the top its
 // bound is tightened (the next, dearer lower bound, at last the judgement of
 // every module), and it goes back unless the new value is still the
-// smallest in the queue; a judged entry at the top is taken. So the collapse taken is always the
-// cheapest legal one, as in DecimaterT, but the expensive judgement runs for the few halfedges that
+// smallest in the queue; a judged entry at the top is taken. So the
+// collapse taken is the cheapest of those legal when judged, as in
+// DecimaterT, but the expensive judgement runs for the few halfedges that
 // reach the top instead of every halfedge around every changed vertex; and
 // a verdict is never stale: a bound that also depends on the faces around a
 // vertex's ring (ModErrorBound's coverage and collision test) is judged
-// again unless nothing was collapsed since. Modules, legality checks and the
-// collapse itself are OpenMesh's (BaseDecimaterT).
+// again unless nothing was collapsed since. As in DecimaterT, a collapse
+// judged illegal is dropped until its vertex is queued again; as the moment
+// it surfaces depends on the lower bounds, so, slightly, does the order.
+// Modules, legality checks and the collapse itself are OpenMesh's
+// (BaseDecimaterT).
 #if defined(__GNUC__)
 #pragma GCC system_header  // OpenMesh's headers are not -Wshadow clean
 #endif
