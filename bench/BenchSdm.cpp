@@ -3,7 +3,10 @@
 // apart), 512×512 maps per object. One frame = the maps of every object
 // (texels and vertices) against all the others.
 // Systems:
-//   dfrecon             the OpenCL kernel (sdm/ClosestPrimitives)
+//   dfrecon             the OpenCL kernel (sdm/ClosestPrimitives); also its
+//                       culling: source_triangles (those holding samples),
+//                       overflowing_sources (lists too long: searched in
+//                       full), mean_candidates (per listed source)
 //   dfrecon-cpu         its C++ reference, one thread
 //   bruteforce          every triangle for every sample; timed on a subset
 //                       of the samples and scaled to the frame
@@ -228,14 +231,29 @@ int benchSdm(const std::string& device) {
             bestSeconds(3, [&] { frame = computeFrame(samples, onDevice, query); });
         const Error kernelError = errorAgainst(
             subset, brute, [&](std::size_t o, std::size_t k) { return frame[o][k].distanceMm; });
+        // The culling of one more frame, object by object: how many sampled
+        // triangles, how long their candidate lists, how many overflowed.
+        CullStats cull;
+        for (const ObjectSamples& s : samples) {
+            kernel.run(s.samples, query);
+            const CullStats object = kernel.lastCullStats();
+            cull.sources += object.sources;
+            cull.overflowing += object.overflowing;
+            cull.candidates += object.candidates;
+        }
+        const std::size_t listed = cull.sources - cull.overflowing;
         double volumeSeconds = 0;
         nlohmann::json out = line(caseName, "dfrecon");
-        out.update(nlohmann::json{{"seconds", seconds},
-                                  {"setup_seconds", setupSeconds},
-                                  {"max_err_mm", kernelError.maxMm},
-                                  {"missed_samples", kernelError.missed},
-                                  {"bound_mm", boundMm},
-                                  {"device", runtime.device().deviceName}});
+        out.update(nlohmann::json{
+            {"seconds", seconds},
+            {"setup_seconds", setupSeconds},
+            {"max_err_mm", kernelError.maxMm},
+            {"missed_samples", kernelError.missed},
+            {"bound_mm", boundMm},
+            {"source_triangles", cull.sources},
+            {"overflowing_sources", cull.overflowing},
+            {"mean_candidates", listed ? double(cull.candidates) / double(listed) : 0.0},
+            {"device", runtime.device().deviceName}});
         std::vector<nlohmann::json> lines{out};
 
         if (full) {

@@ -291,6 +291,7 @@ struct DeviceScene {
     virtual ~DeviceScene() = default;
     virtual std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                               const DistanceQuery& query) = 0;
+    CullStats stats;  // of the last run
 };
 
 template <class Real, class Real4>
@@ -325,6 +326,7 @@ class DeviceSceneT final : public DeviceScene {
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query) override {
         std::vector<ClosestPrimitive> answers(samples.size());
+        stats = {};
         if (samples.empty()) return answers;
         const SourcePlan plan = planSources(scene_, samples);
         std::vector<Real4> corners;  // three per source triangle
@@ -396,6 +398,7 @@ class DeviceSceneT final : public DeviceScene {
                 runtime_.queue().enqueueNDRangeKernel(
                     cull, cl::NullRange, cl::NDRange(ocl::roundUp(last - first, ocl::kGroupSize1D)),
                     cl::NDRange(ocl::kGroupSize1D));
+                countCandidates(dCandidateCount, last - first, capacity);
 
                 // Pass 2: per sample of these sources, their candidates (or
                 // the hierarchies).
@@ -454,6 +457,22 @@ class DeviceSceneT final : public DeviceScene {
     }
 
   private:
+    // Adds a chunk's list lengths to stats (a small read: one count per
+    // source triangle).
+    void countCandidates(const ocl::DeviceBuffer<cl_uint>& counts, std::size_t sources,
+                         cl_uint capacity) {
+        std::vector<cl_uint> count(sources);
+        runtime_.queue().enqueueReadBuffer(counts.get(), CL_TRUE, 0, sizeof(cl_uint) * sources,
+                                           count.data());
+        for (const cl_uint n : count) {
+            ++stats.sources;
+            if (n > capacity)
+                ++stats.overflowing;
+            else
+                stats.candidates += n;
+        }
+    }
+
     ocl::Runtime& runtime_;
     const SurfaceScene& scene_;
     const cl::Program* program_ = nullptr;
@@ -496,6 +515,10 @@ ClosestPrimitiveKernel::~ClosestPrimitiveKernel() = default;
 std::vector<ClosestPrimitive> ClosestPrimitiveKernel::run(const std::vector<SurfaceSample>& samples,
                                                           const DistanceQuery& query) {
     return impl_->device->run(samples, query);
+}
+
+CullStats ClosestPrimitiveKernel::lastCullStats() const {
+    return impl_->device->stats;
 }
 
 double ClosestPrimitiveKernel::toleranceMm() const {

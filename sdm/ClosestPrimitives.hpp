@@ -50,6 +50,13 @@ struct ClosestPrimitive {
     Vec3 point;  // the closest point
 };
 
+/// What the culling of a run() did: source triangles (those holding
+/// samples), how many of them overflowed their list (their samples searched
+/// the hierarchies), and the candidates the others listed in all.
+struct CullStats {
+    std::size_t sources = 0, overflowing = 0, candidates = 0;
+};
+
 /// C++ reference: the kernel's steps in C++ (candidates per source triangle,
 /// then per sample). O(F log T + S·c) typically, F source triangles, c
 /// candidates each (about 10).
@@ -82,6 +89,9 @@ class ClosestPrimitiveKernel {
     /// triangle (its candidates), one per sample.
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                       const DistanceQuery& query = {});
+
+    /// The culling of the last run() (benchmarks report it).
+    CullStats lastCullStats() const;
 
     /// Relative tolerance of run() against the reference, times the scene's
     /// extent: 0 in double precision up to rounding, 1e-6 in single.

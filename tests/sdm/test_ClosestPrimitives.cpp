@@ -206,4 +206,9 @@ TEST(ClosestPrimitives, TrianglesWithManyEquallyNearCandidatesSearchInFull) {
     ClosestPrimitiveKernel kernel(runtime(), scene);
     expectSameAnswers(scene, samples, kernel.run(samples), brute,
                       std::max(kernel.toleranceMm(), 1e-12));
+    // Both ways ran: every sampled triangle has a list or overflowed.
+    const CullStats cull = kernel.lastCullStats();
+    EXPECT_EQ(cull.sources, scene.object(0).triangles.size() + scene.object(1).triangles.size());
+    EXPECT_GT(cull.overflowing, 0u);
+    EXPECT_LT(cull.overflowing, cull.sources);
 }
