@@ -14,6 +14,9 @@
 // rule them out; a source with more than `capacity` candidates, or a sample
 // off its triangle, searches the hierarchies instead.
 //
+// Both kernels take the same leading arguments (the source triangles, the
+// scene, the query, the lists), then their own, then the chunk they run.
+//
 // The scene's objects share the Surface arrays; object o's hierarchy starts
 // at node object_root[o] (< 0: empty), and triangles[t].w is t's object.
 // pseudo_normals[7 t + f] is the outward pseudo-normal of feature f of
@@ -34,15 +37,15 @@ inline bool is_candidate(uint object, uint own, int target) {
 // w), k < candidate_count[i]; a count of capacity + 1 means more.
 // O(depth + visited nodes) per source.
 __kernel void source_candidates(__global const REAL4* source_corners,
-                                __global const uint* source_object, uint source_first,
-                                uint source_count, __global const REAL4* points,
+                                __global const uint* source_object, __global const REAL4* points,
                                 __global const int4* triangles, __global const REAL4* node_lo,
                                 __global const REAL4* node_hi, __global const int4* node_links,
                                 __global const uint* order, __global const REAL4* balls,
                                 __global const int* object_root, uint object_count, int target,
-                                REAL max_distance, REAL max_distance2, REAL slack, uint capacity,
+                                REAL max_distance2, REAL slack, uint capacity,
                                 __global uint* candidates, __global REAL4* bounds,
-                                __global uint* candidate_count, __global uint* centre_nearest) {
+                                __global uint* candidate_count, __global uint* centre_nearest,
+                                REAL max_distance, uint source_first, uint source_count) {
     const uint i = get_global_id(0);
     if (i >= source_count) return;
     const uint s = source_first + i;
@@ -108,16 +111,17 @@ __kernel void source_candidates(__global const REAL4* source_corners,
 // work-item i takes sample k = sample_first + i (k < sample_end), whose
 // source sample_source[k] is source_first + its index in the chunk's lists.
 __kernel void closest_primitive(
-    __global const REAL4* sample_points, __global const uint* sample_source, uint sample_first,
-    uint sample_end, uint source_first, __global const REAL4* source_corners,
-    __global const uint* source_object, __global const uint* candidates,
+    __global const REAL4* source_corners, __global const uint* source_object,
+    __global const REAL4* points, __global const int4* triangles, __global const REAL4* node_lo,
+    __global const REAL4* node_hi, __global const int4* node_links, __global const uint* order,
+    __global const REAL4* balls, __global const int* object_root, uint object_count, int target,
+    REAL max_distance2, REAL slack, uint capacity, __global const uint* candidates,
     __global const REAL4* bounds, __global const uint* candidate_count,
-    __global const uint* centre_nearest, uint capacity, REAL slack, __global const REAL4* points,
-    __global const int4* triangles, __global const REAL4* node_lo, __global const REAL4* node_hi,
-    __global const int4* node_links, __global const uint* order, __global const REAL4* balls,
-    __global const int* object_root, uint object_count, __global const REAL4* pseudo_normals,
-    __global const uchar* object_closed, int target, REAL max_distance2, __global REAL* distance,
-    __global uint* nearest, __global uchar* feature, __global REAL4* closest) {
+    __global const uint* centre_nearest, __global const REAL4* pseudo_normals,
+    __global const uchar* object_closed, __global const REAL4* sample_points,
+    __global const uint* sample_source, __global REAL* distance, __global uint* nearest,
+    __global uchar* feature, __global REAL4* closest, uint source_first, uint sample_first,
+    uint sample_end) {
     const uint k = sample_first + get_global_id(0);
     if (k >= sample_end) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};

@@ -297,8 +297,12 @@ struct DeviceScene {
 template <class Real, class Real4>
 class DeviceSceneT final : public DeviceScene {
   public:
-    DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene, std::size_t sourcesPerLaunch)
-        : runtime_(runtime), scene_(scene), sourcesPerLaunch_(sourcesPerLaunch) {
+    DeviceSceneT(ocl::Runtime& runtime, const SurfaceScene& scene, double extentMm,
+                 std::size_t sourcesPerLaunch)
+        : runtime_(runtime),
+          scene_(scene),
+          slackMm_(cullSlackMm<Real>(extentMm)),
+          sourcesPerLaunch_(sourcesPerLaunch) {
         SurfaceArrays<Real4> arrays;
         std::vector<Real4> normals;
         std::vector<cl_uchar> closed;
@@ -320,7 +324,6 @@ class DeviceSceneT final : public DeviceScene {
         std::vector<std::string> sources = surfaceProgramSources("surface_distance.cl");
         sources.insert(sources.end() - 1, "tangent_bound.cl");
         program_ = &runtime.program(sources, ocl::realOptions<Real>());
-        slackMm_ = cullSlackMm<Real>(extentOf(scene));
     }
 
     std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
@@ -371,68 +374,55 @@ class DeviceSceneT final : public DeviceScene {
         ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
         ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
-        const Real band = Real(query.maxDistanceMm), band2 = Real(bandSquared(query));
         try {
             cl::Kernel cull(*program_, "source_candidates");
             cl::Kernel kernel(*program_, "closest_primitive");
+            // The leading arguments both kernels share, then each one's own;
+            // the chunk's arguments follow, set per chunk.
+            const auto setShared = [&](cl::Kernel& k) {
+                cl_uint a = 0;
+                k.setArg(a++, dCorners.get());
+                k.setArg(a++, dSourceObject.get());
+                a = surface_.setArgs(k, a);
+                k.setArg(a++, objectRoot_.get());
+                k.setArg(a++, cl_uint(roots_.size()));
+                k.setArg(a++, cl_int(query.target));
+                k.setArg(a++, Real(bandSquared(query)));
+                k.setArg(a++, Real(slackMm_));
+                k.setArg(a++, capacity);
+                k.setArg(a++, dCandidates.get());
+                k.setArg(a++, dBounds.get());
+                k.setArg(a++, dCandidateCount.get());
+                k.setArg(a++, dCentreNearest.get());
+                return a;
+            };
+            cl_uint cullChunk = setShared(cull);
+            cull.setArg(cullChunk++, Real(query.maxDistanceMm));
+            cl_uint sampleChunk = setShared(kernel);
+            for (const cl::Buffer* buffer :
+                 {&normals_.get(), &closed_.get(), &dPoints.get(), &dSampleSource.get(),
+                  &dDistance.get(), &dNearest.get(), &dFeature.get(), &dClosest.get()})
+                kernel.setArg(sampleChunk++, *buffer);
             for (std::size_t first = 0; first < sources; first += chunk) {
                 const std::size_t last = std::min(sources, first + chunk);
                 // Pass 1: per source triangle, the candidates of all its samples.
-                cl_uint a = 0;
-                cull.setArg(a++, dCorners.get());
-                cull.setArg(a++, dSourceObject.get());
-                cull.setArg(a++, cl_uint(first));
-                cull.setArg(a++, cl_uint(last - first));
-                a = surface_.setArgs(cull, a);
-                cull.setArg(a++, objectRoot_.get());
-                cull.setArg(a++, cl_uint(roots_.size()));
-                cull.setArg(a++, cl_int(query.target));
-                cull.setArg(a++, band);
-                cull.setArg(a++, band2);
-                cull.setArg(a++, Real(slackMm_));
-                cull.setArg(a++, capacity);
-                cull.setArg(a++, dCandidates.get());
-                cull.setArg(a++, dBounds.get());
-                cull.setArg(a++, dCandidateCount.get());
-                cull.setArg(a++, dCentreNearest.get());
+                cull.setArg(cullChunk, cl_uint(first));
+                cull.setArg(cullChunk + 1, cl_uint(last - first));
                 runtime_.queue().enqueueNDRangeKernel(
                     cull, cl::NullRange, cl::NDRange(ocl::roundUp(last - first, ocl::kGroupSize1D)),
                     cl::NDRange(ocl::kGroupSize1D));
-                countCandidates(dCandidateCount, last - first, capacity);
-
-                // Pass 2: per sample of these sources, their candidates (or
-                // the hierarchies).
-                const std::size_t samplesHere = sampleFirst[last] - sampleFirst[first];
-                if (samplesHere == 0) continue;
-                a = 0;
-                kernel.setArg(a++, dPoints.get());
-                kernel.setArg(a++, dSampleSource.get());
-                kernel.setArg(a++, cl_uint(sampleFirst[first]));
-                kernel.setArg(a++, cl_uint(sampleFirst[last]));
-                kernel.setArg(a++, cl_uint(first));
-                kernel.setArg(a++, dCorners.get());
-                kernel.setArg(a++, dSourceObject.get());
-                kernel.setArg(a++, dCandidates.get());
-                kernel.setArg(a++, dBounds.get());
-                kernel.setArg(a++, dCandidateCount.get());
-                kernel.setArg(a++, dCentreNearest.get());
-                kernel.setArg(a++, capacity);
-                kernel.setArg(a++, Real(slackMm_));
-                a = surface_.setArgs(kernel, a);
-                kernel.setArg(a++, objectRoot_.get());
-                kernel.setArg(a++, cl_uint(roots_.size()));
-                kernel.setArg(a++, normals_.get());
-                kernel.setArg(a++, closed_.get());
-                kernel.setArg(a++, cl_int(query.target));
-                kernel.setArg(a++, band2);
-                kernel.setArg(a++, dDistance.get());
-                kernel.setArg(a++, dNearest.get());
-                kernel.setArg(a++, dFeature.get());
-                kernel.setArg(a++, dClosest.get());
+                // Pass 2: per sample of these sources (every source holds
+                // one), their candidates or the hierarchies.
+                kernel.setArg(sampleChunk, cl_uint(first));
+                kernel.setArg(sampleChunk + 1, cl_uint(sampleFirst[first]));
+                kernel.setArg(sampleChunk + 2, cl_uint(sampleFirst[last]));
                 runtime_.queue().enqueueNDRangeKernel(
                     kernel, cl::NullRange,
-                    cl::NDRange(ocl::roundUp(samplesHere, ocl::kGroupSize1D)),
+                    cl::NDRange(
+                        ocl::roundUp(sampleFirst[last] - sampleFirst[first], ocl::kGroupSize1D)),
                     cl::NDRange(ocl::kGroupSize1D));
+                // Before the next chunk overwrites the lists.
+                countCandidates(dCandidateCount, last - first, capacity);
             }
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
@@ -476,7 +466,7 @@ class DeviceSceneT final : public DeviceScene {
     ocl::Runtime& runtime_;
     const SurfaceScene& scene_;
     const cl::Program* program_ = nullptr;
-    double slackMm_ = 0;  // the culling's rounding allowance (cullSlackMm)
+    double slackMm_;  // the culling's rounding allowance (cullSlackMm)
     std::size_t sourcesPerLaunch_;
     std::vector<std::size_t> firstTriangle_, objectOfTriangle_;
     std::vector<cl_int> roots_;
@@ -499,15 +489,12 @@ ClosestPrimitiveKernel::ClosestPrimitiveKernel(ocl::Runtime& runtime, const Surf
     : impl_(std::make_unique<Impl>()) {
     if (sourcesPerLaunch == 0) sourcesPerLaunch = kSourcesPerLaunch;
     impl_->doublePrecision = runtime.device().doublePrecision;
+    impl_->extentMm = extentOf(scene);
     impl_->device = ocl::withRealTypes(
         impl_->doublePrecision, [&](auto real, auto real4) -> std::unique_ptr<DeviceScene> {
             return std::make_unique<DeviceSceneT<decltype(real), decltype(real4)>>(
-                runtime, scene, sourcesPerLaunch);
+                runtime, scene, impl_->extentMm, sourcesPerLaunch);
         });
-    Box3 box;
-    for (std::size_t o = 0; o < scene.objectCount(); ++o)
-        for (const Vec3& p : scene.object(o).points) box.add(p);
-    impl_->extentMm = length(box.hi - box.lo);
 }
 
 ClosestPrimitiveKernel::~ClosestPrimitiveKernel() = default;
