@@ -21,8 +21,8 @@
 // Written once as plain C: kernels/surface_distance.cl includes it as OpenCL
 // C after closest_point.cl, sdm/ClosestPrimitives.cpp as C++ with REAL =
 // double and REAL4 = Vec3, so the kernels and their reference take the same
-// steps with the same roundings. Needs dot3 and sqrt; TANGENT_FN is the
-// function specifier. O(1) each.
+// steps with the same roundings. Needs dot3, sqrt and clamp (as
+// closest_point.cl does); TANGENT_FN is the function specifier. O(1) each.
 
 #ifndef TANGENT_FN
 #define TANGENT_FN inline
@@ -52,16 +52,12 @@ TANGENT_FN REAL tangent_lower(TangentBound bound, REAL4 p) {
     return dot3(bound.normal, p) + bound.offset;
 }
 
-TANGENT_FN REAL tangent_clamp(REAL x, REAL lo, REAL hi) {
-    return x < lo ? lo : (x > hi ? hi : x);
-}
-
 // The tangent bound at c of the distance to the box [lo, hi].
 TANGENT_FN TangentBound tangent_bound_of_box(REAL4 c, REAL4 lo, REAL4 hi) {
     REAL4 q = c;
-    q.x = tangent_clamp(c.x, lo.x, hi.x);
-    q.y = tangent_clamp(c.y, lo.y, hi.y);
-    q.z = tangent_clamp(c.z, lo.z, hi.z);
+    q.x = clamp(c.x, lo.x, hi.x);
+    q.y = clamp(c.y, lo.y, hi.y);
+    q.z = clamp(c.z, lo.z, hi.z);
     return tangent_bound(c, q);
 }
 

@@ -15,6 +15,7 @@ namespace dfrecon {
 
 namespace tangent {
 using closest::dot3;
+using std::clamp;
 using std::sqrt;
 #define REAL double
 #define REAL4 Vec3
