@@ -58,7 +58,6 @@ std::size_t CheckedDecimater::decimate() {
                 const float bound = lowerBounds_[++entry.stage](ci);
                 entry.priority = bound < 0 ? bound : std::max(entry.priority, bound);
             } else {
-                ++judged;
                 if (entry.judgedAt != kNotJudged) ++staleCollapses;
                 entry.stage = lowerBounds_.size();
                 entry.judgedAt = collapses;

@@ -48,9 +48,9 @@ class CheckedDecimater : public OpenMesh::Decimater::BaseDecimaterT<TriMesh> {
     /// lower bounds + judged · judgement + pushes · log pushes).
     std::size_t decimate();
 
-    /// Collapses judged in full twice with other collapses between, found
-    /// dearer the second time (sent back); halfedges judged in full.
-    std::size_t staleCollapses = 0, judged = 0;
+    /// Judgements in full repeated because other collapses came between
+    /// (the first verdict might no longer hold).
+    std::size_t staleCollapses = 0;
 
   private:
     TriMesh& mesh_;
