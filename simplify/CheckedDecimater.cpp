@@ -10,11 +10,12 @@ namespace dfrecon {
 std::size_t CheckedDecimater::decimate() {
     if (!is_initialized()) return 0;
     constexpr std::size_t kNotJudged = std::numeric_limits<std::size_t>::max();
+    constexpr float kNothingQueued = std::numeric_limits<float>::infinity();
     struct Entry {
-        float priority;  // lowerBounds_[stage], or the priority when judged
+        float priority;  // the largest lower bound applied, or the priority when judged
         int halfedge;
         std::uint32_t version;  // of the from-vertex when queued
-        std::size_t stage;      // lowerBounds_.size() once judged
+        std::size_t stage;      // lower bounds applied; lowerBounds_.size() once judged
         std::size_t judgedAt;   // collapses done when judged, or kNotJudged
         bool operator<(const Entry& other) const {
             // Cheapest on top; among equals the lower halfedge index, so runs
@@ -26,16 +27,17 @@ std::size_t CheckedDecimater::decimate() {
     std::priority_queue<Entry> queue;
     std::vector<std::uint32_t> version(mesh_.n_vertices(), 0);
 
-    // A vertex's collapses enter the queue with their lower bounds; older
-    // entries of the vertex are dropped when they surface (version behind).
+    // A vertex's collapses enter the queue with nothing known (priority 0):
+    // a vertex is often re-queued several times before its entries surface,
+    // and each stage is evaluated only when an entry is at the top, where it
+    // can stop as soon as it is above the next one. The topology test
+    // (is_collapse_legal) waits for the judgement too; it fails rarely.
+    // Older entries of the vertex are dropped when they surface (version
+    // behind).
     auto enqueue = [&](TriMesh::VertexHandle v) {
         const std::uint32_t now = ++version[std::size_t(v.idx())];
-        for (auto h : mesh_.voh_range(v)) {
-            const CollapseInfo ci(mesh_, h);
-            if (!is_collapse_legal(ci)) continue;
-            const float bound = lowerBounds_.empty() ? 0.0f : lowerBounds_[0](ci);
-            if (bound >= 0) queue.push({bound, h.idx(), now, 0, kNotJudged});
-        }
+        if (mesh_.status(v).locked()) return;
+        for (auto h : mesh_.voh_range(v)) queue.push({0.0f, h.idx(), now, 0, kNotJudged});
     };
     for (auto v : mesh_.vertices())
         if (!mesh_.status(v).deleted()) enqueue(v);
@@ -54,8 +56,9 @@ std::size_t CheckedDecimater::decimate() {
         // holds while nothing else is collapsed.
         Entry entry = top;
         while (entry.judgedAt != collapses) {
-            if (entry.stage + 1 < lowerBounds_.size()) {
-                const float bound = lowerBounds_[++entry.stage](ci);
+            if (entry.stage < lowerBounds_.size()) {
+                const float next = queue.empty() ? kNothingQueued : queue.top().priority;
+                const float bound = lowerBounds_[entry.stage++](ci, next);
                 entry.priority = bound < 0 ? bound : std::max(entry.priority, bound);
             } else {
                 if (entry.judgedAt != kNotJudged) ++staleCollapses;

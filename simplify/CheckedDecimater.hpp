@@ -1,7 +1,7 @@
 #pragma once
 // OpenMesh's greedy decimation loop (DecimaterT::decimate), lazily
-// evaluated and checked when taken. Every halfedge enters the queue with a
-// cheap lower bound of its priority; each time an entry reaches the top its
+// evaluated and checked when taken. Every halfedge enters the queue with
+// nothing known of its priority (0); each time an entry reaches the top its
 // bound is tightened (the next, dearer lower bound, at last the judgement of
 // every module), and it goes back unless the new value is still the
 // smallest in the queue; a judged entry at the top is taken. So the
@@ -33,12 +33,16 @@ class CheckedDecimater : public OpenMesh::Decimater::BaseDecimaterT<TriMesh> {
 
     /// Lower bounds of the modules' priority of a collapse (what
     /// collapse_priority would return, if legal), cheapest and loosest
-    /// first, each < 0 when the collapse is surely illegal. A halfedge
-    /// enters the queue with the first; each time it reaches the top it is
-    /// judged by the next, and by collapse_priority after the last. They
+    /// first, each < 0 when the collapse is surely illegal. Each time a
+    /// halfedge reaches the top it is judged by the next, and by
+    /// collapse_priority (after is_collapse_legal) after the last. They
     /// may depend only on the from-vertex's faces (a changed ring re-queues
     /// the vertex). With none, every queued halfedge is judged in full.
-    using LowerBound = std::function<float(const CollapseInfo&)>;
+    /// The second argument is the priority of the queue's next entry (∞
+    /// when there is none): a lower bound may stop early at any value above
+    /// it, since the halfedge is then surely not the cheapest and goes back
+    /// into the queue.
+    using LowerBound = std::function<float(const CollapseInfo&, float enough)>;
     void setLowerBounds(std::vector<LowerBound> lowerBounds) {
         lowerBounds_ = std::move(lowerBounds);
     }

@@ -65,20 +65,30 @@ double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
 }
 
 double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& original,
-                                const DeviationLimits& limits, std::size_t maxPieces) {
+                                const DeviationLimits& limits, std::size_t maxPieces,
+                                double enough) {
     const auto compute = [&] {
-        return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces);
+        return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces, enough);
     };
     if (!cacheable(t)) return compute().value;
     Known& known = bounds_[keyOf(t)];
-    if (known.pieces >= maxPieces) return known.value;
+    if (known.pieces >= maxPieces || (known.pieces > 0 && known.value > enough)) return known.value;
     const DeviationEstimate e = compute();
     // Bounds rounded up, so the cached value is still an upper bound, lower
     // bounds down; returned as stored, so every evaluation of a collapse
-    // sees the same priority.
-    known = e.complete ? Known{std::nextafter(float(e.value), INFINITY), SIZE_MAX}
-                       : Known{std::nextafter(float(e.value), 0.0f), maxPieces};
+    // sees the same priority. Pieces come in the same order in every run,
+    // so the run that took more pieces has the larger lower bound.
+    if (e.complete)
+        known = {std::nextafter(float(e.value), INFINITY), SIZE_MAX};
+    else if (e.piecesTaken >= known.pieces)
+        known = {std::nextafter(float(e.value), 0.0f), e.piecesTaken};
     return known.value;
+}
+
+double DeviationCache::known(const NewTriangle& t) const {
+    if (!cacheable(t)) return 0;
+    const auto found = bounds_.find(keyOf(t));
+    return found == bounds_.end() ? 0 : found->second.value;
 }
 
 float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
@@ -91,10 +101,24 @@ float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBv
 
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
                                  const TriangleBvh& original, const DeviationLimits& limits,
-                                 DeviationCache& cache, std::size_t maxPieces) {
-    return largestWithin(created, limits.limitMm, [&](const NewTriangle& t) {
-        return cache.estimate(t, original, limits, maxPieces);
+                                 DeviationCache& cache, std::size_t maxPieces, double enough) {
+    // Worst known first: the first estimate is then the likeliest to pass
+    // `enough`, and what is known may pass it already.
+    std::array<std::pair<double, std::size_t>, 32> order;
+    const std::size_t n = std::min(created.size(), order.size());
+    for (std::size_t i = 0; i < n; ++i) order[i] = {cache.known(created[i]), i};
+    std::sort(order.begin(), order.begin() + std::ptrdiff_t(n), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first > y.first : x.second < y.second;
     });
+    double largest = 0;
+    for (std::size_t k = 0; k < created.size(); ++k) {
+        const std::size_t i = k < n ? order[k].second : k;
+        const double d = cache.estimate(created[i], original, limits, maxPieces, enough);
+        if (d > limits.limitMm) return -1;
+        largest = std::max(largest, d);
+        if (largest > enough) break;
+    }
+    return float(largest);
 }
 
 }  // namespace dfrecon

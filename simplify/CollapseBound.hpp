@@ -3,6 +3,7 @@
 // from the original surface — shared by the Decimater module (any time)
 // and the initial batch (unchanged mesh), so both compute the same bound.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -39,19 +40,23 @@ class DeviationCache {
     /// The cached bound of the triangle with these vertex ids, or computes it.
     double bound(const NewTriangle& t, const TriangleBvh& original, const DeviationLimits& limits);
 
-    /// deviationBoundWithin(t, maxPieces), remembered: the bound when
-    /// known or found within maxPieces pieces, else a lower bound of it (the
-    /// stored one when it came from as many pieces or more). Above
-    /// limits.limitMm only when the bound is. A look-up or
+    /// deviationBoundWithin(t, maxPieces, enough), remembered: the bound
+    /// when known or found within maxPieces pieces, else a lower bound of it
+    /// (the stored one when it came from as many pieces or more, or is above
+    /// `enough`). Above limits.limitMm only when the bound is. A look-up or
     /// O(maxPieces · log T).
     double estimate(const NewTriangle& t, const TriangleBvh& original,
-                    const DeviationLimits& limits, std::size_t maxPieces);
+                    const DeviationLimits& limits, std::size_t maxPieces, double enough = INFINITY);
+
+    /// The best lower bound of t's bound known so far (the bound itself
+    /// when known, 0 when nothing is); computes nothing. O(1).
+    double known(const NewTriangle& t) const;
 
   private:
     struct Known {
         float value;
-        /// The budget a lower bound came from; SIZE_MAX for the bound
-        /// itself, 0 for nothing known yet.
+        /// The pieces a lower bound came from (it grows with them); SIZE_MAX
+        /// for the bound itself, 0 for nothing known yet.
         std::size_t pieces;
     };
     std::unordered_map<std::uint64_t, Known> bounds_;
@@ -66,11 +71,15 @@ float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBv
 
 /// A lower bound of surfaceDeviation(created, ..., cache): the largest
 /// DeviationCache::estimate of the created triangles, or -1 when one shows
-/// the deviation over limits.limitMm. O(created) look-ups or
-/// O(created · maxPieces · log T).
+/// the deviation over limits.limitMm. Stops at the first value above
+/// `enough`, the triangles known to be worst first: a caller that only asks
+/// whether the deviation is at most `enough` needs no more. Equal to
+/// surfaceDeviation when maxPieces is SIZE_MAX and nothing exceeds
+/// `enough`. O(created) look-ups or O(created · maxPieces · log T).
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
                                  const TriangleBvh& original, const DeviationLimits& limits,
-                                 DeviationCache& cache, std::size_t maxPieces);
+                                 DeviationCache& cache, std::size_t maxPieces,
+                                 double enough = INFINITY);
 
 inline Vec3 toVec3(const TriMesh::Point& p) {
     return {p[0], p[1], p[2]};

@@ -31,7 +31,8 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
 }
 
 DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
-                                       const DeviationLimits& limits, std::size_t maxPieces) {
+                                       const DeviationLimits& limits, std::size_t maxPieces,
+                                       double enough) {
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
     const TriangleSoup& surface = bvh.soup();
@@ -57,7 +58,8 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
     double bound = 0;
     double lower = 0;  // the largest centre distance met: the bound is at least that
     for (std::size_t pieces = 0; size > 0; ++pieces) {
-        if (pieces == maxPieces) return {std::max(bound, lower), false};
+        const double known = std::max(bound, lower);
+        if (pieces == maxPieces || known > enough) return {known, false, pieces};
         const Piece piece = stack[--size];
         // Most pieces of a split lie over the same original triangle as their
         // parent: try it before searching.
@@ -72,7 +74,7 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
         double radius = 0;
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
         const TriangleBvh::Nearest nearest = bvh.nearest(centre, piece.near);
-        if (nearest.distance > limit) return {nearest.distance, true};
+        if (nearest.distance > limit) return {nearest.distance, true, pieces};
         lower = std::max(lower, nearest.distance);
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)
@@ -91,7 +93,7 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
             bound = std::max(bound, settled);
             continue;
         }
-        if (radius < finest || size + 2 > stack.size()) return {settled, true};
+        if (radius < finest || size + 2 > stack.size()) return {settled, true, pieces};
         // Halve the longest edge: pieces get rounder, so their number grows
         // with area / size², where splitting in four similar triangles keeps
         // a long sliver's shape and grows with length².
@@ -102,7 +104,7 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
         stack[size++] = {{piece.p[k], mid, apex}, near};
         stack[size++] = {{mid, piece.p[(k + 1) % 3], apex}, near};
     }
-    return {bound, true};
+    return {bound, true, 0};
 }
 
 }  // namespace dfrecon

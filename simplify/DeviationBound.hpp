@@ -1,6 +1,7 @@
 #pragma once
 // How far a triangle strays from a surface, as a certified upper bound: the
 // direction "simplified → original" of the simplifier's two-sided error.
+#include <cmath>
 #include <cstddef>
 
 #include "geometry/TriangleBvh.hpp"
@@ -31,15 +32,20 @@ double deviationBound(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits);
 
 /// deviationBound, or only a lower bound of it when more than `maxPieces`
-/// pieces would be needed: the largest settling bound and centroid distance
-/// met by then (the bound is at least each). O(min(maxPieces, pieces) ·
+/// pieces would be needed or once that lower bound exceeds `enough` (the
+/// caller only asks whether the bound is at most `enough`): the largest
+/// settling bound and centroid distance met by then (the bound is at least
+/// each). Pieces are taken in the same order whatever the budget, so the
+/// lower bound only grows with `piecesTaken`. O(min(maxPieces, pieces) ·
 /// log |S|).
 struct DeviationEstimate {
     double value;
-    bool complete;  ///< value is deviationBound's, not just a lower bound of it
+    bool complete;            ///< value is deviationBound's, not just a lower bound of it
+    std::size_t piecesTaken;  ///< pieces looked at when incomplete
 };
 DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, Vec3 c,
-                                       const DeviationLimits& limits, std::size_t maxPieces);
+                                       const DeviationLimits& limits, std::size_t maxPieces,
+                                       double enough = INFINITY);
 
 /// Which edge of p is longest: k for the edge p[k] → p[(k+1) % 3] (the
 /// first of equal ones).

@@ -133,10 +133,11 @@ bool ModErrorBound::collides(const CollapseInfo& ci, const std::vector<NewTriang
     return false;
 }
 
-float ModErrorBound::deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces) {
+float ModErrorBound::deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces,
+                                         double enough) {
     if (!trianglesAfterCollapse(mesh(), ci.v0v1, created_)) return ILLEGAL_COLLAPSE;
     if (batchValueHolds(ci)) return initial_[std::size_t(ci.v0v1.idx())];
-    return surfaceDeviationLowerBound(created_, *original_, limits_, cache_, maxPieces);
+    return surfaceDeviationLowerBound(created_, *original_, limits_, cache_, maxPieces, enough);
 }
 
 bool ModErrorBound::batchValueHolds(const CollapseInfo& ci) const {

@@ -52,10 +52,12 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// Lower bounds of collapse_priority (or < 0 when it is surely
     /// illegal) for CheckedDecimater's lazy queue, direction (a) only:
     /// the batch's value, or surfaceDeviationLowerBound from the first
-    /// maxPieces pieces of each created triangle (cached); and the deviation
-    /// itself (surfaceDeviation, cached), which collapse_priority then
-    /// looks up.
-    float deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces);
+    /// maxPieces pieces of each created triangle (cached; SIZE_MAX for the
+    /// deviation itself, which collapse_priority then looks up), stopping
+    /// once above `enough`; and the deviation itself (surfaceDeviation,
+    /// cached).
+    float deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces,
+                              double enough = INFINITY);
     float deviation(const CollapseInfo& ci);
     void preprocess_collapse(const CollapseInfo& ci) override;
     void postprocess_collapse(const CollapseInfo& ci) override;

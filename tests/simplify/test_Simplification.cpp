@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
 #include <random>
 
 #include "geometry/MeshCheck.hpp"
 #include "io/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "simplify/CollapseBound.hpp"
 #include "simplify/DeviationBound.hpp"
 #include "simplify/InitialPriorities.hpp"
 #include "simplify/Simplification.hpp"
@@ -178,6 +180,81 @@ TEST(DeviationBound, EstimatesFromFewPiecesAreLowerBounds) {
     }
     EXPECT_GT(complete, 20);  // both outcomes exercised
     EXPECT_GT(incomplete, 20);
+}
+
+// Asked only whether the bound is at most `enough`, an estimate stops at the
+// first piece that shows more: still a lower bound, above `enough` unless
+// complete, and never weaker than the same budget's estimate up to that
+// piece. Through the cache (any order of questions) and over a collapse's
+// triangles, the same holds, and with nothing above `enough` the answer is
+// surfaceDeviation's.
+TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
+    NearSurface torus("torus", 11);
+    const DeviationLimits limits{0.25};
+    const TriangleBvh& bvh = torus.bvh;
+    const auto& points = torus.c.surface.points;
+    int stoppedEarly = 0, answeredInFull = 0;
+    DeviationCache cache;
+    for (int trial = 0; trial < 150; ++trial) {
+        // A fan of triangles between vertices of the surface up to 4 mm
+        // apart: chords of the torus, some within the limit, some not.
+        const Vec3 a = points[std::size_t(torus.rng() % points.size())];
+        std::vector<Vec3> near;
+        for (const Vec3& q : points)
+            if (length(q - a) > 0.5 && length(q - a) < 4) near.push_back(q);
+        ASSERT_GE(near.size(), 2u);
+        std::vector<NewTriangle> created(3);
+        for (NewTriangle& t : created) {
+            t.p[0] = a;
+            t.p[1] = near[std::size_t(torus.rng() % near.size())];
+            t.p[2] = near[std::size_t(torus.rng() % near.size())];
+            t.ids = {std::uint32_t(3 * trial), std::uint32_t(3 * trial + 1 + (&t - &created[0])),
+                     std::uint32_t(3 * trial + 9000)};
+        }
+        const NewTriangle& t = created[0];
+        const double bound = deviationBound(bvh, t.p[0], t.p[1], t.p[2], limits);
+        const double enough = 0.125 * (torus.unit() + 1) + 0.02;  // over [0.02, 0.27)
+        for (std::size_t pieces : {std::size_t(8), std::size_t(64), SIZE_MAX}) {
+            const DeviationEstimate e =
+                deviationBoundWithin(bvh, t.p[0], t.p[1], t.p[2], limits, pieces, enough);
+            if (e.complete) {
+                EXPECT_EQ(e.value, bound);
+                continue;
+            }
+            EXPECT_LE(e.value, bound);
+            if (e.piecesTaken < pieces) {
+                EXPECT_GT(e.value, enough);
+                ++stoppedEarly;
+                // As strong as the same pieces without the question.
+                const DeviationEstimate same =
+                    deviationBoundWithin(bvh, t.p[0], t.p[1], t.p[2], limits, e.piecesTaken);
+                EXPECT_EQ(same.value, e.value);
+            }
+        }
+        // The cache and the collapse-level lower bound: questions in a random
+        // order, each answer a lower bound, above `enough` or exact.
+        const float full = surfaceDeviation(created, bvh, limits);
+        for (int ask = 0; ask < 3; ++ask) {
+            const double asked = 0.15 * (torus.unit() + 1);
+            const std::size_t budgets[] = {1, 8, 64, SIZE_MAX};
+            const std::size_t pieces = budgets[torus.rng() % 4];
+            const float lower =
+                surfaceDeviationLowerBound(created, bvh, limits, cache, pieces, asked);
+            if (full < 0) {
+                EXPECT_TRUE(lower < 0 || lower <= limits.limitMm);
+                continue;
+            }
+            EXPECT_GE(lower, 0.0f);
+            EXPECT_LE(lower, std::nextafter(full, INFINITY));
+            if (pieces == SIZE_MAX && lower <= asked) {
+                EXPECT_NEAR(lower, full, 1e-6 * (1 + full));
+                ++answeredInFull;
+            }
+        }
+        EXPECT_EQ(surfaceDeviationLowerBound(created, bvh, limits, cache, SIZE_MAX) < 0, full < 0);
+    }
+    EXPECT_GT(stoppedEarly, 20);  // both outcomes exercised
+    EXPECT_GT(answeredInFull, 5);
 }
 
 TEST(DeviationBound, FlatTriangleAboveAPlaneIsBoundedByItsHeight) {
