@@ -67,11 +67,21 @@ double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
 double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& original,
                                 const DeviationLimits& limits, std::size_t maxPieces,
                                 double enough) {
+    return estimate(entryOf(t), t, original, limits, maxPieces, enough);
+}
+
+DeviationCache::Known* DeviationCache::entryOf(const NewTriangle& t) {
+    return cacheable(t) ? &bounds_[keyOf(t)] : nullptr;
+}
+
+double DeviationCache::estimate(Known* entry, const NewTriangle& t, const TriangleBvh& original,
+                                const DeviationLimits& limits, std::size_t maxPieces,
+                                double enough) {
     const auto compute = [&] {
         return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces, enough);
     };
-    if (!cacheable(t)) return compute().value;
-    Known& known = bounds_[keyOf(t)];
+    if (!entry) return compute().value;
+    Known& known = *entry;
     if (known.pieces >= maxPieces || (known.pieces > 0 && known.value > enough)) return known.value;
     const DeviationEstimate e = compute();
     // Bounds rounded up, so the cached value is still an upper bound, lower
@@ -85,10 +95,35 @@ double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& origina
     return known.value;
 }
 
-double DeviationCache::known(const NewTriangle& t) const {
-    if (!cacheable(t)) return 0;
-    const auto found = bounds_.find(keyOf(t));
-    return found == bounds_.end() ? 0 : found->second.value;
+float DeviationCache::largestEstimate(const std::vector<NewTriangle>& created,
+                                      const TriangleBvh& original, const DeviationLimits& limits,
+                                      std::size_t maxPieces, double enough) {
+    // Worst known first: the first estimate is then the likeliest to pass
+    // `enough`, and what is known may pass it already.
+    struct Triangle {
+        Known* entry;
+        double known;
+        std::size_t index;
+    };
+    std::array<Triangle, 32> order;
+    const std::size_t n = std::min(created.size(), order.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        Known* entry = entryOf(created[i]);
+        order[i] = {entry, entry ? entry->value : 0.0, i};
+    }
+    std::sort(order.begin(), order.begin() + std::ptrdiff_t(n), [](const auto& x, const auto& y) {
+        return x.known != y.known ? x.known > y.known : x.index < y.index;
+    });
+    double largest = 0;
+    for (std::size_t k = 0; k < created.size(); ++k) {
+        const NewTriangle& t = created[k < n ? order[k].index : k];
+        Known* entry = k < n ? order[k].entry : entryOf(t);
+        const double d = estimate(entry, t, original, limits, maxPieces, enough);
+        if (d > limits.limitMm) return -1;
+        largest = std::max(largest, d);
+        if (largest > enough) break;
+    }
+    return float(largest);
 }
 
 float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
@@ -102,23 +137,7 @@ float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBv
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
                                  const TriangleBvh& original, const DeviationLimits& limits,
                                  DeviationCache& cache, std::size_t maxPieces, double enough) {
-    // Worst known first: the first estimate is then the likeliest to pass
-    // `enough`, and what is known may pass it already.
-    std::array<std::pair<double, std::size_t>, 32> order;
-    const std::size_t n = std::min(created.size(), order.size());
-    for (std::size_t i = 0; i < n; ++i) order[i] = {cache.known(created[i]), i};
-    std::sort(order.begin(), order.begin() + std::ptrdiff_t(n), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
-    double largest = 0;
-    for (std::size_t k = 0; k < created.size(); ++k) {
-        const std::size_t i = k < n ? order[k].second : k;
-        const double d = cache.estimate(created[i], original, limits, maxPieces, enough);
-        if (d > limits.limitMm) return -1;
-        largest = std::max(largest, d);
-        if (largest > enough) break;
-    }
-    return float(largest);
+    return cache.largestEstimate(created, original, limits, maxPieces, enough);
 }
 
 }  // namespace dfrecon

@@ -48,9 +48,9 @@ class DeviationCache {
     double estimate(const NewTriangle& t, const TriangleBvh& original,
                     const DeviationLimits& limits, std::size_t maxPieces, double enough = INFINITY);
 
-    /// The best lower bound of t's bound known so far (the bound itself
-    /// when known, 0 when nothing is); computes nothing. O(1).
-    double known(const NewTriangle& t) const;
+    /// surfaceDeviationLowerBound (below) with this cache.
+    float largestEstimate(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+                          const DeviationLimits& limits, std::size_t maxPieces, double enough);
 
   private:
     struct Known {
@@ -59,6 +59,11 @@ class DeviationCache {
         /// for the bound itself, 0 for nothing known yet.
         std::size_t pieces;
     };
+    /// t's entry (created empty), or null when t's ids are too large to
+    /// key; entries stay where they are as others are added.
+    Known* entryOf(const NewTriangle& t);
+    double estimate(Known* known, const NewTriangle& t, const TriangleBvh& original,
+                    const DeviationLimits& limits, std::size_t maxPieces, double enough);
     std::unordered_map<std::uint64_t, Known> bounds_;
 };
 

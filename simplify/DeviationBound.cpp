@@ -35,6 +35,7 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
                                        double enough) {
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
+    const double searchRadius2 = limit * limit * (1 + 1e-9);  // any sqrt(d2) <= limit
     const TriangleSoup& surface = bvh.soup();
     struct Piece {
         Vec3 p[3];
@@ -73,8 +74,11 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
         const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
         double radius = 0;
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
-        const TriangleBvh::Nearest nearest = bvh.nearest(centre, piece.near);
-        if (nearest.distance > limit) return {nearest.distance, true, pieces};
+        // Only a nearest triangle within the limit matters (else the piece
+        // is over it), so farther subtrees are skipped even without a hint;
+        // the answer within it is nearest()'s, ties included.
+        const TriangleBvh::Nearest nearest = bvh.nearestWithin(centre, searchRadius2, piece.near);
+        if (!(nearest.distance <= limit)) return {nearest.distance, true, pieces};
         lower = std::max(lower, nearest.distance);
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)
