@@ -23,7 +23,7 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
         ball.radius = ball.radius * (1 + 1e-12) + 1e-300;
     }
     std::iota(order_.begin(), order_.end(), 0);
-    if (!boxes_.empty()) build(0, boxes_.size());
+    if (!boxes_.empty()) build(0, boxes_.size(), 0);
     packForSearch();
 }
 
@@ -61,7 +61,112 @@ void TriangleBvh::packForSearch() {
     searchRoot_ = ref[0];
 }
 
-int TriangleBvh::build(std::size_t first, std::size_t last) {
+namespace {
+
+// Area splits can peel off a few triangles at a time; below this depth the
+// tree halves by count, so it stays within the searches' fixed stacks (64
+// in the kernels: 24 + log2(T / 4) levels at most).
+constexpr int kAreaSplitDepth = 24;
+
+double halfArea(const Box3& b) {
+    const Vec3 e = b.hi - b.lo;
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+
+}  // namespace
+
+std::size_t TriangleBvh::split(std::size_t first, std::size_t last, bool byArea) {
+    // Binned surface area heuristic over the box centres: the split that
+    // minimises the children's area times their triangle counts, i.e. the
+    // expected cost of a search that reaches this node. Nearest searches
+    // from points inside a closed surface (most of simplification's) sit
+    // in every box around them; smaller boxes are fewer visits.
+    constexpr int kBins = 16;
+    if (!byArea) return halve(first, last);
+    Box3 centres;
+    for (std::size_t k = first; k < last; ++k) {
+        const Box3& b = boxes_[order_[k]];
+        centres.add(0.5 * (b.lo + b.hi));
+    }
+    double bestCost = INFINITY;
+    int bestAxis = -1;
+    double bestPlane = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = centres.lo[axis], hi = centres.hi[axis];
+        if (!(hi > lo)) continue;
+        const double scale = kBins / (hi - lo);
+        auto binOf = [&](std::size_t t) {
+            const double c = 0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]);
+            return std::min(kBins - 1, int((c - lo) * scale));
+        };
+        Box3 bins[kBins];
+        std::size_t counts[kBins] = {};
+        for (std::size_t k = first; k < last; ++k) {
+            const int b = binOf(order_[k]);
+            bins[b].add(boxes_[order_[k]]);
+            ++counts[b];
+        }
+        // Sweep from the right, then from the left.
+        double rightArea[kBins];
+        std::size_t rightCount[kBins];
+        Box3 sweep;
+        std::size_t n = 0;
+        for (int b = kBins - 1; b > 0; --b) {
+            if (counts[b]) sweep.add(bins[b]);
+            n += counts[b];
+            rightArea[b] = n ? halfArea(sweep) : 0;
+            rightCount[b] = n;
+        }
+        sweep = Box3{};
+        n = 0;
+        for (int b = 0; b + 1 < kBins; ++b) {
+            if (counts[b]) sweep.add(bins[b]);
+            n += counts[b];
+            if (n == 0 || rightCount[b + 1] == 0) continue;
+            const double cost =
+                halfArea(sweep) * double(n) + rightArea[b + 1] * double(rightCount[b + 1]);
+            if (cost < bestCost) {
+                bestCost = cost;
+                bestAxis = axis;
+                bestPlane = lo + (b + 1) / scale;
+            }
+        }
+    }
+    if (bestAxis >= 0) {
+        const int axis = bestAxis;
+        const double lo = centres.lo[axis], scale = kBins / (centres.hi[axis] - lo);
+        const int planeBin = int(std::lround((bestPlane - lo) * scale));
+        const auto middle = std::stable_partition(
+            order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(last),
+            [&](std::size_t t) {
+                const double c = 0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]);
+                return std::min(kBins - 1, int((c - lo) * scale)) < planeBin;
+            });
+        const std::size_t mid = std::size_t(middle - order_.begin());
+        if (mid > first && mid < last) return mid;
+    }
+    return halve(first, last);  // all centres together
+}
+
+std::size_t TriangleBvh::halve(std::size_t first, std::size_t last) {
+    const Box3 all = [&] {
+        Box3 b;
+        for (std::size_t k = first; k < last; ++k) b.add(boxes_[order_[k]]);
+        return b;
+    }();
+    const Vec3 extent = all.hi - all.lo;
+    const int axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const std::size_t mid = (first + last) / 2;
+    std::nth_element(order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(mid),
+                     order_.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
+                         return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
+                                boxes_[b].lo[axis] + boxes_[b].hi[axis];
+                     });
+    return mid;
+}
+
+int TriangleBvh::build(std::size_t first, std::size_t last, int depth) {
     const int index = int(nodes_.size());
     nodes_.emplace_back();
     Box3 box;
@@ -72,17 +177,9 @@ int TriangleBvh::build(std::size_t first, std::size_t last) {
         nodes_[std::size_t(index)].count = last - first;
         return index;
     }
-    const Vec3 extent = box.hi - box.lo;
-    const int axis =
-        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    const std::size_t mid = (first + last) / 2;
-    std::nth_element(order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(mid),
-                     order_.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
-                         return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
-                                boxes_[b].lo[axis] + boxes_[b].hi[axis];
-                     });
-    const int left = build(first, mid);
-    const int right = build(mid, last);
+    const std::size_t mid = split(first, last, depth < kAreaSplitDepth);
+    const int left = build(first, mid, depth + 1);
+    const int right = build(mid, last, depth + 1);
     nodes_[std::size_t(index)].left = left;
     nodes_[std::size_t(index)].right = right;
     nodes_[std::size_t(index)].count = last - first;
@@ -109,7 +206,7 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
             best = {hint, 0, q};
         }
     }
-    // Median splits keep the depth near log2(T/4), and each pop pushes at
+    // The depth is at most 24 + log2(T/4) (build), and each pop pushes at
     // most two children, so a fixed stack suffices (no allocation per query).
     // Each entry keeps its box's distance, computed once when pushed.
     std::array<std::pair<int, double>, 128> stack;

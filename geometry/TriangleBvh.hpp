@@ -1,6 +1,6 @@
 #pragma once
-// A bounding volume hierarchy over the triangles of a soup: median splits
-// along the longest axis, leaves of up to 4 triangles. Answers the two
+// A bounding volume hierarchy over the triangles of a soup: splits by the
+// surface area heuristic (binned), leaves of up to 4 triangles. Answers the two
 // queries dfrecon needs: pairs of triangles whose boxes overlap (self-
 // intersection checks) and the nearest triangle to a point (exact distances
 // for verifiers and benchmarks).
@@ -61,7 +61,12 @@ class TriangleBvh {
     const TriangleSoup& soup() const { return soup_; }
 
   private:
-    int build(std::size_t first, std::size_t last);
+    int build(std::size_t first, std::size_t last, int depth);
+    /// Orders order_[first, last) into two non-empty parts and returns where
+    /// the second starts: by the surface area heuristic, or by count (at the
+    /// median along the longest axis) when !byArea or no plane separates.
+    std::size_t split(std::size_t first, std::size_t last, bool byArea);
+    std::size_t halve(std::size_t first, std::size_t last);
     void packForSearch();
 
     const TriangleSoup& soup_;

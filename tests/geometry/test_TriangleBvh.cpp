@@ -2,8 +2,11 @@
 // triangle against dense sampling of it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "geometry/TriangleBvh.hpp"
 #include "tests/geometry/RandomSoup.hpp"
@@ -72,5 +75,50 @@ TEST(TriangleBvh, SmallSoupsAndBoundedSearchesMatchBruteForce) {
             EXPECT_EQ(bvh.nearestWithin(p, brute2).triangle, SIZE_MAX);
             EXPECT_EQ(bvh.nearestWithin(p, std::nextafter(brute2, INFINITY)).triangle, nearest);
         }
+    }
+}
+
+// Nested triangles, each 1.5 times the size of the one before: the area
+// heuristic peels the largest off at every level. The tree must still stay
+// shallow enough for the searches' fixed stacks (64 in the kernels) and
+// answer as brute force.
+TEST(TriangleBvh, PeelingSplitsStayShallowAndExact) {
+    TriangleSoup soup;
+    const std::size_t count = 800;
+    for (std::size_t k = 0; k < count; ++k) {
+        const double size = std::pow(1.5, double(k) / 2);
+        const auto first = std::uint32_t(soup.points.size());
+        soup.points.push_back({0, 0, 0});
+        soup.points.push_back({size, 0, 0});
+        soup.points.push_back({0.3 * size, size, 0.5 * size});
+        soup.triangles.push_back({first, first + 1, first + 2});
+    }
+    const TriangleBvh bvh(soup);
+    // The deepest leaf.
+    std::vector<std::pair<int, int>> stack{{0, 0}};
+    int deepest = 0;
+    while (!stack.empty()) {
+        const auto [node, depth] = stack.back();
+        stack.pop_back();
+        deepest = std::max(deepest, depth);
+        const TriangleBvh::Node& n = bvh.nodes()[std::size_t(node)];
+        if (n.left >= 0) {
+            stack.push_back({n.left, depth + 1});
+            stack.push_back({n.right, depth + 1});
+        }
+    }
+    EXPECT_LE(deepest, 24 + int(std::ceil(std::log2(double(count) / 4))) + 1);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> scale(0, 60), direction(-1, 1);
+    for (int trial = 0; trial < 200; ++trial) {
+        const double s = std::pow(1.5, scale(random));
+        const Vec3 p{s * direction(random), s * direction(random), s * direction(random)};
+        double brute2 = INFINITY;
+        for (const auto& t : soup.triangles) {
+            const Vec3 q =
+                closestPointOnTriangle(p, soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]);
+            brute2 = std::min(brute2, dot(p - q, p - q));
+        }
+        EXPECT_EQ(bvh.nearest(p).distance2, brute2);
     }
 }
