@@ -19,11 +19,16 @@ struct OriginalPiece {
     Vec3 p[3];
 };
 
-/// A triangle that may cover pieces: its corners and an id for the caller.
+/// A triangle that may cover pieces: its corners, an id for the caller, and
+/// a ball around it (|x - centre| - radius is a lower bound of x's distance
+/// to the triangle). Make with coverCandidate.
 struct CoverCandidate {
     Vec3 p[3];
     int id = -1;
+    Vec3 centre;
+    double radius = 0;
 };
+CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id);
 
 /// The largest corner distance from `piece` to `candidate`: an upper bound
 /// of the distance from any point of the piece to the candidate.
@@ -58,8 +63,12 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         if (int(k) == firstTry) continue;
         // Convexity again: the largest corner distance is at least the
-        // centre's, one distance instead of three to rule a candidate out.
+        // centre's, one distance instead of three to rule a candidate out;
+        // and that is at least the distance to the candidate's ball, which
+        // rules out most of the candidates around a collapse for one sqrt.
         const CoverCandidate& c = candidates[k];
+        const double reach = length(centre - c.centre) - c.radius;
+        if (reach > 0 && reach >= bestDistance) continue;
         if (pointTriangleDistance(centre, c.p[0], c.p[1], c.p[2]) >= bestDistance) continue;
         const double d = cornerDistance(piece, c);
         if (d < bestDistance) {

@@ -35,11 +35,10 @@ Vec3 ModErrorBound::point(TriMesh::VertexHandle v) const {
 }
 
 CoverCandidate ModErrorBound::candidateOf(TriMesh::FaceHandle f) const {
-    CoverCandidate c;
+    Vec3 p[3];
     int k = 0;
-    for (auto v : const_cast<ModErrorBound*>(this)->mesh().fv_range(f)) c.p[k++] = point(v);
-    c.id = f.idx();
-    return c;
+    for (auto v : const_cast<ModErrorBound*>(this)->mesh().fv_range(f)) p[k++] = point(v);
+    return coverCandidate(p[0], p[1], p[2], f.idx());
 }
 
 Box3 ModErrorBound::boxOf(TriMesh::FaceHandle f) const {
@@ -89,7 +88,7 @@ void ModErrorBound::gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandl
 double ModErrorBound::coverage(const CollapseInfo& ci) {
     TriMesh& m = mesh();
     candidates_.clear();
-    for (const NewTriangle& t : created_) candidates_.push_back({{t.p[0], t.p[1], t.p[2]}, -1});
+    for (const NewTriangle& t : created_) candidates_.push_back(coverCandidate(t.p[0], t.p[1], t.p[2], -1));
     gatherRim(ci.v0, ci.v0);
     double worst = 0;
     int created = 0;
