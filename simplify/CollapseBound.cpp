@@ -38,6 +38,12 @@ bool cacheable(const NewTriangle& t) {
     return t.ids[0] < kIdLimit && t.ids[1] < kIdLimit && t.ids[2] < kIdLimit;
 }
 
+// The first slot to probe for `key` in a table of `size` (a power of two)
+// slots: Fibonacci hashing, as the keys' low bits are one vertex id.
+std::size_t slotOf(std::uint64_t key, std::size_t size) {
+    return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 32) & (size - 1);
+}
+
 std::uint64_t keyOf(const NewTriangle& t) {
     std::array<std::uint32_t, 3> ids = t.ids;
     std::sort(ids.begin(), ids.end());
@@ -70,8 +76,31 @@ double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& origina
     return estimate(entryOf(t), t, original, limits, maxPieces, enough);
 }
 
+void DeviationCache::reserve(std::size_t more) {
+    if (2 * (used_ + more) <= slots_.size()) return;
+    std::size_t size = std::max<std::size_t>(1024, slots_.size());
+    while (2 * (used_ + more) > size) size *= 2;
+    std::vector<Slot> old(size);
+    old.swap(slots_);
+    for (const Slot& slot : old) {
+        if (slot.key == 0) continue;
+        std::size_t i = slotOf(slot.key, slots_.size());
+        while (slots_[i].key != 0) i = (i + 1) & (slots_.size() - 1);
+        slots_[i] = slot;
+    }
+}
+
 DeviationCache::Known* DeviationCache::entryOf(const NewTriangle& t) {
-    return cacheable(t) ? &bounds_[keyOf(t)] : nullptr;
+    if (!cacheable(t)) return nullptr;
+    reserve(1);
+    const std::uint64_t key = keyOf(t);
+    std::size_t i = slotOf(key, slots_.size());
+    while (slots_[i].key != key && slots_[i].key != 0) i = (i + 1) & (slots_.size() - 1);
+    if (slots_[i].key == 0) {
+        slots_[i].key = key;
+        ++used_;
+    }
+    return &slots_[i].known;
 }
 
 double DeviationCache::estimate(Known* entry, const NewTriangle& t, const TriangleBvh& original,
@@ -107,6 +136,7 @@ float DeviationCache::largestEstimate(const std::vector<NewTriangle>& created,
     };
     std::array<Triangle, 32> order;
     const std::size_t n = std::min(created.size(), order.size());
+    reserve(n);  // the entries below stay put
     for (std::size_t i = 0; i < n; ++i) {
         Known* entry = entryOf(created[i]);
         order[i] = {entry, entry ? entry->value : 0.0, i};

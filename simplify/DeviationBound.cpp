@@ -76,9 +76,11 @@ DeviationEstimate deviationBoundWithin(const TriangleBvh& bvh, Vec3 a, Vec3 b, V
         for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
         // Only a nearest triangle within the limit matters (else the piece
         // is over it), so farther subtrees are skipped even without a hint;
-        // the answer within it is nearest()'s, ties included.
+        // the answer within it is nearest()'s, ties included. A piece over
+        // the limit ends the search, and only then is the whole tree searched.
         const TriangleBvh::Nearest nearest = bvh.nearestWithin(centre, searchRadius2, piece.near);
-        if (!(nearest.distance <= limit)) return {nearest.distance, true, pieces};
+        if (!(nearest.distance <= limit))  // over: the distance, for reports
+            return {bvh.nearest(centre, piece.near).distance, true, pieces};
         lower = std::max(lower, nearest.distance);
         double settled = nearest.distance + radius;
         if (settled > limit && nearest.triangle != piece.near)

@@ -88,7 +88,8 @@ void ModErrorBound::gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandl
 double ModErrorBound::coverage(const CollapseInfo& ci) {
     TriMesh& m = mesh();
     candidates_.clear();
-    for (const NewTriangle& t : created_) candidates_.push_back(coverCandidate(t.p[0], t.p[1], t.p[2], -1));
+    for (const NewTriangle& t : created_)
+        candidates_.push_back(coverCandidate(t.p[0], t.p[1], t.p[2], -1));
     gatherRim(ci.v0, ci.v0);
     double worst = 0;
     int created = 0;

@@ -257,6 +257,40 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
     EXPECT_GT(answeredInFull, 5);
 }
 
+// The cache grows as triangles come (from 1 024 slots): every value it
+// returns afterwards is still the one computed for that triangle.
+TEST(DeviationCache, KeepsEveryValueAsItGrows) {
+    NearSurface torus("torus", 13);
+    const DeviationLimits limits{0.25};
+    const auto& soup = torus.c.surface;
+    DeviationCache cache;
+    std::vector<double> first;
+    // Each original triangle, and one with a corner moved off the surface
+    // (ids shifted past the originals'), so that values differ.
+    auto triangle = [&](std::size_t t, bool moved) {
+        NewTriangle n;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t id = soup.triangles[t][std::size_t(k)];
+            n.ids[std::size_t(k)] = id + (moved ? std::uint32_t(soup.points.size()) : 0);
+            n.p[k] = soup.points[id];
+        }
+        if (moved) n.p[0] = n.p[0] + Vec3{0.05 * double(t % 7), 0, 0};
+        return n;
+    };
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (bool moved : {false, true})
+            first.push_back(cache.bound(triangle(t, moved), torus.bvh, limits));
+    ASSERT_GT(first.size(), 4000u);
+    std::size_t i = 0;
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (bool moved : {false, true}) {
+            const NewTriangle n = triangle(t, moved);
+            EXPECT_EQ(cache.estimate(n, torus.bvh, limits, 1), first[i]);
+            EXPECT_NEAR(first[i], deviationBound(torus.bvh, n.p[0], n.p[1], n.p[2], limits), 1e-6);
+            ++i;
+        }
+}
+
 TEST(DeviationBound, FlatTriangleAboveAPlaneIsBoundedByItsHeight) {
     // Over one big triangle the corner rule settles at once: exactly the
     // height. Over two, pieces across the diagonal settle by distance plus
