@@ -35,7 +35,9 @@ CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id);
 double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidate);
 
 /// Covers `piece` by `candidates`: if one covers it whole (trying
-/// `firstTry` first when ≥ 0, the usual answer), calls
+/// `firstTry` first when ≥ 0, the usual answer; else the nearest by corner
+/// distance, the first of equals, with `likely` ≥ 0 measured first only to
+/// rule others out sooner: the same answer), calls
 /// onCovered(piece, candidate index, distance); otherwise halves its
 /// longest edge and covers each part the same way, down to parts of circumradius
 /// limits.finestFraction · limit. Returns the largest distance reported, or
@@ -44,11 +46,13 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 /// candidates it succeeds whenever it did with the subset.
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, const DeviationLimits& limits, OnCovered&& onCovered);
+                  int firstTry, int likely, const DeviationLimits& limits,
+                  OnCovered&& onCovered);
 
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, const DeviationLimits& limits, OnCovered&& onCovered) {
+                  int firstTry, int likely, const DeviationLimits& limits,
+                  OnCovered&& onCovered) {
     const double limit = limits.limitMm;
     if (firstTry >= 0) {
         const double d = cornerDistance(piece, candidates[std::size_t(firstTry)]);
@@ -59,6 +63,11 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     }
     int best = -1;
     double bestDistance = INFINITY;
+    // The nearest is at most as far as `likely`: a candidate surely farther
+    // cannot be it, nor tie with it (hence strictly farther).
+    if (likely == firstTry) likely = -1;
+    const double likelyDistance =
+        likely >= 0 ? cornerDistance(piece, candidates[std::size_t(likely)]) : INFINITY;
     const Vec3 centre = (1.0 / 3.0) * (piece.p[0] + piece.p[1] + piece.p[2]);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         if (int(k) == firstTry) continue;
@@ -68,9 +77,13 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
         // rules out most of the candidates around a collapse for one sqrt.
         const CoverCandidate& c = candidates[k];
         const double reach = length(centre - c.centre) - c.radius;
-        if (reach > 0 && reach >= bestDistance) continue;
-        if (pointTriangleDistance(centre, c.p[0], c.p[1], c.p[2]) >= bestDistance) continue;
-        const double d = cornerDistance(piece, c);
+        if (reach > 0 && (reach >= bestDistance || reach > likelyDistance)) continue;
+        double d = likelyDistance;
+        if (int(k) != likely) {
+            const double atCentre = pointTriangleDistance(centre, c.p[0], c.p[1], c.p[2]);
+            if (atCentre >= bestDistance || atCentre > likelyDistance) continue;
+            d = cornerDistance(piece, c);
+        }
         if (d < bestDistance) {
             bestDistance = d;
             best = int(k);
@@ -89,7 +102,7 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     const OriginalPiece parts[2] = {{{piece.p[k], mid, apex}}, {{mid, piece.p[(k + 1) % 3], apex}}};
     double worst = 0;
     for (const OriginalPiece& part : parts) {
-        worst = std::max(worst, coverPiece(part, candidates, best, limits, onCovered));
+        worst = std::max(worst, coverPiece(part, candidates, best, -1, limits, onCovered));
         if (worst > limit) return worst;
     }
     return worst;

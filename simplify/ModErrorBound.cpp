@@ -97,7 +97,7 @@ double ModErrorBound::coverage(const CollapseInfo& ci) {
         // created_ follows this same order, skipping the edge's two faces.
         const int firstTry = (f == ci.fl || f == ci.fr) ? -1 : created++;
         for (const OriginalPiece& piece : m.property(pieces_, f)) {
-            worst = std::max(worst, coverPiece(piece, candidates_, firstTry, limits_,
+            worst = std::max(worst, coverPiece(piece, candidates_, firstTry, -1, limits_,
                                                [](const OriginalPiece&, int, double) {}));
             if (worst > limits_.limitMm) return worst;
         }
@@ -167,9 +167,11 @@ float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
 void ModErrorBound::preprocess_collapse(const CollapseInfo& ci) {
     TriMesh& m = mesh();
     homeless_.clear();
+    homelessFace_.clear();
     for (auto f : m.vf_range(ci.v0)) {
         auto& stored = m.property(pieces_, f);
         homeless_.insert(homeless_.end(), stored.begin(), stored.end());
+        homelessFace_.insert(homelessFace_.end(), stored.size(), f.idx());
         pieces -= stored.size();
         stored.clear();
     }
@@ -182,16 +184,23 @@ void ModErrorBound::postprocess_collapse(const CollapseInfo& ci) {
     // so every piece finds a home again.
     candidates_.clear();
     for (auto f : m.vf_range(ci.v1)) candidates_.push_back(candidateOf(f));
+    const std::size_t ownFaces = candidates_.size();
     gatherRim(ci.v1, ci.v1);
     auto home = [&](const OriginalPiece& part, int k) {
         m.property(pieces_, TriMesh::FaceHandle(candidates_[std::size_t(k)].id)).push_back(part);
         ++pieces;
     };
-    for (const OriginalPiece& piece : homeless_) {
+    // A piece's face, v0 replaced by v1, is the likely nearest (when not
+    // one of the two removed): measured first, it rules the others out.
+    for (std::size_t i = 0; i < homeless_.size(); ++i) {
+        const OriginalPiece& piece = homeless_[i];
+        int likely = -1;
+        for (std::size_t k = 0; k < ownFaces; ++k)
+            if (candidates_[k].id == homelessFace_[i]) likely = int(k);
         // One pass: the parts are stored only once the whole piece is covered.
         homedParts_.clear();
         const double d = coverPiece(
-            piece, candidates_, -1, limits_,
+            piece, candidates_, -1, likely, limits_,
             [&](const OriginalPiece& part, int k, double) { homedParts_.emplace_back(part, k); });
         if (d <= limits_.limitMm)
             for (const auto& [part, k] : homedParts_) home(part, k);

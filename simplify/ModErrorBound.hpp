@@ -91,6 +91,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::vector<char> touched_;  // per vertex: neighbourhood changed since initial_
     FaceGrid faces_;
     std::vector<OriginalPiece> homeless_;  // pieces of the faces being collapsed
+    std::vector<int> homelessFace_;        // the face each was on
     std::vector<NewTriangle> created_;
     std::vector<CoverCandidate> candidates_;
     std::vector<std::pair<OriginalPiece, int>> homedParts_;  // parts and their candidate
