@@ -46,13 +46,11 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 /// candidates it succeeds whenever it did with the subset.
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits,
-                  OnCovered&& onCovered);
+                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered);
 
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits,
-                  OnCovered&& onCovered) {
+                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered) {
     const double limit = limits.limitMm;
     if (firstTry >= 0) {
         const double d = cornerDistance(piece, candidates[std::size_t(firstTry)]);
