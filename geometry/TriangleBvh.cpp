@@ -88,21 +88,21 @@ std::size_t TriangleBvh::split(std::size_t first, std::size_t last, bool byArea)
         const Box3& b = boxes_[order_[k]];
         centres.add(0.5 * (b.lo + b.hi));
     }
+    // The bin of triangle t's box centre along `axis`; written so that any
+    // value, NaN included, lands in a bin.
+    auto binOf = [&](std::size_t t, int axis) {
+        const double lo = centres.lo[axis], scale = kBins / (centres.hi[axis] - lo);
+        const double x = (0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]) - lo) * scale;
+        return x >= kBins - 1 ? kBins - 1 : (x > 0 ? int(x) : 0);
+    };
     double bestCost = INFINITY;
-    int bestAxis = -1;
-    double bestPlane = 0;
+    int bestAxis = -1, bestBin = 0;  // the second part: bins bestBin and above
     for (int axis = 0; axis < 3; ++axis) {
-        const double lo = centres.lo[axis], hi = centres.hi[axis];
-        if (!(hi > lo)) continue;
-        const double scale = kBins / (hi - lo);
-        auto binOf = [&](std::size_t t) {
-            const double c = 0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]);
-            return std::min(kBins - 1, int((c - lo) * scale));
-        };
+        if (!(centres.hi[axis] > centres.lo[axis])) continue;
         Box3 bins[kBins];
         std::size_t counts[kBins] = {};
         for (std::size_t k = first; k < last; ++k) {
-            const int b = binOf(order_[k]);
+            const int b = binOf(order_[k], axis);
             bins[b].add(boxes_[order_[k]]);
             ++counts[b];
         }
@@ -128,20 +128,14 @@ std::size_t TriangleBvh::split(std::size_t first, std::size_t last, bool byArea)
             if (cost < bestCost) {
                 bestCost = cost;
                 bestAxis = axis;
-                bestPlane = lo + (b + 1) / scale;
+                bestBin = b + 1;
             }
         }
     }
     if (bestAxis >= 0) {
-        const int axis = bestAxis;
-        const double lo = centres.lo[axis], scale = kBins / (centres.hi[axis] - lo);
-        const int planeBin = int(std::lround((bestPlane - lo) * scale));
         const auto middle = std::stable_partition(
             order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(last),
-            [&](std::size_t t) {
-                const double c = 0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]);
-                return std::min(kBins - 1, int((c - lo) * scale)) < planeBin;
-            });
+            [&](std::size_t t) { return binOf(t, bestAxis) < bestBin; });
         const std::size_t mid = std::size_t(middle - order_.begin());
         if (mid > first && mid < last) return mid;
     }
