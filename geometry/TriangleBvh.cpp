@@ -22,8 +22,14 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
         // Rounding must never make the bound exceed the true distance.
         ball.radius = ball.radius * (1 + 1e-12) + 1e-300;
     }
-    std::iota(order_.begin(), order_.end(), 0);
-    if (!boxes_.empty()) build(0, boxes_.size(), 0);
+    // Built over a copy of the boxes that is reordered as it is split, so
+    // that every pass runs through memory in order.
+    std::vector<BuildItem> items(boxes_.size());
+    for (std::size_t t = 0; t < items.size(); ++t) items[t] = {boxes_[t], t};
+    std::vector<BuildItem> scratch;
+    scratch.reserve(items.size());
+    if (!items.empty()) build(items, scratch, 0, items.size(), 0);
+    for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
     packForSearch();
 }
 
@@ -75,53 +81,59 @@ double halfArea(const Box3& b) {
 
 }  // namespace
 
-std::size_t TriangleBvh::split(std::size_t first, std::size_t last, bool byArea) {
+std::size_t TriangleBvh::split(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
+                               std::size_t first, std::size_t last, bool byArea) {
     // Binned surface area heuristic over the box centres: the split that
     // minimises the children's area times their triangle counts, i.e. the
     // expected cost of a search that reaches this node. Nearest searches
     // from points inside a closed surface (most of simplification's) sit
     // in every box around them; smaller boxes are fewer visits.
     constexpr int kBins = 16;
-    if (!byArea) return halve(first, last);
+    if (!byArea) return halve(items, first, last);
+    auto centre = [](const BuildItem& item, int axis) {
+        return 0.5 * (item.box.lo[axis] + item.box.hi[axis]);
+    };
     Box3 centres;
-    for (std::size_t k = first; k < last; ++k) {
-        const Box3& b = boxes_[order_[k]];
-        centres.add(0.5 * (b.lo + b.hi));
-    }
-    // The bin of triangle t's box centre along `axis`; written so that any
+    for (std::size_t k = first; k < last; ++k)
+        centres.add(0.5 * (items[k].box.lo + items[k].box.hi));
+    // The bin of an item's box centre along `axis`; written so that any
     // value, NaN included, lands in a bin.
-    auto binOf = [&](std::size_t t, int axis) {
-        const double lo = centres.lo[axis], scale = kBins / (centres.hi[axis] - lo);
-        const double x = (0.5 * (boxes_[t].lo[axis] + boxes_[t].hi[axis]) - lo) * scale;
+    double scale[3];
+    for (int axis = 0; axis < 3; ++axis)
+        scale[axis] = kBins / (centres.hi[axis] - centres.lo[axis]);
+    auto binOf = [&](const BuildItem& item, int axis) {
+        const double x = (centre(item, axis) - centres.lo[axis]) * scale[axis];
         return x >= kBins - 1 ? kBins - 1 : (x > 0 ? int(x) : 0);
     };
+    // One pass over the items (contiguous) for the three axes.
+    Box3 bins[3][kBins];
+    std::size_t counts[3][kBins] = {};
+    for (std::size_t k = first; k < last; ++k)
+        for (int axis = 0; axis < 3; ++axis) {
+            const int b = binOf(items[k], axis);
+            bins[axis][b].add(items[k].box);
+            ++counts[axis][b];
+        }
     double bestCost = INFINITY;
     int bestAxis = -1, bestBin = 0;  // the second part: bins bestBin and above
     for (int axis = 0; axis < 3; ++axis) {
         if (!(centres.hi[axis] > centres.lo[axis])) continue;
-        Box3 bins[kBins];
-        std::size_t counts[kBins] = {};
-        for (std::size_t k = first; k < last; ++k) {
-            const int b = binOf(order_[k], axis);
-            bins[b].add(boxes_[order_[k]]);
-            ++counts[b];
-        }
         // Sweep from the right, then from the left.
         double rightArea[kBins];
         std::size_t rightCount[kBins];
         Box3 sweep;
         std::size_t n = 0;
         for (int b = kBins - 1; b > 0; --b) {
-            if (counts[b]) sweep.add(bins[b]);
-            n += counts[b];
+            if (counts[axis][b]) sweep.add(bins[axis][b]);
+            n += counts[axis][b];
             rightArea[b] = n ? halfArea(sweep) : 0;
             rightCount[b] = n;
         }
         sweep = Box3{};
         n = 0;
         for (int b = 0; b + 1 < kBins; ++b) {
-            if (counts[b]) sweep.add(bins[b]);
-            n += counts[b];
+            if (counts[axis][b]) sweep.add(bins[axis][b]);
+            n += counts[axis][b];
             if (n == 0 || rightCount[b + 1] == 0) continue;
             const double cost =
                 halfArea(sweep) * double(n) + rightArea[b + 1] * double(rightCount[b + 1]);
@@ -133,47 +145,53 @@ std::size_t TriangleBvh::split(std::size_t first, std::size_t last, bool byArea)
         }
     }
     if (bestAxis >= 0) {
-        const auto middle = std::stable_partition(
-            order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(last),
-            [&](std::size_t t) { return binOf(t, bestAxis) < bestBin; });
-        const std::size_t mid = std::size_t(middle - order_.begin());
+        // A stable partition through one reused buffer (std::stable_partition
+        // allocates one per call, and the page faults cost more than the
+        // partition).
+        std::size_t mid = first;
+        scratch.clear();
+        for (std::size_t k = first; k < last; ++k) {
+            if (binOf(items[k], bestAxis) < bestBin)
+                items[mid++] = items[k];
+            else
+                scratch.push_back(items[k]);
+        }
+        std::copy(scratch.begin(), scratch.end(), items.begin() + std::ptrdiff_t(mid));
         if (mid > first && mid < last) return mid;
     }
-    return halve(first, last);  // all centres together
+    return halve(items, first, last);  // all centres together
 }
 
-std::size_t TriangleBvh::halve(std::size_t first, std::size_t last) {
-    const Box3 all = [&] {
-        Box3 b;
-        for (std::size_t k = first; k < last; ++k) b.add(boxes_[order_[k]]);
-        return b;
-    }();
+std::size_t TriangleBvh::halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last) {
+    Box3 all;
+    for (std::size_t k = first; k < last; ++k) all.add(items[k].box);
     const Vec3 extent = all.hi - all.lo;
     const int axis =
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::size_t mid = (first + last) / 2;
-    std::nth_element(order_.begin() + std::ptrdiff_t(first), order_.begin() + std::ptrdiff_t(mid),
-                     order_.begin() + std::ptrdiff_t(last), [&](std::size_t a, std::size_t b) {
-                         return boxes_[a].lo[axis] + boxes_[a].hi[axis] <
-                                boxes_[b].lo[axis] + boxes_[b].hi[axis];
+    std::nth_element(items.begin() + std::ptrdiff_t(first), items.begin() + std::ptrdiff_t(mid),
+                     items.begin() + std::ptrdiff_t(last),
+                     [&](const BuildItem& a, const BuildItem& b) {
+                         return a.box.lo[axis] + a.box.hi[axis] < b.box.lo[axis] + b.box.hi[axis];
                      });
     return mid;
 }
 
-int TriangleBvh::build(std::size_t first, std::size_t last, int depth) {
+int TriangleBvh::build(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
+                       std::size_t first, std::size_t last, int depth) {
     const int index = int(nodes_.size());
     nodes_.emplace_back();
     Box3 box;
-    for (std::size_t k = first; k < last; ++k) box.add(boxes_[order_[k]]);
+    for (std::size_t k = first; k < last; ++k) box.add(items[k].box);
     nodes_[std::size_t(index)].box = box;
     if (last - first <= 4) {
         nodes_[std::size_t(index)].first = first;
         nodes_[std::size_t(index)].count = last - first;
         return index;
     }
-    const std::size_t mid = split(first, last, depth < kAreaSplitDepth);
-    const int left = build(first, mid, depth + 1);
-    const int right = build(mid, last, depth + 1);
+    const std::size_t mid = split(items, scratch, first, last, depth < kAreaSplitDepth);
+    const int left = build(items, scratch, first, mid, depth + 1);
+    const int right = build(items, scratch, mid, last, depth + 1);
     nodes_[std::size_t(index)].left = left;
     nodes_[std::size_t(index)].right = right;
     nodes_[std::size_t(index)].count = last - first;

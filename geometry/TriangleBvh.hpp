@@ -61,12 +61,18 @@ class TriangleBvh {
     const TriangleSoup& soup() const { return soup_; }
 
   private:
-    int build(std::size_t first, std::size_t last, int depth);
-    /// Orders order_[first, last) into two non-empty parts and returns where
+    struct BuildItem {
+        Box3 box;
+        std::size_t triangle;
+    };
+    int build(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch, std::size_t first,
+              std::size_t last, int depth);
+    /// Orders items[first, last) into two non-empty parts and returns where
     /// the second starts: by the surface area heuristic, or by count (at the
     /// median along the longest axis) when !byArea or no plane separates.
-    std::size_t split(std::size_t first, std::size_t last, bool byArea);
-    std::size_t halve(std::size_t first, std::size_t last);
+    static std::size_t split(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
+                             std::size_t first, std::size_t last, bool byArea);
+    static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last);
     void packForSearch();
 
     const TriangleSoup& soup_;
