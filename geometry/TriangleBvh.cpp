@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <numeric>
+#include <initializer_list>
 
 namespace dfrecon {
 
@@ -14,13 +14,7 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         const auto& tri = soup.triangles[t];
         for (std::uint32_t v : tri) boxes_[t].add(soup.points[v]);
-        Ball& ball = balls_[t];
-        ball.centre =
-            (1.0 / 3.0) * (soup.points[tri[0]] + soup.points[tri[1]] + soup.points[tri[2]]);
-        for (std::uint32_t v : tri)
-            ball.radius = std::max(ball.radius, length(soup.points[v] - ball.centre));
-        // Rounding must never make the bound exceed the true distance.
-        ball.radius = ball.radius * (1 + 1e-12) + 1e-300;
+        balls_[t] = Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
     }
     // Built over a copy of the boxes that is reordered as it is split, so
     // that every pass runs through memory in order.
@@ -31,6 +25,14 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
     if (!items.empty()) build(items, scratch, 0, items.size(), 0);
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
     packForSearch();
+}
+
+TriangleBvh::Ball TriangleBvh::Ball::around(Vec3 a, Vec3 b, Vec3 c) {
+    Ball ball{(1.0 / 3.0) * (a + b + c), 0};
+    for (const Vec3& q : {a, b, c}) ball.radius = std::max(ball.radius, length(q - ball.centre));
+    // Rounding must never make the bound exceed the true distance.
+    ball.radius = ball.radius * (1 + 1e-12) + 1e-300;
+    return ball;
 }
 
 void TriangleBvh::packForSearch() {
@@ -82,14 +84,14 @@ double halfArea(const Box3& b) {
 }  // namespace
 
 std::size_t TriangleBvh::split(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
-                               std::size_t first, std::size_t last, bool byArea) {
+                               std::size_t first, std::size_t last, const Box3& box, bool byArea) {
     // Binned surface area heuristic over the box centres: the split that
     // minimises the children's area times their triangle counts, i.e. the
     // expected cost of a search that reaches this node. Nearest searches
     // from points inside a closed surface (most of simplification's) sit
     // in every box around them; smaller boxes are fewer visits.
     constexpr int kBins = 16;
-    if (!byArea) return halve(items, first, last);
+    if (!byArea) return halve(items, first, last, box);
     auto centre = [](const BuildItem& item, int axis) {
         return 0.5 * (item.box.lo[axis] + item.box.hi[axis]);
     };
@@ -159,13 +161,12 @@ std::size_t TriangleBvh::split(std::vector<BuildItem>& items, std::vector<BuildI
         std::copy(scratch.begin(), scratch.end(), items.begin() + std::ptrdiff_t(mid));
         if (mid > first && mid < last) return mid;
     }
-    return halve(items, first, last);  // all centres together
+    return halve(items, first, last, box);  // all centres together
 }
 
-std::size_t TriangleBvh::halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last) {
-    Box3 all;
-    for (std::size_t k = first; k < last; ++k) all.add(items[k].box);
-    const Vec3 extent = all.hi - all.lo;
+std::size_t TriangleBvh::halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
+                               const Box3& box) {
+    const Vec3 extent = box.hi - box.lo;
     const int axis =
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::size_t mid = (first + last) / 2;
@@ -189,7 +190,7 @@ int TriangleBvh::build(std::vector<BuildItem>& items, std::vector<BuildItem>& sc
         nodes_[std::size_t(index)].count = last - first;
         return index;
     }
-    const std::size_t mid = split(items, scratch, first, last, depth < kAreaSplitDepth);
+    const std::size_t mid = split(items, scratch, first, last, box, depth < kAreaSplitDepth);
     const int left = build(items, scratch, first, mid, depth + 1);
     const int right = build(items, scratch, mid, last, depth + 1);
     nodes_[std::size_t(index)].left = left;
@@ -231,7 +232,7 @@ TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
             const SearchLeaf leaf = searchLeaves_[std::size_t(~ref)];
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
                 const SearchTriangle& candidate = searchTriangles_[k];
-                const double reach = length(p - candidate.ball.centre) - candidate.ball.radius;
+                const double reach = candidate.ball.reach(p);
                 if (reach > 0 && reach * reach >= best2) continue;
                 const Vec3 q = closestPointOnTriangle(p, candidate.corner[0], candidate.corner[1],
                                                       candidate.corner[2]);

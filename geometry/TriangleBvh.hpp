@@ -55,6 +55,10 @@ class TriangleBvh {
     struct Ball {
         Vec3 centre;
         double radius = 0;
+        /// The ball around triangle abc.
+        static Ball around(Vec3 a, Vec3 b, Vec3 c);
+        /// A lower bound of p's distance to the triangle (≤ 0 inside).
+        double reach(Vec3 p) const { return length(p - centre) - radius; }
     };
     const std::vector<Ball>& balls() const { return balls_; }
     const std::vector<std::size_t>& order() const { return order_; }
@@ -67,12 +71,14 @@ class TriangleBvh {
     };
     int build(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch, std::size_t first,
               std::size_t last, int depth);
-    /// Orders items[first, last) into two non-empty parts and returns where
-    /// the second starts: by the surface area heuristic, or by count (at the
-    /// median along the longest axis) when !byArea or no plane separates.
+    /// Orders items[first, last), whose boxes span `box`, into two non-empty
+    /// parts and returns where the second starts: by the surface area
+    /// heuristic, or by count (at the median along box's longest axis) when
+    /// !byArea or no plane separates.
     static std::size_t split(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
-                             std::size_t first, std::size_t last, bool byArea);
-    static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last);
+                             std::size_t first, std::size_t last, const Box3& box, bool byArea);
+    static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
+                             const Box3& box);
     void packForSearch();
 
     const TriangleSoup& soup_;

@@ -5,12 +5,7 @@
 namespace dfrecon {
 
 CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id) {
-    CoverCandidate candidate{{a, b, c}, id, (1.0 / 3.0) * (a + b + c), 0};
-    for (const Vec3& q : candidate.p)
-        candidate.radius = std::max(candidate.radius, length(q - candidate.centre));
-    // Rounding must never make the bound exceed the true distance.
-    candidate.radius = candidate.radius * (1 + 1e-12) + 1e-300;
-    return candidate;
+    return {{a, b, c}, id, TriangleBvh::Ball::around(a, b, c)};
 }
 
 double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidate) {

@@ -20,13 +20,12 @@ struct OriginalPiece {
 };
 
 /// A triangle that may cover pieces: its corners, an id for the caller, and
-/// a ball around it (|x - centre| - radius is a lower bound of x's distance
-/// to the triangle). Make with coverCandidate.
+/// the ball around it, for a cheap lower bound of a distance to it. Make
+/// with coverCandidate.
 struct CoverCandidate {
     Vec3 p[3];
     int id = -1;
-    Vec3 centre;
-    double radius = 0;
+    TriangleBvh::Ball ball;
 };
 CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id);
 
@@ -74,7 +73,7 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
         // and that is at least the distance to the candidate's ball, which
         // rules out most of the candidates around a collapse for one sqrt.
         const CoverCandidate& c = candidates[k];
-        const double reach = length(centre - c.centre) - c.radius;
+        const double reach = c.ball.reach(centre);
         if (reach > 0 && (reach >= bestDistance || reach > likelyDistance)) continue;
         double d = likelyDistance;
         if (int(k) != likely) {
