@@ -50,19 +50,6 @@ std::uint64_t keyOf(const NewTriangle& t) {
     return std::uint64_t(ids[0]) | std::uint64_t(ids[1]) << 21 | std::uint64_t(ids[2]) << 42;
 }
 
-// The largest valueOf(t) over the created triangles, or -1 as soon as one
-// exceeds the limit.
-template <class ValueOf>
-float largestWithin(const std::vector<NewTriangle>& created, double limitMm, ValueOf&& valueOf) {
-    double largest = 0;
-    for (const NewTriangle& t : created) {
-        const double d = valueOf(t);
-        if (d > limitMm) return -1;
-        largest = std::max(largest, d);
-    }
-    return float(largest);
-}
-
 }  // namespace
 
 double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
@@ -158,10 +145,14 @@ float DeviationCache::largestEstimate(const std::vector<NewTriangle>& created,
 
 float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
                        const DeviationLimits& limits, DeviationCache* cache) {
-    return largestWithin(created, limits.limitMm, [&](const NewTriangle& t) {
-        return cache ? cache->bound(t, original, limits)
-                     : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
-    });
+    double largest = 0;
+    for (const NewTriangle& t : created) {
+        const double d = cache ? cache->bound(t, original, limits)
+                               : deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
+        if (d > limits.limitMm) return -1;
+        largest = std::max(largest, d);
+    }
+    return float(largest);
 }
 
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
