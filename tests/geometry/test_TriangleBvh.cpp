@@ -50,6 +50,23 @@ TEST(TriangleBvh, NearestMatchesBruteForce) {
     }
 }
 
+namespace {
+
+// The nearest triangle by trying every one (the first of equals) and its
+// squared distance.
+std::pair<std::size_t, double> bruteForceNearest(const TriangleSoup& soup, Vec3 p) {
+    std::pair<std::size_t, double> best{SIZE_MAX, INFINITY};
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
+        const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
+                                              soup.points[tri[2]]);
+        if (dot(p - q, p - q) < best.second) best = {t, dot(p - q, p - q)};
+    }
+    return best;
+}
+
+}  // namespace
+
 TEST(TriangleBvh, SmallSoupsAndBoundedSearchesMatchBruteForce) {
     // One to nine triangles: the root is a leaf, or one level above leaves.
     std::mt19937 random(6);
@@ -60,14 +77,7 @@ TEST(TriangleBvh, SmallSoupsAndBoundedSearchesMatchBruteForce) {
         const TriangleBvh bvh(soup);
         for (int trial = 0; trial < 50; ++trial) {
             const Vec3 p{query(random), query(random), query(random)};
-            double brute2 = INFINITY;
-            std::size_t nearest = SIZE_MAX;
-            for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-                const auto& tri = soup.triangles[t];
-                const Vec3 q = closestPointOnTriangle(p, soup.points[tri[0]], soup.points[tri[1]],
-                                                      soup.points[tri[2]]);
-                if (dot(p - q, p - q) < brute2) brute2 = dot(p - q, p - q), nearest = t;
-            }
+            const auto [nearest, brute2] = bruteForceNearest(soup, p);
             const TriangleBvh::Nearest found = bvh.nearest(p);
             EXPECT_EQ(found.distance2, brute2) << count << " triangles";
             EXPECT_EQ(found.triangle, nearest) << count << " triangles";
@@ -113,12 +123,6 @@ TEST(TriangleBvh, PeelingSplitsStayShallowAndExact) {
     for (int trial = 0; trial < 200; ++trial) {
         const double s = std::pow(1.5, scale(random));
         const Vec3 p{s * direction(random), s * direction(random), s * direction(random)};
-        double brute2 = INFINITY;
-        for (const auto& t : soup.triangles) {
-            const Vec3 q =
-                closestPointOnTriangle(p, soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]);
-            brute2 = std::min(brute2, dot(p - q, p - q));
-        }
-        EXPECT_EQ(bvh.nearest(p).distance2, brute2);
+        EXPECT_EQ(bvh.nearest(p).distance2, bruteForceNearest(soup, p).second);
     }
 }
