@@ -54,11 +54,9 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// the batch's value, or surfaceDeviationLowerBound from the first
     /// maxPieces pieces of each created triangle (cached; SIZE_MAX for the
     /// deviation itself, which collapse_priority then looks up), stopping
-    /// once above `enough`; and the deviation itself (surfaceDeviation,
-    /// cached).
+    /// once above `enough`.
     float deviationLowerBound(const CollapseInfo& ci, std::size_t maxPieces,
                               double enough = INFINITY);
-    float deviation(const CollapseInfo& ci);
     void preprocess_collapse(const CollapseInfo& ci) override;
     void postprocess_collapse(const CollapseInfo& ci) override;
 
@@ -76,6 +74,8 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::size_t pieces = 0;
 
   private:
+    /// Direction (a): the batch's value, or surfaceDeviation (cached).
+    float deviation(const CollapseInfo& ci);
     bool batchValueHolds(const CollapseInfo& ci) const;
     double coverage(const CollapseInfo& ci);
     void gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip);
