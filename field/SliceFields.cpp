@@ -67,6 +67,23 @@ Real4 unite(Real4 a, Real4 b) {
     return box;
 }
 
+// 1 / length^2 of segment (ax, ay, bx, by), 0 for a point: what the kernel
+// multiplies by instead of dividing.
+template <class Real4>
+double inverseLength2(const Real4& s) {
+    const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
+    const double length2 = dx * dx + dy * dy;
+    return length2 > 0 ? 1 / length2 : 0;
+}
+
+template <class Real, class Real4>
+std::vector<Real> inverseLengths2(const std::vector<Real4>& segments) {
+    std::vector<Real> inverses(segments.size());
+    std::transform(segments.begin(), segments.end(), inverses.begin(),
+                   [](const Real4& s) { return Real(inverseLength2(s)); });
+    return inverses;
+}
+
 // The tree of segments[first, first + count): O(count). Capsules are
 // computed in double from the coordinates the kernel reads; a dev rounded
 // down to float is covered by the kernel's slack.
@@ -230,6 +247,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const std::size_t batch = end - begin;
 
     ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
+    ocl::DeviceBuffer<Real> inverses(runtime, inverseLengths2<Real>(flat.segments));
+    ocl::DeviceBuffer<Real> chordInverses(runtime, inverseLengths2<Real>(flat.chords));
     ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
     ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst),
         sliceCount(runtime, flat.sliceCount);
@@ -253,15 +272,22 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     // Far above the rounding of coordinates of this size (kernel header).
     const Real slackMm =
         Real(64 * double(std::numeric_limits<Real>::epsilon()) * (flat.magnitudeMm + grid.pixelMm));
+    // Squared distances round by a few ulps of the squared magnitude; this
+    // margin is far above (kernel header, tile_candidates).
+    const Real marginMm2 =
+        Real(256 * double(std::numeric_limits<Real>::epsilon()) *
+             (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
     const std::size_t offset = begin * grid.pixelCount();
     try {
         cl::Kernel cull(program, "tile_candidates");
         int a = 0;
         cull.setArg(a++, segments.get());
+        cull.setArg(a++, inverses.get());
         cull.setArg(a++, sliceFirst.get());
         cull.setArg(a++, sliceCount.get());
         cull.setArg(a++, boxes.get());
         cull.setArg(a++, chords.get());
+        cull.setArg(a++, chordInverses.get());
         cull.setArg(a++, devs.get());
         cull.setArg(a++, treeFirst.get());
         cull.setArg(a++, leafBase.get());
@@ -269,6 +295,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cull.setArg(a++, cl_uint(grid.height));
         cull.setArg(a++, Real(grid.pixelMm));
         cull.setArg(a++, slackMm);
+        cull.setArg(a++, marginMm2);
         cull.setArg(a++, capacity);
         cull.setArg(a++, candidates.get());
         cull.setArg(a++, candidateCount.get());
@@ -283,11 +310,13 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
         field.setArg(a++, segments.get());
+        field.setArg(a++, inverses.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
         field.setArg(a++, boxes.get());
         field.setArg(a++, chords.get());
+        field.setArg(a++, chordInverses.get());
         field.setArg(a++, devs.get());
         field.setArg(a++, treeFirst.get());
         field.setArg(a++, leafBase.get());

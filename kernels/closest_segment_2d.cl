@@ -102,12 +102,12 @@ inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
     return dx * dx + dy * dy;
 }
 
-// Squared distance from the lanes' points to segment (ax, ay, bx, by); *t
-// receives the parameter of the nearest point (0 = a, 1 = b).
-inline REALV segmentDistance2(REAL4 s, REALV px, REAL py, REALV* t) {
+// Squared distance from the lanes' points to segment (ax, ay, bx, by), whose
+// 1 / length^2 (0 for a point) is `inverse`; *t receives the parameter of the
+// nearest point (0 = a, 1 = b). The host divides once per segment, as the
+// division would otherwise dominate the scans.
+inline REALV segmentDistance2(REAL4 s, REAL inverse, REALV px, REAL py, REALV* t) {
     const REAL abx = s.z - s.x, aby = s.w - s.y;
-    const REAL len2 = abx * abx + aby * aby;
-    const REAL inverse = len2 > 0 ? 1 / len2 : 0;
     const REALV apx = px - s.x;
     const REAL apy = py - s.y;
     *t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
@@ -124,9 +124,10 @@ typedef struct {
     MASKV bestSeg;
 } Nearest;
 
-inline void consider(Nearest* n, __global const REAL4* segments, uint seg, REALV px, REAL py) {
+inline void consider(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+                     uint seg, REALV px, REAL py) {
     REALV t;
-    const REALV d2 = segmentDistance2(segments[seg], px, py, &t);
+    const REALV d2 = segmentDistance2(segments[seg], inverses[seg], px, py, &t);
     const MASKV better =
         isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
     n->best2 = PICK(n->best2, d2, better);
@@ -139,43 +140,77 @@ inline void updateReach(Nearest* n, REAL slackMm) {
     n->reach2 = n->reach * n->reach;
 }
 
-inline void visitLeaf(Nearest* n, __global const REAL4* segments, uint first, uint count, uint leaf,
-                      REALV px, REAL py) {
+inline void visitLeaf(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+                      uint first, uint count, uint leaf, REALV px, REAL py) {
     const uint begin = first + leaf * LEAF;
     for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
-        consider(n, segments, seg, px, py);
+        consider(n, segments, inverses, seg, px, py);
 }
 
 // Whether any lane may find a segment of node `node` that beats or ties its
 // best: the node's box and capsule (chord widened by dev) both within reach.
 inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
-                          __global const REAL4* chords, __global const REAL* devs, uint node,
-                          REALV px, REAL py) {
+                          __global const REAL4* chords, __global const REAL* chordInverses,
+                          __global const REAL* devs, uint node, REALV px, REAL py) {
     const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
     if (!ANY(inBox)) return false;
     const REALV capsule = n->reach + devs[node];
     REALV t;
-    return ANY(inBox & islessequal(segmentDistance2(chords[node], px, py, &t), capsule * capsule));
+    return ANY(inBox & islessequal(segmentDistance2(chords[node], chordInverses[node], px, py, &t),
+                                   capsule * capsule));
 }
 
-// Squared distance from point c to segment s = (ax, ay, bx, by).
-inline REAL pointSegmentDistance2(REAL2 c, REAL4 s) {
+// Squared distance from point c to segment s = (ax, ay, bx, by) with
+// 1 / length^2 `inverse`.
+inline REAL pointSegmentDistance2(REAL2 c, REAL4 s, REAL inverse) {
     const REAL2 a = s.xy, ab = s.zw - s.xy, ap = c - a;
-    const REAL2 q = ap - segment_parameter(ap.x, ap.y, ab.x, ab.y) * ab;
+    const REAL2 q = ap - clamp(dot(ap, ab) * inverse, (REAL)0, (REAL)1) * ab;
     return dot(q, q);
 }
 
 // The same tests for one point c (scalar): whether node `node` may hold a
 // segment within `reach` of c.
 inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
-                       __global const REAL4* chords, __global const REAL* devs, uint node) {
+                       __global const REAL4* chords, __global const REAL* chordInverses,
+                       __global const REAL* devs, uint node) {
     const REAL4 b = boxes[node];
     const REAL dx = fmax(fmax(b.x - c.x, c.x - b.z), (REAL)0);
     const REAL dy = fmax(fmax(b.y - c.y, c.y - b.w), (REAL)0);
     if (dx * dx + dy * dy > reach * reach) return false;
     const REAL4 k = chords[node];
     const REAL capsule = reach + devs[node];
-    return pointSegmentDistance2(c, k) <= capsule * capsule;
+    return pointSegmentDistance2(c, k, chordInverses[node]) <= capsule * capsule;
+}
+
+// The tile's four corner pixel centres, as lanes of a REAL4.
+typedef struct {
+    REAL4 x, y;
+} Corners;
+
+// Squared distances from the corners to segment s = (ax, ay, bx, by) with
+// 1 / length^2 `inverse`.
+inline REAL4 cornerSegmentDistance2(const Corners* k, REAL4 s, REAL inverse) {
+    const REAL abx = s.z - s.x, aby = s.w - s.y;
+    const REAL4 apx = k->x - s.x, apy = k->y - s.y;
+    const REAL4 t = clamp((apx * abx + apy * aby) * inverse, (REAL4)(0), (REAL4)(1));
+    const REAL4 qx = apx - t * abx, qy = apy - t * aby;
+    return qx * qx + qy * qy;
+}
+
+// Whether every segment of node `node` is farther than the contour point q
+// from every pixel of the tile, by more than marginMm2 in squared distance,
+// given beaten2 = |corner - q|^2 + marginMm2 per corner (see tile_candidates).
+inline bool nodeDominated(const Corners* k, REAL4 beaten2, __global const REAL4* boxes,
+                          __global const REAL4* chords, __global const REAL* chordInverses,
+                          __global const REAL* devs, uint node) {
+    const REAL4 b = boxes[node];
+    const REAL4 dx = fmax(fmax(b.x - k->x, k->x - b.z), (REAL4)(0));
+    const REAL4 dy = fmax(fmax(b.y - k->y, k->y - b.w), (REAL4)(0));
+    const REAL4 fromBox2 = dx * dx + dy * dy;
+    const REAL4 fromCapsule =
+        fmax(sqrt(cornerSegmentDistance2(k, chords[node], chordInverses[node])) - devs[node], 0);
+    const REAL4 bound2 = fmax(fromBox2, fromCapsule * fromCapsule);
+    return all(isgreater(bound2, beaten2));
 }
 
 // One work-item per (tile x, tile y, slice of the batch): the segments that
@@ -186,16 +221,26 @@ inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
 // d(c, s) <= min_s d(c, s) + 2h can be nearest to one of its pixels. Both the
 // minimum and the list come from branch and bound over the tree (nodes whose
 // box or capsule is beyond the limit hold none), with the rounding slack of
-// the field kernel. Writes the count, or capacity + 1 when there are more:
+// the field kernel. A segment s is also left out when some point q of the
+// contour is nearer than s to every pixel of the tile: g(p) = d(p, s)^2 -
+// |p - q|^2 is a minimum of functions linear in p (|p - x|^2 - |p - q|^2 over
+// the points x of s), so concave, and its minimum over the tile's box is at
+// a corner. q is the point of the contour nearest the centre; when g exceeds
+// marginMm2 (far above the rounding of squared distances of coordinates this
+// large) at all four corners, s is farther than q's segment from every pixel
+// by more than rounding, so it never wins or ties there. A node whose lower
+// bound (box or capsule) passes the test at every corner holds no candidate.
+// Writes the count, or capacity + 1 when there are more:
 // the field kernel then walks the tree for each pixel instead. O(depth +
 // capacity) nodes per tile for contours no denser than its pixels.
-__kernel void tile_candidates(__global const REAL4* segments, __global const uint* sliceFirst,
-                              __global const uint* sliceCount, __global const REAL4* boxes,
-                              __global const REAL4* chords, __global const REAL* devs,
+__kernel void tile_candidates(__global const REAL4* segments, __global const REAL* inverses,
+                              __global const uint* sliceFirst, __global const uint* sliceCount,
+                              __global const REAL4* boxes, __global const REAL4* chords,
+                              __global const REAL* chordInverses, __global const REAL* devs,
                               __global const uint* treeFirst, __global const uint* leafBase,
                               const uint width, const uint height, const REAL pixelMm,
-                              const REAL slackMm, const uint capacity, __global uint* candidates,
-                              __global uint* candidateCount) {
+                              const REAL slackMm, const REAL marginMm2, const uint capacity,
+                              __global uint* candidates, __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
@@ -209,6 +254,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
     const uint tree = treeFirst[s];
     __global const REAL4* box = boxes + tree;
     __global const REAL4* chord = chords + tree;
+    __global const REAL* chordInverse = chordInverses + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
     const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
@@ -226,22 +272,37 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
             fmax(fmax(r.x - c.x, c.x - r.z), (REAL)0) + fmax(fmax(r.y - c.y, c.y - r.w), (REAL)0);
         node = 2 * node + (dr < dl ? 1 : 0);
     }
+    uint nearest = 0;
     for (uint seg = first + (node - leaves) * LEAF;
-         seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
-        best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
+         seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg) {
+        const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
+        if (d2 < best2) best2 = d2, nearest = seg;
+    }
     node = count > 0 ? 1 : 0;
     while (node != 0) {
-        if (nodeWithin(c, sqrt(best2) * REACH_RELATIVE + slackMm, box, chord, dev, node)) {
+        if (nodeWithin(c, sqrt(best2) * REACH_RELATIVE + slackMm, box, chord, chordInverse, dev,
+                       node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
             }
             for (uint seg = first + (node - leaves) * LEAF;
-                 seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg)
-                best2 = fmin(best2, pointSegmentDistance2(c, segments[seg]));
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg) {
+                const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
+                if (d2 < best2) best2 = d2, nearest = seg;
+            }
         }
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
+    }
+    const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
+    REAL4 beaten2 = (REAL4)(INFINITY);
+    if (count > 0) {
+        const REAL4 q = segments[nearest];
+        const REAL t = clamp(dot(c - q.xy, q.zw - q.xy) * inverses[nearest], (REAL)0, (REAL)1);
+        const REAL2 foot = q.xy + t * (q.zw - q.xy);
+        const REAL4 fx = corners.x - foot.x, fy = corners.y - foot.y;
+        beaten2 = fx * fx + fy * fy + marginMm2;
     }
 
     // The candidates, in segment order (a left-first walk visits leaves in
@@ -250,7 +311,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
     uint n = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= capacity) {
-        if (nodeWithin(c, reach, box, chord, dev, node)) {
+        if (nodeWithin(c, reach, box, chord, chordInverse, dev, node) &&
+            !nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -258,7 +320,9 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
             for (uint seg = first + (node - leaves) * LEAF;
                  seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
                  ++seg)
-                if (pointSegmentDistance2(c, segments[seg]) <= reach * reach) {
+                if (pointSegmentDistance2(c, segments[seg], inverses[seg]) <= reach * reach &&
+                    !all(isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]),
+                                   beaten2))) {
                     if (n < capacity) list[n] = seg;
                     ++n;
                 }
@@ -283,13 +347,13 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const uin
 // with k > i (0 if none), found by binary search: O(log crossings) per
 // work-item and row plus the crossings among its own pixels.
 __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
-    __global const REAL4* segments, __global const uint2* ids, __global const uint* sliceFirst,
-    __global const uint* sliceCount, __global const REAL4* boxes, __global const REAL4* chords,
-    __global const REAL* devs, __global const uint* treeFirst, __global const uint* leafBase,
-    __global const uint* rowFirst, __global const int2* crossings, const uint width,
-    const uint height, const REAL pixelMm, const REAL slackMm, const uint capacity,
-    __global const uint* candidates, __global const uint* candidateCount, __global float* distance,
-    __global uint* nearestId) {
+    __global const REAL4* segments, __global const REAL* inverses, __global const uint2* ids,
+    __global const uint* sliceFirst, __global const uint* sliceCount, __global const REAL4* boxes,
+    __global const REAL4* chords, __global const REAL* chordInverses, __global const REAL* devs,
+    __global const uint* treeFirst, __global const uint* leafBase, __global const uint* rowFirst,
+    __global const int2* crossings, const uint width, const uint height, const REAL pixelMm,
+    const REAL slackMm, const uint capacity, __global const uint* candidates,
+    __global const uint* candidateCount, __global float* distance, __global uint* nearestId) {
     const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
     if (i0 >= width) return;  // padding of the last tiles (no barriers below)
     const INTV lane = (INTV)(i0) + LANE_OFFSETS;
@@ -298,6 +362,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     const uint tree = treeFirst[s];
     __global const REAL4* box = boxes + tree;
     __global const REAL4* chord = chords + tree;
+    __global const REAL* chordInverse = chordInverses + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
@@ -312,7 +377,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
         if (listed <= capacity) {
-            for (uint k = 0; k < listed; ++k) consider(&n, segments, list[k], px, py);
+            for (uint k = 0; k < listed; ++k) consider(&n, segments, inverses, list[k], px, py);
         } else if (count > 0) {
             uint start;  // a leaf near the lanes, where the walk starts
             if (j == j0) {
@@ -326,7 +391,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             } else {
                 for (int l = 0; l < LANES; ++l)
                     if (l == 0 || segs[l] != segs[l - 1])
-                        consider(&n, segments, (uint)segs[l], px, py);
+                        consider(&n, segments, inverses, (uint)segs[l], px, py);
                 start = leaves + ((uint)segs[LANES / 2] - first) / LEAF;
             }
             updateReach(&n, slackMm);
@@ -334,20 +399,20 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             // ancestors, nearest first: every leaf once. Depth first within a
             // subtree, left before right, without a stack: after a node,
             // climb past right children and step to the sibling.
-            if (worthVisiting(&n, box, chord, dev, start, px, py)) {
-                visitLeaf(&n, segments, first, count, start - leaves, px, py);
+            if (worthVisiting(&n, box, chord, chordInverse, dev, start, px, py)) {
+                visitLeaf(&n, segments, inverses, first, count, start - leaves, px, py);
                 updateReach(&n, slackMm);
             }
             for (uint below = start; below > 1; below >>= 1) {
                 const uint root = below ^ 1;
                 uint node = root;
                 for (;;) {
-                    if (worthVisiting(&n, box, chord, dev, node, px, py)) {
+                    if (worthVisiting(&n, box, chord, chordInverse, dev, node, px, py)) {
                         if (node < leaves) {
                             node *= 2;
                             continue;
                         }
-                        visitLeaf(&n, segments, first, count, node - leaves, px, py);
+                        visitLeaf(&n, segments, inverses, first, count, node - leaves, px, py);
                         updateReach(&n, slackMm);
                     }
                     while (node != root && (node & 1)) node >>= 1;
