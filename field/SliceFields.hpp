@@ -38,7 +38,7 @@ struct FieldKernelOptions {
     /// Float arithmetic, what devices without fp64 get (about 1e-6 relative
     /// error instead of 1e-12).
     bool singlePrecision = false;
-    /// Candidates a tile of 8×8 pixels lists at most before its pixels walk
+    /// Candidates a tile of 16×16 pixels lists at most before its pixels walk
     /// the segment tree instead: -1 = the default. Results are the same
     /// (0: always walk; tests run both ways).
     int tileListCapacity = -1;
@@ -46,7 +46,7 @@ struct FieldKernelOptions {
 
 /// Fields of all `slices` on `grid` with the OpenCL kernels of
 /// kernels/closest_segment_2d.cl: a tree of boxes and capsules over runs of
-/// consecutive segments per slice; each 8×8 tile lists the segments that can
+/// consecutive segments per slice; each 16×16 tile lists the segments that can
 /// be nearest to one of its pixels (when few), else its pixels walk the tree
 /// row by row from the row below's nearest. Both only skip what is provably
 /// farther than the best, so the result is the brute-force scan's (ties to

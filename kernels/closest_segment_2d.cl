@@ -59,6 +59,8 @@
 #define REALV REAL
 #define INTV int
 #define CONVERT_REALV(x) ((REAL)(x))
+#define CONVERT_FLOATV(x) ((float)(x))
+#define CONVERT_MASKV(x) ((int)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
 #define MASKV int  // scalar comparisons give int whatever the operand type
 #define MASK_SCALAR int
@@ -70,6 +72,8 @@
 #define REALV CONCAT(REAL, LANES)
 #define INTV CONCAT(int, LANES)
 #define CONVERT_REALV CONCAT(convert_, REALV)
+#define CONVERT_FLOATV CONCAT(convert_float, LANES)
+#define CONVERT_MASKV CONCAT(convert_, MASKV)
 #define VSTORE CONCAT(vstore, LANES)
 // Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
@@ -133,6 +137,39 @@ inline void consider(Nearest* n, __global const REAL4* segments, __global const 
     n->best2 = PICK(n->best2, d2, better);
     n->bestT = PICK(n->bestT, t, better);
     n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
+}
+
+// consider() for segments met in increasing index order: a strict < then
+// keeps the lowest index among ties, and the chain of dependent comparisons
+// per segment is one instead of three.
+inline void considerInOrder(Nearest* n, __global const REAL4* segments,
+                            __global const REAL* inverses, uint seg, REALV px, REAL py) {
+    REALV t;
+    const REALV d2 = segmentDistance2(segments[seg], inverses[seg], px, py, &t);
+    const MASKV better = isless(d2, n->best2);
+    n->best2 = PICK(n->best2, d2, better);
+    n->bestT = PICK(n->bestT, t, better);
+    n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
+}
+
+// The lanes' nearest of `listed` segments listed in increasing index order.
+// Two interleaved halves are scanned side by side, so that each comparison
+// waits for the one before last rather than the last, and merged by
+// (distance, index): the result is the same as one scan in list order.
+inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+                     __global const uint* list, uint listed, REALV px, REAL py) {
+    Nearest odd = *n;
+    uint k = 0;
+    for (; k + 1 < listed; k += 2) {
+        considerInOrder(n, segments, inverses, list[k], px, py);
+        considerInOrder(&odd, segments, inverses, list[k + 1], px, py);
+    }
+    if (k < listed) considerInOrder(n, segments, inverses, list[k], px, py);
+    const MASKV better =
+        isless(odd.best2, n->best2) | (isequal(odd.best2, n->best2) & (odd.bestSeg < n->bestSeg));
+    n->best2 = PICK(n->best2, odd.best2, better);
+    n->bestT = PICK(n->bestT, odd.bestT, better);
+    n->bestSeg = PICK(n->bestSeg, odd.bestSeg, better);
 }
 
 inline void updateReach(Nearest* n, REAL slackMm) {
@@ -377,7 +414,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
         if (listed <= capacity) {
-            for (uint k = 0; k < listed; ++k) consider(&n, segments, inverses, list[k], px, py);
+            scanList(&n, segments, inverses, list, listed, px, py);
         } else if (count > 0) {
             uint start;  // a leaf near the lanes, where the walk starts
             if (j == j0) {
@@ -440,22 +477,26 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
         }
 
-        REAL d[LANES], tl[LANES];
-        int w[LANES];
-        VSTORE(sqrt(n.best2), 0, d);
+        const REALV unsigned_ = sqrt(n.best2);
+        const REALV signed_ = PICK(unsigned_, -unsigned_, CONVERT_MASKV(winding != (INTV)(0)));
+        REAL tl[LANES];
         VSTORE(n.bestT, 0, tl);
-        VSTORE(winding, 0, w);
         VSTORE(n.bestSeg, 0, segs);
-        for (int l = 0; l < LANES; ++l) {
-            if (i0 + l >= width) break;
+        const size_t pixel = row * width + i0;
+        if (i0 + LANES <= width) {
+            VSTORE(CONVERT_FLOATV(signed_), 0, distance + pixel);
+        } else {
+            float d[LANES];
+            VSTORE(CONVERT_FLOATV(signed_), 0, d);
+            for (uint l = 0; i0 + l < width; ++l) distance[pixel + l] = d[l];
+        }
+        for (uint l = 0; l < LANES && i0 + l < width; ++l) {
             uint id = 0xffffffffu;
             if (count > 0) {
                 const uint2 e = ids[(uint)segs[l]];
                 id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
             }
-            const size_t pixel = row * width + i0 + l;
-            distance[pixel] = w[l] != 0 ? -(float)d[l] : (float)d[l];
-            nearestId[pixel] = id;
+            nearestId[pixel + l] = id;
         }
     }
 }
