@@ -266,7 +266,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
 
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
                                 " -DLANES=" + std::to_string(lanes) +
-                                " -DLEAF=" + std::to_string(kLeaf);
+                                " -DLEAF=" + std::to_string(kLeaf) +
+                                " -DBLOCK_LIST=" + std::to_string(kListCapacity);
     const cl::Program& program =
         runtime.program({"real.cl", "closest_point.cl", "closest_segment_2d.cl"}, options);
     // Far above the rounding of coordinates of this size (kernel header).
@@ -326,6 +327,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, cl_uint(grid.height));
         field.setArg(a++, Real(grid.pixelMm));
         field.setArg(a++, slackMm);
+        field.setArg(a++, marginMm2);
         field.setArg(a++, capacity);
         field.setArg(a++, candidates.get());
         field.setArg(a++, candidateCount.get());

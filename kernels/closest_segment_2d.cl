@@ -43,6 +43,15 @@
 #ifndef LEAF
 #define LEAF 8
 #endif
+// Rows of a work-item that share one list filtered from their tile's, and
+// the most entries such a list has room for (a tile's list longer than that
+// is scanned whole).
+#ifndef BLOCK_ROWS
+#define BLOCK_ROWS 8
+#endif
+#ifndef BLOCK_LIST
+#define BLOCK_LIST 96
+#endif
 // Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
 // SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
 // the tree together: a subtree is entered when any lane may find a nearer
@@ -157,7 +166,7 @@ inline void considerInOrder(Nearest* n, __global const REAL4* segments,
 // waits for the one before last rather than the last, and merged by
 // (distance, index): the result is the same as one scan in list order.
 inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
-                     __global const uint* list, uint listed, REALV px, REAL py) {
+                     const uint* list, uint listed, REALV px, REAL py) {
     Nearest odd = *n;
     uint k = 0;
     for (; k + 1 < listed; k += 2) {
@@ -250,6 +259,18 @@ inline bool nodeDominated(const Corners* k, REAL4 beaten2, __global const REAL4*
     return all(isgreater(bound2, beaten2));
 }
 
+// For the box of pixel centres lo..hi and the contour point nearest its
+// centre on segment `q`, whose 1 / length^2 is `inverse`: per corner,
+// |corner - foot|^2 + marginMm2, the squared distance a segment must exceed
+// at every corner to be farther than the foot from every pixel of the box
+// (tile_candidates says why).
+inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, REAL marginMm2) {
+    const REAL t = clamp(dot(c - q.xy, q.zw - q.xy) * inverse, (REAL)0, (REAL)1);
+    const REAL2 foot = q.xy + t * (q.zw - q.xy);
+    const REAL4 fx = k->x - foot.x, fy = k->y - foot.y;
+    return fx * fx + fy * fy + marginMm2;
+}
+
 // One work-item per (tile x, tile y, slice of the batch): the segments that
 // can be nearest to a pixel of the TILE x TILE tile, when there are at most
 // `capacity`. For the tile's centre c and half-diagonal h (over its pixel
@@ -333,14 +354,9 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         if (node != 0) ++node;
     }
     const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
-    REAL4 beaten2 = (REAL4)(INFINITY);
-    if (count > 0) {
-        const REAL4 q = segments[nearest];
-        const REAL t = clamp(dot(c - q.xy, q.zw - q.xy) * inverses[nearest], (REAL)0, (REAL)1);
-        const REAL2 foot = q.xy + t * (q.zw - q.xy);
-        const REAL4 fx = corners.x - foot.x, fy = corners.y - foot.y;
-        beaten2 = fx * fx + fy * fy + marginMm2;
-    }
+    const REAL4 beaten2 =
+        count > 0 ? beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2)
+                  : (REAL4)(INFINITY);
 
     // The candidates, in segment order (a left-first walk visits leaves in
     // order).
@@ -370,6 +386,34 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     candidateCount[at] = n;
 }
 
+// The entries of a tile's list (in segment order) that can be nearest to a
+// pixel of the block of pixel centres lo..hi within the tile, in the same
+// order, into `out`: those that the point of the contour nearest the block's
+// centre does not beat at all four corners (tile_candidates' test, on a
+// smaller box). O(listed).
+inline uint blockCandidates(__global const REAL4* segments, __global const REAL* inverses,
+                            __global const uint* list, uint listed, REAL2 lo, REAL2 hi,
+                            REAL marginMm2, uint* out) {
+    const REAL2 c = (lo + hi) / 2;
+    REAL best2 = INFINITY;
+    uint nearest = list[0];
+    for (uint k = 0; k < listed; ++k) {
+        const REAL d2 = pointSegmentDistance2(c, segments[list[k]], inverses[list[k]]);
+        if (d2 < best2) best2 = d2, nearest = list[k];
+    }
+    const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
+    const REAL4 beaten2 =
+        beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
+    uint n = 0;
+    for (uint k = 0; k < listed; ++k) {
+        const uint seg = list[k];
+        if (!all(
+                isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]), beaten2)))
+            out[n++] = seg;
+    }
+    return n;
+}
+
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
 // rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
 // the tile's list when it has one, else the walk of the tree, where each row
@@ -389,7 +433,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const REAL4* chords, __global const REAL* chordInverses, __global const REAL* devs,
     __global const uint* treeFirst, __global const uint* leafBase, __global const uint* rowFirst,
     __global const int2* crossings, const uint width, const uint height, const REAL pixelMm,
-    const REAL slackMm, const uint capacity, __global const uint* candidates,
+    const REAL slackMm, const REAL marginMm2, const uint capacity, __global const uint* candidates,
     __global const uint* candidateCount, __global float* distance, __global uint* nearestId) {
     const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
     if (i0 >= width) return;  // padding of the last tiles (no barriers below)
@@ -408,13 +452,31 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const uint* list = candidates + tile * capacity;
 
     MASK_SCALAR segs[LANES];
+    uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS rows
+    uint blockListed = 0;
+    const uint lastColumn = min(i0 + LANES, width) - 1;
     for (uint j = j0; j < min(j0 + TILE, height); ++j) {
         const REAL py = (j + (REAL)0.5) * pixelMm;
         Nearest n;
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
-        if (listed <= capacity) {
-            scanList(&n, segments, inverses, list, listed, px, py);
+        if (listed <= capacity && listed <= BLOCK_LIST) {
+            if ((j - j0) % BLOCK_ROWS == 0 && listed > 0) {
+                const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
+                blockListed = blockCandidates(
+                    segments, inverses, list, listed, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
+                    (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
+                    marginMm2, block);
+            }
+            scanList(&n, segments, inverses, block, blockListed, px, py);
+        } else if (listed <= capacity) {
+            // Longer lists than a block holds (a capacity set by the caller):
+            // the whole list, a block at a time.
+            for (uint k = 0; k < listed; k += BLOCK_LIST) {
+                const uint m = min(listed - k, (uint)BLOCK_LIST);
+                for (uint e = 0; e < m; ++e) block[e] = list[k + e];
+                scanList(&n, segments, inverses, block, m, px, py);
+            }
         } else if (count > 0) {
             uint start;  // a leaf near the lanes, where the walk starts
             if (j == j0) {
