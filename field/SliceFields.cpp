@@ -17,7 +17,7 @@ constexpr std::uint32_t kTile = 16;  // work-group side in pixels
 constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
 // Candidates a tile lists at most; beyond, its pixels walk the tree (about
 // where that gets cheaper than scanning the list).
-constexpr int kListCapacity = 96;
+constexpr int kListCapacity = 320;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
