@@ -253,6 +253,7 @@ inline bool nodeDominated(const Corners* k, REAL4 beaten2, __global const REAL4*
     const REAL4 dx = fmax(fmax(b.x - k->x, k->x - b.z), (REAL4)(0));
     const REAL4 dy = fmax(fmax(b.y - k->y, k->y - b.w), (REAL4)(0));
     const REAL4 fromBox2 = dx * dx + dy * dy;
+    if (all(isgreater(fromBox2, beaten2))) return true;
     const REAL4 fromCapsule =
         fmax(sqrt(cornerSegmentDistance2(k, chords[node], chordInverses[node])) - devs[node], 0);
     const REAL4 bound2 = fmax(fromBox2, fromCapsule * fromCapsule);
