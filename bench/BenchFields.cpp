@@ -21,6 +21,10 @@ namespace dfrecon::bench {
 namespace {
 
 constexpr int kGridPixels = 512;
+// Timed runs of the kernel and of OpenCV, best kept: both take a few
+// milliseconds, where one run in three can lose a millisecond to the
+// machine (thread wake-ups), so ten runs were not always enough.
+constexpr int kTimedRuns = 30;
 constexpr double kPi = 3.14159265358979323846;
 
 // A wavy outer contour and a circular hole, `segments` edges in all, in a
@@ -119,11 +123,11 @@ int benchFields(const std::string& device) {
         computeSliceFields(runtime, slices, grid);  // warm-up: kernel build
         SliceFields kernel;
         const double kernelSeconds =
-            bestSeconds(10, [&] { kernel = computeSliceFields(runtime, slices, grid); });
+            bestSeconds(kTimedRuns, [&] { kernel = computeSliceFields(runtime, slices, grid); });
 
         std::vector<float> opencv;
         const double opencvSeconds =
-            bestSeconds(10, [&] { opencv = opencvSignedField(slices[0], grid); });
+            bestSeconds(kTimedRuns, [&] { opencv = opencvSignedField(slices[0], grid); });
 
         print(caseName, "dfrecon", kernelSeconds,
               compare(kernel.distanceMm, exact.distanceMm, grid.pixelMm),
