@@ -47,6 +47,39 @@ class DeviceBuffer {
         }
     }
 
+    /// Device memory over `host[0, count)` itself (CL_MEM_USE_HOST_PTR):
+    /// devices that share host memory, as PoCL's CPU device does, write
+    /// there with no copy; others keep a copy that mapInto() brings back.
+    /// `host` must stay allocated while the buffer lives.
+    static DeviceBuffer over(Runtime& runtime, T* host, std::size_t count,
+                             cl_mem_flags flags = CL_MEM_WRITE_ONLY) {
+        DeviceBuffer buffer;
+        buffer.count_ = count;
+        if (count == 0) return DeviceBuffer(runtime, 0, flags);
+        try {
+            buffer.buffer_ =
+                cl::Buffer(runtime.context(), flags | CL_MEM_USE_HOST_PTR, sizeof(T) * count, host);
+        } catch (const cl::Error& e) {
+            throw toClError(e, "wrapping " + std::to_string(sizeof(T) * count) + " bytes");
+        }
+        return buffer;
+    }
+
+    /// For a buffer made by over(): waits until the device's writes are in
+    /// the host memory (a map for reading and its unmap; no copy where the
+    /// memory is shared). With `blocking` false the map only joins the queue,
+    /// for a later blocking call to wait on.
+    void mapForHost(Runtime& runtime, bool blocking) const {
+        if (count_ == 0) return;
+        try {
+            void* mapped = runtime.queue().enqueueMapBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE,
+                                                            CL_MAP_READ, 0, sizeof(T) * count_);
+            runtime.queue().enqueueUnmapMemObject(buffer_, mapped);
+        } catch (const cl::Error& e) {
+            throw toClError(e);
+        }
+    }
+
     DeviceBuffer(const DeviceBuffer&) = delete;
     DeviceBuffer& operator=(const DeviceBuffer&) = delete;
     DeviceBuffer(DeviceBuffer&&) noexcept = default;
