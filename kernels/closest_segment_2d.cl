@@ -274,24 +274,20 @@ inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, R
 
 // One work-item per (tile x, tile y, slice of the batch): the segments that
 // can be nearest to a pixel of the TILE x TILE tile, when there are at most
-// `capacity`. For the tile's centre c and half-diagonal h (over its pixel
-// centres) every pixel p has |p - c| <= h, so d(p, s) >= d(c, s) - h and
-// min_s d(p, s) <= min_s d(c, s) + h: only segments with
-// d(c, s) <= min_s d(c, s) + 2h can be nearest to one of its pixels. Both the
-// minimum and the list come from branch and bound over the tree (nodes whose
-// box or capsule is beyond the limit hold none), with the rounding slack of
-// the field kernel. A segment s is also left out when some point q of the
-// contour is nearer than s to every pixel of the tile: g(p) = d(p, s)^2 -
-// |p - q|^2 is a minimum of functions linear in p (|p - x|^2 - |p - q|^2 over
-// the points x of s), so concave, and its minimum over the tile's box is at
-// a corner. q is the point of the contour nearest the centre; when g exceeds
-// marginMm2 (far above the rounding of squared distances of coordinates this
-// large) at all four corners, s is farther than q's segment from every pixel
-// by more than rounding, so it never wins or ties there. A node whose lower
-// bound (box or capsule) passes the test at every corner holds no candidate.
-// Writes the count, or capacity + 1 when there are more:
-// the field kernel then walks the tree for each pixel instead. O(depth +
-// capacity) nodes per tile for contours no denser than its pixels.
+// `capacity`. A segment s is left out when some point q of the contour is
+// nearer than s to every pixel of the tile: g(p) = d(p, s)^2 - |p - q|^2 is
+// a minimum of functions linear in p (|p - x|^2 - |p - q|^2 over the points
+// x of s), so concave, and its minimum over the tile's box (of pixel
+// centres) is at a corner. q is the point of the contour nearest the centre,
+// found by branch and bound over the tree; when g exceeds marginMm2 (far
+// above the rounding of squared distances of coordinates this large) at all
+// four corners, s is farther than q's segment from every pixel by more than
+// rounding, so it never wins or ties there. A node whose lower bound (box,
+// then capsule) passes the test at every corner holds no candidate, so the
+// list comes from a second walk of the tree that skips such nodes. Writes
+// the count, or capacity + 1 when there are more: the field kernel then
+// walks the tree for each pixel instead. O(depth + capacity) nodes per tile
+// for contours no denser than its pixels.
 __kernel void tile_candidates(__global const REAL4* segments, __global const REAL* inverses,
                               __global const uint* sliceFirst, __global const uint* sliceCount,
                               __global const REAL4* boxes, __global const REAL4* chords,
@@ -308,7 +304,6 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     const REAL2 lo = (REAL2)((i0 + (REAL)0.5) * pixelMm, (j0 + (REAL)0.5) * pixelMm);
     const REAL2 hi = (REAL2)((i1 + (REAL)0.5) * pixelMm, (j1 + (REAL)0.5) * pixelMm);
     const REAL2 c = (lo + hi) / 2;
-    const REAL halfDiagonal = length(hi - lo) / 2;
     const uint first = sliceFirst[s], count = sliceCount[s];
     const uint tree = treeFirst[s];
     __global const REAL4* box = boxes + tree;
@@ -361,12 +356,10 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
 
     // The candidates, in segment order (a left-first walk visits leaves in
     // order).
-    const REAL reach = (sqrt(best2) + 2 * halfDiagonal) * REACH_RELATIVE + slackMm;
     uint n = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= capacity) {
-        if (nodeWithin(c, reach, box, chord, chordInverse, dev, node) &&
-            !nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
+        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -374,8 +367,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
             for (uint seg = first + (node - leaves) * LEAF;
                  seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
                  ++seg)
-                if (pointSegmentDistance2(c, segments[seg], inverses[seg]) <= reach * reach &&
-                    !all(isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]),
+                if (!all(isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]),
                                    beaten2))) {
                     if (n < capacity) list[n] = seg;
                     ++n;
