@@ -383,16 +383,21 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
 // pixel of the block of pixel centres lo..hi within the tile, in the same
 // order, into `out`: those that the point of the contour nearest the block's
 // centre does not beat at all four corners (tile_candidates' test, on a
-// smaller box). O(listed).
+// smaller box). That point is taken on segment `hint` where one is given (any
+// point of the contour makes the test hold; a near one makes it strong).
+// O(listed).
 inline uint blockCandidates(__global const REAL4* segments, __global const REAL* inverses,
                             __global const uint* list, uint listed, REAL2 lo, REAL2 hi,
-                            REAL marginMm2, uint* out) {
+                            REAL marginMm2, uint hint, uint* out) {
     const REAL2 c = (lo + hi) / 2;
-    REAL best2 = INFINITY;
-    uint nearest = list[0];
-    for (uint k = 0; k < listed; ++k) {
-        const REAL d2 = pointSegmentDistance2(c, segments[list[k]], inverses[list[k]]);
-        if (d2 < best2) best2 = d2, nearest = list[k];
+    uint nearest = hint;
+    if (hint == 0xffffffffu) {
+        REAL best2 = INFINITY;
+        nearest = list[0];
+        for (uint k = 0; k < listed; ++k) {
+            const REAL d2 = pointSegmentDistance2(c, segments[list[k]], inverses[list[k]]);
+            if (d2 < best2) best2 = d2, nearest = list[k];
+        }
     }
     const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
     const REAL4 beaten2 =
@@ -459,7 +464,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
                 blockListed = blockCandidates(
                     segments, inverses, list, listed, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
                     (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
-                    marginMm2, block);
+                    marginMm2, j == j0 ? 0xffffffffu : (uint)segs[LANES / 2], block);
             }
             scanList(&n, segments, inverses, block, blockListed, px, py);
         } else if (listed <= capacity) {
