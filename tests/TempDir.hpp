@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 namespace dfrecon::testing {
@@ -36,5 +38,27 @@ class TempDir {
   private:
     std::filesystem::path path_;
 };
+
+/// A scratch folder for the whole test process, made on first use (the
+/// first call's prefix names it) and removed when the process exits: ctest
+/// runs each test in its own process, and folders left behind pile up.
+inline const std::filesystem::path& processScratch(const std::string& prefix) {
+    struct Scratch {
+        std::filesystem::path path;
+        explicit Scratch(const std::string& prefix) {
+            std::string pattern =
+                (std::filesystem::temp_directory_path() / ("dfrecon-" + prefix + "-XXXXXX"))
+                    .string();
+            if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+            path = pattern;
+        }
+        ~Scratch() {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Scratch scratch(prefix);
+    return scratch.path;
+}
 
 }  // namespace dfrecon::testing

@@ -22,6 +22,7 @@
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/BadSlicesInputs.hpp"
 #include "tests/CliRun.hpp"
+#include "tests/TempDir.hpp"
 #include "tests/VtkRead.hpp"
 
 namespace fs = std::filesystem;
@@ -32,12 +33,7 @@ using Result = dfrecon::testing::CliResult;
 using dfrecon::testing::slurp;
 
 fs::path scratch() {
-    static const fs::path dir = [] {
-        std::string pattern = (fs::temp_directory_path() / "dfrecon-test-cli-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        return fs::path(pattern);
-    }();
-    return dir;
+    return dfrecon::testing::processScratch("test-cli");
 }
 
 Result runDfrecon(const std::string& args) {

@@ -11,6 +11,7 @@
 #include "io/InputError.hpp"
 #include "io/MeshFileCheck.hpp"
 #include "io/MeshIO.hpp"
+#include "tests/TempDir.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;
@@ -18,12 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch() {
-    static const fs::path dir = [] {
-        std::string pattern = (fs::temp_directory_path() / "dfrecon-meshcheck-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        return fs::path(pattern);
-    }();
-    return dir;
+    return dfrecon::testing::processScratch("meshcheck");
 }
 
 std::string write(const std::string& name, const std::string& bytes) {
