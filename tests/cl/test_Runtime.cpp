@@ -55,3 +55,26 @@ TEST(Runtime, DeviceBufferRoundTripsAndChecksSizes) {
     DeviceBuffer<cl_float> empty(runtime, 0);
     EXPECT_TRUE(empty.download(runtime).empty());
 }
+
+// A buffer over host memory: what a kernel writes is in the host vector once
+// mapForHost returns, on the CPU device (shared memory) as on any other.
+TEST(Runtime, DeviceBufferOverHostMemorySeesKernelWrites) {
+    Runtime runtime("cpu");
+    const cl::Program program = runtime.buildProgram(
+        "__kernel void twice(__global const int* in, __global int* out) {"
+        "  out[get_global_id(0)] = 2 * in[get_global_id(0)]; }",
+        "twice.cl");
+    const std::vector<cl_int> input = {1, -2, 3, 1 << 20, 7};
+    std::vector<cl_int> output(input.size(), 0);
+    const DeviceBuffer<cl_int> in(runtime, input);
+    const auto out = DeviceBuffer<cl_int>::over(runtime, output.data(), output.size());
+    cl::Kernel kernel(program, "twice");
+    kernel.setArg(0, in.get());
+    kernel.setArg(1, out.get());
+    runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(input.size()));
+    out.mapForHost(runtime, true);
+    EXPECT_EQ(output, (std::vector<cl_int>{2, -4, 6, 1 << 21, 14}));
+    // Empty host data makes a valid (one-element) buffer either way.
+    EXPECT_EQ(DeviceBuffer<cl_int>(runtime, std::vector<cl_int>{}).size(), 0u);
+    EXPECT_EQ(DeviceBuffer<cl_int>::over(runtime, nullptr, 0).size(), 0u);
+}
