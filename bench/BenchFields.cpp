@@ -94,14 +94,10 @@ std::vector<float> opencvSignedField(const Slice& slice, const SliceGrid& grid) 
     return field;
 }
 
-void print(const std::string& caseName, const std::string& system, double seconds,
-           const Errors& errors, const std::string& device = {}, double opencvSeconds = 0) {
-    nlohmann::ordered_json line = {{"bench", "fields"},          {"case", caseName},
-                                   {"system", system},           {"seconds", seconds},
-                                   {"max_err_px", errors.maxPx}, {"mean_err_px", errors.meanPx}};
-    if (opencvSeconds > 0) line["x_opencv"] = seconds / opencvSeconds;
-    if (!device.empty()) line["device"] = device;
-    std::cout << line.dump() << std::endl;
+nlohmann::ordered_json line(const std::string& caseName, const std::string& system, double seconds,
+                            const Errors& errors) {
+    return {{"bench", "fields"},  {"case", caseName},           {"system", system},
+            {"seconds", seconds}, {"max_err_px", errors.maxPx}, {"mean_err_px", errors.meanPx}};
 }
 
 }  // namespace
@@ -129,11 +125,27 @@ int benchFields(const std::string& device) {
         const double opencvSeconds =
             bestSeconds(kTimedRuns, [&] { opencv = opencvSignedField(slices[0], grid); });
 
-        print(caseName, "dfrecon", kernelSeconds,
-              compare(kernel.distanceMm, exact.distanceMm, grid.pixelMm),
-              runtime.device().deviceName, opencvSeconds);
-        print(caseName, "bruteforce", bruteSeconds, Errors{});
-        print(caseName, "opencv", opencvSeconds, compare(opencv, exact.distanceMm, grid.pixelMm));
+        // What the tile lists held, from one more run (untimed: the counts'
+        // download is not part of the field).
+        FieldKernelStats stats;
+        FieldKernelOptions withStats;
+        withStats.stats = &stats;
+        computeSliceFields(runtime, slices, grid, {}, withStats);
+
+        nlohmann::ordered_json ours =
+            line(caseName, "dfrecon", kernelSeconds,
+                 compare(kernel.distanceMm, exact.distanceMm, grid.pixelMm));
+        ours["x_opencv"] = kernelSeconds / opencvSeconds;
+        ours["device"] = runtime.device().deviceName;
+        ours["tiles"] = stats.tiles;
+        ours["overflowing_tiles"] = stats.overflowingTiles;
+        ours["mean_listed"] = stats.meanListed;
+        std::cout << ours.dump() << std::endl;
+        std::cout << line(caseName, "bruteforce", bruteSeconds, Errors{}).dump() << std::endl;
+        std::cout << line(caseName, "opencv", opencvSeconds,
+                          compare(opencv, exact.distanceMm, grid.pixelMm))
+                         .dump()
+                  << std::endl;
     }
     return 0;
 }

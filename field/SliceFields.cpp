@@ -237,7 +237,7 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
-              SliceFields& out) {
+              SliceFields& out, FieldKernelStats* stats) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
@@ -339,6 +339,16 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                                              cl::NDRange(kTile / lanes, 1, 1));
         distance.mapForHost(runtime, false);
         nearest.mapForHost(runtime, true);
+        if (stats) {
+            // The mean is a running sum until computeSliceFields divides it.
+            for (const cl_uint listed : candidateCount.download(runtime)) {
+                ++stats->tiles;
+                if (listed > capacity)
+                    ++stats->overflowingTiles;
+                else
+                    stats->meanListed += listed;
+            }
+        }
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
@@ -367,6 +377,7 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
     const cl_uint capacity = cl_uint(
         options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
     SliceFields fields = emptyFields(slices, grid);
+    if (options.stats) *options.stats = {};
     const std::size_t perBatch =
         std::max<std::size_t>(1, kPixelsPerBatch / std::max<std::size_t>(1, grid.pixelCount()));
     const bool fp64 = runtime.device().doublePrecision && !options.singlePrecision;
@@ -381,11 +392,13 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
             runBatch<decltype(real), decltype(real4)>(runtime, slices, begin, end, grid, lanes,
-                                                      capacity, fields);
+                                                      capacity, fields, options.stats);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));
     }
+    if (FieldKernelStats* stats = options.stats; stats && stats->tiles > stats->overflowingTiles)
+        stats->meanListed /= double(stats->tiles - stats->overflowingTiles);
     return fields;
 }
 

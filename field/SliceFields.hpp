@@ -29,6 +29,17 @@ struct SliceFields {
     }
 };
 
+/// What the field kernel's tile lists held, over every tile of the slices
+/// it computed (slices without contours have none).
+struct FieldKernelStats {
+    std::size_t tiles = 0;
+    /// Tiles with more candidates than the capacity: their pixels walked the
+    /// segment tree instead of scanning a list.
+    std::size_t overflowingTiles = 0;
+    /// Candidates per listing tile, on average.
+    double meanListed = 0;
+};
+
 /// How the field kernel runs; the defaults are right for every device.
 struct FieldKernelOptions {
     /// Pixels each work-item computes in vector lanes: 0 = by device (8 on
@@ -42,6 +53,9 @@ struct FieldKernelOptions {
     /// the segment tree instead: -1 = the default. Results are the same
     /// (0: always walk; tests run both ways).
     int tileListCapacity = -1;
+    /// When set, receives what the tile lists held (one more download of a
+    /// count per tile; for benchmarks and tests).
+    FieldKernelStats* stats = nullptr;
 };
 
 /// Fields of all `slices` on `grid` with the OpenCL kernels of

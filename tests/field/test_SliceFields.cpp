@@ -237,6 +237,33 @@ TEST(SliceFields, DegenerateShortSegments) {
     expectAgreement(slices, gridForSlices(slices, 0.11));
 }
 
+// The tile-list statistics count every tile of every slice with contours:
+// all overflow with room for none, none for one small contour, whose tiles
+// each list at least the segment nearest them.
+TEST(SliceFields, TileListStatsCountEveryTile) {
+    Slice square, empty;
+    square.contours = {{{10, 10}, {40, 10}, {40, 30}, {10, 30}}};
+    const std::vector<Slice> slices{square, empty, square};
+    SliceGrid grid;
+    grid.originMm = {0, 0};
+    grid.pixelMm = 1;
+    grid.width = 100;  // 7 × 4 tiles of 16 pixels
+    grid.height = 50;
+    FieldKernelStats stats;
+    FieldKernelOptions options;
+    options.stats = &stats;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.tiles, 2u * 7u * 4u);
+    EXPECT_EQ(stats.overflowingTiles, 0u);
+    EXPECT_GE(stats.meanListed, 1.0);
+    EXPECT_LE(stats.meanListed, 4.0);
+    options.tileListCapacity = 0;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.tiles, 56u);
+    EXPECT_EQ(stats.overflowingTiles, 56u);
+    EXPECT_EQ(stats.meanListed, 0.0);
+}
+
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
     Slice slice;
     slice.contours.assign(kMaxContoursPerSlice, Polygon{{0, 0}, {1, 0}, {0, 1}});
