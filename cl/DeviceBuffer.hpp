@@ -19,49 +19,27 @@ class DeviceBuffer {
     /// Uninitialised device memory for `count` elements (at least one, as
     /// OpenCL forbids empty buffers).
     DeviceBuffer(Runtime& runtime, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
-        : count_(count) {
-        try {
-            buffer_ =
-                cl::Buffer(runtime.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1));
-        } catch (const cl::Error& e) {
-            throw toClError(e, "allocating " + std::to_string(sizeof(T) * count) + " bytes");
-        }
-    }
+        : buffer_(allocate(runtime, flags, count, nullptr)), count_(count) {}
 
     /// Device memory holding a copy of `host`, copied at creation: no queue
     /// round trip, which costs more than the copy for the small tables most
     /// launches take.
     DeviceBuffer(Runtime& runtime, const std::vector<T>& host,
                  cl_mem_flags flags = CL_MEM_READ_ONLY)
-        : count_(host.size()) {
-        if (host.empty()) {
-            *this = DeviceBuffer(runtime, 0, flags);
-            return;
-        }
-        try {
-            // OpenCL takes the pointer as void*; with COPY_HOST_PTR it only reads.
-            buffer_ = cl::Buffer(runtime.context(), flags | CL_MEM_COPY_HOST_PTR,
-                                 sizeof(T) * host.size(), const_cast<T*>(host.data()));
-        } catch (const cl::Error& e) {
-            throw toClError(e, "allocating " + std::to_string(sizeof(T) * host.size()) + " bytes");
-        }
-    }
+        // OpenCL takes the pointer as void*; with COPY_HOST_PTR it only reads.
+        : buffer_(allocate(runtime, flags | CL_MEM_COPY_HOST_PTR, host.size(),
+                           const_cast<T*>(host.data()))),
+          count_(host.size()) {}
 
     /// Device memory over `host[0, count)` itself (CL_MEM_USE_HOST_PTR):
     /// devices that share host memory, as PoCL's CPU device does, write
-    /// there with no copy; others keep a copy that mapInto() brings back.
+    /// there with no copy; others keep a copy that mapForHost() brings back.
     /// `host` must stay allocated while the buffer lives.
     static DeviceBuffer over(Runtime& runtime, T* host, std::size_t count,
                              cl_mem_flags flags = CL_MEM_WRITE_ONLY) {
         DeviceBuffer buffer;
+        buffer.buffer_ = allocate(runtime, flags | CL_MEM_USE_HOST_PTR, count, host);
         buffer.count_ = count;
-        if (count == 0) return DeviceBuffer(runtime, 0, flags);
-        try {
-            buffer.buffer_ =
-                cl::Buffer(runtime.context(), flags | CL_MEM_USE_HOST_PTR, sizeof(T) * count, host);
-        } catch (const cl::Error& e) {
-            throw toClError(e, "wrapping " + std::to_string(sizeof(T) * count) + " bytes");
-        }
         return buffer;
     }
 
@@ -113,6 +91,21 @@ class DeviceBuffer {
     }
 
   private:
+    /// A buffer of `count` elements (one when empty, without `host`, as
+    /// OpenCL forbids empty buffers); `host` as the flags say.
+    static cl::Buffer allocate(Runtime& runtime, cl_mem_flags flags, std::size_t count, T* host) {
+        if (count == 0) {
+            flags &= ~cl_mem_flags(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
+            host = nullptr;
+        }
+        try {
+            return cl::Buffer(runtime.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1),
+                              host);
+        } catch (const cl::Error& e) {
+            throw toClError(e, "allocating " + std::to_string(sizeof(T) * count) + " bytes");
+        }
+    }
+
     cl::Buffer buffer_;
     std::size_t count_ = 0;
 };
