@@ -269,8 +269,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                                 " -DLANES=" + std::to_string(lanes) +
                                 " -DLEAF=" + std::to_string(kLeaf) +
                                 " -DBLOCK_LIST=" + std::to_string(kListCapacity);
-    const cl::Program& program =
-        runtime.program({"real.cl", "closest_point.cl", "closest_segment_2d.cl"}, options);
+    const cl::Program& program = runtime.program({"real.cl", "closest_segment_2d.cl"}, options);
     // Far above the rounding of coordinates of this size (kernel header).
     const Real slackMm =
         Real(64 * double(std::numeric_limits<Real>::epsilon()) * (flat.magnitudeMm + grid.pixelMm));

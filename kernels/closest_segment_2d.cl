@@ -3,7 +3,10 @@
 // primitive's id (field/PrimitiveId.hpp). One launch covers a batch of slices
 // (the third global dimension).
 //
-// Needs real.cl and closest_point.cl first. Coordinates are millimetres
+// Needs real.cl first. Its point-segment distances multiply by 1 / length^2
+// from the host rather than divide (closest_point.cl's segment_parameter), and
+// come in three widths (lanes, one point, four corners) since OpenCL C has no
+// overloads. Coordinates are millimetres
 // relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its
 // centre at ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the work-group
 // side in pixels), LANES and LEAF come from the host too.
@@ -22,9 +25,10 @@
 // than it: branch and bound never drops the nearest segment. Two ways use
 // it, chosen per tile of TILE x TILE pixels:
 //  - tile_candidates lists the segments that can be nearest to some pixel of
-//    the tile (its header says why), when they are at most `capacity`; the
-//    tile's pixels then scan that list, like a brute-force scan of a few
-//    segments (contours sparse next to the pixels);
+//    the tile (its header says why), when they are at most `capacity`; each
+//    work-item filters that list for every BLOCK_ROWS of its rows by the
+//    same test (blockCandidates), and its pixels scan what is left, like a
+//    brute-force scan of a few segments;
 //  - otherwise (dense contours) each row of LANES pixels walks the tree,
 //    starting from the nearest segments of the row below and the leaf that
 //    holds them, then the sibling subtree of each ancestor of that leaf:
@@ -35,7 +39,7 @@
 // magnitude, which the host passes in slackMm). Ties go to the lower segment
 // index, whatever order segments are met in: the result is that of a scan in
 // segment order keeping the first strict minimum. Work per row of LANES
-// pixels: the tile's list, or O(depth + the segments of leaves within the
+// pixels: its block's list, or O(depth + the segments of leaves within the
 // lanes' nearest distance).
 #ifndef TILE
 #define TILE 8

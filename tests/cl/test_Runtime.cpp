@@ -18,8 +18,8 @@ TEST(Runtime, KernelSourcesAreEmbedded) {
 
 TEST(Runtime, BuildsAndCachesPrograms) {
     Runtime runtime("cpu");
-    // The planar field program: its shared prelude and closest-point text first.
-    const std::vector<std::string> sources{"real.cl", "closest_point.cl", "closest_segment_2d.cl"};
+    // The planar field program: its shared prelude first.
+    const std::vector<std::string> sources{"real.cl", "closest_segment_2d.cl"};
     const cl::Program& first = runtime.program(sources);
     const cl::Program& second = runtime.program(sources);
     EXPECT_EQ(first(), second());
