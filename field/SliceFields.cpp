@@ -338,16 +338,14 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                                              cl::NDRange(kTile / lanes, 1, 1));
         distance.mapForHost(runtime, false);
         nearest.mapForHost(runtime, true);
-        if (stats) {
-            // The mean is a running sum until computeSliceFields divides it.
+        if (stats)
             for (const cl_uint listed : candidateCount.download(runtime)) {
                 ++stats->tiles;
                 if (listed > capacity)
                     ++stats->overflowingTiles;
                 else
-                    stats->meanListed += listed;
+                    stats->listed += listed;
             }
-        }
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
@@ -396,8 +394,6 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));
     }
-    if (FieldKernelStats* stats = options.stats; stats && stats->tiles > stats->overflowingTiles)
-        stats->meanListed /= double(stats->tiles - stats->overflowingTiles);
     return fields;
 }
 

@@ -36,8 +36,12 @@ struct FieldKernelStats {
     /// Tiles with more candidates than the capacity: their pixels walked the
     /// segment tree instead of scanning a list.
     std::size_t overflowingTiles = 0;
+    /// Candidates in all the lists (of the tiles that did not overflow).
+    std::size_t listed = 0;
     /// Candidates per listing tile, on average.
-    double meanListed = 0;
+    double meanListed() const {
+        return tiles > overflowingTiles ? double(listed) / double(tiles - overflowingTiles) : 0;
+    }
 };
 
 /// How the field kernel runs; the defaults are right for every device.

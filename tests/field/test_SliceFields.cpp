@@ -255,13 +255,13 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 2u * 7u * 4u);
     EXPECT_EQ(stats.overflowingTiles, 0u);
-    EXPECT_GE(stats.meanListed, 1.0);
-    EXPECT_LE(stats.meanListed, 4.0);
+    EXPECT_GE(stats.meanListed(), 1.0);
+    EXPECT_LE(stats.meanListed(), 4.0);
     options.tileListCapacity = 0;
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 56u);
     EXPECT_EQ(stats.overflowingTiles, 56u);
-    EXPECT_EQ(stats.meanListed, 0.0);
+    EXPECT_EQ(stats.meanListed(), 0.0);
 }
 
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
