@@ -70,6 +70,13 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
 
     /// Deviations evaluated on the CPU / taken from the initial batch.
     std::size_t cpuEvaluations = 0, initialEvaluations = 0;
+    /// Collapses whose pieces were covered afresh, not as judged (another
+    /// judgement came between; rare).
+    std::size_t rehomedAfresh = 0;
+    /// The total area of the original pieces kept on the faces: the
+    /// original surface's, whatever was collapsed. O(pieces).
+    double piecesArea();
+
     /// Original pieces stored (grows as pieces are split between faces).
     std::size_t pieces = 0;
 
@@ -77,7 +84,13 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// Direction (a): the batch's value, or surfaceDeviation (cached).
     float deviation(const CollapseInfo& ci);
     bool batchValueHolds(const CollapseInfo& ci) const;
+    /// Direction (b), also kept as judgedCover_ when every piece is covered.
     double coverage(const CollapseInfo& ci);
+    /// Homes the pieces of the collapsed faces: as the judgement covered
+    /// them, when it was of this collapse on this mesh (nearly always), or
+    /// covered afresh by v1's faces and the ring around them.
+    void rehomeAsJudged();
+    void rehome(const CollapseInfo& ci);
     void gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip);
     bool collides(const CollapseInfo& ci, const std::vector<NewTriangle>& created);
     Vec3 point(TriMesh::VertexHandle v) const;
@@ -95,6 +108,12 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::vector<NewTriangle> created_;
     std::vector<CoverCandidate> candidates_;
     std::vector<std::pair<OriginalPiece, int>> homedParts_;  // parts and their candidate
+    // The last coverage that covered every piece: parts and the face
+    // covering each (created triangles by the face they replace), valid for
+    // that halfedge while no collapse is made.
+    std::vector<std::pair<OriginalPiece, int>> judgedCover_;
+    int judgedHalfedge_ = -1;
+    std::size_t judgedAtCollapse_ = 0, collapses_ = 0;
     std::vector<int> rimSeen_;  // per face: the gatherRim call that last took it
     int rimCall_ = 0;
     DeviationCache cache_;

@@ -1,0 +1,76 @@
+// ModErrorBound's homing of the original surface's pieces, driven one
+// collapse at a time as CheckedDecimater drives it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "recon/Reconstruction.hpp"
+#include "shapes/AnalyticShapes.hpp"
+#include "simplify/CheckedDecimater.hpp"
+#include "simplify/ModErrorBound.hpp"
+
+namespace dfrecon {
+namespace {
+
+double area(const TriangleSoup& soup) {
+    double total = 0;
+    for (const auto& t : soup.triangles) {
+        const Vec3 a = soup.points[t[0]], b = soup.points[t[1]], c = soup.points[t[2]];
+        total += 0.5 * length(cross(b - a, c - a));
+    }
+    return total;
+}
+
+// A collapse is usually taken right after its judgement, and its pieces go
+// where the judgement covered them; when another collapse was judged in
+// between, they are covered afresh. Either way every piece stays on a face
+// within the bound, and the pieces keep the original's area: none is lost
+// or kept twice.
+TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
+    ocl::Runtime runtime("cpu");
+    SynthOptions synth;
+    synth.spacingMm = 2.0;
+    const Roi roi = sliceShape(*makeShape("torus"), synth).rois[0];
+    const TriangleSoup input = reconstructSurface(runtime, roi).surface;
+    const TriangleBvh bvh(input);
+    const double limit = 0.5;
+    TriMesh mesh = toTriMesh(input);
+    mesh.request_face_normals();
+    mesh.update_face_normals();
+    CheckedDecimater decimater(mesh);
+    ModErrorBound::Handle handle;
+    decimater.add(handle);
+    ModErrorBound& module = decimater.module(handle);
+    module.setOriginal(bvh, limit);
+    ASSERT_TRUE(decimater.initialize());
+
+    // The next legal collapse after halfedge `from`, and its priority.
+    auto nextLegal = [&](int from) {
+        for (int h = from + 1; h < int(mesh.n_halfedges()); ++h) {
+            const TriMesh::HalfedgeHandle he(h);
+            if (mesh.status(mesh.edge_handle(he)).deleted() || !mesh.is_collapse_ok(he)) continue;
+            if (module.collapse_priority(ModErrorBound::CollapseInfo(mesh, he)) >= 0) return h;
+        }
+        return -1;
+    };
+    int taken = -1, collapses = 0;
+    while (collapses < 300 && (taken = nextLegal(taken)) >= 0) {
+        const ModErrorBound::CollapseInfo ci(mesh, TriMesh::HalfedgeHandle(taken));
+        if (collapses % 2 == 1) nextLegal(taken);  // judges another one in between
+        module.preprocess_collapse(ci);
+        mesh.collapse(ci.v0v1);
+        for (auto f : mesh.vf_range(ci.v1)) mesh.set_normal(f, mesh.calc_face_normal(f));
+        module.postprocess_collapse(ci);
+        ++collapses;
+    }
+    ASSERT_EQ(collapses, 300);
+    EXPECT_GE(module.rehomedAfresh, 100u);  // both ways exercised
+    EXPECT_LE(module.rehomedAfresh, 200u);
+    const ModErrorBound::Bounds bounds = module.currentBounds();
+    EXPECT_LE(bounds.originalToSurfaceMm, limit);
+    EXPECT_LE(bounds.surfaceToOriginalMm, limit);
+    EXPECT_NEAR(module.piecesArea(), area(input), 1e-9 * area(input));
+}
+
+}  // namespace
+}  // namespace dfrecon
