@@ -52,12 +52,12 @@ std::uint64_t keyOf(const NewTriangle& t) {
 
 }  // namespace
 
-double DeviationCache::bound(const NewTriangle& t, const TriangleBvh& original,
+double DeviationCache::bound(const NewTriangle& t, const DeviationSurface& original,
                              const DeviationLimits& limits) {
     return estimate(t, original, limits, SIZE_MAX);
 }
 
-double DeviationCache::estimate(const NewTriangle& t, const TriangleBvh& original,
+double DeviationCache::estimate(const NewTriangle& t, const DeviationSurface& original,
                                 const DeviationLimits& limits, std::size_t maxPieces,
                                 double enough) {
     return estimate(entryOf(t), t, original, limits, maxPieces, enough);
@@ -90,9 +90,9 @@ DeviationCache::Known* DeviationCache::entryOf(const NewTriangle& t) {
     return &slots_[i].known;
 }
 
-double DeviationCache::estimate(Known* entry, const NewTriangle& t, const TriangleBvh& original,
-                                const DeviationLimits& limits, std::size_t maxPieces,
-                                double enough) {
+double DeviationCache::estimate(Known* entry, const NewTriangle& t,
+                                const DeviationSurface& original, const DeviationLimits& limits,
+                                std::size_t maxPieces, double enough) {
     const auto compute = [&] {
         return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces, enough);
     };
@@ -112,8 +112,9 @@ double DeviationCache::estimate(Known* entry, const NewTriangle& t, const Triang
 }
 
 float DeviationCache::largestEstimate(const std::vector<NewTriangle>& created,
-                                      const TriangleBvh& original, const DeviationLimits& limits,
-                                      std::size_t maxPieces, double enough) {
+                                      const DeviationSurface& original,
+                                      const DeviationLimits& limits, std::size_t maxPieces,
+                                      double enough) {
     // Worst known first: the first estimate is then the likeliest to pass
     // `enough`, and what is known may pass it already.
     struct Triangle {
@@ -143,7 +144,7 @@ float DeviationCache::largestEstimate(const std::vector<NewTriangle>& created,
     return float(largest);
 }
 
-float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+float surfaceDeviation(const std::vector<NewTriangle>& created, const DeviationSurface& original,
                        const DeviationLimits& limits, DeviationCache* cache) {
     double largest = 0;
     for (const NewTriangle& t : created) {
@@ -156,7 +157,7 @@ float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBv
 }
 
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
-                                 const TriangleBvh& original, const DeviationLimits& limits,
+                                 const DeviationSurface& original, const DeviationLimits& limits,
                                  DeviationCache& cache, std::size_t maxPieces, double enough) {
     return cache.largestEstimate(created, original, limits, maxPieces, enough);
 }

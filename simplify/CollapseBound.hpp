@@ -37,18 +37,19 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
 class DeviationCache {
   public:
     /// The cached bound of the triangle with these vertex ids, or computes it.
-    double bound(const NewTriangle& t, const TriangleBvh& original, const DeviationLimits& limits);
+    double bound(const NewTriangle& t, const DeviationSurface& original,
+                 const DeviationLimits& limits);
 
     /// deviationBoundWithin(t, maxPieces, enough), remembered: the bound
     /// when known or found within maxPieces pieces, else a lower bound of it
     /// (the stored one when it came from as many pieces or more, or is above
     /// `enough`). Above limits.limitMm only when the bound is. A look-up or
     /// O(maxPieces · log T).
-    double estimate(const NewTriangle& t, const TriangleBvh& original,
+    double estimate(const NewTriangle& t, const DeviationSurface& original,
                     const DeviationLimits& limits, std::size_t maxPieces, double enough = INFINITY);
 
     /// surfaceDeviationLowerBound (below) with this cache.
-    float largestEstimate(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+    float largestEstimate(const std::vector<NewTriangle>& created, const DeviationSurface& original,
                           const DeviationLimits& limits, std::size_t maxPieces, double enough);
 
   private:
@@ -63,7 +64,7 @@ class DeviationCache {
     /// entries may be created while one is held.
     Known* entryOf(const NewTriangle& t);
     void reserve(std::size_t more);
-    double estimate(Known* known, const NewTriangle& t, const TriangleBvh& original,
+    double estimate(Known* known, const NewTriangle& t, const DeviationSurface& original,
                     const DeviationLimits& limits, std::size_t maxPieces, double enough);
 
     // Open addressing with linear probing, at most half full: one cache
@@ -82,7 +83,7 @@ class DeviationCache {
 /// created triangles from the original, or -1 when one exceeds
 /// limits.limitMm. With a cache, bounds of triangles seen before are reused.
 /// O(created · pieces · log T).
-float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBvh& original,
+float surfaceDeviation(const std::vector<NewTriangle>& created, const DeviationSurface& original,
                        const DeviationLimits& limits, DeviationCache* cache = nullptr);
 
 /// A lower bound of surfaceDeviation(created, ..., cache): the largest
@@ -93,7 +94,7 @@ float surfaceDeviation(const std::vector<NewTriangle>& created, const TriangleBv
 /// surfaceDeviation when maxPieces is SIZE_MAX and nothing exceeds
 /// `enough`. O(created) look-ups or O(created · maxPieces · log T).
 float surfaceDeviationLowerBound(const std::vector<NewTriangle>& created,
-                                 const TriangleBvh& original, const DeviationLimits& limits,
+                                 const DeviationSurface& original, const DeviationLimits& limits,
                                  DeviationCache& cache, std::size_t maxPieces,
                                  double enough = INFINITY);
 

@@ -16,8 +16,9 @@ bool isWanted(const std::vector<bool>* wanted, TriMesh::HalfedgeHandle h) {
 }
 
 template <class Real, class Real4>
-std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const TriangleBvh& original,
-                            double maxErrorMm, const std::vector<bool>* wanted) {
+std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh,
+                            const DeviationSurface& original, double maxErrorMm,
+                            const std::vector<bool>* wanted) {
     // The wanted halfedges, packed: work-item k evaluates halfedge index[k].
     std::vector<cl_int2> halfedges;
     std::vector<std::size_t> index;
@@ -43,8 +44,14 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         ringFirst.push_back(cl_uint(ringFaces.size()));
     }
     Arrays arrays;
-    arrays.append(original);
+    arrays.append(original.bvh);
     const DeviceSurface<Real4> surface(runtime, arrays);
+    const VertexFans& fans = original.fans;
+    std::vector<Real4> fanNormals;
+    for (const Vec3& n : fans.sectorNormals()) fanNormals.push_back(Arrays::real4(n));
+    ocl::DeviceBuffer<cl_uint> dFanFirst(runtime, fans.first());
+    ocl::DeviceBuffer<cl_uint> dFanRing(runtime, fans.ring());
+    ocl::DeviceBuffer<Real4> dFanNormals(runtime, fanNormals);
 
     ocl::DeviceBuffer<cl_int2> dHalfedges(runtime, halfedges);
     ocl::DeviceBuffer<Real4> dMeshPoints(runtime, meshPoints);
@@ -53,6 +60,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
     ocl::DeviceBuffer<cl_float> priority(runtime, halfedges.size(), CL_MEM_WRITE_ONLY);
     std::vector<std::string> sources = surfaceProgramSources("collapse_bound.cl");
     sources.insert(sources.end() - 1, "straddle_bound.cl");
+    sources.insert(sources.end() - 1, "fan_bound.cl");
     const cl::Program& program = runtime.program(sources, ocl::realOptions<Real>());
     const DeviationLimits limits{maxErrorMm};
     try {
@@ -64,6 +72,9 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
         kernel.setArg(a++, dRingFirst.get());
         kernel.setArg(a++, dRingFaces.get());
         a = surface.setArgs(kernel, a);
+        kernel.setArg(a++, dFanFirst.get());
+        kernel.setArg(a++, dFanRing.get());
+        kernel.setArg(a++, dFanNormals.get());
         kernel.setArg(a++, Real(limits.limitMm));
         kernel.setArg(a++, Real(limits.finestFraction * limits.limitMm));
         kernel.setArg(a++, Real(kSliverAreaRatio));
@@ -89,7 +100,7 @@ std::vector<float> runBatch(ocl::Runtime& runtime, const TriMesh& mesh, const Tr
 }  // namespace
 
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
-                                     const TriangleBvh& original, double maxErrorMm,
+                                     const DeviationSurface& original, double maxErrorMm,
                                      const std::vector<bool>* wanted) {
     if (mesh.n_halfedges() == 0) return {};
     return ocl::withRealTypes(runtime.device().doublePrecision, [&](auto real, auto real4) {
@@ -98,7 +109,7 @@ std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
     });
 }
 
-std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
+std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const DeviationSurface& original,
                                               double maxErrorMm, const std::vector<bool>* wanted) {
     std::vector<float> result(mesh.n_halfedges(), -1.0f);
     std::vector<NewTriangle> created;

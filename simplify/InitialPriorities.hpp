@@ -9,14 +9,14 @@
 
 #include "cl/Runtime.hpp"
 #include "geometry/TriMesh.hpp"
-#include "geometry/TriangleBvh.hpp"
+#include "simplify/DeviationBound.hpp"
 
 namespace dfrecon {
 
 /// One value per halfedge index of `mesh`: surfaceDeviation of collapsing
 /// it (its from-vertex onto its to-vertex), or -1 if that exceeds
-/// maxErrorMm or a created triangle is a sliver. `original` is the BVH of the surface the bound is
-/// measured against (for simplifySurface: of `mesh` itself). Topology is not
+/// maxErrorMm or a created triangle is a sliver. `original` is the surface
+/// the bound is measured against (for simplifySurface: `mesh` itself). Topology is not
 /// checked (the Decimater does). On a device without fp64 the kernel runs in
 /// float and each bound is raised by 1e-6 of the surface's extent so it
 /// stays an upper bound. `wanted`, if given (one flag per halfedge), names
@@ -24,11 +24,11 @@ namespace dfrecon {
 /// refused anyway, e.g. by the normal-flip test). O(H · pieces · log T)
 /// work, spread over the device.
 std::vector<float> initialPriorities(ocl::Runtime& runtime, const TriMesh& mesh,
-                                     const TriangleBvh& original, double maxErrorMm,
+                                     const DeviationSurface& original, double maxErrorMm,
                                      const std::vector<bool>* wanted = nullptr);
 
 /// The same on the CPU with surfaceDeviation, in double precision.
-std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const TriangleBvh& original,
+std::vector<float> initialPrioritiesReference(const TriMesh& mesh, const DeviationSurface& original,
                                               double maxErrorMm,
                                               const std::vector<bool>* wanted = nullptr);
 

@@ -20,7 +20,7 @@ const std::string& ModErrorBound::name() const {
     return name;
 }
 
-void ModErrorBound::setOriginal(const TriangleBvh& original, double maxErrorMm) {
+void ModErrorBound::setOriginal(const DeviationSurface& original, double maxErrorMm) {
     if (!(maxErrorMm > 0)) throw std::invalid_argument("max error must be positive");
     original_ = &original;
     limits_.limitMm = maxErrorMm;

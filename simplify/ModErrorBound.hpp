@@ -40,7 +40,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
 
     /// The original surface and the bound; call before Decimater::initialize.
     /// `original` must outlive the module and be the mesh being decimated.
-    void setOriginal(const TriangleBvh& original, double maxErrorMm);
+    void setOriginal(const DeviationSurface& original, double maxErrorMm);
 
     /// surfaceDeviation of every halfedge of the unchanged mesh (index =
     /// halfedge index; < 0 = illegal), e.g. from the OpenCL batch. Used
@@ -97,7 +97,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     Box3 boxOf(TriMesh::FaceHandle f) const;
     CoverCandidate candidateOf(TriMesh::FaceHandle f) const;
 
-    const TriangleBvh* original_ = nullptr;
+    const DeviationSurface* original_ = nullptr;
     DeviationLimits limits_;
     OpenMesh::FPropHandleT<std::vector<OriginalPiece>> pieces_;
     std::vector<float> initial_;

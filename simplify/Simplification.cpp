@@ -26,7 +26,7 @@ struct Attempt {
     double initialSeconds = 0, decimateSeconds = 0;
 };
 
-Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const TriangleBvh& bvh,
+Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const DeviationSurface& original,
                  const SimplifyOptions& options, const std::vector<bool>& locked) {
     Attempt attempt;
     TriMesh mesh = toTriMesh(input);
@@ -42,7 +42,7 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
     decimater.add(flips);
     decimater.module(flips).set_max_normal_deviation(options.maxNormalTurnDeg);
     ModErrorBound& module = decimater.module(bound);
-    module.setOriginal(bvh, options.maxErrorMm);
+    module.setOriginal(original, options.maxErrorMm);
     // Tighter and dearer: the first piece of each created triangle (its
     // centroid distance, or its bound when it settles at once), then the
     // whole deviation; each stops at the first value above the queue's next
@@ -73,8 +73,8 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Triangl
             flipTest.collapse_priority(ModErrorBound::CollapseInfo(mesh, h)) >= 0;
     module.setInitialDeviations(
         runtime && options.initialBatchOnDevice
-            ? initialPriorities(*runtime, mesh, bvh, options.maxErrorMm, &wanted)
-            : initialPrioritiesReference(mesh, bvh, options.maxErrorMm, &wanted));
+            ? initialPriorities(*runtime, mesh, original, options.maxErrorMm, &wanted)
+            : initialPrioritiesReference(mesh, original, options.maxErrorMm, &wanted));
     attempt.initialSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();
@@ -101,7 +101,7 @@ Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
     if (refused > 0)
         throw std::invalid_argument("simplify: the surface is not manifold (" +
                                     std::to_string(refused) + " faces refused)");
-    const TriangleBvh bvh(input);
+    const DeviationSurface original(input);
     std::vector<bool> locked(input.points.size(), false);
     Simplified result;
     result.stats.verticesBefore = input.points.size();
@@ -112,7 +112,7 @@ Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
     // vertices locked around it — never seen on the tests or benchmarks.
     constexpr int kMaxRetries = 3;
     for (int run = 0;; ++run) {
-        Attempt attempt = decimate(runtime, input, bvh, options, locked);
+        Attempt attempt = decimate(runtime, input, original, options, locked);
         const auto pairs = selfIntersectingPairs(attempt.surface);
         SimplifyStats& s = result.stats;
         s.initialSeconds += attempt.initialSeconds;

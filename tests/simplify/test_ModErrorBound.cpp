@@ -32,7 +32,7 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
     synth.spacingMm = 2.0;
     const Roi roi = sliceShape(*makeShape("torus"), synth).rois[0];
     const TriangleSoup input = reconstructSurface(runtime, roi).surface;
-    const TriangleBvh bvh(input);
+    const DeviationSurface original(input);
     const double limit = 0.5;
     TriMesh mesh = toTriMesh(input);
     mesh.request_face_normals();
@@ -41,7 +41,7 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
     ModErrorBound::Handle handle;
     decimater.add(handle);
     ModErrorBound& module = decimater.module(handle);
-    module.setOriginal(bvh, limit);
+    module.setOriginal(original, limit);
     ASSERT_TRUE(decimater.initialize());
 
     // The next legal collapse after halfedge `from`, and its priority.

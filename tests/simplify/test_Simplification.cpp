@@ -103,10 +103,10 @@ TEST(Simplification, RandomHarshStackStaysWithinTheBound) {
 // source: the deviation tests draw triangles near its surface.
 struct NearSurface {
     NearSurface(const std::string& shape, unsigned seed)
-        : c(reconstructed(shape, 2.0)), bvh(c.surface), rng(seed) {}
+        : c(reconstructed(shape, 2.0)), original(c.surface), rng(seed) {}
     double unit() { return std::uniform_real_distribution<double>(-1, 1)(rng); }
     Case c;
-    TriangleBvh bvh;
+    DeviationSurface original;
     std::mt19937 rng;
 };
 
@@ -115,7 +115,7 @@ struct NearSurface {
 // "over" whenever sampling finds a point over.
 TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
     NearSurface sphere("sphere", 5);
-    const TriangleBvh& bvh = sphere.bvh;
+    const DeviationSurface& original = sphere.original;
     const DeviationLimits limits{0.5};
     int over = 0, under = 0;
     for (int trial = 0; trial < 300; ++trial) {
@@ -129,13 +129,13 @@ TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
             const Vec3 r = centre + Vec3{3 * sphere.unit(), 3 * sphere.unit(), 3 * sphere.unit()};
             q = ((20.0 + 0.6 * sphere.unit()) / length(r)) * r;
         }
-        const double bound = deviationBound(bvh, p[0], p[1], p[2], limits);
+        const double bound = deviationBound(original, p[0], p[1], p[2], limits);
         double sampled = 0;
         for (int i = 0; i <= 40; ++i)
             for (int j = 0; i + j <= 40; ++j) {
                 const double u = i / 40.0, v = j / 40.0;
                 const Vec3 q = p[0] + u * (p[1] - p[0]) + v * (p[2] - p[0]);
-                sampled = std::max(sampled, bvh.nearest(q).distance);
+                sampled = std::max(sampled, original.bvh.nearest(q).distance);
             }
         // Within the limit the value is an upper bound; over it, only "over"
         // is promised.
@@ -151,6 +151,53 @@ TEST(DeviationBound, BoundsDenseSamplesFromAbove) {
     EXPECT_GT(over, 20);
 }
 
+// The fan rule alone against brute force: triangles with corners on the
+// fan of a vertex of the torus, lifted off it by up to 0.3 mm. Where the
+// rule settles one, no dense sample of it is farther from the fan than the
+// value; pieces reaching past the fan are refused.
+TEST(DeviationBound, FanRuleBoundsDenseSamplesFromAbove) {
+    NearSurface torus("torus", 17);
+    const DeviationSurface& original = torus.original;
+    const TriangleSoup& soup = torus.c.surface;
+    const double limit = 0.5;
+    int settled = 0, refused = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const std::uint32_t v = std::uint32_t(torus.rng() % soup.points.size());
+        const std::uint32_t first = original.fans.first()[v];
+        const std::uint32_t m = std::uint32_t(original.fans.neighbours(v));
+        ASSERT_GE(m, 3u) << "every vertex of the torus has a fan";
+        std::vector<std::array<Vec3, 3>> fan;
+        for (std::uint32_t k = 0; k < m; ++k)
+            fan.push_back({soup.points[v], soup.points[original.fans.ring()[first + k]],
+                           soup.points[original.fans.ring()[first + (k + 1) % m]]});
+        Vec3 p[3];
+        for (Vec3& q : p) {
+            const auto& t = fan[std::size_t(torus.rng() % m)];
+            const double s = 0.5 * (torus.unit() + 1), r = 0.5 * (torus.unit() + 1) * (1 - s);
+            const Vec3 n = cross(t[1] - t[0], t[2] - t[0]);
+            q = t[0] + s * (t[1] - t[0]) + r * (t[2] - t[0]) + (0.3 * torus.unit() / length(n)) * n;
+        }
+        const double bound = fanDistance(original, p[0], p[1], p[2], v, limit);
+        double sampled = 0;
+        for (int i = 0; i <= 30; ++i)
+            for (int j = 0; i + j <= 30; ++j) {
+                const Vec3 q = p[0] + (i / 30.0) * (p[1] - p[0]) + (j / 30.0) * (p[2] - p[0]);
+                double nearest = INFINITY;
+                for (const auto& t : fan)
+                    nearest = std::min(nearest, pointTriangleDistance(q, t[0], t[1], t[2]));
+                sampled = std::max(sampled, nearest);
+            }
+        if (bound <= limit) {
+            EXPECT_GE(bound + 1e-12, sampled) << "trial " << trial;
+            ++settled;
+        } else {
+            ++refused;
+        }
+    }
+    EXPECT_GT(settled, 50);  // both outcomes exercised
+    EXPECT_GT(refused, 20);
+}
+
 // The lazy queue's lower bounds: an estimate from a few pieces never
 // exceeds the bound, says "over" only when the bound does, and is the bound
 // when it says it is complete.
@@ -164,10 +211,10 @@ TEST(DeviationBound, EstimatesFromFewPiecesAreLowerBounds) {
         const Vec3 a = points[std::size_t(torus.rng() % points.size())];
         const Vec3 b = a + Vec3{4 * torus.unit(), 4 * torus.unit(), 2 * torus.unit()};
         const Vec3 d = a + Vec3{4 * torus.unit(), 4 * torus.unit(), 2 * torus.unit()};
-        const TriangleBvh& bvh = torus.bvh;
-        const double bound = deviationBound(bvh, a, b, d, limits);
+        const DeviationSurface& original = torus.original;
+        const double bound = deviationBound(original, a, b, d, limits);
         for (std::size_t pieces : {std::size_t(1), std::size_t(8), std::size_t(64)}) {
-            const DeviationEstimate e = deviationBoundWithin(bvh, a, b, d, limits, pieces);
+            const DeviationEstimate e = deviationBoundWithin(original, a, b, d, limits, pieces);
             if (e.complete) {
                 EXPECT_EQ(e.value, bound);
                 ++complete;
@@ -191,7 +238,7 @@ TEST(DeviationBound, EstimatesFromFewPiecesAreLowerBounds) {
 TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
     NearSurface torus("torus", 11);
     const DeviationLimits limits{0.25};
-    const TriangleBvh& bvh = torus.bvh;
+    const DeviationSurface& original = torus.original;
     const auto& points = torus.c.surface.points;
     int stoppedEarly = 0, answeredInFull = 0;
     DeviationCache cache;
@@ -212,11 +259,11 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
                      std::uint32_t(3 * trial + 9000)};
         }
         const NewTriangle& t = created[0];
-        const double bound = deviationBound(bvh, t.p[0], t.p[1], t.p[2], limits);
+        const double bound = deviationBound(original, t.p[0], t.p[1], t.p[2], limits);
         const double enough = 0.125 * (torus.unit() + 1) + 0.02;  // over [0.02, 0.27)
         for (std::size_t pieces : {std::size_t(8), std::size_t(64), SIZE_MAX}) {
             const DeviationEstimate e =
-                deviationBoundWithin(bvh, t.p[0], t.p[1], t.p[2], limits, pieces, enough);
+                deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, pieces, enough);
             if (e.complete) {
                 EXPECT_EQ(e.value, bound);
                 continue;
@@ -227,19 +274,19 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
                 ++stoppedEarly;
                 // As strong as the same pieces without the question.
                 const DeviationEstimate same =
-                    deviationBoundWithin(bvh, t.p[0], t.p[1], t.p[2], limits, e.piecesTaken);
+                    deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, e.piecesTaken);
                 EXPECT_EQ(same.value, e.value);
             }
         }
         // The cache and the collapse-level lower bound: questions in a random
         // order, each answer a lower bound, above `enough` or exact.
-        const float full = surfaceDeviation(created, bvh, limits);
+        const float full = surfaceDeviation(created, original, limits);
         for (int ask = 0; ask < 3; ++ask) {
             const double asked = 0.15 * (torus.unit() + 1);
             const std::size_t budgets[] = {1, 8, 64, SIZE_MAX};
             const std::size_t pieces = budgets[torus.rng() % 4];
             const float lower =
-                surfaceDeviationLowerBound(created, bvh, limits, cache, pieces, asked);
+                surfaceDeviationLowerBound(created, original, limits, cache, pieces, asked);
             if (full < 0) {
                 EXPECT_TRUE(lower < 0 || lower <= limits.limitMm);
                 continue;
@@ -251,7 +298,8 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
                 ++answeredInFull;
             }
         }
-        EXPECT_EQ(surfaceDeviationLowerBound(created, bvh, limits, cache, SIZE_MAX) < 0, full < 0);
+        EXPECT_EQ(surfaceDeviationLowerBound(created, original, limits, cache, SIZE_MAX) < 0,
+                  full < 0);
     }
     EXPECT_GT(stoppedEarly, 20);  // both outcomes exercised
     EXPECT_GT(answeredInFull, 5);
@@ -279,14 +327,15 @@ TEST(DeviationCache, KeepsEveryValueAsItGrows) {
     };
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
         for (bool moved : {false, true})
-            first.push_back(cache.bound(triangle(t, moved), torus.bvh, limits));
+            first.push_back(cache.bound(triangle(t, moved), torus.original, limits));
     ASSERT_GT(first.size(), 4000u);
     std::size_t i = 0;
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
         for (bool moved : {false, true}) {
             const NewTriangle n = triangle(t, moved);
-            EXPECT_EQ(cache.estimate(n, torus.bvh, limits, 1), first[i]);
-            EXPECT_NEAR(first[i], deviationBound(torus.bvh, n.p[0], n.p[1], n.p[2], limits), 1e-6);
+            EXPECT_EQ(cache.estimate(n, torus.original, limits, 1), first[i]);
+            EXPECT_NEAR(first[i], deviationBound(torus.original, n.p[0], n.p[1], n.p[2], limits),
+                        1e-6);
             ++i;
         }
 }
@@ -299,9 +348,9 @@ TEST(DeviationBound, FlatTriangleAboveAPlaneIsBoundedByItsHeight) {
     plane.points = {{-10, -10, 0}, {30, -10, 0}, {-10, 30, 0}, {10, 10, 0}};
     plane.triangles = {{0, 1, 2}};
     const Vec3 a{-2, -1, 0.2}, b{3, -1, 0.2}, c{0, 4, 0.2};
-    EXPECT_NEAR(deviationBound(TriangleBvh(plane), a, b, c, {0.5}), 0.2, 1e-12);
+    EXPECT_NEAR(deviationBound(DeviationSurface(plane), a, b, c, {0.5}), 0.2, 1e-12);
     plane.triangles = {{0, 1, 3}, {0, 3, 2}};
-    const TriangleBvh split(plane);
+    const DeviationSurface split(plane);
     const double bound = deviationBound(split, a, b, c, {0.5});
     EXPECT_GE(bound, 0.2 - 1e-12);
     EXPECT_LE(bound, 0.5);
@@ -316,10 +365,10 @@ TEST(InitialPriorities, KernelMatchesReference) {
     for (const char* shape : {"sphere", "torus", "y"}) {
         const Case c = reconstructed(shape, 5.0);
         const TriMesh mesh = toTriMesh(c.surface);
-        const TriangleBvh bvh(c.surface);
+        const DeviationSurface original(c.surface);
         for (double bound : {0.25, 1.0}) {
-            const std::vector<float> device = initialPriorities(runtime(), mesh, bvh, bound);
-            const std::vector<float> reference = initialPrioritiesReference(mesh, bvh, bound);
+            const std::vector<float> device = initialPriorities(runtime(), mesh, original, bound);
+            const std::vector<float> reference = initialPrioritiesReference(mesh, original, bound);
             ASSERT_EQ(device.size(), reference.size());
             std::size_t legal = 0, mismatched = 0;
             for (std::size_t h = 0; h < device.size(); ++h) {
@@ -341,14 +390,15 @@ TEST(InitialPriorities, KernelMatchesReference) {
 TEST(InitialPriorities, UnwantedHalfedgesAreSkippedTheOthersUnchanged) {
     const Case c = reconstructed("torus", 5.0);
     const TriMesh mesh = toTriMesh(c.surface);
-    const TriangleBvh bvh(c.surface);
+    const DeviationSurface original(c.surface);
     std::mt19937 random(4);
     std::vector<bool> wanted(mesh.n_halfedges());
     for (std::size_t h = 0; h < wanted.size(); ++h) wanted[h] = random() % 3 != 0;
-    const std::vector<float> all = initialPriorities(runtime(), mesh, bvh, 0.5);
-    const std::vector<float> some = initialPriorities(runtime(), mesh, bvh, 0.5, &wanted);
-    const std::vector<float> allReference = initialPrioritiesReference(mesh, bvh, 0.5);
-    const std::vector<float> someReference = initialPrioritiesReference(mesh, bvh, 0.5, &wanted);
+    const std::vector<float> all = initialPriorities(runtime(), mesh, original, 0.5);
+    const std::vector<float> some = initialPriorities(runtime(), mesh, original, 0.5, &wanted);
+    const std::vector<float> allReference = initialPrioritiesReference(mesh, original, 0.5);
+    const std::vector<float> someReference =
+        initialPrioritiesReference(mesh, original, 0.5, &wanted);
     ASSERT_EQ(some.size(), all.size());
     ASSERT_EQ(someReference.size(), all.size());
     std::size_t legal = 0;

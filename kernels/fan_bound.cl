@@ -1,0 +1,76 @@
+// A bound for a piece of a triangle that lies over the fan of triangles
+// around one vertex v of a surface, where no one triangle or pair of them
+// settles it (deviationBound's corner and straddle rules). Planes through
+// v, the fan's axis and each neighbour cut space into sectors, one per
+// triangle of the fan; geometry/VertexFans keeps only fans whose sectors
+// tile space and are convex, and gives the planes' normals. The part of
+// the piece in a sector is convex too, so if every corner of the part is
+// within the limit of that sector's triangle, the whole part is (the
+// distance to a triangle is convex). Written once as plain C, like
+// straddle_bound.cl: kernels/collapse_bound.cl includes it as OpenCL C,
+// simplify/DeviationBound.cpp as C++ with REAL = double and REAL4 = Vec3,
+// so the batch and its reference take the same steps with the same
+// roundings. Needs point_triangle_distance, dot3; FAN_FN is the function
+// specifier.
+
+#ifndef FAN_FN
+#define FAN_FN inline
+#endif
+#ifndef FAN_MAX
+#define FAN_MAX 16  // neighbours a fan may have: VertexFans::kMaxNeighbours
+#endif
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#endif
+
+// Keeps the part of polygon in[0 .. count) where sign · (x − v)·n ≥ 0 in
+// out (room for count + 1); returns its corner count. Corners on the plane
+// are kept, so the parts on either side share them.
+FAN_FN int fan_clip(const REAL4* in, int count, REAL4 v, REAL4 n, REAL sign, REAL4* out) {
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+        const int j = i + 1 == count ? 0 : i + 1;
+        const REAL hi = sign * dot3(in[i] - v, n), hj = sign * dot3(in[j] - v, n);
+        if (hi >= 0) out[kept++] = in[i];
+        if ((hi > 0 && hj < 0) || (hi < 0 && hj > 0))
+            out[kept++] = in[i] + (hi / (hi - hj)) * (in[j] - in[i]);
+    }
+    return kept;
+}
+
+// For piece p0 p1 p2 and the fan of vertex v (neighbours ring[0 .. m),
+// sector normals normals[0 .. m), as VertexFans gives them): the largest
+// distance from a corner of the piece's part in a sector to that sector's
+// triangle, an upper bound of the distance from the piece to the fan.
+// INFINITY for an empty fan; a value over `limit` as soon as one corner is.
+// O(m) point–triangle distances.
+FAN_FN REAL fan_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 v, const REAL4* ring,
+                         const REAL4* normals, int m, REAL limit) {
+    if (m < 3) return INFINITY;
+    const REAL4 piece[3] = {p0, p1, p2};
+    // A corner far from its own sector's triangle settles nothing: most
+    // pieces that fail, fail here, before any clipping.
+    for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < m; ++i) {
+            const int j = i + 1 == m ? 0 : i + 1;
+            if (dot3(piece[k] - v, normals[i]) >= 0 && dot3(piece[k] - v, normals[j]) <= 0) {
+                const REAL d = point_triangle_distance(piece[k], v, ring[i], ring[j]);
+                if (d > limit) return d;
+                break;
+            }
+        }
+    REAL worst = 0;
+    for (int i = 0; i < m; ++i) {
+        const int j = i + 1 == m ? 0 : i + 1;
+        REAL4 inside[4], part[5];
+        const int inFirst = fan_clip(piece, 3, v, normals[i], (REAL)1, inside);
+        const int inPart = fan_clip(inside, inFirst, v, normals[j], (REAL)-1, part);
+        for (int k = 0; k < inPart; ++k) {
+            const REAL d = point_triangle_distance(part[k], v, ring[i], ring[j]);
+            if (d > worst) worst = d;
+        }
+        if (worst > limit) return worst;
+    }
+    return worst;
+}
