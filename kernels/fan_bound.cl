@@ -49,12 +49,17 @@ FAN_FN REAL fan_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 v, const REAL4* rin
                          const REAL4* normals, int m, REAL limit) {
     if (m < 3) return INFINITY;
     const REAL4 piece[3] = {p0, p1, p2};
+    // Sides of the corners to every plane, once: they find each corner's
+    // sector and the sectors the piece misses.
+    REAL side[3][FAN_MAX];
+    for (int i = 0; i < m; ++i)
+        for (int k = 0; k < 3; ++k) side[k][i] = dot3(piece[k] - v, normals[i]);
     // A corner far from its own sector's triangle settles nothing: most
     // pieces that fail, fail here, before any clipping.
     for (int k = 0; k < 3; ++k)
         for (int i = 0; i < m; ++i) {
             const int j = i + 1 == m ? 0 : i + 1;
-            if (dot3(piece[k] - v, normals[i]) >= 0 && dot3(piece[k] - v, normals[j]) <= 0) {
+            if (side[k][i] >= 0 && side[k][j] <= 0) {
                 const REAL d = point_triangle_distance(piece[k], v, ring[i], ring[j]);
                 if (d > limit) return d;
                 break;
@@ -63,6 +68,10 @@ FAN_FN REAL fan_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 v, const REAL4* rin
     REAL worst = 0;
     for (int i = 0; i < m; ++i) {
         const int j = i + 1 == m ? 0 : i + 1;
+        // Wholly behind either plane: no part in this sector.
+        if ((side[0][i] < 0 && side[1][i] < 0 && side[2][i] < 0) ||
+            (side[0][j] > 0 && side[1][j] > 0 && side[2][j] > 0))
+            continue;
         REAL4 inside[4], part[5];
         const int inFirst = fan_clip(piece, 3, v, normals[i], (REAL)1, inside);
         const int inPart = fan_clip(inside, inFirst, v, normals[j], (REAL)-1, part);
