@@ -71,14 +71,21 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
         // Convexity again: the largest corner distance is at least the
         // centre's, one distance instead of three to rule a candidate out;
         // and that is at least the distance to the candidate's ball, which
-        // rules out most of the candidates around a collapse for one sqrt.
+        // rules out most of the candidates around a collapse. Both compared
+        // squared: this loop runs for every piece and every candidate, and
+        // waited on its square roots.
         const CoverCandidate& c = candidates[k];
-        const double reach = c.ball.reach(centre);
-        if (reach > 0 && (reach >= bestDistance || reach > likelyDistance)) continue;
+        const double ballDistance2 = dot(centre - c.ball.centre, centre - c.ball.centre);
+        const auto square = [](double x) { return x * x; };
+        if (ballDistance2 > square(c.ball.radius) &&
+            (ballDistance2 >= square(bestDistance + c.ball.radius) ||
+             ballDistance2 > square(likelyDistance + c.ball.radius)))
+            continue;
         double d = likelyDistance;
         if (int(k) != likely) {
-            const double atCentre = pointTriangleDistance(centre, c.p[0], c.p[1], c.p[2]);
-            if (atCentre >= bestDistance || atCentre > likelyDistance) continue;
+            const Vec3 q = closestPointOnTriangle(centre, c.p[0], c.p[1], c.p[2]);
+            const double atCentre2 = dot(centre - q, centre - q);
+            if (atCentre2 >= square(bestDistance) || atCentre2 > square(likelyDistance)) continue;
             d = cornerDistance(piece, c);
         }
         if (d < bestDistance) {
