@@ -8,10 +8,10 @@
 // within the limit of that sector's triangle, the whole part is (the
 // distance to a triangle is convex). Written once as plain C, like
 // straddle_bound.cl: kernels/collapse_bound.cl includes it as OpenCL C,
-// simplify/DeviationBound.cpp as C++ with REAL = double and REAL4 = Vec3,
+// simplify/BoundRules.hpp as C++ with REAL = double and REAL4 = Vec3,
 // so the batch and its reference take the same steps with the same
-// roundings. Needs point_triangle_distance, dot3; FAN_FN is the function
-// specifier.
+// roundings. Needs point_triangle_distance, dot3 and clip_polygon
+// (straddle_bound.cl); FAN_FN is the function specifier.
 
 #ifndef FAN_FN
 #define FAN_FN inline
@@ -23,21 +23,6 @@
 #ifdef __OPENCL_VERSION__
 #pragma OPENCL FP_CONTRACT OFF
 #endif
-
-// Keeps the part of polygon in[0 .. count) where sign · (x − v)·n ≥ 0 in
-// out (room for count + 1); returns its corner count. Corners on the plane
-// are kept, so the parts on either side share them.
-FAN_FN int fan_clip(const REAL4* in, int count, REAL4 v, REAL4 n, REAL sign, REAL4* out) {
-    int kept = 0;
-    for (int i = 0; i < count; ++i) {
-        const int j = i + 1 == count ? 0 : i + 1;
-        const REAL hi = sign * dot3(in[i] - v, n), hj = sign * dot3(in[j] - v, n);
-        if (hi >= 0) out[kept++] = in[i];
-        if ((hi > 0 && hj < 0) || (hi < 0 && hj > 0))
-            out[kept++] = in[i] + (hi / (hi - hj)) * (in[j] - in[i]);
-    }
-    return kept;
-}
 
 // For piece p0 p1 p2 and the fan of vertex v (neighbours ring[0 .. m),
 // sector normals normals[0 .. m), as VertexFans gives them): the largest
@@ -73,8 +58,8 @@ FAN_FN REAL fan_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 v, const REAL4* rin
             (side[0][j] > 0 && side[1][j] > 0 && side[2][j] > 0))
             continue;
         REAL4 inside[4], part[5];
-        const int inFirst = fan_clip(piece, 3, v, normals[i], (REAL)1, inside);
-        const int inPart = fan_clip(inside, inFirst, v, normals[j], (REAL)-1, part);
+        const int inFirst = clip_polygon(piece, 3, v, normals[i], (REAL)1, inside);
+        const int inPart = clip_polygon(inside, inFirst, v, normals[j], (REAL)-1, part);
         for (int k = 0; k < inPart; ++k) {
             const REAL d = point_triangle_distance(part[k], v, ring[i], ring[j]);
             if (d > worst) worst = d;

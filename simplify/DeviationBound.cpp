@@ -4,28 +4,9 @@
 #include <array>
 #include <cstdint>
 
+#include "simplify/BoundRules.hpp"
+
 namespace dfrecon {
-
-// The rules shared with kernels/collapse_bound.cl, compiled as C++.
-namespace shared {
-using closest::dot3;
-using closest::point_triangle_distance;
-using std::sqrt;
-#define REAL double
-#define REAL4 Vec3
-#define STRADDLE_FN inline
-#define FAN_FN inline
-#define FAN_MAX 16
-#include "kernels/fan_bound.cl"
-#include "kernels/straddle_bound.cl"
-#undef FAN_MAX
-#undef FAN_FN
-#undef STRADDLE_FN
-#undef REAL4
-#undef REAL
-}  // namespace shared
-
-static_assert(VertexFans::kMaxNeighbours == 16, "FAN_MAX above and in collapse_bound.cl");
 
 double fanDistance(const DeviationSurface& surface, Vec3 a, Vec3 b, Vec3 c, std::uint32_t vertex,
                    double limitMm) {
