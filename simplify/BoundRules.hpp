@@ -18,8 +18,10 @@ using std::sqrt;
 #define STRADDLE_FN inline
 #define FAN_FN inline
 #define FAN_MAX 16
-#include "kernels/fan_bound.cl"
+// In this order: the fan rule clips with straddle_bound.cl's clip_polygon.
 #include "kernels/straddle_bound.cl"
+// (a separate block, so that include sorting keeps the order)
+#include "kernels/fan_bound.cl"
 #undef FAN_MAX
 #undef FAN_FN
 #undef STRADDLE_FN

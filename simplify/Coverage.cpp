@@ -4,8 +4,9 @@
 
 namespace dfrecon {
 
-CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id) {
-    return {{a, b, c}, id, TriangleBvh::Ball::around(a, b, c)};
+CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, std::array<std::uint32_t, 3> vertices,
+                              int id) {
+    return {{a, b, c}, vertices, id, TriangleBvh::Ball::around(a, b, c)};
 }
 
 double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidate) {

@@ -7,9 +7,13 @@
 // original surface, contour edges included, not only for its vertices
 // (which is all OpenMesh's ModHausdorff checks).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "simplify/BoundRules.hpp"
 #include "simplify/DeviationBound.hpp"
 
 namespace dfrecon {
@@ -19,15 +23,18 @@ struct OriginalPiece {
     Vec3 p[3];
 };
 
-/// A triangle that may cover pieces: its corners, an id for the caller, and
+/// A triangle that may cover pieces: its corners and their vertex ids
+/// (candidates sharing two ids share that edge), an id for the caller, and
 /// the ball around it, for a cheap lower bound of a distance to it. Make
 /// with coverCandidate.
 struct CoverCandidate {
     Vec3 p[3];
+    std::array<std::uint32_t, 3> vertices;
     int id = -1;
     TriangleBvh::Ball ball;
 };
-CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, int id);
+CoverCandidate coverCandidate(Vec3 a, Vec3 b, Vec3 c, std::array<std::uint32_t, 3> vertices,
+                              int id);
 
 /// The largest corner distance from `piece` to `candidate`: an upper bound
 /// of the distance from any point of the piece to the candidate.
@@ -37,15 +44,62 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 /// `firstTry` first when ≥ 0, the usual answer; else the nearest by corner
 /// distance, the first of equals, with `likely` ≥ 0 measured first only to
 /// rule others out sooner: the same answer), calls
-/// onCovered(piece, candidate index, distance); otherwise halves its
-/// longest edge and covers each part the same way, down to parts of circumradius
+/// onCovered(piece, candidate index, distance); else, if the nearest and
+/// a neighbour of it cover it cut at their bisecting plane
+/// (coverAcrossAnEdge), reports the parts; otherwise halves its longest
+/// edge and covers each part the same way, down to parts of circumradius
 /// limits.finestFraction · limit. Returns the largest distance reported, or
 /// a value above the limit as soon as a part cannot be covered (onCovered
-/// may then have been called for other parts). With a superset of
-/// candidates it succeeds whenever it did with the subset.
+/// may then have been called for other parts). The same pieces and
+/// candidates give the same answer.
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
                   int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered);
+
+/// The straddle rule (kernels/straddle_bound.cl) for coverage: with the
+/// piece cut by the plane bisecting the angle between candidate `nearest`
+/// and the first candidate (in index order) sharing an edge with it, both
+/// cover every corner of their part within `limit` (crossing points in
+/// both). Reports the parts, as triangles, through onCovered and returns
+/// the largest distance; INFINITY (nothing reported) when no neighbour
+/// does. Where a piece lies across the edge between two faces, halving
+/// needs parts down to the size of the slack; this needs at most four.
+/// O(candidates).
+template <class OnCovered>
+double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
+                         int nearest, double limit, OnCovered& onCovered);
+
+template <class OnCovered>
+double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
+                         int nearest, double limit, OnCovered& onCovered) {
+    const CoverCandidate& a = candidates[std::size_t(nearest)];
+    const auto& ia = a.vertices;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const CoverCandidate& b = candidates[k];
+        const auto& ib = b.vertices;
+        // INFINITY unless b shares an edge with a.
+        const double d = shared::straddle_distance(
+            piece.p[0], piece.p[1], piece.p[2], a.p[0], a.p[1], a.p[2], int(ia[0]), int(ia[1]),
+            int(ia[2]), b.p[0], b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]));
+        if (!(d <= limit)) continue;
+        Vec3 e, m;
+        shared::straddle_plane(a.p[0], a.p[1], a.p[2], int(ia[0]), int(ia[1]), int(ia[2]), b.p[0],
+                               b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]), &e, &m);
+        // The parts are exactly the corners and crossing points that
+        // straddle_distance measured; each is cut into triangles from its
+        // first corner, and slivers of no area are dropped.
+        for (const auto& [owner, sign] : {std::pair{nearest, 1.0}, std::pair{int(k), -1.0}}) {
+            Vec3 part[4];
+            const int corners = shared::clip_polygon(piece.p, 3, e, m, sign, part);
+            for (int c = 1; c + 1 < corners; ++c) {
+                const OriginalPiece t{{part[0], part[c], part[c + 1]}};
+                if (length(cross(t.p[1] - t.p[0], t.p[2] - t.p[0])) > 0) onCovered(t, owner, d);
+            }
+        }
+        return d;
+    }
+    return INFINITY;
+}
 
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
@@ -96,6 +150,10 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     if (bestDistance <= limit) {
         onCovered(piece, best, bestDistance);
         return bestDistance;
+    }
+    if (best >= 0) {
+        const double across = coverAcrossAnEdge(piece, candidates, best, limit, onCovered);
+        if (across <= limit) return across;
     }
     double radius = 0;
     for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));

@@ -1,6 +1,7 @@
 #include "simplify/ModErrorBound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "geometry/MeshCheck.hpp"
@@ -36,9 +37,13 @@ Vec3 ModErrorBound::point(TriMesh::VertexHandle v) const {
 
 CoverCandidate ModErrorBound::candidateOf(TriMesh::FaceHandle f) const {
     Vec3 p[3];
-    int k = 0;
-    for (auto v : const_cast<ModErrorBound*>(this)->mesh().fv_range(f)) p[k++] = point(v);
-    return coverCandidate(p[0], p[1], p[2], f.idx());
+    std::array<std::uint32_t, 3> vertices;
+    std::size_t k = 0;
+    for (auto v : const_cast<ModErrorBound*>(this)->mesh().fv_range(f)) {
+        vertices[k] = std::uint32_t(v.idx());
+        p[k++] = point(v);
+    }
+    return coverCandidate(p[0], p[1], p[2], vertices, f.idx());
 }
 
 Box3 ModErrorBound::boxOf(TriMesh::FaceHandle f) const {
@@ -93,7 +98,7 @@ double ModErrorBound::coverage(const CollapseInfo& ci) {
     for (auto f : m.vf_range(ci.v0)) {
         if (f == ci.fl || f == ci.fr) continue;
         const NewTriangle& t = created_[candidates_.size()];
-        candidates_.push_back(coverCandidate(t.p[0], t.p[1], t.p[2], f.idx()));
+        candidates_.push_back(coverCandidate(t.p[0], t.p[1], t.p[2], t.ids, f.idx()));
     }
     gatherRim(ci.v0, ci.v0);
     judgedCover_.clear();
@@ -181,12 +186,26 @@ float ModErrorBound::collapse_priority(const CollapseInfo& ci) {
 
 void ModErrorBound::preprocess_collapse(const CollapseInfo& ci) {
     TriMesh& m = mesh();
-    homeless_.clear();
-    homelessFace_.clear();
+    // The judgement's cover holds when it was of this collapse with nothing
+    // collapsed since. When another judgement came between, the same
+    // coverage runs again on the same mesh, so it gives the same answer —
+    // unless a Decimater collapses what was not judged on this mesh: then
+    // the pieces stay whole on a face the collapse keeps, and the final
+    // bounds show it (simplifySurface then runs again with vertices locked).
+    if (judgedHalfedge_ != ci.v0v1.idx() || judgedAtCollapse_ != collapses_) {
+        ++coveredAgain;
+        if (!trianglesAfterCollapse(m, ci.v0v1, created_) || coverage(ci) > limits_.limitMm) {
+            judgedCover_.clear();
+            int kept = -1;
+            for (auto f : m.vf_range(ci.v0))
+                if (kept < 0 && f != ci.fl && f != ci.fr) kept = f.idx();
+            for (auto f : m.vf_range(ci.v0))
+                for (const OriginalPiece& piece : m.property(pieces_, f))
+                    judgedCover_.emplace_back(piece, kept);
+        }
+    }
     for (auto f : m.vf_range(ci.v0)) {
         auto& stored = m.property(pieces_, f);
-        homeless_.insert(homeless_.end(), stored.begin(), stored.end());
-        homelessFace_.insert(homelessFace_.end(), stored.size(), f.idx());
         pieces -= stored.size();
         stored.clear();
     }
@@ -194,55 +213,13 @@ void ModErrorBound::preprocess_collapse(const CollapseInfo& ci) {
 
 void ModErrorBound::postprocess_collapse(const CollapseInfo& ci) {
     TriMesh& m = mesh();
-    if (judgedHalfedge_ == ci.v0v1.idx() && judgedAtCollapse_ == collapses_)
-        rehomeAsJudged();
-    else {
-        rehome(ci);
-        ++rehomedAfresh;
-    }
+    for (const auto& [part, face] : judgedCover_)
+        m.property(pieces_, TriMesh::FaceHandle(face)).push_back(part);
+    pieces += judgedCover_.size();
     for (auto f : m.vf_range(ci.v1)) faces_.insert(f.idx(), boxOf(f));
     touched_[std::size_t(ci.v1.idx())] = 1;
     for (auto v : m.vv_range(ci.v1)) touched_[std::size_t(v.idx())] = 1;
     ++collapses_;
-}
-
-void ModErrorBound::rehomeAsJudged() {
-    TriMesh& m = mesh();
-    for (const auto& [part, face] : judgedCover_)
-        m.property(pieces_, TriMesh::FaceHandle(face)).push_back(part);
-    pieces += judgedCover_.size();
-}
-
-void ModErrorBound::rehome(const CollapseInfo& ci) {
-    TriMesh& m = mesh();
-    // The candidates now: v1's faces (the created ones among them) and the
-    // ring around them — a superset of what collapse_priority covered with,
-    // so every piece finds a home again.
-    candidates_.clear();
-    for (auto f : m.vf_range(ci.v1)) candidates_.push_back(candidateOf(f));
-    const std::size_t ownFaces = candidates_.size();
-    gatherRim(ci.v1, ci.v1);
-    auto home = [&](const OriginalPiece& part, int k) {
-        m.property(pieces_, TriMesh::FaceHandle(candidates_[std::size_t(k)].id)).push_back(part);
-        ++pieces;
-    };
-    // A piece's face, v0 replaced by v1, is the likely nearest (when not
-    // one of the two removed): measured first, it rules the others out.
-    for (std::size_t i = 0; i < homeless_.size(); ++i) {
-        const OriginalPiece& piece = homeless_[i];
-        int likely = -1;
-        for (std::size_t k = 0; k < ownFaces; ++k)
-            if (candidates_[k].id == homelessFace_[i]) likely = int(k);
-        // One pass: the parts are stored only once the whole piece is covered.
-        homedParts_.clear();
-        const double d = coverPiece(
-            piece, candidates_, -1, likely, limits_,
-            [&](const OriginalPiece& part, int k, double) { homedParts_.emplace_back(part, k); });
-        if (d <= limits_.limitMm)
-            for (const auto& [part, k] : homedParts_) home(part, k);
-        else  // unreachable by the superset argument; keep the piece anyway
-            home(piece, 0);
-    }
 }
 
 double ModErrorBound::piecesArea() {

@@ -70,9 +70,9 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
 
     /// Deviations evaluated on the CPU / taken from the initial batch.
     std::size_t cpuEvaluations = 0, initialEvaluations = 0;
-    /// Collapses whose pieces were covered afresh, not as judged (another
-    /// judgement came between; rare).
-    std::size_t rehomedAfresh = 0;
+    /// Collapses whose pieces were covered again when made, not taken from
+    /// their judgement (another judgement came between; rare).
+    std::size_t coveredAgain = 0;
     /// The total area of the original pieces kept on the faces: the
     /// original surface's, whatever was collapsed. O(pieces).
     double piecesArea();
@@ -84,13 +84,9 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     /// Direction (a): the batch's value, or surfaceDeviation (cached).
     float deviation(const CollapseInfo& ci);
     bool batchValueHolds(const CollapseInfo& ci) const;
-    /// Direction (b), also kept as judgedCover_ when every piece is covered.
+    /// Direction (b), also kept as judgedCover_ when every piece is covered:
+    /// the pieces of the collapsed faces go there when the collapse is made.
     double coverage(const CollapseInfo& ci);
-    /// Homes the pieces of the collapsed faces: as the judgement covered
-    /// them, when it was of this collapse on this mesh (nearly always), or
-    /// covered afresh by v1's faces and the ring around them.
-    void rehomeAsJudged();
-    void rehome(const CollapseInfo& ci);
     void gatherRim(TriMesh::VertexHandle centre, TriMesh::VertexHandle skip);
     bool collides(const CollapseInfo& ci, const std::vector<NewTriangle>& created);
     Vec3 point(TriMesh::VertexHandle v) const;
@@ -103,11 +99,8 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     std::vector<float> initial_;
     std::vector<char> touched_;  // per vertex: neighbourhood changed since initial_
     FaceGrid faces_;
-    std::vector<OriginalPiece> homeless_;  // pieces of the faces being collapsed
-    std::vector<int> homelessFace_;        // the face each was on
     std::vector<NewTriangle> created_;
     std::vector<CoverCandidate> candidates_;
-    std::vector<std::pair<OriginalPiece, int>> homedParts_;  // parts and their candidate
     // The last coverage that covered every piece: parts and the face
     // covering each (created triangles by the face they replace), valid for
     // that halfedge while no collapse is made.

@@ -64,8 +64,8 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
         ++collapses;
     }
     ASSERT_EQ(collapses, 300);
-    EXPECT_GE(module.rehomedAfresh, 100u);  // both ways exercised
-    EXPECT_LE(module.rehomedAfresh, 200u);
+    EXPECT_GE(module.coveredAgain, 100u);  // both ways exercised
+    EXPECT_LE(module.coveredAgain, 200u);
     const ModErrorBound::Bounds bounds = module.currentBounds();
     EXPECT_LE(bounds.originalToSurfaceMm, limit);
     EXPECT_LE(bounds.surfaceToOriginalMm, limit);
