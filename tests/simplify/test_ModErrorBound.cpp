@@ -7,6 +7,7 @@
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "simplify/CheckedDecimater.hpp"
+#include "simplify/InitialPriorities.hpp"
 #include "simplify/ModErrorBound.hpp"
 
 namespace dfrecon {
@@ -70,6 +71,53 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
     EXPECT_LE(bounds.originalToSurfaceMm, limit);
     EXPECT_LE(bounds.surfaceToOriginalMm, limit);
     EXPECT_NEAR(module.piecesArea(), area(input), 1e-9 * area(input));
+}
+
+// A collapse allowed by its batch value (compared in double) can create a
+// triangle exactly at the limit; the cache keeps bounds rounded up to a
+// float, one step above it. The final bounds must still certify it: found
+// on the Brodmann atlas, where such faces sent whole ROIs into the
+// locked-vertex retries.
+TEST(ModErrorBound, FinalBoundsCertifyATriangleExactlyAtTheLimit) {
+    ocl::Runtime runtime("cpu");
+    SynthOptions synth;
+    synth.spacingMm = 2.0;
+    const Roi roi = sliceShape(*makeShape("torus"), synth).rois[0];
+    const TriangleSoup input = reconstructSurface(runtime, roi).surface;
+    const DeviationSurface original(input);
+    const TriMesh unchanged = toTriMesh(input);
+    const std::vector<float> loose = initialPrioritiesReference(unchanged, original, 1.0);
+    int tried = 0;
+    for (std::size_t h = 0; h < loose.size() && tried < 10; ++h) {
+        if (!(loose[h] > 0.05f)) continue;
+        // The limit: this collapse's deviation itself, in double.
+        TriMesh mesh = toTriMesh(input);
+        const TriMesh::HalfedgeHandle he{int(h)};
+        std::vector<NewTriangle> created;
+        if (!mesh.is_collapse_ok(he) || !trianglesAfterCollapse(mesh, he, created)) continue;
+        double limit = 0;
+        for (const NewTriangle& t : created)
+            limit = std::max(limit, deviationBound(original, t.p[0], t.p[1], t.p[2], {1.0}));
+        mesh.request_face_normals();
+        mesh.update_face_normals();
+        CheckedDecimater decimater(mesh);
+        ModErrorBound::Handle handle;
+        decimater.add(handle);
+        ModErrorBound& module = decimater.module(handle);
+        module.setOriginal(original, limit);
+        module.setInitialDeviations(initialPrioritiesReference(mesh, original, limit));
+        ASSERT_TRUE(decimater.initialize());
+        const ModErrorBound::CollapseInfo ci(mesh, he);
+        if (module.collapse_priority(ci) < 0) continue;  // (b) over the limit
+        ++tried;
+        module.preprocess_collapse(ci);
+        mesh.collapse(he);
+        module.postprocess_collapse(ci);
+        const ModErrorBound::Bounds bounds = module.currentBounds();
+        EXPECT_LE(bounds.surfaceToOriginalMm, limit) << "halfedge " << h;
+        EXPECT_LE(bounds.originalToSurfaceMm, limit) << "halfedge " << h;
+    }
+    EXPECT_EQ(tried, 10);
 }
 
 }  // namespace
