@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
@@ -12,6 +14,33 @@
 
 namespace dfrecon {
 namespace {
+
+// The torus reconstructed from 2 mm planes: slivers, as on real data.
+TriangleSoup torusFromPlanes() {
+    ocl::Runtime runtime("cpu");
+    SynthOptions synth;
+    synth.spacingMm = 2.0;
+    return reconstructSurface(runtime, sliceShape(*makeShape("torus"), synth).rois[0]).surface;
+}
+
+// A CheckedDecimater over `mesh` with ModErrorBound alone, initialized (with
+// the batch's values when given), for tests that drive collapses by hand.
+struct Decimation {
+    Decimation(TriMesh& mesh, const DeviationSurface& original, double limit,
+               std::vector<float> initial = {})
+        : decimater(mesh) {
+        mesh.request_face_normals();
+        mesh.update_face_normals();
+        decimater.add(handle);
+        module().setOriginal(original, limit);
+        if (!initial.empty()) module().setInitialDeviations(std::move(initial));
+        initialized = decimater.initialize();
+    }
+    ModErrorBound& module() { return decimater.module(handle); }
+    CheckedDecimater decimater;
+    ModErrorBound::Handle handle;
+    bool initialized = false;
+};
 
 double area(const TriangleSoup& soup) {
     double total = 0;
@@ -28,22 +57,13 @@ double area(const TriangleSoup& soup) {
 // within the bound, and the pieces keep the original's area: none is lost
 // or kept twice.
 TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
-    ocl::Runtime runtime("cpu");
-    SynthOptions synth;
-    synth.spacingMm = 2.0;
-    const Roi roi = sliceShape(*makeShape("torus"), synth).rois[0];
-    const TriangleSoup input = reconstructSurface(runtime, roi).surface;
+    const TriangleSoup input = torusFromPlanes();
     const DeviationSurface original(input);
     const double limit = 0.5;
     TriMesh mesh = toTriMesh(input);
-    mesh.request_face_normals();
-    mesh.update_face_normals();
-    CheckedDecimater decimater(mesh);
-    ModErrorBound::Handle handle;
-    decimater.add(handle);
-    ModErrorBound& module = decimater.module(handle);
-    module.setOriginal(original, limit);
-    ASSERT_TRUE(decimater.initialize());
+    Decimation decimation(mesh, original, limit);
+    ASSERT_TRUE(decimation.initialized);
+    ModErrorBound& module = decimation.module();
 
     // The next legal collapse after halfedge `from`, and its priority.
     auto nextLegal = [&](int from) {
@@ -79,11 +99,7 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
 // on the Brodmann atlas, where such faces sent whole ROIs into the
 // locked-vertex retries.
 TEST(ModErrorBound, FinalBoundsCertifyATriangleExactlyAtTheLimit) {
-    ocl::Runtime runtime("cpu");
-    SynthOptions synth;
-    synth.spacingMm = 2.0;
-    const Roi roi = sliceShape(*makeShape("torus"), synth).rois[0];
-    const TriangleSoup input = reconstructSurface(runtime, roi).surface;
+    const TriangleSoup input = torusFromPlanes();
     const DeviationSurface original(input);
     const TriMesh unchanged = toTriMesh(input);
     const std::vector<float> loose = initialPrioritiesReference(unchanged, original, 1.0);
@@ -98,15 +114,10 @@ TEST(ModErrorBound, FinalBoundsCertifyATriangleExactlyAtTheLimit) {
         double limit = 0;
         for (const NewTriangle& t : created)
             limit = std::max(limit, deviationBound(original, t.p[0], t.p[1], t.p[2], {1.0}));
-        mesh.request_face_normals();
-        mesh.update_face_normals();
-        CheckedDecimater decimater(mesh);
-        ModErrorBound::Handle handle;
-        decimater.add(handle);
-        ModErrorBound& module = decimater.module(handle);
-        module.setOriginal(original, limit);
-        module.setInitialDeviations(initialPrioritiesReference(mesh, original, limit));
-        ASSERT_TRUE(decimater.initialize());
+        Decimation decimation(mesh, original, limit,
+                              initialPrioritiesReference(mesh, original, limit));
+        ASSERT_TRUE(decimation.initialized);
+        ModErrorBound& module = decimation.module();
         const ModErrorBound::CollapseInfo ci(mesh, he);
         if (module.collapse_priority(ci) < 0) continue;  // (b) over the limit
         ++tried;
