@@ -2,12 +2,14 @@
 // The error-bounded edge collapse as an OpenMesh Decimater module: a
 // collapse is legal only if, afterwards,
 //   (a) every point of every new triangle is within maxError of the
-//       original surface (deviationBound over a BVH of the original), and
+//       original surface (deviationBound over the original's hierarchy and
+//       vertex fans), and
 //   (b) every point of the original surface is within maxError of the
 //       simplified one: the original triangles are kept on faces that cover
-//       them (Coverage.hpp), split where no single face does, and re-homed
-//       when their face goes — as OpenMesh's ModHausdorff keeps removed
-//       vertices, but for whole triangles;
+//       them (Coverage.hpp), split where no single face does, and moved to
+//       the faces that replace theirs as the judgement of the collapse
+//       covered them — as OpenMesh's ModHausdorff keeps removed vertices,
+//       but for whole triangles;
 // and no new triangle collides with the rest of the surface. The priority
 // is the larger of the two bounds, so the collapses that change the
 // surface least go first (paper §6.2). Topology (link condition) and normal
@@ -60,8 +62,9 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     void preprocess_collapse(const CollapseInfo& ci) override;
     void postprocess_collapse(const CollapseInfo& ci) override;
 
-    /// The two bounds the current mesh meets: (a) over all faces, computed
-    /// afresh, and (b) over all original pieces and the faces covering them.
+    /// The two bounds the current mesh meets: (a) over all faces (from the
+    /// cache, again in double where its float is over the limit), and (b)
+    /// over all original pieces and the faces covering them.
     struct Bounds {
         double surfaceToOriginalMm = 0, originalToSurfaceMm = 0;
         std::vector<Vec3> outOfBound;  // corners of faces or pieces over the bound
