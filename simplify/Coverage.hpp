@@ -87,14 +87,13 @@ double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCand
                                b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]), &e, &m);
         // The parts are exactly the corners and crossing points that
         // straddle_distance measured; each is cut into triangles from its
-        // first corner, and slivers of no area are dropped.
+        // first corner. All are kept, even of no area: a degenerate piece of
+        // the input still has points to keep within the bound.
         for (const auto& [owner, sign] : {std::pair{nearest, 1.0}, std::pair{int(k), -1.0}}) {
             Vec3 part[4];
             const int corners = shared::clip_polygon(piece.p, 3, e, m, sign, part);
-            for (int c = 1; c + 1 < corners; ++c) {
-                const OriginalPiece t{{part[0], part[c], part[c + 1]}};
-                if (length(cross(t.p[1] - t.p[0], t.p[2] - t.p[0])) > 0) onCovered(t, owner, d);
-            }
+            for (int c = 1; c + 1 < corners; ++c)
+                onCovered(OriginalPiece{{part[0], part[c], part[c + 1]}}, owner, d);
         }
         return d;
     }
