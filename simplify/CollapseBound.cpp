@@ -100,14 +100,13 @@ double DeviationCache::estimate(Known* entry, const NewTriangle& t,
     Known& known = *entry;
     if (known.pieces >= maxPieces || (known.pieces > 0 && known.value > enough)) return known.value;
     const DeviationEstimate e = compute();
-    // Bounds rounded up, so the cached value is still an upper bound, lower
-    // bounds down; returned as stored, so every evaluation of a collapse
-    // sees the same priority. Pieces come in the same order in every run,
-    // so the run that took more pieces has the larger lower bound.
+    // Kept as computed, so a cached bound is the bound itself, compared with
+    // the limit as the batch's are. Pieces come in the same order in every
+    // run, so the run that took more pieces has the larger lower bound.
     if (e.complete)
-        known = {std::nextafter(float(e.value), INFINITY), SIZE_MAX};
+        known = {e.value, SIZE_MAX};
     else if (e.piecesTaken >= known.pieces)
-        known = {std::nextafter(float(e.value), 0.0f), e.piecesTaken};
+        known = {e.value, e.piecesTaken};
     return known.value;
 }
 

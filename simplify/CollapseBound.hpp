@@ -32,8 +32,9 @@ bool trianglesAfterCollapse(const TriMesh& mesh, TriMesh::HalfedgeHandle v0v1,
 /// evaluates the same candidate triangle again and again as the queue is
 /// updated around it, and with the original surface fixed its bound never
 /// changes. Also a lower bound of it, much cheaper, for the lazy queue.
-/// Values are kept as floats rounded outwards (bounds up, lower bounds
-/// down). Only for meshes of fewer than 2^21 vertices (else not used).
+/// Values are kept as computed (a double costs no room: the entry is
+/// padded to 16 bytes either way). Only for meshes of fewer than 2^21
+/// vertices (else not used).
 class DeviationCache {
   public:
     /// The cached bound of the triangle with these vertex ids, or computes it.
@@ -54,7 +55,7 @@ class DeviationCache {
 
   private:
     struct Known {
-        float value;
+        double value;
         /// The pieces a lower bound came from (it grows with them); SIZE_MAX
         /// for the bound itself, 0 for nothing known yet.
         std::size_t pieces;

@@ -237,13 +237,8 @@ ModErrorBound::Bounds ModErrorBound::currentBounds() {
     for (auto f : m.faces()) {
         const CoverCandidate c = candidateOf(f);
         const NewTriangle t{c.vertices, {c.p[0], c.p[1], c.p[2]}};
-        // The cached value (the same function of the same three vertices),
-        // unless rounding it up to a float took it over the limit: a face
-        // whose collapse the batch allowed (its value compared in double)
-        // may sit within a float's rounding of it. Then in double again.
-        double deviation = cache_.bound(t, *original_, limits_);
-        if (deviation > limits_.limitMm)
-            deviation = deviationBound(*original_, c.p[0], c.p[1], c.p[2], limits_);
+        // The cached value: the same function of the same three vertices.
+        const double deviation = cache_.bound(t, *original_, limits_);
         bounds.surfaceToOriginalMm = std::max(bounds.surfaceToOriginalMm, deviation);
         if (deviation > limits_.limitMm)
             bounds.outOfBound.insert(bounds.outOfBound.end(), c.p, c.p + 3);

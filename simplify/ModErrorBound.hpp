@@ -63,8 +63,7 @@ class ModErrorBound : public OpenMesh::Decimater::ModBaseT<TriMesh> {
     void postprocess_collapse(const CollapseInfo& ci) override;
 
     /// The two bounds the current mesh meets: (a) over all faces (from the
-    /// cache, again in double where its float is over the limit), and (b)
-    /// over all original pieces and the faces covering them.
+    /// cache), and (b) over all original pieces and the faces covering them.
     struct Bounds {
         double surfaceToOriginalMm = 0, originalToSurfaceMm = 0;
         std::vector<Vec3> outOfBound;  // corners of faces or pieces over the bound

@@ -94,10 +94,9 @@ TEST(ModErrorBound, PiecesStayCoveredWhetherTakenAsJudgedOrNot) {
 }
 
 // A collapse allowed by its batch value (compared in double) can create a
-// triangle exactly at the limit; the cache keeps bounds rounded up to a
-// float, one step above it. The final bounds must still certify it: found
-// on the Brodmann atlas, where such faces sent whole ROIs into the
-// locked-vertex retries.
+// triangle exactly at the limit. The final bounds, read from the cache, must
+// still certify it: when the cache rounded bounds up to a float, such faces
+// sent whole Brodmann ROIs into the locked-vertex retries.
 TEST(ModErrorBound, FinalBoundsCertifyATriangleExactlyAtTheLimit) {
     const TriangleSoup input = torusFromPlanes();
     const DeviationSurface original(input);
