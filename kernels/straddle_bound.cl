@@ -71,18 +71,15 @@ STRADDLE_FN int straddle_plane(REAL4 a0, REAL4 a1, REAL4 a2, int ia0, int ia1, i
     return 1;
 }
 
-// For piece p0 p1 p2 and surface triangles a and b: the largest distance
-// from a corner of the part on a's side of straddle_plane to a, and of the
-// other part to b (corners on the plane and the points where the piece's
-// edges cross it count for both). An upper bound of the distance from the
-// piece to a ∪ b; INFINITY when straddle_plane has none. O(1): at most
+// For piece p0 p1 p2 and surface triangles a and b cut by straddle_plane's
+// plane (e, m): the largest distance from a corner of the part on a's side
+// to a, and of the other part to b (corners on the plane and the points
+// where the piece's edges cross it count for both: clip_polygon's parts).
+// An upper bound of the distance from the piece to a ∪ b. O(1): at most
 // nine point–triangle distances.
-STRADDLE_FN REAL straddle_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 a0, REAL4 a1, REAL4 a2,
-                                   int ia0, int ia1, int ia2, REAL4 b0, REAL4 b1, REAL4 b2, int ib0,
-                                   int ib1, int ib2) {
-    REAL4 e0 = a0, m = a0;
-    if (!straddle_plane(a0, a1, a2, ia0, ia1, ia2, b0, b1, b2, ib0, ib1, ib2, &e0, &m))
-        return INFINITY;
+STRADDLE_FN REAL straddle_distance_across(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 a0, REAL4 a1,
+                                          REAL4 a2, REAL4 b0, REAL4 b1, REAL4 b2, REAL4 e0,
+                                          REAL4 m) {
     const REAL4 p[3] = {p0, p1, p2};
     REAL h[3];
     for (int k = 0; k < 3; ++k) h[k] = dot3(p[k] - e0, m);
@@ -98,4 +95,15 @@ STRADDLE_FN REAL straddle_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 a0, REAL4
         }
     }
     return worst;
+}
+
+// straddle_distance_across over straddle_plane's plane; INFINITY when a and
+// b share no edge or fold onto each other.
+STRADDLE_FN REAL straddle_distance(REAL4 p0, REAL4 p1, REAL4 p2, REAL4 a0, REAL4 a1, REAL4 a2,
+                                   int ia0, int ia1, int ia2, REAL4 b0, REAL4 b1, REAL4 b2, int ib0,
+                                   int ib1, int ib2) {
+    REAL4 e0 = a0, m = a0;
+    if (!straddle_plane(a0, a1, a2, ia0, ia1, ia2, b0, b1, b2, ib0, ib1, ib2, &e0, &m))
+        return INFINITY;
+    return straddle_distance_across(p0, p1, p2, a0, a1, a2, b0, b1, b2, e0, m);
 }

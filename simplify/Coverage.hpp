@@ -77,14 +77,15 @@ double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCand
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         const CoverCandidate& b = candidates[k];
         const auto& ib = b.vertices;
-        // INFINITY unless b shares an edge with a.
-        const double d = shared::straddle_distance(
-            piece.p[0], piece.p[1], piece.p[2], a.p[0], a.p[1], a.p[2], int(ia[0]), int(ia[1]),
-            int(ia[2]), b.p[0], b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]));
+        Vec3 e, m;  // none unless b shares an edge with a
+        if (!shared::straddle_plane(a.p[0], a.p[1], a.p[2], int(ia[0]), int(ia[1]), int(ia[2]),
+                                    b.p[0], b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]), &e,
+                                    &m))
+            continue;
+        const double d =
+            shared::straddle_distance_across(piece.p[0], piece.p[1], piece.p[2], a.p[0], a.p[1],
+                                             a.p[2], b.p[0], b.p[1], b.p[2], e, m);
         if (!(d <= limit)) continue;
-        Vec3 e, m;
-        shared::straddle_plane(a.p[0], a.p[1], a.p[2], int(ia[0]), int(ia[1]), int(ia[2]), b.p[0],
-                               b.p[1], b.p[2], int(ib[0]), int(ib[1]), int(ib[2]), &e, &m);
         // The parts are exactly the corners and crossing points that
         // straddle_distance measured; each is cut into triangles from its
         // first corner. All are kept, even of no area: a degenerate piece of
