@@ -247,6 +247,19 @@ inline REAL4 cornerSegmentDistance2(const Corners* k, REAL4 s, REAL inverse) {
     return qx * qx + qy * qy;
 }
 
+// The corners of the box of pixel centres lo..hi.
+inline Corners boxCorners(REAL2 lo, REAL2 hi) {
+    const Corners k = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
+    return k;
+}
+
+// Whether segment s (with 1 / length^2 `inverse`) is farther than
+// beaten2 at every corner: then it is nearest to no pixel of the box
+// (tile_candidates says why).
+inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL inverse, REAL4 beaten2) {
+    return all(isgreater(cornerSegmentDistance2(k, s, inverse), beaten2));
+}
+
 // Whether every segment of node `node` is farther than the contour point q
 // from every pixel of the tile, by more than marginMm2 in squared distance,
 // given beaten2 = |corner - q|^2 + marginMm2 per corner (see tile_candidates).
@@ -353,7 +366,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
     }
-    const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
+    const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
         count > 0 ? beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2)
                   : (REAL4)(INFINITY);
@@ -371,8 +384,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
             for (uint seg = first + (node - leaves) * LEAF;
                  seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
                  ++seg)
-                if (!all(isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]),
-                                   beaten2))) {
+                if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) {
                     if (n < capacity) list[n] = seg;
                     ++n;
                 }
@@ -403,15 +415,13 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL*
             if (d2 < best2) best2 = d2, nearest = list[k];
         }
     }
-    const Corners corners = {(REAL4)(lo.x, hi.x, lo.x, hi.x), (REAL4)(lo.y, lo.y, hi.y, hi.y)};
+    const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
         beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
     uint n = 0;
     for (uint k = 0; k < listed; ++k) {
         const uint seg = list[k];
-        if (!all(
-                isgreater(cornerSegmentDistance2(&corners, segments[seg], inverses[seg]), beaten2)))
-            out[n++] = seg;
+        if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) out[n++] = seg;
     }
     return n;
 }
