@@ -20,6 +20,10 @@ constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
 // faster than the walk: 96 and 192 were slower on dense contours, 512 and
 // 640 no faster (docs/fields.md).
 constexpr int kListCapacity = 320;
+// Tiles with more candidate segments than this list leaves instead
+// (FieldKernelOptions::leafListsFrom): measured on the bench's contours.
+constexpr int kLeafListsFrom = 64;
+constexpr cl_uint kLeafListed = 0x80000000u;  // LEAF_LISTED in the kernel
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -237,7 +241,7 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
-              SliceFields& out, FieldKernelStats* stats) {
+              cl_uint leafListsFrom, SliceFields& out, FieldKernelStats* stats) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
@@ -297,6 +301,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cull.setArg(a++, slackMm);
         cull.setArg(a++, marginMm2);
         cull.setArg(a++, capacity);
+        cull.setArg(a++, leafListsFrom);
         cull.setArg(a++, candidates.get());
         cull.setArg(a++, candidateCount.get());
         // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
@@ -341,7 +346,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         if (stats)
             for (const cl_uint listed : candidateCount.download(runtime)) {
                 ++stats->tiles;
-                if (listed > capacity)
+                if (listed & kLeafListed)
+                    ++stats->leafListingTiles;
+                else if (listed > capacity)
                     ++stats->overflowingTiles;
                 else
                     stats->listed += listed;
@@ -373,6 +380,9 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
     const cl_uint capacity = cl_uint(
         options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
+    // Above any count a tile can have: never.
+    const cl_uint leafListsFrom =
+        cl_uint(options.leafListsFrom < 0 ? kLeafListsFrom : options.leafListsFrom);
     SliceFields fields = emptyFields(slices, grid);
     if (options.stats) *options.stats = {};
     const std::size_t perBatch =
@@ -389,7 +399,8 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
             runBatch<decltype(real), decltype(real4)>(runtime, slices, begin, end, grid, lanes,
-                                                      capacity, fields, options.stats);
+                                                      capacity, leafListsFrom, fields,
+                                                      options.stats);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));

@@ -36,11 +36,14 @@ struct FieldKernelStats {
     /// Tiles with more candidates than the capacity: their pixels walked the
     /// segment tree instead of scanning a list.
     std::size_t overflowingTiles = 0;
-    /// Candidates in all the lists (of the tiles that did not overflow).
+    /// Tiles that listed leaves of the segment tree, not segments.
+    std::size_t leafListingTiles = 0;
+    /// Candidate segments in all the segment lists.
     std::size_t listed = 0;
-    /// Candidates per listing tile, on average.
+    /// Candidate segments per tile listing segments, on average.
     double meanListed() const {
-        return tiles > overflowingTiles ? double(listed) / double(tiles - overflowingTiles) : 0;
+        const std::size_t listing = tiles - overflowingTiles - leafListingTiles;
+        return listing > 0 ? double(listed) / double(listing) : 0;
     }
 };
 
@@ -57,6 +60,12 @@ struct FieldKernelOptions {
     /// the segment tree instead: -1 = the default. Results are the same
     /// (0: always walk; tests run both ways).
     int tileListCapacity = -1;
+    /// Tiles with more candidates than this list the leaves of the segment
+    /// tree that hold them instead (runs of 8 segments): each row then scans
+    /// the segments of the leaves it can reach, where dense contours would
+    /// have it scan every candidate of its block. -1 = the default; 0 =
+    /// every tile with a contour; results are the same (tests run all ways).
+    int leafListsFrom = -1;
     /// When set, receives what the tile lists held (one more download of a
     /// count per tile; for benchmarks and tests).
     FieldKernelStats* stats = nullptr;

@@ -56,6 +56,8 @@
 #ifndef BLOCK_LIST
 #define BLOCK_LIST 96
 #endif
+// A tile's count with this bit set lists leaves of the tree, not segments.
+#define LEAF_LISTED 0x80000000u
 // Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
 // SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
 // the tree together: a subtree is entered when any lane may find a nearer
@@ -75,6 +77,7 @@
 #define CONVERT_FLOATV(x) ((float)(x))
 #define CONVERT_MASKV(x) ((int)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
+#define VLOAD(offset, p) ((p)[offset])
 #define MASKV int  // scalar comparisons give int whatever the operand type
 #define MASK_SCALAR int
 #define LANE_OFFSETS 0
@@ -88,6 +91,7 @@
 #define CONVERT_FLOATV CONCAT(convert_float, LANES)
 #define CONVERT_MASKV CONCAT(convert_, MASKV)
 #define VSTORE CONCAT(vstore, LANES)
+#define VLOAD CONCAT(vload, LANES)
 // Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
 #define MASKV CONCAT(long, LANES)
@@ -108,7 +112,13 @@
 #error "LANES must be 1, 4 or 8"
 #endif
 #define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
-#define ANY(mask) any(mask)
+// Lanes narrowed to bytes and tested as one integer: PoCL's any() reduces
+// the lanes one step at a time, and the leaf tests take one per leaf.
+#if LANES == 4
+#define ANY(mask) (as_uint(convert_char4(mask)) != 0)
+#else
+#define ANY(mask) (as_ulong(convert_char8(mask)) != 0)
+#endif
 #endif
 
 // Squared distance from the lanes' points (px, py) to box (xmin, ymin, xmax,
@@ -312,7 +322,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                               __global const uint* treeFirst, __global const uint* leafBase,
                               const uint width, const uint height, const REAL pixelMm,
                               const REAL slackMm, const REAL marginMm2, const uint capacity,
-                              __global uint* candidates, __global uint* candidateCount) {
+                              const uint leafListsFrom, __global uint* candidates,
+                              __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
@@ -373,17 +384,18 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
 
     // The candidates, in segment order (a left-first walk visits leaves in
     // order).
+    // Stops one past what a segment list may hold.
+    const uint stopAt = min(capacity, leafListsFrom);
     uint n = 0;
     node = count > 0 ? 1 : 0;
-    while (node != 0 && n <= capacity) {
+    while (node != 0 && n <= stopAt) {
         if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
             }
             for (uint seg = first + (node - leaves) * LEAF;
-                 seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= capacity;
-                 ++seg)
+                 seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= stopAt; ++seg)
                 if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) {
                     if (n < capacity) list[n] = seg;
                     ++n;
@@ -392,7 +404,28 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
     }
-    candidateCount[at] = n;
+    if (n <= leafListsFrom) {
+        candidateCount[at] = n;
+        return;
+    }
+
+    // Dense: the leaves that hold candidates instead, in order (the same
+    // walk, stopping at leaves).
+    n = 0;
+    node = 1;
+    while (node != 0 && n <= capacity) {
+        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            if (n < capacity) list[n] = node - leaves;
+            ++n;
+        }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
+    }
+    candidateCount[at] = n <= min(capacity, (uint)BLOCK_LIST) ? (n | LEAF_LISTED) : capacity + 1;
 }
 
 // The entries of a tile's list (in segment order) that can be nearest to a
@@ -424,6 +457,99 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL*
         if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) out[n++] = seg;
     }
     return n;
+}
+
+// blockCandidates for a tile that lists leaves: the leaves of its list that
+// can hold the nearest segment of a pixel of the block lo..hi (nodeDominated
+// fails), in order. Without a hint, the contour point comes from the nearest
+// segment of the leaf whose chord is nearest the block's centre. O(listed +
+// LEAF).
+inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inverses, uint first,
+                        uint count, __global const REAL4* box, __global const REAL4* chord,
+                        __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
+                        __global const uint* list, uint listed, REAL2 lo, REAL2 hi, REAL marginMm2,
+                        uint hint, uint* out) {
+    const REAL2 c = (lo + hi) / 2;
+    uint nearest = hint;
+    if (hint == 0xffffffffu) {
+        REAL best2 = INFINITY;
+        uint leaf = list[0];
+        for (uint k = 0; k < listed; ++k) {
+            const uint node = leaves + list[k];
+            const REAL d2 = pointSegmentDistance2(c, chord[node], chordInverse[node]);
+            if (d2 < best2) best2 = d2, leaf = list[k];
+        }
+        best2 = INFINITY;
+        for (uint seg = first + leaf * LEAF; seg < min(first + (leaf + 1) * LEAF, first + count);
+             ++seg) {
+            const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
+            if (d2 < best2) best2 = d2, nearest = seg;
+        }
+    }
+    const Corners corners = boxCorners(lo, hi);
+    const REAL4 beaten2 =
+        beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
+    uint n = 0;
+    for (uint k = 0; k < listed; ++k)
+        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, leaves + list[k]))
+            out[n++] = list[k];
+    return n;
+}
+
+// Squared distance from each lane's point to its own segment
+// segments[seg[lane]], all lanes at once.
+inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL* inverses,
+                                  const MASK_SCALAR* seg, REALV px, REAL py) {
+    REAL ax[LANES], ay[LANES], bx[LANES], by[LANES], inverse[LANES];
+    for (int l = 0; l < LANES; ++l) {
+        const REAL4 s = segments[(uint)seg[l]];
+        ax[l] = s.x, ay[l] = s.y, bx[l] = s.z, by[l] = s.w;
+        inverse[l] = inverses[(uint)seg[l]];
+    }
+    const REALV a_x = VLOAD(0, ax), a_y = VLOAD(0, ay);
+    const REALV abx = VLOAD(0, bx) - a_x, aby = VLOAD(0, by) - a_y;
+    const REALV apx = px - a_x, apy = py - a_y;
+    const REALV t = clamp((apx * abx + apy * aby) * VLOAD(0, inverse), (REAL)0, (REAL)1);
+    const REALV qx = apx - t * abx, qy = apy - t * aby;
+    return qx * qx + qy * qy;
+}
+
+// The lanes' nearest segment among those of `listed` leaves (in order), by
+// scanning only the leaves some lane may find a nearer or tied segment in:
+// the lanes' distances to the segments `hints` (the row below's nearest, or
+// none) bound their nearest distances, and worthVisiting tests each leaf
+// against that bound, as the walk does. The segments of the other leaves
+// are farther than a hint by more than rounding, so the result is that of
+// scanning every leaf. `row` holds up to BLOCK_LIST segments at a time.
+// O(listed + LEAF · leaves scanned).
+inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+                       uint first, uint count, __global const REAL4* box,
+                       __global const REAL4* chord, __global const REAL* chordInverse,
+                       __global const REAL* dev, uint leaves, const uint* list, uint listed,
+                       const MASK_SCALAR* hints, REALV px, REAL py, REAL slackMm, uint* row) {
+    Nearest bound;
+    bound.best2 = (REALV)(INFINITY);
+    if (hints) bound.best2 = laneSegmentDistance2(segments, inverses, hints, px, py);
+    updateReach(&bound, slackMm);
+    uint m = 0;
+    for (uint k = 0; k < listed; ++k) {
+        // The capsule alone: a leaf's box is hardly tighter, and each test
+        // of any lane costs a reduction.
+        const uint node = leaves + list[k];
+        const REALV capsule = bound.reach + dev[node];
+        REALV t;
+        if (!ANY(islessequal(segmentDistance2(chord[node], chordInverse[node], px, py, &t),
+                             capsule * capsule)))
+            continue;
+        if (m + LEAF > BLOCK_LIST) {
+            scanList(n, segments, inverses, row, m, px, py);
+            m = 0;
+        }
+        for (uint seg = first + list[k] * LEAF;
+             seg < min(first + (list[k] + 1) * LEAF, first + count); ++seg)
+            row[m++] = seg;
+    }
+    scanList(n, segments, inverses, row, m, px, py);
 }
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
@@ -464,7 +590,8 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const uint* list = candidates + tile * capacity;
 
     MASK_SCALAR segs[LANES];
-    uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS rows
+    uint block[BLOCK_LIST];        // the list's entries for the current BLOCK_ROWS rows
+    uint rowSegments[BLOCK_LIST];  // a row's segments from a list of leaves
     uint blockListed = 0;
     const uint lastColumn = min(i0 + LANES, width) - 1;
     for (uint j = j0; j < min(j0 + TILE, height); ++j) {
@@ -472,7 +599,19 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         Nearest n;
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
-        if (listed <= capacity && listed <= BLOCK_LIST) {
+        if (listed & LEAF_LISTED) {
+            const uint leafCount = listed & ~LEAF_LISTED;
+            if ((j - j0) % BLOCK_ROWS == 0) {
+                const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
+                blockListed = blockLeaves(
+                    segments, inverses, first, count, box, chord, chordInverse, dev, leaves, list,
+                    leafCount, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
+                    (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
+                    marginMm2, j == j0 ? 0xffffffffu : (uint)segs[LANES / 2], block);
+            }
+            scanLeaves(&n, segments, inverses, first, count, box, chord, chordInverse, dev, leaves,
+                       block, blockListed, j == j0 ? 0 : segs, px, py, slackMm, rowSegments);
+        } else if (listed <= capacity && listed <= BLOCK_LIST) {
             if ((j - j0) % BLOCK_ROWS == 0 && listed > 0) {
                 const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
                 blockListed = blockCandidates(

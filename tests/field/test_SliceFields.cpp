@@ -72,18 +72,22 @@ void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid
 
 // Every kernel variant: 8, 4 and 1 pixels per work-item (CPU and GPU
 // shapes) in double precision, and float (devices without fp64) in 8 and 1;
-// and both ways to the nearest segment: every tile walking the tree per
-// pixel row (lists of 0) and every tile scanning its list (lists of 4096).
+// and every way to the nearest segment: every tile walking the tree per
+// pixel row (lists of 0), every tile scanning its list of segments (lists
+// of 4096, never of leaves), and every tile listing leaves (from 0).
 void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
     const SliceFields reference = computeSliceFieldsReference(slices, grid);
+    const int never = 1 << 30;
     for (const FieldKernelOptions options :
          {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
           FieldKernelOptions{8, true}, FieldKernelOptions{1, true}, FieldKernelOptions{8, false, 0},
-          FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096},
-          FieldKernelOptions{1, true, 4096}}) {
+          FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096, never},
+          FieldKernelOptions{1, true, 4096, never}, FieldKernelOptions{8, false, -1, 0},
+          FieldKernelOptions{4, false, -1, 0}, FieldKernelOptions{1, true, -1, 0}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
                      (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
-                     std::to_string(options.tileListCapacity));
+                     std::to_string(options.tileListCapacity) + ", leaves listed from " +
+                     std::to_string(options.leafListsFrom));
         expectVariantAgrees(slices, grid, reference, options);
     }
 }
@@ -197,7 +201,14 @@ TEST(SliceFields, ContoursWithThousandsOfSegments) {
     slice.contours.push_back(circle);
     ASSERT_FALSE(findContourDefect(slice.contours).has_value());
     const std::vector<Slice> slices{slice};
-    expectAgreement(slices, gridForSlices(slices, 0.9));
+    const SliceGrid grid = gridForSlices(slices, 0.9);
+    expectAgreement(slices, grid);
+    // The case is what it says: by default, tiles here list leaves.
+    FieldKernelStats stats;
+    FieldKernelOptions options;
+    options.stats = &stats;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_GT(stats.leafListingTiles, 0u);
 }
 
 // Pixel centres exactly on edges and vertices (1 mm pixels from 0: centres
@@ -239,7 +250,8 @@ TEST(SliceFields, DegenerateShortSegments) {
 
 // The tile-list statistics count every tile of every slice with contours:
 // all overflow with room for none, none for one small contour, whose tiles
-// each list at least the segment nearest them.
+// each list at least the segment nearest them, and all list leaves when
+// told to.
 TEST(SliceFields, TileListStatsCountEveryTile) {
     Slice square, empty;
     square.contours = {{{10, 10}, {40, 10}, {40, 30}, {10, 30}}};
@@ -261,6 +273,13 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 56u);
     EXPECT_EQ(stats.overflowingTiles, 56u);
+    EXPECT_EQ(stats.meanListed(), 0.0);
+    options.tileListCapacity = -1;
+    options.leafListsFrom = 0;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.tiles, 56u);
+    EXPECT_EQ(stats.overflowingTiles, 0u);
+    EXPECT_EQ(stats.leafListingTiles, 56u);
     EXPECT_EQ(stats.meanListed(), 0.0);
 }
 
