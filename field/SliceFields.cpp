@@ -22,7 +22,7 @@ constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
 constexpr int kListCapacity = 320;
 // Tiles with more candidate segments than this list leaves instead
 // (FieldKernelOptions::leafListsFrom): measured on the bench's contours.
-constexpr int kLeafListsFrom = 64;
+constexpr int kLeafListsFrom = 96;
 constexpr cl_uint kLeafListed = 0x80000000u;  // LEAF_LISTED in the kernel
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.

@@ -461,17 +461,17 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL*
 
 // blockCandidates for a tile that lists leaves: the leaves of its list that
 // can hold the nearest segment of a pixel of the block lo..hi (nodeDominated
-// fails), in order. Without a hint, the contour point comes from the nearest
-// segment of the leaf whose chord is nearest the block's centre. O(listed +
-// LEAF).
+// fails), in order. Without a hint (*hint = 0xffffffff), the contour point
+// comes from the nearest segment of the leaf whose chord is nearest the
+// block's centre, and *hint receives that segment. O(listed + LEAF).
 inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inverses, uint first,
                         uint count, __global const REAL4* box, __global const REAL4* chord,
                         __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
                         __global const uint* list, uint listed, REAL2 lo, REAL2 hi, REAL marginMm2,
-                        uint hint, uint* out) {
+                        uint* hint, uint* out) {
     const REAL2 c = (lo + hi) / 2;
-    uint nearest = hint;
-    if (hint == 0xffffffffu) {
+    uint nearest = *hint;
+    if (nearest == 0xffffffffu) {
         REAL best2 = INFINITY;
         uint leaf = list[0];
         for (uint k = 0; k < listed; ++k) {
@@ -485,6 +485,7 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
             const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
             if (d2 < best2) best2 = d2, nearest = seg;
         }
+        *hint = nearest;
     }
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
@@ -516,20 +517,18 @@ inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const
 
 // The lanes' nearest segment among those of `listed` leaves (in order), by
 // scanning only the leaves some lane may find a nearer or tied segment in:
-// the lanes' distances to the segments `hints` (the row below's nearest, or
-// none) bound their nearest distances, and worthVisiting tests each leaf
-// against that bound, as the walk does. The segments of the other leaves
-// are farther than a hint by more than rounding, so the result is that of
-// scanning every leaf. `row` holds up to BLOCK_LIST segments at a time.
-// O(listed + LEAF · leaves scanned).
+// `within2`, each lane's squared distance to some segment, bounds its
+// nearest, and each leaf's capsule is tested against it as the walk does.
+// The segments of the other leaves are farther by more than rounding, so
+// the result is that of scanning every leaf. `row` holds up to BLOCK_LIST
+// segments at a time. O(listed + LEAF · leaves scanned).
 inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
-                       uint first, uint count, __global const REAL4* box,
-                       __global const REAL4* chord, __global const REAL* chordInverse,
-                       __global const REAL* dev, uint leaves, const uint* list, uint listed,
-                       const MASK_SCALAR* hints, REALV px, REAL py, REAL slackMm, uint* row) {
+                       uint first, uint count, __global const REAL4* chord,
+                       __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
+                       const uint* list, uint listed, REALV within2, REALV px, REAL py,
+                       REAL slackMm, uint* row) {
     Nearest bound;
-    bound.best2 = (REALV)(INFINITY);
-    if (hints) bound.best2 = laneSegmentDistance2(segments, inverses, hints, px, py);
+    bound.best2 = within2;
     updateReach(&bound, slackMm);
     uint m = 0;
     for (uint k = 0; k < listed; ++k) {
@@ -601,16 +600,23 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         n.bestSeg = (MASKV)(0);
         if (listed & LEAF_LISTED) {
             const uint leafCount = listed & ~LEAF_LISTED;
+            uint hint = j == j0 ? 0xffffffffu : (uint)segs[LANES / 2];
             if ((j - j0) % BLOCK_ROWS == 0) {
                 const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
                 blockListed = blockLeaves(
                     segments, inverses, first, count, box, chord, chordInverse, dev, leaves, list,
                     leafCount, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
                     (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
-                    marginMm2, j == j0 ? 0xffffffffu : (uint)segs[LANES / 2], block);
+                    marginMm2, &hint, block);
             }
-            scanLeaves(&n, segments, inverses, first, count, box, chord, chordInverse, dev, leaves,
-                       block, blockListed, j == j0 ? 0 : segs, px, py, slackMm, rowSegments);
+            // Each lane's bound: its own nearest segment in the row below,
+            // or on the tile's first row the one nearest the block's centre.
+            REALV t;
+            const REALV within2 =
+                j == j0 ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
+                        : laneSegmentDistance2(segments, inverses, segs, px, py);
+            scanLeaves(&n, segments, inverses, first, count, chord, chordInverse, dev, leaves, block,
+                       blockListed, within2, px, py, slackMm, rowSegments);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
             if ((j - j0) % BLOCK_ROWS == 0 && listed > 0) {
                 const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
