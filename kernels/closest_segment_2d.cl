@@ -67,8 +67,10 @@
 #endif
 #if defined(REAL_IS_DOUBLE)
 #define REACH_RELATIVE (1 + 64 * DBL_EPSILON)
+#define MASK4 long4  // what comparisons of REAL4 give
 #else
 #define REACH_RELATIVE (1 + 64 * FLT_EPSILON)
+#define MASK4 int4
 #endif
 #if LANES == 1
 #define REALV REAL
@@ -272,19 +274,22 @@ inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL inverse, REAL4 b
 
 // Whether every segment of node `node` is farther than the contour point q
 // from every pixel of the tile, by more than marginMm2 in squared distance,
-// given beaten2 = |corner - q|^2 + marginMm2 per corner (see tile_candidates).
-inline bool nodeDominated(const Corners* k, REAL4 beaten2, __global const REAL4* boxes,
-                          __global const REAL4* chords, __global const REAL* chordInverses,
-                          __global const REAL* devs, uint node) {
+// given beaten2 = |corner - q|^2 + marginMm2 per corner (see tile_candidates)
+// and beaten = sqrt(beaten2). The capsule bound d(corner, chord) - dev
+// exceeds beaten exactly when d(corner, chord)^2 exceeds (dev + beaten)^2:
+// compared so, without a square root per node.
+inline bool nodeDominated(const Corners* k, REAL4 beaten2, REAL4 beaten,
+                          __global const REAL4* boxes, __global const REAL4* chords,
+                          __global const REAL* chordInverses, __global const REAL* devs,
+                          uint node) {
     const REAL4 b = boxes[node];
     const REAL4 dx = fmax(fmax(b.x - k->x, k->x - b.z), (REAL4)(0));
     const REAL4 dy = fmax(fmax(b.y - k->y, k->y - b.w), (REAL4)(0));
-    const REAL4 fromBox2 = dx * dx + dy * dy;
-    if (all(isgreater(fromBox2, beaten2))) return true;
-    const REAL4 fromCapsule =
-        fmax(sqrt(cornerSegmentDistance2(k, chords[node], chordInverses[node])) - devs[node], 0);
-    const REAL4 bound2 = fmax(fromBox2, fromCapsule * fromCapsule);
-    return all(isgreater(bound2, beaten2));
+    const MASK4 outsideBox = isgreater(dx * dx + dy * dy, beaten2);
+    if (all(outsideBox)) return true;
+    const REAL4 capsule = beaten + devs[node];
+    return all(outsideBox | isgreater(cornerSegmentDistance2(k, chords[node], chordInverses[node]),
+                                      capsule * capsule));
 }
 
 // For the box of pixel centres lo..hi and the contour point nearest its
@@ -360,10 +365,10 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
         if (d2 < best2) best2 = d2, nearest = seg;
     }
+    REAL reach = sqrt(best2) * REACH_RELATIVE + slackMm;  // kept as best2 falls
     node = count > 0 ? 1 : 0;
     while (node != 0) {
-        if (nodeWithin(c, sqrt(best2) * REACH_RELATIVE + slackMm, box, chord, chordInverse, dev,
-                       node)) {
+        if (nodeWithin(c, reach, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -373,6 +378,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                 const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
                 if (d2 < best2) best2 = d2, nearest = seg;
             }
+            reach = sqrt(best2) * REACH_RELATIVE + slackMm;
         }
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
@@ -381,6 +387,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     const REAL4 beaten2 =
         count > 0 ? beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2)
                   : (REAL4)(INFINITY);
+    const REAL4 beaten = sqrt(beaten2);
 
     // The candidates, in segment order (a left-first walk visits leaves in
     // order).
@@ -389,7 +396,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     uint n = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= stopAt) {
-        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -414,7 +421,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     n = 0;
     node = 1;
     while (node != 0 && n <= capacity) {
-        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, node)) {
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -490,9 +497,10 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
         beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
+    const REAL4 beaten = sqrt(beaten2);
     uint n = 0;
     for (uint k = 0; k < listed; ++k)
-        if (!nodeDominated(&corners, beaten2, box, chord, chordInverse, dev, leaves + list[k]))
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, leaves + list[k]))
             out[n++] = list[k];
     return n;
 }
