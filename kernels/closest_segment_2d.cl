@@ -58,6 +58,9 @@
 #endif
 // A tile's count with this bit set lists leaves of the tree, not segments.
 #define LEAF_LISTED 0x80000000u
+// Leaves tile_candidates keeps to list the segments of a sparse tile from:
+// more than those hold more segments than the default leafListsFrom.
+#define KEPT_LEAVES 16
 // Pixels per work-item, as vector lanes: 8 suits CPU devices (explicit
 // SIMD), 1 suits GPUs (many small work-items). The lanes of a work-item walk
 // the tree together: a subtree is entered when any lane may find a nearer
@@ -181,6 +184,15 @@ inline void considerInOrder(Nearest* n, __global const REAL4* segments,
 // Two interleaved halves are scanned side by side, so that each comparison
 // waits for the one before last rather than the last, and merged by
 // (distance, index): the result is the same as one scan in list order.
+// Into n, the nearer of two minima by (distance, index) per lane.
+inline void mergeMinima(Nearest* n, const Nearest* a, const Nearest* b) {
+    const MASKV better =
+        isless(b->best2, a->best2) | (isequal(b->best2, a->best2) & (b->bestSeg < a->bestSeg));
+    const REALV best2 = PICK(a->best2, b->best2, better), bestT = PICK(a->bestT, b->bestT, better);
+    n->bestSeg = PICK(a->bestSeg, b->bestSeg, better);
+    n->best2 = best2, n->bestT = bestT;
+}
+
 inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
                      const uint* list, uint listed, REALV px, REAL py) {
     Nearest odd = *n;
@@ -190,11 +202,7 @@ inline void scanList(Nearest* n, __global const REAL4* segments, __global const 
         considerInOrder(&odd, segments, inverses, list[k + 1], px, py);
     }
     if (k < listed) considerInOrder(n, segments, inverses, list[k], px, py);
-    const MASKV better =
-        isless(odd.best2, n->best2) | (isequal(odd.best2, n->best2) & (odd.bestSeg < n->bestSeg));
-    n->best2 = PICK(n->best2, odd.best2, better);
-    n->bestT = PICK(n->bestT, odd.bestT, better);
-    n->bestSeg = PICK(n->bestSeg, odd.bestSeg, better);
+    mergeMinima(n, n, &odd);
 }
 
 inline void updateReach(Nearest* n, REAL slackMm) {
@@ -389,11 +397,52 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                   : (REAL4)(INFINITY);
     const REAL4 beaten = sqrt(beaten2);
 
-    // The candidates, in segment order (a left-first walk visits leaves in
-    // order).
+    // The leaves that hold candidates, in order (a left-first walk visits
+    // leaves in order), and how many segments they hold: where that is more
+    // than leafListsFrom, they are the tile's list. The first KEPT_LEAVES
+    // are kept, so that a sparse tile tests their segments without walking
+    // the tree again.
+    const uint leafRoom = min(capacity, (uint)BLOCK_LIST);
+    uint kept[KEPT_LEAVES];
+    uint n = 0, inLeaves = 0;
+    node = count > 0 ? 1 : 0;
+    while (node != 0 && n <= max(leafRoom, (uint)KEPT_LEAVES)) {
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
+            if (node < leaves) {
+                node *= 2;
+                continue;
+            }
+            if (n < leafRoom) list[n] = node - leaves;
+            if (n < KEPT_LEAVES) kept[n] = node - leaves;
+            ++n;
+            inLeaves += min((uint)LEAF, count - (node - leaves) * LEAF);
+        }
+        while (node & 1) node >>= 1;
+        if (node != 0) ++node;
+    }
+    if (inLeaves > leafListsFrom) {
+        candidateCount[at] = n <= leafRoom ? (n | LEAF_LISTED) : capacity + 1;
+        return;
+    }
     // Stops one past what a segment list may hold.
     const uint stopAt = min(capacity, leafListsFrom);
-    uint n = 0;
+    if (n <= KEPT_LEAVES) {  // the walk above was whole
+        const uint keptLeaves = n;
+        n = 0;
+        for (uint k = 0; k < keptLeaves && n <= stopAt; ++k)
+            for (uint seg = first + kept[k] * LEAF;
+                 seg < min(first + (kept[k] + 1) * LEAF, first + count) && n <= stopAt; ++seg)
+                if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) {
+                    if (n < capacity) list[n] = seg;
+                    ++n;
+                }
+        candidateCount[at] = n;
+        return;
+    }
+
+    // Else (lists longer than leafListsFrom allows leaves for) the candidate
+    // segments, walking the tree again.
+    n = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= stopAt) {
         if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
@@ -411,28 +460,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
     }
-    if (n <= leafListsFrom) {
-        candidateCount[at] = n;
-        return;
-    }
-
-    // Dense: the leaves that hold candidates instead, in order (the same
-    // walk, stopping at leaves).
-    n = 0;
-    node = 1;
-    while (node != 0 && n <= capacity) {
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
-            if (node < leaves) {
-                node *= 2;
-                continue;
-            }
-            if (n < capacity) list[n] = node - leaves;
-            ++n;
-        }
-        while (node & 1) node >>= 1;
-        if (node != 0) ++node;
-    }
-    candidateCount[at] = n <= min(capacity, (uint)BLOCK_LIST) ? (n | LEAF_LISTED) : capacity + 1;
+    candidateCount[at] = n;
 }
 
 // The entries of a tile's list (in segment order) that can be nearest to a
@@ -500,7 +528,8 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
     const REAL4 beaten = sqrt(beaten2);
     uint n = 0;
     for (uint k = 0; k < listed; ++k)
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, leaves + list[k]))
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev,
+                           leaves + list[k]))
             out[n++] = list[k];
     return n;
 }
@@ -528,35 +557,33 @@ inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const
 // `within2`, each lane's squared distance to some segment, bounds its
 // nearest, and each leaf's capsule is tested against it as the walk does.
 // The segments of the other leaves are farther by more than rounding, so
-// the result is that of scanning every leaf. `row` holds up to BLOCK_LIST
-// segments at a time. O(listed + LEAF · leaves scanned).
+// the result is that of scanning every leaf. Two minima side by side, as in
+// scanList. O(listed + LEAF · leaves scanned).
 inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
                        uint first, uint count, __global const REAL4* chord,
                        __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
                        const uint* list, uint listed, REALV within2, REALV px, REAL py,
-                       REAL slackMm, uint* row) {
+                       REAL slackMm) {
     Nearest bound;
     bound.best2 = within2;
     updateReach(&bound, slackMm);
-    uint m = 0;
+    Nearest even = *n, odd = *n;
     for (uint k = 0; k < listed; ++k) {
-        // The capsule alone: a leaf's box is hardly tighter, and each test
-        // of any lane costs a reduction.
         const uint node = leaves + list[k];
         const REALV capsule = bound.reach + dev[node];
         REALV t;
         if (!ANY(islessequal(segmentDistance2(chord[node], chordInverse[node], px, py, &t),
                              capsule * capsule)))
             continue;
-        if (m + LEAF > BLOCK_LIST) {
-            scanList(n, segments, inverses, row, m, px, py);
-            m = 0;
+        const uint begin = first + list[k] * LEAF, end = min(begin + LEAF, first + count);
+        uint seg = begin;
+        for (; seg + 1 < end; seg += 2) {
+            considerInOrder(&even, segments, inverses, seg, px, py);
+            considerInOrder(&odd, segments, inverses, seg + 1, px, py);
         }
-        for (uint seg = first + list[k] * LEAF;
-             seg < min(first + (list[k] + 1) * LEAF, first + count); ++seg)
-            row[m++] = seg;
+        if (seg < end) considerInOrder(&even, segments, inverses, seg, px, py);
     }
-    scanList(n, segments, inverses, row, m, px, py);
+    mergeMinima(n, &even, &odd);
 }
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
@@ -597,8 +624,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     __global const uint* list = candidates + tile * capacity;
 
     MASK_SCALAR segs[LANES];
-    uint block[BLOCK_LIST];        // the list's entries for the current BLOCK_ROWS rows
-    uint rowSegments[BLOCK_LIST];  // a row's segments from a list of leaves
+    uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS rows
     uint blockListed = 0;
     const uint lastColumn = min(i0 + LANES, width) - 1;
     for (uint j = j0; j < min(j0 + TILE, height); ++j) {
@@ -620,11 +646,11 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             // Each lane's bound: its own nearest segment in the row below,
             // or on the tile's first row the one nearest the block's centre.
             REALV t;
-            const REALV within2 =
-                j == j0 ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
-                        : laneSegmentDistance2(segments, inverses, segs, px, py);
-            scanLeaves(&n, segments, inverses, first, count, chord, chordInverse, dev, leaves, block,
-                       blockListed, within2, px, py, slackMm, rowSegments);
+            const REALV within2 = j == j0
+                                      ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
+                                      : laneSegmentDistance2(segments, inverses, segs, px, py);
+            scanLeaves(&n, segments, inverses, first, count, chord, chordInverse, dev, leaves,
+                       block, blockListed, within2, px, py, slackMm);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
             if ((j - j0) % BLOCK_ROWS == 0 && listed > 0) {
                 const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
