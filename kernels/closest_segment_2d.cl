@@ -82,7 +82,6 @@
 #define CONVERT_FLOATV(x) ((float)(x))
 #define CONVERT_MASKV(x) ((int)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
-#define VLOAD(offset, p) ((p)[offset])
 #define MASKV int  // scalar comparisons give int whatever the operand type
 #define MASK_SCALAR int
 #define LANE_OFFSETS 0
@@ -96,7 +95,6 @@
 #define CONVERT_FLOATV CONCAT(convert_float, LANES)
 #define CONVERT_MASKV CONCAT(convert_, MASKV)
 #define VSTORE CONCAT(vstore, LANES)
-#define VLOAD CONCAT(vload, LANES)
 // Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
 #define MASKV CONCAT(long, LANES)
@@ -535,19 +533,31 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
 }
 
 // Squared distance from each lane's point to its own segment
-// segments[seg[lane]], all lanes at once.
+// segments[seg[lane]], all lanes at once. The lanes' coordinates are put
+// together in registers: written to memory one by one and read back as a
+// vector, they would wait for the stores to drain.
 inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL* inverses,
                                   const MASK_SCALAR* seg, REALV px, REAL py) {
-    REAL ax[LANES], ay[LANES], bx[LANES], by[LANES], inverse[LANES];
-    for (int l = 0; l < LANES; ++l) {
-        const REAL4 s = segments[(uint)seg[l]];
-        ax[l] = s.x, ay[l] = s.y, bx[l] = s.z, by[l] = s.w;
-        inverse[l] = inverses[(uint)seg[l]];
-    }
-    const REALV a_x = VLOAD(0, ax), a_y = VLOAD(0, ay);
-    const REALV abx = VLOAD(0, bx) - a_x, aby = VLOAD(0, by) - a_y;
-    const REALV apx = px - a_x, apy = py - a_y;
-    const REALV t = clamp((apx * abx + apy * aby) * VLOAD(0, inverse), (REAL)0, (REAL)1);
+#define SEGMENT(l) const REAL4 s##l = segments[(uint)seg[l]]; const REAL i##l = inverses[(uint)seg[l]]
+#if LANES == 8
+    SEGMENT(0); SEGMENT(1); SEGMENT(2); SEGMENT(3); SEGMENT(4); SEGMENT(5); SEGMENT(6); SEGMENT(7);
+#define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f, s4.f, s5.f, s6.f, s7.f))
+    const REALV inverse = (REALV)(i0, i1, i2, i3, i4, i5, i6, i7);
+#elif LANES == 4
+    SEGMENT(0); SEGMENT(1); SEGMENT(2); SEGMENT(3);
+#define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f))
+    const REALV inverse = (REALV)(i0, i1, i2, i3);
+#else
+    SEGMENT(0);
+#define LANES_OF(f) (s0.f)
+    const REALV inverse = i0;
+#endif
+    const REALV ax = LANES_OF(x), ay = LANES_OF(y);
+    const REALV abx = LANES_OF(z) - ax, aby = LANES_OF(w) - ay;
+#undef LANES_OF
+#undef SEGMENT
+    const REALV apx = px - ax, apy = py - ay;
+    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
     const REALV qx = apx - t * abx, qy = apy - t * aby;
     return qx * qx + qy * qy;
 }
