@@ -538,13 +538,25 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
 // vector, they would wait for the stores to drain.
 inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL* inverses,
                                   const MASK_SCALAR* seg, REALV px, REAL py) {
-#define SEGMENT(l) const REAL4 s##l = segments[(uint)seg[l]]; const REAL i##l = inverses[(uint)seg[l]]
+#define SEGMENT(l)                             \
+    const REAL4 s##l = segments[(uint)seg[l]]; \
+    const REAL i##l = inverses[(uint)seg[l]]
 #if LANES == 8
-    SEGMENT(0); SEGMENT(1); SEGMENT(2); SEGMENT(3); SEGMENT(4); SEGMENT(5); SEGMENT(6); SEGMENT(7);
+    SEGMENT(0);
+    SEGMENT(1);
+    SEGMENT(2);
+    SEGMENT(3);
+    SEGMENT(4);
+    SEGMENT(5);
+    SEGMENT(6);
+    SEGMENT(7);
 #define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f, s4.f, s5.f, s6.f, s7.f))
     const REALV inverse = (REALV)(i0, i1, i2, i3, i4, i5, i6, i7);
 #elif LANES == 4
-    SEGMENT(0); SEGMENT(1); SEGMENT(2); SEGMENT(3);
+    SEGMENT(0);
+    SEGMENT(1);
+    SEGMENT(2);
+    SEGMENT(3);
 #define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f))
     const REALV inverse = (REALV)(i0, i1, i2, i3);
 #else
