@@ -23,8 +23,11 @@ namespace {
 constexpr int kGridPixels = 512;
 // Timed runs of the kernel and of OpenCV, best kept: both take a few
 // milliseconds, where one run in three can lose a millisecond to the
-// machine (thread wake-ups), so ten runs were not always enough.
-constexpr int kTimedRuns = 30;
+// machine (thread wake-ups), so ten runs were not always enough, and a busy
+// spell can outlast thirty. (One of each in turn was tried: each then
+// starts with the other's data in the caches, which slows both, OpenCV by
+// a fifth.)
+constexpr int kTimedRuns = 100;
 constexpr double kPi = 3.14159265358979323846;
 
 // A wavy outer contour and a circular hole, `segments` edges in all, in a
@@ -137,6 +140,7 @@ int benchFields(const std::string& device) {
         ours["device"] = runtime.device().deviceName;
         ours["tiles"] = stats.tiles;
         ours["overflowing_tiles"] = stats.overflowingTiles;
+        ours["leaf_listing_tiles"] = stats.leafListingTiles;
         ours["mean_listed"] = stats.meanListed();
         std::cout << ours.dump() << std::endl;
         std::cout << line(caseName, "bruteforce", bruteSeconds, Errors{}).dump() << std::endl;

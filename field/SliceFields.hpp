@@ -74,16 +74,19 @@ struct FieldKernelOptions {
 /// Fields of all `slices` on `grid` with the OpenCL kernels of
 /// kernels/closest_segment_2d.cl: a tree of boxes and capsules over runs of
 /// consecutive segments per slice; each 16×16 tile lists the segments that can
-/// be nearest to one of its pixels (when few), else its pixels walk the tree
-/// row by row from the row below's nearest. Both only skip what is provably
-/// farther than the best, so the result is the brute-force scan's (ties to
-/// the lower segment index). Many slices per launch; fp64 on devices that
+/// be nearest to one of its pixels (when few) or the leaves of the tree that
+/// hold them (when many: each row of pixels then scans the leaves it can
+/// reach from the row below's nearest), else its pixels walk the tree row by
+/// row from the row below's nearest. All only skip what is provably farther
+/// than the best, so the result is the brute-force scan's (ties to the lower
+/// segment index). Many slices per launch; fp64 on devices that
 /// have it. Sign from the winding number of all contours, from each row's
 /// crossings found with windingCrossing() (so exactly windingNumber()'s, on
 /// the contour too): holes, islands and touching contours come out right.
 /// Work per slice: O(segments · rows they span) on the host; per tile
 /// O(depth + its list); per pixel its tile's list (at most
-/// tileListCapacity) or O(depth + the segments near it). `progress`, if
+/// tileListCapacity), its block's leaves and the segments of those within
+/// reach, or O(depth + the segments near it). `progress`, if
 /// set, receives the fraction of slices done after each batch. Throws
 /// PrimitiveLimitExceeded beyond the PrimitiveId limits, ClError on device
 /// failure.

@@ -22,25 +22,34 @@
 // the chord. So for any point p and segment s of node N,
 //   d(p, s) >= d(p, box(N))   and   d(p, s) >= d(p, chord(N)) - dev(N),
 // and a node farther than a distance already reached holds no segment nearer
-// than it: branch and bound never drops the nearest segment. Two ways use
-// it, chosen per tile of TILE x TILE pixels:
-//  - tile_candidates lists the segments that can be nearest to some pixel of
-//    the tile (its header says why), when they are at most `capacity`; each
+// than it: branch and bound never drops the nearest segment. Three ways use
+// it, chosen per tile of TILE x TILE pixels by tile_candidates (its header
+// says which segments can be nearest to a pixel of the tile):
+//  - a tile with at most leafListsFrom candidates lists them; each
 //    work-item filters that list for every BLOCK_ROWS of its rows by the
 //    same test (blockCandidates), and its pixels scan what is left, like a
 //    brute-force scan of a few segments;
-//  - otherwise (dense contours) each row of LANES pixels walks the tree,
-//    starting from the nearest segments of the row below and the leaf that
-//    holds them, then the sibling subtree of each ancestor of that leaf:
-//    every leaf once, skipping the subtrees beyond reach.
+//  - a denser tile lists the leaves that hold its candidates; each
+//    work-item filters them per BLOCK_ROWS rows the same way (blockLeaves),
+//    and each row scans the segments of only those leaves whose capsule
+//    one of its lanes can reach within its distance to its own nearest
+//    segment in the row below (scanLeaves): where a contour has several
+//    segments a pixel, a row of lanes needs a few leaves of its block's,
+//    where a list of segments would have it scan them all;
+//  - a tile with more leaves than a list holds (or, when the caller asks for
+//    no leaf lists, more segments) has each row of LANES pixels walk the
+//    tree, starting from the nearest segments of the row below and the leaf
+//    that holds them, then the sibling subtree of each ancestor of that
+//    leaf: every leaf once, skipping the subtrees beyond reach.
 // Rounding is covered by `reach`: a node is skipped only when its computed
 // bound exceeds the computed best distance by REACH_RELATIVE and slackMm,
 // each far above the rounding of both (a few ulps of the coordinates'
 // magnitude, which the host passes in slackMm). Ties go to the lower segment
 // index, whatever order segments are met in: the result is that of a scan in
 // segment order keeping the first strict minimum. Work per row of LANES
-// pixels: its block's list, or O(depth + the segments of leaves within the
-// lanes' nearest distance).
+// pixels: its block's list; its block's leaves and the segments of those
+// within reach; or O(depth + the segments of leaves within the lanes'
+// nearest distance).
 #ifndef TILE
 #define TILE 8
 #endif
@@ -321,11 +330,13 @@ inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, R
 // above the rounding of squared distances of coordinates this large) at all
 // four corners, s is farther than q's segment from every pixel by more than
 // rounding, so it never wins or ties there. A node whose lower bound (box,
-// then capsule) passes the test at every corner holds no candidate, so the
-// list comes from a second walk of the tree that skips such nodes. Writes
-// the count, or capacity + 1 when there are more: the field kernel then
-// walks the tree for each pixel instead. O(depth + capacity) nodes per tile
-// for contours no denser than its pixels.
+// then capsule) passes the test at every corner holds no candidate, so a
+// second walk of the tree that skips such nodes finds the leaves that hold
+// candidates. When they hold more than leafListsFrom segments, those leaves
+// are the list (count | LEAF_LISTED); else their segments that pass the
+// test are. Writes the count, or capacity + 1 when there are more: the
+// field kernel then walks the tree for each pixel instead. O(depth +
+// capacity) nodes per tile for contours no denser than its pixels.
 __kernel void tile_candidates(__global const REAL4* segments, __global const REAL* inverses,
                               __global const uint* sliceFirst, __global const uint* sliceCount,
                               __global const REAL4* boxes, __global const REAL4* chords,
@@ -610,10 +621,10 @@ inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global cons
 
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
 // rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
-// the tile's list when it has one, else the walk of the tree, where each row
-// starts from the nearest segments of the row below, so its bound is tight
-// from the start. ids[k] = (segment id, id of its end vertex); the start
-// vertex id is segment id | 1.
+// the tile's list of segments or of leaves when it has one, else the walk of
+// the tree. Both of the latter start from the nearest segments of the row
+// below, so their bound is tight from the start. ids[k] = (segment id, id
+// of its end vertex); the start vertex id is segment id | 1.
 // Sign: the crossings of row j are crossings[rowFirst[r] .. rowFirst[r + 1])
 // with r = s * height + j, sorted by k, each (k, w): the contour crosses the
 // row between pixel k - 1 and k (windingCrossing() counts it for pixels
