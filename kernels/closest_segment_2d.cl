@@ -84,6 +84,10 @@
 #define REACH_RELATIVE (1 + 64 * FLT_EPSILON)
 #define MASK4 int4
 #endif
+// Whether all four lanes of a MASK4 are set, tested as one integer of
+// bytes: PoCL's all() reduces the lanes one step at a time, and the corner
+// tests take one per segment and node.
+#define ALL4(mask) (as_uint(convert_char4(mask)) == 0xffffffffu)
 #if LANES == 1
 #define REALV REAL
 #define INTV int
@@ -284,7 +288,7 @@ inline Corners boxCorners(REAL2 lo, REAL2 hi) {
 // beaten2 at every corner: then it is nearest to no pixel of the box
 // (tile_candidates says why).
 inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL inverse, REAL4 beaten2) {
-    return all(isgreater(cornerSegmentDistance2(k, s, inverse), beaten2));
+    return ALL4(isgreater(cornerSegmentDistance2(k, s, inverse), beaten2));
 }
 
 // Whether every segment of node `node` is farther than the contour point q
@@ -301,10 +305,10 @@ inline bool nodeDominated(const Corners* k, REAL4 beaten2, REAL4 beaten,
     const REAL4 dx = fmax(fmax(b.x - k->x, k->x - b.z), (REAL4)(0));
     const REAL4 dy = fmax(fmax(b.y - k->y, k->y - b.w), (REAL4)(0));
     const MASK4 outsideBox = isgreater(dx * dx + dy * dy, beaten2);
-    if (all(outsideBox)) return true;
+    if (ALL4(outsideBox)) return true;
     const REAL4 capsule = beaten + devs[node];
-    return all(outsideBox | isgreater(cornerSegmentDistance2(k, chords[node], chordInverses[node]),
-                                      capsule * capsule));
+    return ALL4(outsideBox | isgreater(cornerSegmentDistance2(k, chords[node], chordInverses[node]),
+                                       capsule * capsule));
 }
 
 // For the box of pixel centres lo..hi and the contour point nearest its
