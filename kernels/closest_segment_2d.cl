@@ -96,6 +96,8 @@
 #define CONVERT_MASKV(x) ((int)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
 #define MASKV int  // scalar comparisons give int whatever the operand type
+#define UINTV uint
+#define SELECT_ID(a, b, mask) ((mask) ? (b) : (a))
 #define MASK_SCALAR int
 #define LANE_OFFSETS 0
 #define PICK(a, b, mask) ((mask) ? (b) : (a))
@@ -128,6 +130,9 @@
 #error "LANES must be 1, 4 or 8"
 #endif
 #define PICK(a, b, mask) select(a, b, mask)  // per lane: b where mask is set
+#define UINTV CONCAT(uint, LANES)
+// select() on uint lanes wants int lanes of mask.
+#define SELECT_ID(a, b, mask) select(a, b, CONCAT(convert_int, LANES)(mask))
 // Lanes narrowed to bytes and tested as one integer: PoCL's any() reduces
 // the lanes one step at a time, and the leaf tests take one per leaf.
 #if LANES == 4
@@ -623,6 +628,39 @@ inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global cons
     mergeMinima(n, &even, &odd);
 }
 
+// The lanes' primitive ids (field/PrimitiveId.hpp): of their nearest
+// segment seg[lane] (ids[k] = (segment id, id of its end vertex)), or of
+// the end vertex their nearest point is (parameter t at 0 or 1; the start
+// vertex id is segment id | 1). The ids are put together in registers, as
+// in laneSegmentDistance2.
+inline UINTV laneIds(__global const uint2* ids, const MASK_SCALAR* seg, REALV t) {
+#define ID(l) const uint2 e##l = ids[(uint)seg[l]]
+#if LANES == 8
+    ID(0);
+    ID(1);
+    ID(2);
+    ID(3);
+    ID(4);
+    ID(5);
+    ID(6);
+    ID(7);
+    const UINTV start = (UINTV)(e0.x, e1.x, e2.x, e3.x, e4.x, e5.x, e6.x, e7.x);
+    const UINTV end = (UINTV)(e0.y, e1.y, e2.y, e3.y, e4.y, e5.y, e6.y, e7.y);
+#elif LANES == 4
+    ID(0);
+    ID(1);
+    ID(2);
+    ID(3);
+    const UINTV start = (UINTV)(e0.x, e1.x, e2.x, e3.x), end = (UINTV)(e0.y, e1.y, e2.y, e3.y);
+#else
+    ID(0);
+    const UINTV start = e0.x, end = e0.y;
+#endif
+#undef ID
+    const UINTV id = SELECT_ID(start, end, isgreaterequal(t, (REALV)(1)));
+    return SELECT_ID(id, start | 1u, islessequal(t, (REALV)(0)));
+}
+
 // One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
 // rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
 // the tile's list of segments or of leaves when it has one, else the walk of
@@ -769,24 +807,19 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
 
         const REALV unsigned_ = sqrt(n.best2);
         const REALV signed_ = PICK(unsigned_, -unsigned_, CONVERT_MASKV(winding != (INTV)(0)));
-        REAL tl[LANES];
-        VSTORE(n.bestT, 0, tl);
         VSTORE(n.bestSeg, 0, segs);
+        const UINTV id = count > 0 ? laneIds(ids, segs, n.bestT) : (UINTV)(0xffffffffu);
         const size_t pixel = row * width + i0;
         if (i0 + LANES <= width) {
             VSTORE(CONVERT_FLOATV(signed_), 0, distance + pixel);
+            VSTORE(id, 0, nearestId + pixel);
         } else {
             float d[LANES];
+            uint idl[LANES];
             VSTORE(CONVERT_FLOATV(signed_), 0, d);
-            for (uint l = 0; i0 + l < width; ++l) distance[pixel + l] = d[l];
-        }
-        for (uint l = 0; l < LANES && i0 + l < width; ++l) {
-            uint id = 0xffffffffu;
-            if (count > 0) {
-                const uint2 e = ids[(uint)segs[l]];
-                id = tl[l] <= 0 ? (e.x | 1u) : (tl[l] >= 1 ? e.y : e.x);
-            }
-            nearestId[pixel + l] = id;
+            VSTORE(id, 0, idl);
+            for (uint l = 0; i0 + l < width; ++l)
+                distance[pixel + l] = d[l], nearestId[pixel + l] = idl[l];
         }
     }
 }
