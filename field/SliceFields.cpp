@@ -20,10 +20,13 @@ constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
 // faster than the walk: 96 and 192 were slower on dense contours, 512 and
 // 640 no faster (docs/fields.md).
 constexpr int kListCapacity = 320;
-// Tiles with more candidate segments than this list leaves instead
-// (FieldKernelOptions::leafListsFrom): measured on the bench's contours.
+// Tiles whose candidates lie in leaves of more segments than this list the
+// leaves instead (FieldKernelOptions::leafListsFrom): 32 to 128 were no
+// better on the bench's contours (docs/fields.md).
 constexpr int kLeafListsFrom = 96;
-constexpr cl_uint kLeafListed = 0x80000000u;  // LEAF_LISTED in the kernel
+// The bit of a tile's count that says it lists leaves (the kernel's
+// LEAF_LISTED).
+constexpr cl_uint kLeafListed = 0x80000000u;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -279,7 +282,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
                                 " -DLANES=" + std::to_string(lanes) +
                                 " -DLEAF=" + std::to_string(kLeaf) +
-                                " -DBLOCK_LIST=" + std::to_string(kListCapacity);
+                                " -DBLOCK_LIST=" + std::to_string(kListCapacity) +
+                                " -DLEAF_LISTED=" + std::to_string(kLeafListed) + "u";
     const cl::Program& program = runtime.program({"real.cl", "closest_segment_2d.cl"}, options);
     // Far above the rounding of coordinates of this size (kernel header).
     const Real slackMm =
@@ -387,7 +391,6 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
     const cl_uint capacity = cl_uint(
         options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
-    // Above any count a tile can have: never.
     const cl_uint leafListsFrom =
         cl_uint(options.leafListsFrom < 0 ? kLeafListsFrom : options.leafListsFrom);
     SliceFields fields = emptyFields(slices, grid);

@@ -60,10 +60,10 @@ struct FieldKernelOptions {
     /// the segment tree instead: -1 = the default. Results are the same
     /// (0: always walk; tests run both ways).
     int tileListCapacity = -1;
-    /// Tiles with more candidates than this list the leaves of the segment
-    /// tree that hold them instead (runs of 8 segments): each row then scans
-    /// the segments of the leaves it can reach, where dense contours would
-    /// have it scan every candidate of its block. -1 = the default; 0 =
+    /// Tiles whose candidates lie in leaves of the segment tree (runs of 8
+    /// segments) holding more segments than this list those leaves instead:
+    /// each row then scans the segments of the leaves it can reach, where
+    /// dense contours would have it scan every candidate of its block. -1 = the default; 0 =
     /// every tile with a contour; results are the same (tests run all ways).
     int leafListsFrom = -1;
     /// When set, receives what the tile lists held (one more download of a

@@ -25,7 +25,8 @@
 // than it: branch and bound never drops the nearest segment. Three ways use
 // it, chosen per tile of TILE x TILE pixels by tile_candidates (its header
 // says which segments can be nearest to a pixel of the tile):
-//  - a tile with at most leafListsFrom candidates lists them; each
+//  - a tile whose candidates lie in leaves of at most leafListsFrom
+//    segments lists those candidates; each
 //    work-item filters that list for every BLOCK_ROWS of its rows by the
 //    same test (blockCandidates), and its pixels scan what is left, like a
 //    brute-force scan of a few segments;
@@ -65,8 +66,11 @@
 #ifndef BLOCK_LIST
 #define BLOCK_LIST 96
 #endif
-// A tile's count with this bit set lists leaves of the tree, not segments.
+// A tile's count with this bit set lists leaves of the tree, not segments
+// (the host passes its own).
+#ifndef LEAF_LISTED
 #define LEAF_LISTED 0x80000000u
+#endif
 // Leaves tile_candidates keeps to list the segments of a sparse tile from:
 // more than those hold more segments than the default leafListsFrom.
 #define KEPT_LEAVES 16
@@ -196,10 +200,6 @@ inline void considerInOrder(Nearest* n, __global const REAL4* segments,
     n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
 }
 
-// The lanes' nearest of `listed` segments listed in increasing index order.
-// Two interleaved halves are scanned side by side, so that each comparison
-// waits for the one before last rather than the last, and merged by
-// (distance, index): the result is the same as one scan in list order.
 // Into n, the nearer of two minima by (distance, index) per lane.
 inline void mergeMinima(Nearest* n, const Nearest* a, const Nearest* b) {
     const MASKV better =
@@ -209,6 +209,10 @@ inline void mergeMinima(Nearest* n, const Nearest* a, const Nearest* b) {
     n->best2 = best2, n->bestT = bestT;
 }
 
+// The lanes' nearest of `listed` segments listed in increasing index order.
+// Two interleaved halves are scanned side by side, so that each comparison
+// waits for the one before last rather than the last, and merged by
+// (distance, index): the result is the same as one scan in list order.
 inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
                      const uint* list, uint listed, REALV px, REAL py) {
     Nearest odd = *n;
@@ -233,6 +237,17 @@ inline void visitLeaf(Nearest* n, __global const REAL4* segments, __global const
         consider(n, segments, inverses, seg, px, py);
 }
 
+// Per lane, whether node `node`'s capsule (its chord widened by dev) is
+// within reach.
+inline MASKV capsuleWithinReach(const Nearest* n, __global const REAL4* chords,
+                                __global const REAL* chordInverses, __global const REAL* devs,
+                                uint node, REALV px, REAL py) {
+    const REALV capsule = n->reach + devs[node];
+    REALV t;
+    return islessequal(segmentDistance2(chords[node], chordInverses[node], px, py, &t),
+                       capsule * capsule);
+}
+
 // Whether any lane may find a segment of node `node` that beats or ties its
 // best: the node's box and capsule (chord widened by dev) both within reach.
 inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
@@ -240,10 +255,7 @@ inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
                           __global const REAL* devs, uint node, REALV px, REAL py) {
     const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
     if (!ANY(inBox)) return false;
-    const REALV capsule = n->reach + devs[node];
-    REALV t;
-    return ANY(inBox & islessequal(segmentDistance2(chords[node], chordInverses[node], px, py, &t),
-                                   capsule * capsule));
+    return ANY(inBox & capsuleWithinReach(n, chords, chordInverses, devs, node, px, py));
 }
 
 // Squared distance from point c to segment s = (ax, ay, bx, by) with
@@ -252,6 +264,17 @@ inline REAL pointSegmentDistance2(REAL2 c, REAL4 s, REAL inverse) {
     const REAL2 a = s.xy, ab = s.zw - s.xy, ap = c - a;
     const REAL2 q = ap - clamp(dot(ap, ab) * inverse, (REAL)0, (REAL)1) * ab;
     return dot(q, q);
+}
+
+// The segment of leaf `leaf` (of a slice's segments first .. first+count-1)
+// nearest point c, if nearer than *best2: updates *best2 and *nearest.
+inline void nearestOfLeaf(REAL2 c, __global const REAL4* segments, __global const REAL* inverses,
+                          uint first, uint count, uint leaf, REAL* best2, uint* nearest) {
+    for (uint seg = first + leaf * LEAF; seg < min(first + (leaf + 1) * LEAF, first + count);
+         ++seg) {
+        const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
+        if (d2 < *best2) *best2 = d2, *nearest = seg;
+    }
 }
 
 // The same tests for one point c (scalar): whether node `node` may hold a
@@ -328,6 +351,20 @@ inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, R
     return fx * fx + fy * fy + marginMm2;
 }
 
+// Appends to a tile's list the segments of leaf `leaf` that the tile's
+// corner test keeps, counting them in *n up to stopAt + 1 (only the first
+// `capacity` are written).
+inline void listLeafSegments(const Corners* corners, REAL4 beaten2, __global const REAL4* segments,
+                             __global const REAL* inverses, uint first, uint count, uint leaf,
+                             uint stopAt, uint capacity, __global uint* list, uint* n) {
+    for (uint seg = first + leaf * LEAF;
+         seg < min(first + (leaf + 1) * LEAF, first + count) && *n <= stopAt; ++seg)
+        if (!beatenAtEveryCorner(corners, segments[seg], inverses[seg], beaten2)) {
+            if (*n < capacity) list[*n] = seg;
+            ++*n;
+        }
+}
+
 // One work-item per (tile x, tile y, slice of the batch): the segments that
 // can be nearest to a pixel of the TILE x TILE tile, when there are at most
 // `capacity`. A segment s is left out when some point q of the contour is
@@ -386,11 +423,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         node = 2 * node + (dr < dl ? 1 : 0);
     }
     uint nearest = 0;
-    for (uint seg = first + (node - leaves) * LEAF;
-         seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg) {
-        const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
-        if (d2 < best2) best2 = d2, nearest = seg;
-    }
+    nearestOfLeaf(c, segments, inverses, first, count, node - leaves, &best2, &nearest);
     REAL reach = sqrt(best2) * REACH_RELATIVE + slackMm;  // kept as best2 falls
     node = count > 0 ? 1 : 0;
     while (node != 0) {
@@ -399,11 +432,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                 node *= 2;
                 continue;
             }
-            for (uint seg = first + (node - leaves) * LEAF;
-                 seg < min(first + (node - leaves + 1) * LEAF, first + count); ++seg) {
-                const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
-                if (d2 < best2) best2 = d2, nearest = seg;
-            }
+            nearestOfLeaf(c, segments, inverses, first, count, node - leaves, &best2, &nearest);
             reach = sqrt(best2) * REACH_RELATIVE + slackMm;
         }
         while (node & 1) node >>= 1;
@@ -448,12 +477,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         const uint keptLeaves = n;
         n = 0;
         for (uint k = 0; k < keptLeaves && n <= stopAt; ++k)
-            for (uint seg = first + kept[k] * LEAF;
-                 seg < min(first + (kept[k] + 1) * LEAF, first + count) && n <= stopAt; ++seg)
-                if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) {
-                    if (n < capacity) list[n] = seg;
-                    ++n;
-                }
+            listLeafSegments(&corners, beaten2, segments, inverses, first, count, kept[k], stopAt,
+                             capacity, list, &n);
         candidateCount[at] = n;
         return;
     }
@@ -468,12 +493,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                 node *= 2;
                 continue;
             }
-            for (uint seg = first + (node - leaves) * LEAF;
-                 seg < min(first + (node - leaves + 1) * LEAF, first + count) && n <= stopAt; ++seg)
-                if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) {
-                    if (n < capacity) list[n] = seg;
-                    ++n;
-                }
+            listLeafSegments(&corners, beaten2, segments, inverses, first, count, node - leaves,
+                             stopAt, capacity, list, &n);
         }
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
@@ -533,11 +554,7 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
             if (d2 < best2) best2 = d2, leaf = list[k];
         }
         best2 = INFINITY;
-        for (uint seg = first + leaf * LEAF; seg < min(first + (leaf + 1) * LEAF, first + count);
-             ++seg) {
-            const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
-            if (d2 < best2) best2 = d2, nearest = seg;
-        }
+        nearestOfLeaf(c, segments, inverses, first, count, leaf, &best2, &nearest);
         *hint = nearest;
     }
     const Corners corners = boxCorners(lo, hi);
@@ -611,11 +628,8 @@ inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global cons
     updateReach(&bound, slackMm);
     Nearest even = *n, odd = *n;
     for (uint k = 0; k < listed; ++k) {
-        const uint node = leaves + list[k];
-        const REALV capsule = bound.reach + dev[node];
-        REALV t;
-        if (!ANY(islessequal(segmentDistance2(chord[node], chordInverse[node], px, py, &t),
-                             capsule * capsule)))
+        // The capsule alone: a leaf's box hardly prunes more.
+        if (!ANY(capsuleWithinReach(&bound, chord, chordInverse, dev, leaves + list[k], px, py)))
             continue;
         const uint begin = first + list[k] * LEAF, end = min(begin + LEAF, first + count);
         uint seg = begin;
