@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -27,6 +28,9 @@ constexpr int kLeafListsFrom = 96;
 // The bit of a tile's count that says it lists leaves (the kernel's
 // LEAF_LISTED).
 constexpr cl_uint kLeafListed = 0x80000000u;
+// The bit that says its work-items' lanes go down its columns (the kernel's
+// COLUMNS).
+constexpr cl_uint kColumns = 0x40000000u;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -83,6 +87,19 @@ double inverseLength2(const Real4& s) {
     const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
     const double length2 = dx * dx + dy * dy;
     return length2 > 0 ? 1 / length2 : 0;
+}
+
+// The same boxes or segments with x and y swapped, (y0, x0, y1, x1): the
+// kernel's frame for lanes down a column.
+template <class Real4>
+std::vector<Real4> swappedXY(const std::vector<Real4>& quads) {
+    std::vector<Real4> swapped(quads.size());
+    std::transform(quads.begin(), quads.end(), swapped.begin(), [](const Real4& q) {
+        Real4 r;
+        r.s[0] = q.s[1], r.s[1] = q.s[0], r.s[2] = q.s[3], r.s[3] = q.s[2];
+        return r;
+    });
+    return swapped;
 }
 
 template <class Real, class Real4>
@@ -251,39 +268,62 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
-              cl_uint leafListsFrom, SliceFields& out, FieldKernelStats* stats) {
+              cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
+              FieldKernelStats* stats) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
 
-    ocl::DeviceBuffer<Real4> segments(runtime, flat.segments);
-    ocl::DeviceBuffer<Real> inverses(runtime, inverseLengths2<Real>(flat.segments));
-    ocl::DeviceBuffer<Real> chordInverses(runtime, inverseLengths2<Real>(flat.chords));
-    ocl::DeviceBuffer<cl_uint2> ids(runtime, flat.ids);
-    ocl::DeviceBuffer<cl_uint> sliceFirst(runtime, flat.sliceFirst),
-        sliceCount(runtime, flat.sliceCount);
-    ocl::DeviceBuffer<Real4> boxes(runtime, flat.boxes), chords(runtime, flat.chords);
-    ocl::DeviceBuffer<Real> devs(runtime, std::vector<Real>(flat.devs.begin(), flat.devs.end()));
-    ocl::DeviceBuffer<cl_uint> treeFirst(runtime, flat.treeFirst), leafBase(runtime, flat.leafBase);
-    ocl::DeviceBuffer<cl_uint> rowFirst(runtime, rows.rowFirst);
-    ocl::DeviceBuffer<cl_int2> crossings(runtime, rows.crossings);
+    // The tables the kernels read, kept here while they run: on CPU devices
+    // the buffers are these host vectors themselves (DeviceBuffer::reading).
+    const std::vector<Real4> segmentsYX = swappedXY(flat.segments), boxesYX = swappedXY(flat.boxes),
+                             chordsYX = swappedXY(flat.chords);
+    const std::vector<Real> segmentInverses = inverseLengths2<Real>(flat.segments),
+                            chordInverseTable = inverseLengths2<Real>(flat.chords),
+                            devTable(flat.devs.begin(), flat.devs.end());
+    using ocl::DeviceBuffer;
+    const auto segments = DeviceBuffer<Real4>::reading(runtime, flat.segments);
+    const auto segmentsSwapped = DeviceBuffer<Real4>::reading(runtime, segmentsYX);
+    const auto inverses = DeviceBuffer<Real>::reading(runtime, segmentInverses);
+    const auto chordInverses = DeviceBuffer<Real>::reading(runtime, chordInverseTable);
+    const auto ids = DeviceBuffer<cl_uint2>::reading(runtime, flat.ids);
+    const auto sliceFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst);
+    const auto sliceCount = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceCount);
+    const auto boxes = DeviceBuffer<Real4>::reading(runtime, flat.boxes);
+    const auto boxesSwapped = DeviceBuffer<Real4>::reading(runtime, boxesYX);
+    const auto chords = DeviceBuffer<Real4>::reading(runtime, flat.chords);
+    const auto chordsSwapped = DeviceBuffer<Real4>::reading(runtime, chordsYX);
+    const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
+    const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
+    const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
+    const auto rowFirst = DeviceBuffer<cl_uint>::reading(runtime, rows.rowFirst);
+    const auto crossings = DeviceBuffer<cl_int2>::reading(runtime, rows.crossings);
     const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
     const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-    ocl::DeviceBuffer<cl_uint> candidates(runtime, tilesX * tilesY * batch * capacity);
-    ocl::DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
+    // The tile lists, in host memory on CPU devices too: a new device
+    // allocation is fresh pages, which the kernel would fault in one by one
+    // (a 512² grid's lists take 1.3 MB), where the host heap reuses its own.
+    const std::size_t listRoom = tilesX * tilesY * batch * capacity;
+    const bool cpu = runtime.device().kind == ocl::DeviceKind::Cpu;
+    const std::unique_ptr<cl_uint[]> listMemory(cpu ? new cl_uint[listRoom] : nullptr);
+    const auto candidates =
+        cpu ? DeviceBuffer<cl_uint>::over(runtime, listMemory.get(), listRoom, CL_MEM_READ_WRITE)
+            : DeviceBuffer<cl_uint>(runtime, listRoom);
+    DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     // The kernel writes straight into the result where the device shares host
     // memory: a download of 8 bytes a pixel cost a tenth of a 512² field.
     const std::size_t offset = begin * grid.pixelCount();
-    const auto distance = ocl::DeviceBuffer<cl_float>::over(runtime, out.distanceMm.data() + offset,
-                                                            batch * grid.pixelCount());
-    const auto nearest = ocl::DeviceBuffer<cl_uint>::over(runtime, out.nearestId.data() + offset,
-                                                          batch * grid.pixelCount());
+    const auto distance = DeviceBuffer<cl_float>::over(runtime, out.distanceMm.data() + offset,
+                                                       batch * grid.pixelCount());
+    const auto nearest = DeviceBuffer<cl_uint>::over(runtime, out.nearestId.data() + offset,
+                                                     batch * grid.pixelCount());
 
     const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
                                 " -DLANES=" + std::to_string(lanes) +
                                 " -DLEAF=" + std::to_string(kLeaf) +
                                 " -DBLOCK_LIST=" + std::to_string(kListCapacity) +
-                                " -DLEAF_LISTED=" + std::to_string(kLeafListed) + "u";
+                                " -DLEAF_LISTED=" + std::to_string(kLeafListed) + "u" +
+                                " -DCOLUMNS=" + std::to_string(kColumns) + "u";
     const cl::Program& program = runtime.program({"real.cl", "closest_segment_2d.cl"}, options);
     // Far above the rounding of coordinates of this size (kernel header).
     const Real slackMm =
@@ -313,6 +353,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cull.setArg(a++, marginMm2);
         cull.setArg(a++, capacity);
         cull.setArg(a++, leafListsFrom);
+        cull.setArg(a++, lanesAlong);
         cull.setArg(a++, candidates.get());
         cull.setArg(a++, candidateCount.get());
         // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
@@ -326,12 +367,15 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
         field.setArg(a++, segments.get());
+        field.setArg(a++, segmentsSwapped.get());
         field.setArg(a++, inverses.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
         field.setArg(a++, boxes.get());
+        field.setArg(a++, boxesSwapped.get());
         field.setArg(a++, chords.get());
+        field.setArg(a++, chordsSwapped.get());
         field.setArg(a++, chordInverses.get());
         field.setArg(a++, devs.get());
         field.setArg(a++, treeFirst.get());
@@ -355,8 +399,10 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         distance.mapForHost(runtime, false);
         nearest.mapForHost(runtime, true);
         if (stats)
-            for (const cl_uint listed : candidateCount.download(runtime)) {
+            for (const cl_uint counted : candidateCount.download(runtime)) {
+                const cl_uint listed = counted & ~kColumns;
                 ++stats->tiles;
+                if (counted & kColumns) ++stats->columnTiles;
                 if (listed & kLeafListed)
                     ++stats->leafListingTiles;
                 else if (listed > capacity)
@@ -408,9 +454,9 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty())
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
-            runBatch<decltype(real), decltype(real4)>(runtime, slices, begin, end, grid, lanes,
-                                                      capacity, leafListsFrom, fields,
-                                                      options.stats);
+            runBatch<decltype(real), decltype(real4)>(
+                runtime, slices, begin, end, grid, lanes, capacity, leafListsFrom,
+                cl_uint(options.lanesAlong), fields, options.stats);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));

@@ -38,6 +38,8 @@ struct FieldKernelStats {
     std::size_t overflowingTiles = 0;
     /// Tiles that listed leaves of the segment tree, not segments.
     std::size_t leafListingTiles = 0;
+    /// Tiles whose work-items' lanes went down its columns, not along its rows.
+    std::size_t columnTiles = 0;
     /// Candidate segments in all the segment lists.
     std::size_t listed = 0;
     /// Candidate segments per tile listing segments, on average.
@@ -45,6 +47,17 @@ struct FieldKernelStats {
         const std::size_t listing = tiles - overflowingTiles - leafListingTiles;
         return listing > 0 ? double(listed) / double(listing) : 0;
     }
+};
+
+/// Which way a work-item's pixels lie in its tile.
+enum class LanesAlong {
+    /// Down the columns where the contour nearest the tile's centre runs
+    /// closer to the rows than to the columns, in tiles dense enough to list
+    /// leaves or walk the tree: the pixels then lie along the contour's
+    /// normal and share their nearest segments. Along the rows elsewhere.
+    Contour = 0,
+    Rows = 1,
+    Columns = 2,
 };
 
 /// How the field kernel runs; the defaults are right for every device.
@@ -66,6 +79,9 @@ struct FieldKernelOptions {
     /// dense contours would have it scan every candidate of its block. -1 = the default; 0 =
     /// every tile with a contour; results are the same (tests run all ways).
     int leafListsFrom = -1;
+    /// Which way each work-item's pixels lie; results are the same (tests run
+    /// every way).
+    LanesAlong lanesAlong = LanesAlong::Contour;
     /// When set, receives what the tile lists held (one more download of a
     /// count per tile; for benchmarks and tests).
     FieldKernelStats* stats = nullptr;

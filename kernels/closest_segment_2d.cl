@@ -71,6 +71,15 @@
 #ifndef LEAF_LISTED
 #define LEAF_LISTED 0x80000000u
 #endif
+// A tile's count with this bit set has its work-items' lanes go down its
+// columns rather than along its rows (the host passes its own).
+#ifndef COLUMNS
+#define COLUMNS 0x40000000u
+#endif
+// tile_candidates' lanesAlong: by the contour (the default), rows, columns.
+#define LANES_ALONG_CONTOUR 0u
+#define LANES_ALONG_ROWS 1u
+#define LANES_ALONG_COLUMNS 2u
 // Leaves tile_candidates keeps to list the segments of a sparse tile from:
 // more than those hold more segments than the default leafListsFrom.
 #define KEPT_LEAVES 16
@@ -390,8 +399,8 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
                               __global const uint* treeFirst, __global const uint* leafBase,
                               const uint width, const uint height, const REAL pixelMm,
                               const REAL slackMm, const REAL marginMm2, const uint capacity,
-                              const uint leafListsFrom, __global uint* candidates,
-                              __global uint* candidateCount) {
+                              const uint leafListsFrom, const uint lanesAlong,
+                              __global uint* candidates, __global uint* candidateCount) {
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
@@ -443,6 +452,16 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         count > 0 ? beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2)
                   : (REAL4)(INFINITY);
     const REAL4 beaten = sqrt(beaten2);
+    // Lanes down the columns where the nearest segment runs closer to the
+    // rows than to the columns: the lanes then lie along its normal, where
+    // pixels share their nearest points, rather than along the contour,
+    // where each lane needs other segments. Dense tiles only, by default:
+    // a segment list is filtered per block of pixels the same either way.
+    const REAL4 q = count > 0 ? segments[nearest] : (REAL4)(0);
+    const bool acrossContour = fabs(q.z - q.x) > fabs(q.w - q.y);
+    const uint columns = lanesAlong == LANES_ALONG_COLUMNS ? COLUMNS : 0u;
+    const uint denseColumns =
+        lanesAlong == LANES_ALONG_CONTOUR && acrossContour ? COLUMNS : columns;
 
     // The leaves that hold candidates, in order (a left-first walk visits
     // leaves in order), and how many segments they hold: where that is more
@@ -468,7 +487,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         if (node != 0) ++node;
     }
     if (inLeaves > leafListsFrom) {
-        candidateCount[at] = n <= leafRoom ? (n | LEAF_LISTED) : capacity + 1;
+        candidateCount[at] = (n <= leafRoom ? (n | LEAF_LISTED) : capacity + 1) | denseColumns;
         return;
     }
     // Stops one past what a segment list may hold.
@@ -479,7 +498,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         for (uint k = 0; k < keptLeaves && n <= stopAt; ++k)
             listLeafSegments(&corners, beaten2, segments, inverses, first, count, kept[k], stopAt,
                              capacity, list, &n);
-        candidateCount[at] = n;
+        candidateCount[at] = n | (n > capacity ? denseColumns : columns);
         return;
     }
 
@@ -499,7 +518,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         while (node & 1) node >>= 1;
         if (node != 0) ++node;
     }
-    candidateCount[at] = n;
+    candidateCount[at] = n | (n > capacity ? denseColumns : columns);
 }
 
 // The entries of a tile's list (in segment order) that can be nearest to a
@@ -675,79 +694,177 @@ inline UINTV laneIds(__global const uint2* ids, const MASK_SCALAR* seg, REALV t)
     return SELECT_ID(id, start | 1u, islessequal(t, (REALV)(0)));
 }
 
-// One work-item per LANES consecutive pixels (i0 .. i0+LANES-1) of the TILE
-// rows j0 .. j0+TILE-1 of one tile of slice s of the batch, row after row:
-// the tile's list of segments or of leaves when it has one, else the walk of
-// the tree. Both of the latter start from the nearest segments of the row
-// below, so their bound is tight from the start. ids[k] = (segment id, id
-// of its end vertex); the start vertex id is segment id | 1.
+// The first of crossings[lo, hi) (one row's, sorted by k) with k > i, or hi:
+// its w is the winding number at pixel i (signed_distance_2d says how
+// crossings are laid out). Binary search.
+inline uint firstCrossingAfter(__global const int2* crossings, uint lo, uint hi, uint i) {
+    while (lo < hi) {
+        const uint mid = (lo + hi) / 2;
+        if ((uint)crossings[mid].x > i)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+// Writes the lanes' pixels (i0 .. i0 + LANES - 1, up to the row's width)
+// of row `row`: distances signed by the winding numbers from the row's
+// crossings, and ids. O(log crossings + the crossings among the pixels).
+__attribute__((always_inline)) inline void writeRow(__global const uint* rowFirst,
+                                                    __global const int2* crossings, size_t row,
+                                                    uint i0, uint width, REALV unsigned_, UINTV id,
+                                                    __global float* distance,
+                                                    __global uint* nearestId) {
+    const uint rowEnd = rowFirst[row + 1];
+    const uint lo = firstCrossingAfter(crossings, rowFirst[row], rowEnd, i0);
+    const INTV lane = (INTV)(i0) + LANE_OFFSETS;
+    INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
+    for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
+        // Lanes at or right of this crossing no longer count it.
+        const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
+        winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
+    }
+    const REALV signed_ = PICK(unsigned_, -unsigned_, CONVERT_MASKV(winding != (INTV)(0)));
+    const size_t pixel = row * width + i0;
+    if (i0 + LANES <= width) {
+        VSTORE(CONVERT_FLOATV(signed_), 0, distance + pixel);
+        VSTORE(id, 0, nearestId + pixel);
+    } else {
+        float d[LANES];
+        uint idl[LANES];
+        VSTORE(CONVERT_FLOATV(signed_), 0, d);
+        VSTORE(id, 0, idl);
+        for (uint l = 0; i0 + l < width; ++l)
+            distance[pixel + l] = d[l], nearestId[pixel + l] = idl[l];
+    }
+}
+
+// writeRow for lanes down a column: pixel i of rows `firstRow` + lane (of
+// all the batch's rows), up to `lanesIn` of them. next[lane] is where the
+// search for the lane's row's first crossing with k > i starts; columns come
+// in increasing order, so it only moves on: O(1) per pixel beyond the
+// crossings passed.
+__attribute__((always_inline)) inline void writeColumn(__global const uint* rowFirst,
+                                                       __global const int2* crossings,
+                                                       size_t firstRow, uint lanesIn, uint i,
+                                                       uint width, REALV unsigned_, UINTV id,
+                                                       uint* next, __global float* distance,
+                                                       __global uint* nearestId) {
+    float d[LANES];
+    uint idl[LANES];
+    VSTORE(CONVERT_FLOATV(unsigned_), 0, d);
+    VSTORE(id, 0, idl);
+    for (uint l = 0; l < lanesIn; ++l) {
+        const size_t row = firstRow + l;
+        const uint rowEnd = rowFirst[row + 1];
+        uint c = next[l];
+        while (c < rowEnd && (uint)crossings[c].x <= i) ++c;
+        next[l] = c;
+        const int winding = c < rowEnd ? crossings[c].y : 0;
+        distance[row * width + i] = winding != 0 ? -d[l] : d[l];
+        nearestId[row * width + i] = idl[l];
+    }
+}
+
+// One work-item per LANES pixels of a tile of slice s of the batch, in one
+// of two frames the tile's count picks (COLUMNS): lanes along a row (pixels
+// i0 .. i0+LANES-1) for each of the tile's TILE rows in turn, or lanes down
+// a column (TILE / LANES work-items share the tile's rows) for each of its
+// columns in turn. In the second frame the work-item reads the transposed
+// geometry (x and y swapped: segmentsYX, boxesYX, chordsYX), so the same
+// code computes both; `step` is then a column and the lanes are rows. Each
+// step takes the tile's list of segments or of leaves when it has one, else
+// the walk of the tree; both of the latter start from the nearest segments
+// of the step before, so their bound is tight from the start. ids[k] =
+// (segment id, id of its end vertex); the start vertex id is segment id | 1.
 // Sign: the crossings of row j are crossings[rowFirst[r] .. rowFirst[r + 1])
 // with r = s * height + j, sorted by k, each (k, w): the contour crosses the
 // row between pixel k - 1 and k (windingCrossing() counts it for pixels
 // i < k), and w is the winding those crossings from this one to the row's
 // end add. So the winding number at pixel i is the w of the first crossing
-// with k > i (0 if none), found by binary search: O(log crossings) per
-// work-item and row plus the crossings among its own pixels.
+// with k > i (0 if none): writeRow finds it by binary search, writeColumn
+// by moving on from the column before.
 __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
-    __global const REAL4* segments, __global const REAL* inverses, __global const uint2* ids,
-    __global const uint* sliceFirst, __global const uint* sliceCount, __global const REAL4* boxes,
-    __global const REAL4* chords, __global const REAL* chordInverses, __global const REAL* devs,
-    __global const uint* treeFirst, __global const uint* leafBase, __global const uint* rowFirst,
-    __global const int2* crossings, const uint width, const uint height, const REAL pixelMm,
-    const REAL slackMm, const REAL marginMm2, const uint capacity, __global const uint* candidates,
+    __global const REAL4* segmentsXY, __global const REAL4* segmentsYX,
+    __global const REAL* inverses, __global const uint2* ids, __global const uint* sliceFirst,
+    __global const uint* sliceCount, __global const REAL4* boxesXY, __global const REAL4* boxesYX,
+    __global const REAL4* chordsXY, __global const REAL4* chordsYX,
+    __global const REAL* chordInverses, __global const REAL* devs, __global const uint* treeFirst,
+    __global const uint* leafBase, __global const uint* rowFirst, __global const int2* crossings,
+    const uint width, const uint height, const REAL pixelMm, const REAL slackMm,
+    const REAL marginMm2, const uint capacity, __global const uint* candidates,
     __global const uint* candidateCount, __global float* distance, __global uint* nearestId) {
-    const uint i0 = get_global_id(0) * LANES, j0 = get_global_id(1) * TILE, s = get_global_id(2);
-    if (i0 >= width) return;  // padding of the last tiles (no barriers below)
-    const INTV lane = (INTV)(i0) + LANE_OFFSETS;
-    const REALV px = (CONVERT_REALV(lane) + (REAL)0.5) * pixelMm;
+    const uint tx = get_global_id(0) * LANES / TILE, ty = get_global_id(1), s = get_global_id(2);
+    const uint within = get_global_id(0) * LANES % TILE;  // the work-item's lanes in the tile
+    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
+    const size_t tile = ((size_t)s * tilesY + ty) * tilesX + tx;
+    const uint counted = candidateCount[tile];
+    const bool down = (counted & COLUMNS) != 0;
+    const uint listed = counted & ~COLUMNS;
+    // The work-item's frame: lanes laneFirst.. along one axis (of laneLimit
+    // pixels), steps stepFirst.. along the other (of stepLimit).
+    const uint laneFirst = (down ? ty : tx) * TILE + within, laneLimit = down ? height : width;
+    const uint stepFirst = (down ? tx : ty) * TILE, stepLimit = down ? width : height;
+    if (laneFirst >= laneLimit) return;  // padding of the last tiles (no barriers below)
+    __global const REAL4* segments = down ? segmentsYX : segmentsXY;
+    const REALV px = (CONVERT_REALV((INTV)(laneFirst) + LANE_OFFSETS) + (REAL)0.5) * pixelMm;
     const uint first = sliceFirst[s], count = sliceCount[s];
     const uint tree = treeFirst[s];
-    __global const REAL4* box = boxes + tree;
-    __global const REAL4* chord = chords + tree;
+    __global const REAL4* box = (down ? boxesYX : boxesXY) + tree;
+    __global const REAL4* chord = (down ? chordsYX : chordsXY) + tree;
     __global const REAL* chordInverse = chordInverses + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
-    const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
-    const size_t tile = ((size_t)s * tilesY + j0 / TILE) * tilesX + i0 / TILE;
-    const uint listed = candidateCount[tile];
     __global const uint* list = candidates + tile * capacity;
 
-    MASK_SCALAR segs[LANES];
-    uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS rows
+    MASK_SCALAR segs[LANES];  // each lane's nearest segment in the step before
+    // ... moved on along the contour as far as it moved from the step before
+    // that: where the nearest point slides along the contour from step to
+    // step, the nearer bound of the two (any segment bounds).
+    MASK_SCALAR ahead[LANES];
+    MASKV twoBefore = (MASKV)(0);
+    uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS steps
     uint blockListed = 0;
-    const uint lastColumn = min(i0 + LANES, width) - 1;
-    for (uint j = j0; j < min(j0 + TILE, height); ++j) {
+    const uint lastLane = min(laneFirst + LANES, laneLimit) - 1;
+    uint next[LANES];  // writeColumn's crossings
+    if (down)
+        for (uint l = 0; l < LANES; ++l) {
+            const size_t row = (size_t)s * height + min(laneFirst + l, lastLane);
+            next[l] = firstCrossingAfter(crossings, rowFirst[row], rowFirst[row + 1], stepFirst);
+        }
+    const uint lastStep = min(stepFirst + TILE, stepLimit) - 1;
+    for (uint j = stepFirst; j <= lastStep; ++j) {
         const REAL py = (j + (REAL)0.5) * pixelMm;
+        // The box of pixel centres of this step and the next BLOCK_ROWS - 1.
+#define BLOCK_LO (REAL2)((laneFirst + (REAL)0.5) * pixelMm, py)
+#define BLOCK_HI                              \
+    (REAL2)((lastLane + (REAL)0.5) * pixelMm, \
+            (min(j + BLOCK_ROWS - 1, lastStep) + (REAL)0.5) * pixelMm)
         Nearest n;
         n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
         if (listed & LEAF_LISTED) {
             const uint leafCount = listed & ~LEAF_LISTED;
-            uint hint = j == j0 ? 0xffffffffu : (uint)segs[LANES / 2];
-            if ((j - j0) % BLOCK_ROWS == 0) {
-                const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
-                blockListed = blockLeaves(
-                    segments, inverses, first, count, box, chord, chordInverse, dev, leaves, list,
-                    leafCount, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
-                    (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
-                    marginMm2, &hint, block);
-            }
-            // Each lane's bound: its own nearest segment in the row below,
-            // or on the tile's first row the one nearest the block's centre.
+            uint hint = j == stepFirst ? 0xffffffffu : (uint)segs[LANES / 2];
+            if ((j - stepFirst) % BLOCK_ROWS == 0)
+                blockListed = blockLeaves(segments, inverses, first, count, box, chord,
+                                          chordInverse, dev, leaves, list, leafCount, BLOCK_LO,
+                                          BLOCK_HI, marginMm2, &hint, block);
+            // Each lane's bound: its own nearest segment in the step before,
+            // or on the tile's first step the one nearest the block's centre.
             REALV t;
-            const REALV within2 = j == j0
-                                      ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
-                                      : laneSegmentDistance2(segments, inverses, segs, px, py);
+            const REALV within2 =
+                j == stepFirst ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
+                               : fmin(laneSegmentDistance2(segments, inverses, segs, px, py),
+                                      laneSegmentDistance2(segments, inverses, ahead, px, py));
             scanLeaves(&n, segments, inverses, first, count, chord, chordInverse, dev, leaves,
                        block, blockListed, within2, px, py, slackMm);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
-            if ((j - j0) % BLOCK_ROWS == 0 && listed > 0) {
-                const uint lastRow = min(min(j + BLOCK_ROWS, j0 + TILE), height) - 1;
-                blockListed = blockCandidates(
-                    segments, inverses, list, listed, (REAL2)((i0 + (REAL)0.5) * pixelMm, py),
-                    (REAL2)((lastColumn + (REAL)0.5) * pixelMm, (lastRow + (REAL)0.5) * pixelMm),
-                    marginMm2, j == j0 ? 0xffffffffu : (uint)segs[LANES / 2], block);
-            }
+            if ((j - stepFirst) % BLOCK_ROWS == 0 && listed > 0)
+                blockListed =
+                    blockCandidates(segments, inverses, list, listed, BLOCK_LO, BLOCK_HI, marginMm2,
+                                    j == stepFirst ? 0xffffffffu : (uint)segs[LANES / 2], block);
             scanList(&n, segments, inverses, block, blockListed, px, py);
         } else if (listed <= capacity) {
             // Longer lists than a block holds (a capacity set by the caller):
@@ -759,8 +876,8 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             }
         } else if (count > 0) {
             uint start;  // a leaf near the lanes, where the walk starts
-            if (j == j0) {
-                // No row below: the leaf down the nearer side of each node.
+            if (j == stepFirst) {
+                // No step before: the leaf down the nearer side of each node.
                 start = 1;
                 while (start < leaves) {
                     const REAL left = LANE_MIN(boxDistance2(box[2 * start], px, py));
@@ -801,39 +918,22 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             }
         }
 
-        // Winding numbers from the row's crossings right of each lane.
-        const size_t row = (size_t)s * height + j;
-        uint lo = rowFirst[row], hi = rowFirst[row + 1];
-        const uint rowEnd = hi;
-        while (lo < hi) {  // first crossing with k > i0
-            const uint mid = (lo + hi) / 2;
-            if ((uint)crossings[mid].x > i0)
-                hi = mid;
-            else
-                lo = mid + 1;
-        }
-        INTV winding = (INTV)(lo < rowEnd ? crossings[lo].y : 0);
-        for (uint c = lo; c < rowEnd && (uint)crossings[c].x < i0 + LANES; ++c) {
-            // Lanes at or right of this crossing no longer count it.
-            const int counted = crossings[c].y - (c + 1 < rowEnd ? crossings[c + 1].y : 0);
-            winding -= PICK((INTV)(0), (INTV)(counted), lane >= (INTV)(crossings[c].x));
-        }
-
-        const REALV unsigned_ = sqrt(n.best2);
-        const REALV signed_ = PICK(unsigned_, -unsigned_, CONVERT_MASKV(winding != (INTV)(0)));
+#undef BLOCK_LO
+#undef BLOCK_HI
         VSTORE(n.bestSeg, 0, segs);
-        const UINTV id = count > 0 ? laneIds(ids, segs, n.bestT) : (UINTV)(0xffffffffu);
-        const size_t pixel = row * width + i0;
-        if (i0 + LANES <= width) {
-            VSTORE(CONVERT_FLOATV(signed_), 0, distance + pixel);
-            VSTORE(id, 0, nearestId + pixel);
-        } else {
-            float d[LANES];
-            uint idl[LANES];
-            VSTORE(CONVERT_FLOATV(signed_), 0, d);
-            VSTORE(id, 0, idl);
-            for (uint l = 0; i0 + l < width; ++l)
-                distance[pixel + l] = d[l], nearestId[pixel + l] = idl[l];
+        if (listed & LEAF_LISTED) {
+            const MASKV moved = j == stepFirst ? (MASKV)(0) : n.bestSeg - twoBefore;
+            VSTORE(clamp(n.bestSeg + moved, (MASKV)(first), (MASKV)(first + count - 1)), 0, ahead);
+            twoBefore = n.bestSeg;
         }
+        const UINTV id = count > 0 ? laneIds(ids, segs, n.bestT) : (UINTV)(0xffffffffu);
+        const REALV unsigned_ = sqrt(n.best2);
+        if (down)
+            writeColumn(rowFirst, crossings, (size_t)s * height + laneFirst,
+                        lastLane - laneFirst + 1, j, width, unsigned_, id, next, distance,
+                        nearestId);
+        else
+            writeRow(rowFirst, crossings, (size_t)s * height + j, laneFirst, width, unsigned_, id,
+                     distance, nearestId);
     }
 }

@@ -83,11 +83,17 @@ void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
           FieldKernelOptions{8, true}, FieldKernelOptions{1, true}, FieldKernelOptions{8, false, 0},
           FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096, never},
           FieldKernelOptions{1, true, 4096, never}, FieldKernelOptions{8, false, -1, 0},
-          FieldKernelOptions{4, false, -1, 0}, FieldKernelOptions{1, true, -1, 0}}) {
+          FieldKernelOptions{4, false, -1, 0}, FieldKernelOptions{1, true, -1, 0},
+          FieldKernelOptions{8, false, -1, -1, LanesAlong::Columns},
+          FieldKernelOptions{8, false, 0, -1, LanesAlong::Columns},
+          FieldKernelOptions{8, false, -1, 0, LanesAlong::Columns},
+          FieldKernelOptions{1, true, -1, 0, LanesAlong::Columns},
+          FieldKernelOptions{8, false, -1, 0, LanesAlong::Rows}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
                      (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
                      std::to_string(options.tileListCapacity) + ", leaves listed from " +
-                     std::to_string(options.leafListsFrom));
+                     std::to_string(options.leafListsFrom) + ", lanes along " +
+                     std::to_string(int(options.lanesAlong)));
         expectVariantAgrees(slices, grid, reference, options);
     }
 }
