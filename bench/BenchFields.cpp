@@ -141,6 +141,7 @@ int benchFields(const std::string& device) {
         ours["tiles"] = stats.tiles;
         ours["overflowing_tiles"] = stats.overflowingTiles;
         ours["leaf_listing_tiles"] = stats.leafListingTiles;
+        ours["column_tiles"] = stats.columnTiles;
         ours["mean_listed"] = stats.meanListed();
         std::cout << ours.dump() << std::endl;
         std::cout << line(caseName, "bruteforce", bruteSeconds, Errors{}).dump() << std::endl;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
@@ -80,39 +81,53 @@ Real4 unite(Real4 a, Real4 b) {
     return box;
 }
 
-// 1 / length^2 of segment (ax, ay, bx, by), 0 for a point: what the kernel
-// multiplies by instead of dividing.
+// Segments (ax, ay, bx, by) as the kernel reads them: (ax, ay, bx - ax,
+// by - ay), the differences rounded once from the exact ones.
 template <class Real4>
-double inverseLength2(const Real4& s) {
-    const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
-    const double length2 = dx * dx + dy * dy;
-    return length2 > 0 ? 1 / length2 : 0;
+std::vector<Real4> originAndStep(const std::vector<Real4>& segments) {
+    std::vector<Real4> kernelForm(segments.size());
+    std::transform(segments.begin(), segments.end(), kernelForm.begin(), [](const Real4& s) {
+        using Real = std::decay_t<decltype(s.s[0])>;
+        Real4 r = s;
+        r.s[2] = Real(double(s.s[2]) - double(s.s[0]));
+        r.s[3] = Real(double(s.s[3]) - double(s.s[1]));
+        return r;
+    });
+    return kernelForm;
 }
 
-// The same boxes or segments with x and y swapped, (y0, x0, y1, x1): the
+// Each segment's projector (b - a) / |b - a|^2, (0, 0) for a point: the
+// nearest point of the segment to p has parameter dot(p - a, projector)
+// clamped to [0, 1], with no division in the kernel.
+template <class Real2, class Real4>
+std::vector<Real2> projectorsOf(const std::vector<Real4>& segments) {
+    std::vector<Real2> projectors(segments.size());
+    std::transform(segments.begin(), segments.end(), projectors.begin(), [](const Real4& s) {
+        const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
+        const double length2 = dx * dx + dy * dy;
+        const double inverse = length2 > 0 ? 1 / length2 : 0;
+        using Real = std::decay_t<decltype(s.s[0])>;
+        Real2 r;
+        r.s[0] = Real(dx * inverse), r.s[1] = Real(dy * inverse);
+        return r;
+    });
+    return projectors;
+}
+
+// The same vectors with x and y swapped ((y0, x0, y1, x1) or (y, x)): the
 // kernel's frame for lanes down a column.
-template <class Real4>
-std::vector<Real4> swappedXY(const std::vector<Real4>& quads) {
-    std::vector<Real4> swapped(quads.size());
-    std::transform(quads.begin(), quads.end(), swapped.begin(), [](const Real4& q) {
-        Real4 r;
-        r.s[0] = q.s[1], r.s[1] = q.s[0], r.s[2] = q.s[3], r.s[3] = q.s[2];
+template <class RealN>
+std::vector<RealN> swappedXY(const std::vector<RealN>& vectors) {
+    std::vector<RealN> swapped(vectors.size());
+    std::transform(vectors.begin(), vectors.end(), swapped.begin(), [](const RealN& v) {
+        RealN r = v;
+        for (std::size_t k = 0; k + 1 < sizeof(v.s) / sizeof(v.s[0]); k += 2)
+            r.s[k] = v.s[k + 1], r.s[k + 1] = v.s[k];
         return r;
     });
     return swapped;
 }
 
-template <class Real, class Real4>
-std::vector<Real> inverseLengths2(const std::vector<Real4>& segments) {
-    std::vector<Real> inverses(segments.size());
-    std::transform(segments.begin(), segments.end(), inverses.begin(),
-                   [](const Real4& s) { return Real(inverseLength2(s)); });
-    return inverses;
-}
-
-// The tree of segments[first, first + count): O(count). Capsules are
-// computed in double from the coordinates the kernel reads; a dev rounded
-// down to float is covered by the kernel's slack.
 template <class Real4>
 void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count) {
     std::size_t leaves = 1;
@@ -276,23 +291,30 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
 
     // The tables the kernels read, kept here while they run: on CPU devices
     // the buffers are these host vectors themselves (DeviceBuffer::reading).
-    const std::vector<Real4> segmentsYX = swappedXY(flat.segments), boxesYX = swappedXY(flat.boxes),
-                             chordsYX = swappedXY(flat.chords);
-    const std::vector<Real> segmentInverses = inverseLengths2<Real>(flat.segments),
-                            chordInverseTable = inverseLengths2<Real>(flat.chords),
-                            devTable(flat.devs.begin(), flat.devs.end());
+    using Real2 = std::conditional_t<std::is_same_v<Real, cl_double>, cl_double2, cl_float2>;
+    const std::vector<Real4> segmentSteps = originAndStep(flat.segments),
+                             chordSteps = originAndStep(flat.chords);
+    const std::vector<Real4> segmentStepsYX = swappedXY(segmentSteps),
+                             boxesYX = swappedXY(flat.boxes), chordStepsYX = swappedXY(chordSteps);
+    const std::vector<Real2> segmentProjectors = projectorsOf<Real2>(flat.segments),
+                             chordProjectorTable = projectorsOf<Real2>(flat.chords);
+    const std::vector<Real2> segmentProjectorsYX = swappedXY(segmentProjectors),
+                             chordProjectorsYX = swappedXY(chordProjectorTable);
+    const std::vector<Real> devTable(flat.devs.begin(), flat.devs.end());
     using ocl::DeviceBuffer;
-    const auto segments = DeviceBuffer<Real4>::reading(runtime, flat.segments);
-    const auto segmentsSwapped = DeviceBuffer<Real4>::reading(runtime, segmentsYX);
-    const auto inverses = DeviceBuffer<Real>::reading(runtime, segmentInverses);
-    const auto chordInverses = DeviceBuffer<Real>::reading(runtime, chordInverseTable);
+    const auto segments = DeviceBuffer<Real4>::reading(runtime, segmentSteps);
+    const auto segmentsSwapped = DeviceBuffer<Real4>::reading(runtime, segmentStepsYX);
+    const auto projectors = DeviceBuffer<Real2>::reading(runtime, segmentProjectors);
+    const auto projectorsSwapped = DeviceBuffer<Real2>::reading(runtime, segmentProjectorsYX);
     const auto ids = DeviceBuffer<cl_uint2>::reading(runtime, flat.ids);
     const auto sliceFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst);
     const auto sliceCount = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceCount);
     const auto boxes = DeviceBuffer<Real4>::reading(runtime, flat.boxes);
     const auto boxesSwapped = DeviceBuffer<Real4>::reading(runtime, boxesYX);
-    const auto chords = DeviceBuffer<Real4>::reading(runtime, flat.chords);
-    const auto chordsSwapped = DeviceBuffer<Real4>::reading(runtime, chordsYX);
+    const auto chords = DeviceBuffer<Real4>::reading(runtime, chordSteps);
+    const auto chordsSwapped = DeviceBuffer<Real4>::reading(runtime, chordStepsYX);
+    const auto chordProjectors = DeviceBuffer<Real2>::reading(runtime, chordProjectorTable);
+    const auto chordProjectorsSwapped = DeviceBuffer<Real2>::reading(runtime, chordProjectorsYX);
     const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
     const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
@@ -302,7 +324,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
     // The tile lists, in host memory on CPU devices too: a new device
     // allocation is fresh pages, which the kernel would fault in one by one
-    // (a 512² grid's lists take 1.3 MB), where the host heap reuses its own.
+    // (a 512² grid's lists take 1.3 MB), where the host heap can reuse its own.
     const std::size_t listRoom = tilesX * tilesY * batch * capacity;
     const bool cpu = runtime.device().kind == ocl::DeviceKind::Cpu;
     const std::unique_ptr<cl_uint[]> listMemory(cpu ? new cl_uint[listRoom] : nullptr);
@@ -337,12 +359,12 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         cl::Kernel cull(program, "tile_candidates");
         int a = 0;
         cull.setArg(a++, segments.get());
-        cull.setArg(a++, inverses.get());
+        cull.setArg(a++, projectors.get());
         cull.setArg(a++, sliceFirst.get());
         cull.setArg(a++, sliceCount.get());
         cull.setArg(a++, boxes.get());
         cull.setArg(a++, chords.get());
-        cull.setArg(a++, chordInverses.get());
+        cull.setArg(a++, chordProjectors.get());
         cull.setArg(a++, devs.get());
         cull.setArg(a++, treeFirst.get());
         cull.setArg(a++, leafBase.get());
@@ -368,7 +390,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         a = 0;
         field.setArg(a++, segments.get());
         field.setArg(a++, segmentsSwapped.get());
-        field.setArg(a++, inverses.get());
+        field.setArg(a++, projectors.get());
+        field.setArg(a++, projectorsSwapped.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
@@ -376,7 +399,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, boxesSwapped.get());
         field.setArg(a++, chords.get());
         field.setArg(a++, chordsSwapped.get());
-        field.setArg(a++, chordInverses.get());
+        field.setArg(a++, chordProjectors.get());
+        field.setArg(a++, chordProjectorsSwapped.get());
         field.setArg(a++, devs.get());
         field.setArg(a++, treeFirst.get());
         field.setArg(a++, leafBase.get());

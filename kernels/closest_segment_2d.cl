@@ -3,10 +3,12 @@
 // primitive's id (field/PrimitiveId.hpp). One launch covers a batch of slices
 // (the third global dimension).
 //
-// Needs real.cl first. Its point-segment distances multiply by 1 / length^2
-// from the host rather than divide (closest_point.cl's segment_parameter), and
-// come in three widths (lanes, one point, four corners) since OpenCL C has no
-// overloads. Coordinates are millimetres
+// Needs real.cl first. Segments and chords come as (a, b - a) with their
+// projectors (b - a) / |b - a|^2 from the host, so that the parameter of
+// the nearest point is one dot product, with no division
+// (closest_point.cl's segment_parameter divides); point-segment distances
+// come in three widths (lanes, one point, four corners) since OpenCL C has
+// no overloads. Coordinates are millimetres
 // relative to the grid origin, so magnitudes stay small. Pixel (i, j) has its
 // centre at ((i + 0.5) * pixelMm, (j + 0.5) * pixelMm). TILE (the work-group
 // side in pixels), LANES and LEAF come from the host too.
@@ -163,15 +165,17 @@ inline REALV boxDistance2(REAL4 box, REALV px, REAL py) {
     return dx * dx + dy * dy;
 }
 
-// Squared distance from the lanes' points to segment (ax, ay, bx, by), whose
-// 1 / length^2 (0 for a point) is `inverse`; *t receives the parameter of the
-// nearest point (0 = a, 1 = b). The host divides once per segment, as the
-// division would otherwise dominate the scans.
-inline REALV segmentDistance2(REAL4 s, REAL inverse, REALV px, REAL py, REALV* t) {
-    const REAL abx = s.z - s.x, aby = s.w - s.y;
+// Squared distance from the lanes' points to segment s = (ax, ay, bx - ax,
+// by - ay) with projector (b - a) / |b - a|^2 (0 for a point); *t receives
+// the parameter of the nearest point (0 = a, 1 = b). The host divides once
+// per segment, as the division would otherwise dominate the scans, and
+// stores b - a and its projector so that a scan reads them as they are
+// used (a few operations fewer per segment than b and 1 / length^2).
+inline REALV segmentDistance2(REAL4 s, REAL2 projector, REALV px, REAL py, REALV* t) {
+    const REAL abx = s.z, aby = s.w;
     const REALV apx = px - s.x;
     const REAL apy = py - s.y;
-    *t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    *t = clamp(apx * projector.x + apy * projector.y, (REAL)0, (REAL)1);
     const REALV qx = apx - *t * abx, qy = apy - *t * aby;
     return qx * qx + qy * qy;
 }
@@ -185,10 +189,10 @@ typedef struct {
     MASKV bestSeg;
 } Nearest;
 
-inline void consider(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+inline void consider(Nearest* n, __global const REAL4* segments, __global const REAL2* projectors,
                      uint seg, REALV px, REAL py) {
     REALV t;
-    const REALV d2 = segmentDistance2(segments[seg], inverses[seg], px, py, &t);
+    const REALV d2 = segmentDistance2(segments[seg], projectors[seg], px, py, &t);
     const MASKV better =
         isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
     n->best2 = PICK(n->best2, d2, better);
@@ -200,9 +204,9 @@ inline void consider(Nearest* n, __global const REAL4* segments, __global const 
 // keeps the lowest index among ties, and the chain of dependent comparisons
 // per segment is one instead of three.
 inline void considerInOrder(Nearest* n, __global const REAL4* segments,
-                            __global const REAL* inverses, uint seg, REALV px, REAL py) {
+                            __global const REAL2* projectors, uint seg, REALV px, REAL py) {
     REALV t;
-    const REALV d2 = segmentDistance2(segments[seg], inverses[seg], px, py, &t);
+    const REALV d2 = segmentDistance2(segments[seg], projectors[seg], px, py, &t);
     const MASKV better = isless(d2, n->best2);
     n->best2 = PICK(n->best2, d2, better);
     n->bestT = PICK(n->bestT, t, better);
@@ -222,15 +226,15 @@ inline void mergeMinima(Nearest* n, const Nearest* a, const Nearest* b) {
 // Two interleaved halves are scanned side by side, so that each comparison
 // waits for the one before last rather than the last, and merged by
 // (distance, index): the result is the same as one scan in list order.
-inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+inline void scanList(Nearest* n, __global const REAL4* segments, __global const REAL2* projectors,
                      const uint* list, uint listed, REALV px, REAL py) {
     Nearest odd = *n;
     uint k = 0;
     for (; k + 1 < listed; k += 2) {
-        considerInOrder(n, segments, inverses, list[k], px, py);
-        considerInOrder(&odd, segments, inverses, list[k + 1], px, py);
+        considerInOrder(n, segments, projectors, list[k], px, py);
+        considerInOrder(&odd, segments, projectors, list[k + 1], px, py);
     }
-    if (k < listed) considerInOrder(n, segments, inverses, list[k], px, py);
+    if (k < listed) considerInOrder(n, segments, projectors, list[k], px, py);
     mergeMinima(n, n, &odd);
 }
 
@@ -239,49 +243,49 @@ inline void updateReach(Nearest* n, REAL slackMm) {
     n->reach2 = n->reach * n->reach;
 }
 
-inline void visitLeaf(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+inline void visitLeaf(Nearest* n, __global const REAL4* segments, __global const REAL2* projectors,
                       uint first, uint count, uint leaf, REALV px, REAL py) {
     const uint begin = first + leaf * LEAF;
     for (uint seg = begin; seg < min(begin + LEAF, first + count); ++seg)
-        consider(n, segments, inverses, seg, px, py);
+        consider(n, segments, projectors, seg, px, py);
 }
 
 // Per lane, whether node `node`'s capsule (its chord widened by dev) is
 // within reach.
 inline MASKV capsuleWithinReach(const Nearest* n, __global const REAL4* chords,
-                                __global const REAL* chordInverses, __global const REAL* devs,
+                                __global const REAL2* chordProjectors, __global const REAL* devs,
                                 uint node, REALV px, REAL py) {
     const REALV capsule = n->reach + devs[node];
     REALV t;
-    return islessequal(segmentDistance2(chords[node], chordInverses[node], px, py, &t),
+    return islessequal(segmentDistance2(chords[node], chordProjectors[node], px, py, &t),
                        capsule * capsule);
 }
 
 // Whether any lane may find a segment of node `node` that beats or ties its
 // best: the node's box and capsule (chord widened by dev) both within reach.
 inline bool worthVisiting(const Nearest* n, __global const REAL4* boxes,
-                          __global const REAL4* chords, __global const REAL* chordInverses,
+                          __global const REAL4* chords, __global const REAL2* chordProjectors,
                           __global const REAL* devs, uint node, REALV px, REAL py) {
     const MASKV inBox = islessequal(boxDistance2(boxes[node], px, py), n->reach2);
     if (!ANY(inBox)) return false;
-    return ANY(inBox & capsuleWithinReach(n, chords, chordInverses, devs, node, px, py));
+    return ANY(inBox & capsuleWithinReach(n, chords, chordProjectors, devs, node, px, py));
 }
 
-// Squared distance from point c to segment s = (ax, ay, bx, by) with
-// 1 / length^2 `inverse`.
-inline REAL pointSegmentDistance2(REAL2 c, REAL4 s, REAL inverse) {
-    const REAL2 a = s.xy, ab = s.zw - s.xy, ap = c - a;
-    const REAL2 q = ap - clamp(dot(ap, ab) * inverse, (REAL)0, (REAL)1) * ab;
+// Squared distance from point c to segment s = (ax, ay, bx - ax, by - ay)
+// with its projector.
+inline REAL pointSegmentDistance2(REAL2 c, REAL4 s, REAL2 projector) {
+    const REAL2 ap = c - s.xy;
+    const REAL2 q = ap - clamp(dot(ap, projector), (REAL)0, (REAL)1) * s.zw;
     return dot(q, q);
 }
 
 // The segment of leaf `leaf` (of a slice's segments first .. first+count-1)
 // nearest point c, if nearer than *best2: updates *best2 and *nearest.
-inline void nearestOfLeaf(REAL2 c, __global const REAL4* segments, __global const REAL* inverses,
+inline void nearestOfLeaf(REAL2 c, __global const REAL4* segments, __global const REAL2* projectors,
                           uint first, uint count, uint leaf, REAL* best2, uint* nearest) {
     for (uint seg = first + leaf * LEAF; seg < min(first + (leaf + 1) * LEAF, first + count);
          ++seg) {
-        const REAL d2 = pointSegmentDistance2(c, segments[seg], inverses[seg]);
+        const REAL d2 = pointSegmentDistance2(c, segments[seg], projectors[seg]);
         if (d2 < *best2) *best2 = d2, *nearest = seg;
     }
 }
@@ -289,7 +293,7 @@ inline void nearestOfLeaf(REAL2 c, __global const REAL4* segments, __global cons
 // The same tests for one point c (scalar): whether node `node` may hold a
 // segment within `reach` of c.
 inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
-                       __global const REAL4* chords, __global const REAL* chordInverses,
+                       __global const REAL4* chords, __global const REAL2* chordProjectors,
                        __global const REAL* devs, uint node) {
     const REAL4 b = boxes[node];
     const REAL dx = fmax(fmax(b.x - c.x, c.x - b.z), (REAL)0);
@@ -297,7 +301,7 @@ inline bool nodeWithin(REAL2 c, REAL reach, __global const REAL4* boxes,
     if (dx * dx + dy * dy > reach * reach) return false;
     const REAL4 k = chords[node];
     const REAL capsule = reach + devs[node];
-    return pointSegmentDistance2(c, k, chordInverses[node]) <= capsule * capsule;
+    return pointSegmentDistance2(c, k, chordProjectors[node]) <= capsule * capsule;
 }
 
 // The tile's four corner pixel centres, as lanes of a REAL4.
@@ -305,12 +309,12 @@ typedef struct {
     REAL4 x, y;
 } Corners;
 
-// Squared distances from the corners to segment s = (ax, ay, bx, by) with
-// 1 / length^2 `inverse`.
-inline REAL4 cornerSegmentDistance2(const Corners* k, REAL4 s, REAL inverse) {
-    const REAL abx = s.z - s.x, aby = s.w - s.y;
+// Squared distances from the corners to segment s = (ax, ay, bx - ax,
+// by - ay) with its projector.
+inline REAL4 cornerSegmentDistance2(const Corners* k, REAL4 s, REAL2 projector) {
+    const REAL abx = s.z, aby = s.w;
     const REAL4 apx = k->x - s.x, apy = k->y - s.y;
-    const REAL4 t = clamp((apx * abx + apy * aby) * inverse, (REAL4)(0), (REAL4)(1));
+    const REAL4 t = clamp(apx * projector.x + apy * projector.y, (REAL4)(0), (REAL4)(1));
     const REAL4 qx = apx - t * abx, qy = apy - t * aby;
     return qx * qx + qy * qy;
 }
@@ -321,11 +325,11 @@ inline Corners boxCorners(REAL2 lo, REAL2 hi) {
     return k;
 }
 
-// Whether segment s (with 1 / length^2 `inverse`) is farther than
+// Whether segment s (with its projector) is farther than
 // beaten2 at every corner: then it is nearest to no pixel of the box
 // (tile_candidates says why).
-inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL inverse, REAL4 beaten2) {
-    return ALL4(isgreater(cornerSegmentDistance2(k, s, inverse), beaten2));
+inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL2 projector, REAL4 beaten2) {
+    return ALL4(isgreater(cornerSegmentDistance2(k, s, projector), beaten2));
 }
 
 // Whether every segment of node `node` is farther than the contour point q
@@ -336,7 +340,7 @@ inline bool beatenAtEveryCorner(const Corners* k, REAL4 s, REAL inverse, REAL4 b
 // compared so, without a square root per node.
 inline bool nodeDominated(const Corners* k, REAL4 beaten2, REAL4 beaten,
                           __global const REAL4* boxes, __global const REAL4* chords,
-                          __global const REAL* chordInverses, __global const REAL* devs,
+                          __global const REAL2* chordProjectors, __global const REAL* devs,
                           uint node) {
     const REAL4 b = boxes[node];
     const REAL4 dx = fmax(fmax(b.x - k->x, k->x - b.z), (REAL4)(0));
@@ -344,18 +348,19 @@ inline bool nodeDominated(const Corners* k, REAL4 beaten2, REAL4 beaten,
     const MASK4 outsideBox = isgreater(dx * dx + dy * dy, beaten2);
     if (ALL4(outsideBox)) return true;
     const REAL4 capsule = beaten + devs[node];
-    return ALL4(outsideBox | isgreater(cornerSegmentDistance2(k, chords[node], chordInverses[node]),
-                                       capsule * capsule));
+    return ALL4(outsideBox |
+                isgreater(cornerSegmentDistance2(k, chords[node], chordProjectors[node]),
+                          capsule * capsule));
 }
 
 // For the box of pixel centres lo..hi and the contour point nearest its
-// centre on segment `q`, whose 1 / length^2 is `inverse`: per corner,
+// centre on segment `q` (with its projector): per corner,
 // |corner - foot|^2 + marginMm2, the squared distance a segment must exceed
 // at every corner to be farther than the foot from every pixel of the box
 // (tile_candidates says why).
-inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, REAL marginMm2) {
-    const REAL t = clamp(dot(c - q.xy, q.zw - q.xy) * inverse, (REAL)0, (REAL)1);
-    const REAL2 foot = q.xy + t * (q.zw - q.xy);
+inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL2 projector, REAL marginMm2) {
+    const REAL t = clamp(dot(c - q.xy, projector), (REAL)0, (REAL)1);
+    const REAL2 foot = q.xy + t * q.zw;
     const REAL4 fx = k->x - foot.x, fy = k->y - foot.y;
     return fx * fx + fy * fy + marginMm2;
 }
@@ -364,11 +369,11 @@ inline REAL4 beatenAtCorners(const Corners* k, REAL2 c, REAL4 q, REAL inverse, R
 // corner test keeps, counting them in *n up to stopAt + 1 (only the first
 // `capacity` are written).
 inline void listLeafSegments(const Corners* corners, REAL4 beaten2, __global const REAL4* segments,
-                             __global const REAL* inverses, uint first, uint count, uint leaf,
+                             __global const REAL2* projectors, uint first, uint count, uint leaf,
                              uint stopAt, uint capacity, __global uint* list, uint* n) {
     for (uint seg = first + leaf * LEAF;
          seg < min(first + (leaf + 1) * LEAF, first + count) && *n <= stopAt; ++seg)
-        if (!beatenAtEveryCorner(corners, segments[seg], inverses[seg], beaten2)) {
+        if (!beatenAtEveryCorner(corners, segments[seg], projectors[seg], beaten2)) {
             if (*n < capacity) list[*n] = seg;
             ++*n;
         }
@@ -392,10 +397,10 @@ inline void listLeafSegments(const Corners* corners, REAL4 beaten2, __global con
 // test are. Writes the count, or capacity + 1 when there are more: the
 // field kernel then walks the tree for each pixel instead. O(depth +
 // capacity) nodes per tile for contours no denser than its pixels.
-__kernel void tile_candidates(__global const REAL4* segments, __global const REAL* inverses,
+__kernel void tile_candidates(__global const REAL4* segments, __global const REAL2* projectors,
                               __global const uint* sliceFirst, __global const uint* sliceCount,
                               __global const REAL4* boxes, __global const REAL4* chords,
-                              __global const REAL* chordInverses, __global const REAL* devs,
+                              __global const REAL2* chordProjectors, __global const REAL* devs,
                               __global const uint* treeFirst, __global const uint* leafBase,
                               const uint width, const uint height, const REAL pixelMm,
                               const REAL slackMm, const REAL marginMm2, const uint capacity,
@@ -413,7 +418,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     const uint tree = treeFirst[s];
     __global const REAL4* box = boxes + tree;
     __global const REAL4* chord = chords + tree;
-    __global const REAL* chordInverse = chordInverses + tree;
+    __global const REAL2* chordProjector = chordProjectors + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
     const size_t at = ((size_t)s * tilesY + ty) * tilesX + tx;
@@ -432,16 +437,16 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         node = 2 * node + (dr < dl ? 1 : 0);
     }
     uint nearest = 0;
-    nearestOfLeaf(c, segments, inverses, first, count, node - leaves, &best2, &nearest);
+    nearestOfLeaf(c, segments, projectors, first, count, node - leaves, &best2, &nearest);
     REAL reach = sqrt(best2) * REACH_RELATIVE + slackMm;  // kept as best2 falls
     node = count > 0 ? 1 : 0;
     while (node != 0) {
-        if (nodeWithin(c, reach, box, chord, chordInverse, dev, node)) {
+        if (nodeWithin(c, reach, box, chord, chordProjector, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
             }
-            nearestOfLeaf(c, segments, inverses, first, count, node - leaves, &best2, &nearest);
+            nearestOfLeaf(c, segments, projectors, first, count, node - leaves, &best2, &nearest);
             reach = sqrt(best2) * REACH_RELATIVE + slackMm;
         }
         while (node & 1) node >>= 1;
@@ -449,7 +454,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     }
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
-        count > 0 ? beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2)
+        count > 0 ? beatenAtCorners(&corners, c, segments[nearest], projectors[nearest], marginMm2)
                   : (REAL4)(INFINITY);
     const REAL4 beaten = sqrt(beaten2);
     // Lanes down the columns where the nearest segment runs closer to the
@@ -458,7 +463,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     // where each lane needs other segments. Dense tiles only, by default:
     // a segment list is filtered per block of pixels the same either way.
     const REAL4 q = count > 0 ? segments[nearest] : (REAL4)(0);
-    const bool acrossContour = fabs(q.z - q.x) > fabs(q.w - q.y);
+    const bool acrossContour = fabs(q.z) > fabs(q.w);
     const uint columns = lanesAlong == LANES_ALONG_COLUMNS ? COLUMNS : 0u;
     const uint denseColumns =
         lanesAlong == LANES_ALONG_CONTOUR && acrossContour ? COLUMNS : columns;
@@ -473,7 +478,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     uint n = 0, inLeaves = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= max(leafRoom, (uint)KEPT_LEAVES)) {
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordProjector, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
@@ -496,7 +501,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
         const uint keptLeaves = n;
         n = 0;
         for (uint k = 0; k < keptLeaves && n <= stopAt; ++k)
-            listLeafSegments(&corners, beaten2, segments, inverses, first, count, kept[k], stopAt,
+            listLeafSegments(&corners, beaten2, segments, projectors, first, count, kept[k], stopAt,
                              capacity, list, &n);
         candidateCount[at] = n | (n > capacity ? denseColumns : columns);
         return;
@@ -507,12 +512,12 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
     n = 0;
     node = count > 0 ? 1 : 0;
     while (node != 0 && n <= stopAt) {
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev, node)) {
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordProjector, dev, node)) {
             if (node < leaves) {
                 node *= 2;
                 continue;
             }
-            listLeafSegments(&corners, beaten2, segments, inverses, first, count, node - leaves,
+            listLeafSegments(&corners, beaten2, segments, projectors, first, count, node - leaves,
                              stopAt, capacity, list, &n);
         }
         while (node & 1) node >>= 1;
@@ -528,7 +533,7 @@ __kernel void tile_candidates(__global const REAL4* segments, __global const REA
 // smaller box). That point is taken on segment `hint` where one is given (any
 // point of the contour makes the test hold; a near one makes it strong).
 // O(listed).
-inline uint blockCandidates(__global const REAL4* segments, __global const REAL* inverses,
+inline uint blockCandidates(__global const REAL4* segments, __global const REAL2* projectors,
                             __global const uint* list, uint listed, REAL2 lo, REAL2 hi,
                             REAL marginMm2, uint hint, uint* out) {
     const REAL2 c = (lo + hi) / 2;
@@ -537,17 +542,17 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL*
         REAL best2 = INFINITY;
         nearest = list[0];
         for (uint k = 0; k < listed; ++k) {
-            const REAL d2 = pointSegmentDistance2(c, segments[list[k]], inverses[list[k]]);
+            const REAL d2 = pointSegmentDistance2(c, segments[list[k]], projectors[list[k]]);
             if (d2 < best2) best2 = d2, nearest = list[k];
         }
     }
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
-        beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
+        beatenAtCorners(&corners, c, segments[nearest], projectors[nearest], marginMm2);
     uint n = 0;
     for (uint k = 0; k < listed; ++k) {
         const uint seg = list[k];
-        if (!beatenAtEveryCorner(&corners, segments[seg], inverses[seg], beaten2)) out[n++] = seg;
+        if (!beatenAtEveryCorner(&corners, segments[seg], projectors[seg], beaten2)) out[n++] = seg;
     }
     return n;
 }
@@ -557,11 +562,11 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL*
 // fails), in order. Without a hint (*hint = 0xffffffff), the contour point
 // comes from the nearest segment of the leaf whose chord is nearest the
 // block's centre, and *hint receives that segment. O(listed + LEAF).
-inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inverses, uint first,
-                        uint count, __global const REAL4* box, __global const REAL4* chord,
-                        __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
-                        __global const uint* list, uint listed, REAL2 lo, REAL2 hi, REAL marginMm2,
-                        uint* hint, uint* out) {
+inline uint blockLeaves(__global const REAL4* segments, __global const REAL2* projectors,
+                        uint first, uint count, __global const REAL4* box,
+                        __global const REAL4* chord, __global const REAL2* chordProjector,
+                        __global const REAL* dev, uint leaves, __global const uint* list,
+                        uint listed, REAL2 lo, REAL2 hi, REAL marginMm2, uint* hint, uint* out) {
     const REAL2 c = (lo + hi) / 2;
     uint nearest = *hint;
     if (nearest == 0xffffffffu) {
@@ -569,20 +574,20 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
         uint leaf = list[0];
         for (uint k = 0; k < listed; ++k) {
             const uint node = leaves + list[k];
-            const REAL d2 = pointSegmentDistance2(c, chord[node], chordInverse[node]);
+            const REAL d2 = pointSegmentDistance2(c, chord[node], chordProjector[node]);
             if (d2 < best2) best2 = d2, leaf = list[k];
         }
         best2 = INFINITY;
-        nearestOfLeaf(c, segments, inverses, first, count, leaf, &best2, &nearest);
+        nearestOfLeaf(c, segments, projectors, first, count, leaf, &best2, &nearest);
         *hint = nearest;
     }
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
-        beatenAtCorners(&corners, c, segments[nearest], inverses[nearest], marginMm2);
+        beatenAtCorners(&corners, c, segments[nearest], projectors[nearest], marginMm2);
     const REAL4 beaten = sqrt(beaten2);
     uint n = 0;
     for (uint k = 0; k < listed; ++k)
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordInverse, dev,
+        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordProjector, dev,
                            leaves + list[k]))
             out[n++] = list[k];
     return n;
@@ -592,11 +597,11 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL* inv
 // segments[seg[lane]], all lanes at once. The lanes' coordinates are put
 // together in registers: written to memory one by one and read back as a
 // vector, they would wait for the stores to drain.
-inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL* inverses,
+inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL2* projectors,
                                   const MASK_SCALAR* seg, REALV px, REAL py) {
 #define SEGMENT(l)                             \
     const REAL4 s##l = segments[(uint)seg[l]]; \
-    const REAL i##l = inverses[(uint)seg[l]]
+    const REAL2 u##l = projectors[(uint)seg[l]]
 #if LANES == 8
     SEGMENT(0);
     SEGMENT(1);
@@ -607,25 +612,27 @@ inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const
     SEGMENT(6);
     SEGMENT(7);
 #define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f, s4.f, s5.f, s6.f, s7.f))
-    const REALV inverse = (REALV)(i0, i1, i2, i3, i4, i5, i6, i7);
+#define PROJECTORS_OF(f) ((REALV)(u0.f, u1.f, u2.f, u3.f, u4.f, u5.f, u6.f, u7.f))
 #elif LANES == 4
     SEGMENT(0);
     SEGMENT(1);
     SEGMENT(2);
     SEGMENT(3);
 #define LANES_OF(f) ((REALV)(s0.f, s1.f, s2.f, s3.f))
-    const REALV inverse = (REALV)(i0, i1, i2, i3);
+#define PROJECTORS_OF(f) ((REALV)(u0.f, u1.f, u2.f, u3.f))
 #else
     SEGMENT(0);
 #define LANES_OF(f) (s0.f)
-    const REALV inverse = i0;
+#define PROJECTORS_OF(f) (u0.f)
 #endif
     const REALV ax = LANES_OF(x), ay = LANES_OF(y);
-    const REALV abx = LANES_OF(z) - ax, aby = LANES_OF(w) - ay;
+    const REALV abx = LANES_OF(z), aby = LANES_OF(w);
+    const REALV ux = PROJECTORS_OF(x), uy = PROJECTORS_OF(y);
 #undef LANES_OF
+#undef PROJECTORS_OF
 #undef SEGMENT
     const REALV apx = px - ax, apy = py - ay;
-    const REALV t = clamp((apx * abx + apy * aby) * inverse, (REAL)0, (REAL)1);
+    const REALV t = clamp(apx * ux + apy * uy, (REAL)0, (REAL)1);
     const REALV qx = apx - t * abx, qy = apy - t * aby;
     return qx * qx + qy * qy;
 }
@@ -637,9 +644,9 @@ inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const
 // The segments of the other leaves are farther by more than rounding, so
 // the result is that of scanning every leaf. Two minima side by side, as in
 // scanList. O(listed + LEAF · leaves scanned).
-inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global const REAL* inverses,
+inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global const REAL2* projectors,
                        uint first, uint count, __global const REAL4* chord,
-                       __global const REAL* chordInverse, __global const REAL* dev, uint leaves,
+                       __global const REAL2* chordProjector, __global const REAL* dev, uint leaves,
                        const uint* list, uint listed, REALV within2, REALV px, REAL py,
                        REAL slackMm) {
     Nearest bound;
@@ -648,15 +655,15 @@ inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global cons
     Nearest even = *n, odd = *n;
     for (uint k = 0; k < listed; ++k) {
         // The capsule alone: a leaf's box hardly prunes more.
-        if (!ANY(capsuleWithinReach(&bound, chord, chordInverse, dev, leaves + list[k], px, py)))
+        if (!ANY(capsuleWithinReach(&bound, chord, chordProjector, dev, leaves + list[k], px, py)))
             continue;
         const uint begin = first + list[k] * LEAF, end = min(begin + LEAF, first + count);
         uint seg = begin;
         for (; seg + 1 < end; seg += 2) {
-            considerInOrder(&even, segments, inverses, seg, px, py);
-            considerInOrder(&odd, segments, inverses, seg + 1, px, py);
+            considerInOrder(&even, segments, projectors, seg, px, py);
+            considerInOrder(&odd, segments, projectors, seg + 1, px, py);
         }
-        if (seg < end) considerInOrder(&even, segments, inverses, seg, px, py);
+        if (seg < end) considerInOrder(&even, segments, projectors, seg, px, py);
     }
     mergeMinima(n, &even, &odd);
 }
@@ -772,7 +779,8 @@ __attribute__((always_inline)) inline void writeColumn(__global const uint* rowF
 // i0 .. i0+LANES-1) for each of the tile's TILE rows in turn, or lanes down
 // a column (TILE / LANES work-items share the tile's rows) for each of its
 // columns in turn. In the second frame the work-item reads the transposed
-// geometry (x and y swapped: segmentsYX, boxesYX, chordsYX), so the same
+// geometry (x and y swapped: segmentsYX, boxesYX, chordsYX and the
+// projectors), so the same
 // code computes both; `step` is then a column and the lanes are rows. Each
 // step takes the tile's list of segments or of leaves when it has one, else
 // the walk of the tree; both of the latter start from the nearest segments
@@ -787,13 +795,14 @@ __attribute__((always_inline)) inline void writeColumn(__global const uint* rowF
 // by moving on from the column before.
 __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
     __global const REAL4* segmentsXY, __global const REAL4* segmentsYX,
-    __global const REAL* inverses, __global const uint2* ids, __global const uint* sliceFirst,
-    __global const uint* sliceCount, __global const REAL4* boxesXY, __global const REAL4* boxesYX,
-    __global const REAL4* chordsXY, __global const REAL4* chordsYX,
-    __global const REAL* chordInverses, __global const REAL* devs, __global const uint* treeFirst,
-    __global const uint* leafBase, __global const uint* rowFirst, __global const int2* crossings,
-    const uint width, const uint height, const REAL pixelMm, const REAL slackMm,
-    const REAL marginMm2, const uint capacity, __global const uint* candidates,
+    __global const REAL2* projectorsXY, __global const REAL2* projectorsYX,
+    __global const uint2* ids, __global const uint* sliceFirst, __global const uint* sliceCount,
+    __global const REAL4* boxesXY, __global const REAL4* boxesYX, __global const REAL4* chordsXY,
+    __global const REAL4* chordsYX, __global const REAL2* chordProjectorsXY,
+    __global const REAL2* chordProjectorsYX, __global const REAL* devs,
+    __global const uint* treeFirst, __global const uint* leafBase, __global const uint* rowFirst,
+    __global const int2* crossings, const uint width, const uint height, const REAL pixelMm,
+    const REAL slackMm, const REAL marginMm2, const uint capacity, __global const uint* candidates,
     __global const uint* candidateCount, __global float* distance, __global uint* nearestId) {
     const uint tx = get_global_id(0) * LANES / TILE, ty = get_global_id(1), s = get_global_id(2);
     const uint within = get_global_id(0) * LANES % TILE;  // the work-item's lanes in the tile
@@ -808,12 +817,13 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     const uint stepFirst = (down ? tx : ty) * TILE, stepLimit = down ? width : height;
     if (laneFirst >= laneLimit) return;  // padding of the last tiles (no barriers below)
     __global const REAL4* segments = down ? segmentsYX : segmentsXY;
+    __global const REAL2* projectors = down ? projectorsYX : projectorsXY;
     const REALV px = (CONVERT_REALV((INTV)(laneFirst) + LANE_OFFSETS) + (REAL)0.5) * pixelMm;
     const uint first = sliceFirst[s], count = sliceCount[s];
     const uint tree = treeFirst[s];
     __global const REAL4* box = (down ? boxesYX : boxesXY) + tree;
     __global const REAL4* chord = (down ? chordsYX : chordsXY) + tree;
-    __global const REAL* chordInverse = chordInverses + tree;
+    __global const REAL2* chordProjector = (down ? chordProjectorsYX : chordProjectorsXY) + tree;
     __global const REAL* dev = devs + tree;
     const uint leaves = leafBase[s];
     __global const uint* list = candidates + tile * capacity;
@@ -848,31 +858,31 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             const uint leafCount = listed & ~LEAF_LISTED;
             uint hint = j == stepFirst ? 0xffffffffu : (uint)segs[LANES / 2];
             if ((j - stepFirst) % BLOCK_ROWS == 0)
-                blockListed = blockLeaves(segments, inverses, first, count, box, chord,
-                                          chordInverse, dev, leaves, list, leafCount, BLOCK_LO,
+                blockListed = blockLeaves(segments, projectors, first, count, box, chord,
+                                          chordProjector, dev, leaves, list, leafCount, BLOCK_LO,
                                           BLOCK_HI, marginMm2, &hint, block);
             // Each lane's bound: its own nearest segment in the step before,
             // or on the tile's first step the one nearest the block's centre.
             REALV t;
             const REALV within2 =
-                j == stepFirst ? segmentDistance2(segments[hint], inverses[hint], px, py, &t)
-                               : fmin(laneSegmentDistance2(segments, inverses, segs, px, py),
-                                      laneSegmentDistance2(segments, inverses, ahead, px, py));
-            scanLeaves(&n, segments, inverses, first, count, chord, chordInverse, dev, leaves,
+                j == stepFirst ? segmentDistance2(segments[hint], projectors[hint], px, py, &t)
+                               : fmin(laneSegmentDistance2(segments, projectors, segs, px, py),
+                                      laneSegmentDistance2(segments, projectors, ahead, px, py));
+            scanLeaves(&n, segments, projectors, first, count, chord, chordProjector, dev, leaves,
                        block, blockListed, within2, px, py, slackMm);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
             if ((j - stepFirst) % BLOCK_ROWS == 0 && listed > 0)
-                blockListed =
-                    blockCandidates(segments, inverses, list, listed, BLOCK_LO, BLOCK_HI, marginMm2,
-                                    j == stepFirst ? 0xffffffffu : (uint)segs[LANES / 2], block);
-            scanList(&n, segments, inverses, block, blockListed, px, py);
+                blockListed = blockCandidates(
+                    segments, projectors, list, listed, BLOCK_LO, BLOCK_HI, marginMm2,
+                    j == stepFirst ? 0xffffffffu : (uint)segs[LANES / 2], block);
+            scanList(&n, segments, projectors, block, blockListed, px, py);
         } else if (listed <= capacity) {
             // Longer lists than a block holds (a capacity set by the caller):
             // the whole list, a block at a time.
             for (uint k = 0; k < listed; k += BLOCK_LIST) {
                 const uint m = min(listed - k, (uint)BLOCK_LIST);
                 for (uint e = 0; e < m; ++e) block[e] = list[k + e];
-                scanList(&n, segments, inverses, block, m, px, py);
+                scanList(&n, segments, projectors, block, m, px, py);
             }
         } else if (count > 0) {
             uint start;  // a leaf near the lanes, where the walk starts
@@ -887,7 +897,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             } else {
                 for (int l = 0; l < LANES; ++l)
                     if (l == 0 || segs[l] != segs[l - 1])
-                        consider(&n, segments, inverses, (uint)segs[l], px, py);
+                        consider(&n, segments, projectors, (uint)segs[l], px, py);
                 start = leaves + ((uint)segs[LANES / 2] - first) / LEAF;
             }
             updateReach(&n, slackMm);
@@ -895,20 +905,20 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             // ancestors, nearest first: every leaf once. Depth first within a
             // subtree, left before right, without a stack: after a node,
             // climb past right children and step to the sibling.
-            if (worthVisiting(&n, box, chord, chordInverse, dev, start, px, py)) {
-                visitLeaf(&n, segments, inverses, first, count, start - leaves, px, py);
+            if (worthVisiting(&n, box, chord, chordProjector, dev, start, px, py)) {
+                visitLeaf(&n, segments, projectors, first, count, start - leaves, px, py);
                 updateReach(&n, slackMm);
             }
             for (uint below = start; below > 1; below >>= 1) {
                 const uint root = below ^ 1;
                 uint node = root;
                 for (;;) {
-                    if (worthVisiting(&n, box, chord, chordInverse, dev, node, px, py)) {
+                    if (worthVisiting(&n, box, chord, chordProjector, dev, node, px, py)) {
                         if (node < leaves) {
                             node *= 2;
                             continue;
                         }
-                        visitLeaf(&n, segments, inverses, first, count, node - leaves, px, py);
+                        visitLeaf(&n, segments, projectors, first, count, node - leaves, px, py);
                         updateReach(&n, slackMm);
                     }
                     while (node != root && (node & 1)) node >>= 1;

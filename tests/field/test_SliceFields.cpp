@@ -209,12 +209,16 @@ TEST(SliceFields, ContoursWithThousandsOfSegments) {
     const std::vector<Slice> slices{slice};
     const SliceGrid grid = gridForSlices(slices, 0.9);
     expectAgreement(slices, grid);
-    // The case is what it says: by default, tiles here list leaves.
+    // The case is what it says: by default, tiles here list leaves, and
+    // those where the contour runs along the rows lay their lanes down the
+    // columns (the round contours run every way).
     FieldKernelStats stats;
     FieldKernelOptions options;
     options.stats = &stats;
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_GT(stats.leafListingTiles, 0u);
+    EXPECT_GT(stats.columnTiles, 0u);
+    EXPECT_LT(stats.columnTiles, stats.leafListingTiles + stats.overflowingTiles);
 }
 
 // Pixel centres exactly on edges and vertices (1 mm pixels from 0: centres
@@ -257,7 +261,8 @@ TEST(SliceFields, DegenerateShortSegments) {
 // The tile-list statistics count every tile of every slice with contours:
 // all overflow with room for none, none for one small contour, whose tiles
 // each list at least the segment nearest them, and all list leaves when
-// told to.
+// told to. Lanes go down the columns of no tile that lists segments, of
+// every tile when told to, and of none when told to go along the rows.
 TEST(SliceFields, TileListStatsCountEveryTile) {
     Slice square, empty;
     square.contours = {{{10, 10}, {40, 10}, {40, 30}, {10, 30}}};
@@ -287,6 +292,20 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     EXPECT_EQ(stats.overflowingTiles, 0u);
     EXPECT_EQ(stats.leafListingTiles, 56u);
     EXPECT_EQ(stats.meanListed(), 0.0);
+    // Leaf-listing tiles nearest the square's top or bottom side go down
+    // their columns, those nearest its left or right side along their rows.
+    EXPECT_GT(stats.columnTiles, 0u);
+    EXPECT_LT(stats.columnTiles, 56u);
+    options.lanesAlong = LanesAlong::Rows;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.columnTiles, 0u);
+    options.lanesAlong = LanesAlong::Columns;
+    options.leafListsFrom = -1;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.columnTiles, 56u);
+    options.lanesAlong = LanesAlong::Contour;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.columnTiles, 0u);
 }
 
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
