@@ -11,6 +11,28 @@
 
 namespace dfrecon::ocl {
 
+/// Waits for a queue's commands to finish when it goes out of scope, also
+/// when an exception unwinds it: declared after the host memory that
+/// kernels read or write (DeviceBuffer::over and ::reading), it keeps a
+/// kernel from using that memory once it is freed. Errors while waiting are
+/// dropped, as a destructor must not throw; the exception already on its
+/// way says what went wrong.
+class QueueDrain {
+  public:
+    explicit QueueDrain(cl::CommandQueue& queue) : queue_(queue) {}
+    QueueDrain(const QueueDrain&) = delete;
+    QueueDrain& operator=(const QueueDrain&) = delete;
+    ~QueueDrain() {
+        try {
+            queue_.finish();
+        } catch (...) {
+        }
+    }
+
+  private:
+    cl::CommandQueue& queue_;
+};
+
 template <class T>
 class DeviceBuffer {
   public:

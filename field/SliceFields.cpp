@@ -10,6 +10,7 @@
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
+#include "geometry/ClosestPoint.hpp"
 
 namespace dfrecon {
 
@@ -161,8 +162,10 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         // Distance to a segment is convex: the ends bound the segment. In
         // squares, with one square root per leaf (hypot per end cost a
         // quarter of the host's time on dense contours).
+        const Point2 ab = b - a;
         const auto distance2 = [&](Point2 p) {
-            const Point2 q = p - (a + nearestSegmentParameter(p, a, b) * (b - a));
+            const Point2 ap = p - a;
+            const Point2 q = ap - nearestSegmentParameter(ap.x, ap.y, ab.x, ab.y) * ab;
             return dot(q, q);
         };
         double radius2 = 0;
@@ -200,6 +203,11 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
                             const SliceGrid& grid) {
     FlatSegments<Real4> flat;
     flat.magnitudeMm = double(std::max(grid.width, grid.height)) * grid.pixelMm;
+    std::size_t total = 0;
+    for (std::size_t s = begin; s < end; ++s)
+        for (const Polygon& contour : slices[s].contours) total += contour.size();
+    flat.segments.reserve(total);
+    flat.ids.reserve(total);
     for (std::size_t s = begin; s < end; ++s) {
         const std::size_t first = flat.segments.size();
         const auto& contours = slices[s].contours;
@@ -286,7 +294,6 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
               cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
               FieldKernelStats* stats) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
-    const RowCrossings rows = rowCrossings(slices, begin, end, grid);
     const std::size_t batch = end - begin;
 
     // The tables the kernels read, kept here while they run: on CPU devices
@@ -316,10 +323,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const auto chordProjectors = DeviceBuffer<Real2>::reading(runtime, chordProjectorTable);
     const auto chordProjectorsSwapped = DeviceBuffer<Real2>::reading(runtime, chordProjectorsYX);
     const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
+
     const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
-    const auto rowFirst = DeviceBuffer<cl_uint>::reading(runtime, rows.rowFirst);
-    const auto crossings = DeviceBuffer<cl_int2>::reading(runtime, rows.crossings);
     const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
     const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
     // The tile lists, in host memory on CPU devices too: a new device
@@ -355,7 +361,11 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const Real marginMm2 =
         Real(256 * double(std::numeric_limits<Real>::epsilon()) *
              (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
+    RowCrossings rows;  // found while the device lists the tiles' candidates
     try {
+        // Kernels read the host memory of the tables above on CPU devices:
+        // whatever is thrown after a launch, they finish before it is freed.
+        const ocl::QueueDrain drain(runtime.queue());
         cl::Kernel cull(program, "tile_candidates");
         int a = 0;
         cull.setArg(a++, segments.get());
@@ -385,6 +395,12 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
             cull, cl::NullRange,
             cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
             cl::NDRange(4, 4, 1));
+        // The rows' crossings (only the field kernel reads them) while the
+        // device lists the tiles' candidates.
+        runtime.queue().flush();
+        rows = rowCrossings(slices, begin, end, grid);
+        const auto rowFirst = DeviceBuffer<cl_uint>::reading(runtime, rows.rowFirst);
+        const auto crossings = DeviceBuffer<cl_int2>::reading(runtime, rows.crossings);
 
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
