@@ -93,7 +93,10 @@ struct FieldKernelOptions {
 /// be nearest to one of its pixels (when few) or the leaves of the tree that
 /// hold them (when many: each row of pixels then scans the leaves it can
 /// reach from the row below's nearest), else its pixels walk the tree row by
-/// row from the row below's nearest. All only skip what is provably farther
+/// row from the row below's nearest. In dense tiles where the contour runs
+/// along the rows, a work-item's pixels go down a column instead, along the
+/// contour's normal, where they share their nearest segments (LanesAlong).
+/// All only skip what is provably farther
 /// than the best, so the result is the brute-force scan's (ties to the lower
 /// segment index). Many slices per launch; fp64 on devices that
 /// have it. Sign from the winding number of all contours, from each row's
