@@ -129,6 +129,10 @@ std::vector<RealN> swappedXY(const std::vector<RealN>& vectors) {
     return swapped;
 }
 
+// The tree of segments[first, first + count): O(count). Capsules are
+// computed in double from the coordinates the kernel reads; its b - a
+// rounded once (originAndStep) and a dev rounded down to float are covered
+// by the kernel's slack.
 template <class Real4>
 void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count) {
     std::size_t leaves = 1;
