@@ -653,17 +653,27 @@ inline void scanLeaves(Nearest* n, __global const REAL4* segments, __global cons
     bound.best2 = within2;
     updateReach(&bound, slackMm);
     Nearest even = *n, odd = *n;
-    for (uint k = 0; k < listed; ++k) {
-        // The capsule alone: a leaf's box hardly prunes more.
-        if (!ANY(capsuleWithinReach(&bound, chord, chordProjector, dev, leaves + list[k], px, py)))
-            continue;
-        const uint begin = first + list[k] * LEAF, end = min(begin + LEAF, first + count);
-        uint seg = begin;
-        for (; seg + 1 < end; seg += 2) {
-            considerInOrder(&even, segments, projectors, seg, px, py);
-            considerInOrder(&odd, segments, projectors, seg + 1, px, py);
+    for (uint chunk = 0; chunk < listed; chunk += 64) {
+        // Which of up to 64 leaves are within reach, as bits, before any is
+        // scanned: a branch per leaf, taken as the data fall, cost more
+        // than testing them all first (a tenth of the 10 000-segment
+        // bench). The capsule alone: a leaf's box hardly prunes more.
+        ulong reached = 0;
+        for (uint k = chunk; k < min(chunk + 64, listed); ++k)
+            reached |= (ulong)ANY(capsuleWithinReach(&bound, chord, chordProjector, dev,
+                                                     leaves + list[k], px, py))
+                       << (k - chunk);
+        while (reached != 0) {
+            const uint k = chunk + 63 - clz(reached & -reached);  // lowest bit first
+            reached &= reached - 1;
+            const uint begin = first + list[k] * LEAF, end = min(begin + LEAF, first + count);
+            uint seg = begin;
+            for (; seg + 1 < end; seg += 2) {
+                considerInOrder(&even, segments, projectors, seg, px, py);
+                considerInOrder(&odd, segments, projectors, seg + 1, px, py);
+            }
+            if (seg < end) considerInOrder(&even, segments, projectors, seg, px, py);
         }
-        if (seg < end) considerInOrder(&even, segments, projectors, seg, px, py);
     }
     mergeMinima(n, &even, &odd);
 }
