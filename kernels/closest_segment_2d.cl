@@ -549,10 +549,13 @@ inline uint blockCandidates(__global const REAL4* segments, __global const REAL2
     const Corners corners = boxCorners(lo, hi);
     const REAL4 beaten2 =
         beatenAtCorners(&corners, c, segments[nearest], projectors[nearest], marginMm2);
+    // Each entry written, and kept by moving on past it: no branch taken as
+    // the data fall (n <= k, so it stays within the list's room).
     uint n = 0;
     for (uint k = 0; k < listed; ++k) {
         const uint seg = list[k];
-        if (!beatenAtEveryCorner(&corners, segments[seg], projectors[seg], beaten2)) out[n++] = seg;
+        out[n] = seg;
+        n += !beatenAtEveryCorner(&corners, segments[seg], projectors[seg], beaten2);
     }
     return n;
 }
@@ -585,11 +588,12 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL2* pr
     const REAL4 beaten2 =
         beatenAtCorners(&corners, c, segments[nearest], projectors[nearest], marginMm2);
     const REAL4 beaten = sqrt(beaten2);
-    uint n = 0;
-    for (uint k = 0; k < listed; ++k)
-        if (!nodeDominated(&corners, beaten2, beaten, box, chord, chordProjector, dev,
-                           leaves + list[k]))
-            out[n++] = list[k];
+    uint n = 0;  // as in blockCandidates: written, then kept or not
+    for (uint k = 0; k < listed; ++k) {
+        out[n] = list[k];
+        n += !nodeDominated(&corners, beaten2, beaten, box, chord, chordProjector, dev,
+                            leaves + list[k]);
+    }
     return n;
 }
 
