@@ -218,14 +218,15 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
         for (std::uint32_t c = 0; c < contours.size(); ++c) {
             const std::uint32_t n = std::uint32_t(contours[c].size());
             for (std::uint32_t k = 0; k < n; ++k) {
+                const std::uint32_t next = k + 1 == n ? 0 : k + 1;  // no division per segment
                 const Point2 a = contours[c][k] - grid.originMm,
-                             b = contours[c][(k + 1) % n] - grid.originMm;
+                             b = contours[c][next] - grid.originMm;
                 flat.magnitudeMm = std::max({flat.magnitudeMm, std::abs(a.x), std::abs(a.y)});
                 Real4 r;
                 r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
                 flat.segments.push_back(r);
-                flat.ids.push_back({{PrimitiveId{c, k, false}.encode(),
-                                     PrimitiveId{c, (k + 1) % n, true}.encode()}});
+                flat.ids.push_back(
+                    {{PrimitiveId{c, k, false}.encode(), PrimitiveId{c, next, true}.encode()}});
             }
         }
         flat.sliceFirst.push_back(cl_uint(first));
@@ -252,7 +253,7 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
     for (std::size_t s = begin; s < end; ++s)
         for (const Polygon& contour : slices[s].contours)
             for (std::size_t k = 0; k < contour.size(); ++k) {
-                const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
+                const Point2 a = contour[k], b = contour[k + 1 == contour.size() ? 0 : k + 1];
                 if (a.y == b.y) continue;
                 const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
                 // A row or so more on each side; the half-open test decides.
