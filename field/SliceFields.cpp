@@ -10,7 +10,6 @@
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
-#include "geometry/ClosestPoint.hpp"
 
 namespace dfrecon {
 
@@ -157,6 +156,18 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
         return r;
     };
+    // Squared distance from p to segment a + t·ab, given 1 / |ab|^2 (0 for a
+    // point): a multiplication where segment_parameter divides, as this runs
+    // for both ends of every segment.
+    const auto segmentDistance2 = [](Point2 p, Point2 a, Point2 ab, double inverse) {
+        const Point2 ap = p - a;
+        const Point2 q = ap - std::clamp(dot(ap, ab) * inverse, 0.0, 1.0) * ab;
+        return dot(q, q);
+    };
+    const auto inverseLength2 = [](Point2 ab) {
+        const double length2 = dot(ab, ab);
+        return length2 > 0 ? 1 / length2 : 0.0;
+    };
     for (std::size_t leaf = 0; leaf * kLeaf < count; ++leaf) {
         const std::size_t begin = first + leaf * kLeaf,
                           end = std::min(begin + kLeaf, first + count);
@@ -167,11 +178,7 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         // squares, with one square root per leaf (hypot per end cost a
         // quarter of the host's time on dense contours).
         const Point2 ab = b - a;
-        const auto distance2 = [&](Point2 p) {
-            const Point2 ap = p - a;
-            const Point2 q = ap - nearestSegmentParameter(ap.x, ap.y, ab.x, ab.y) * ab;
-            return dot(q, q);
-        };
+        const double inverse = inverseLength2(ab);
         double radius2 = 0;
         for (std::size_t k = begin; k < end; ++k) {
             const Real4 s = flat.segments[k];
@@ -179,7 +186,8 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
             segmentBox.s[0] = std::min(s.s[0], s.s[2]), segmentBox.s[1] = std::min(s.s[1], s.s[3]);
             segmentBox.s[2] = std::max(s.s[0], s.s[2]), segmentBox.s[3] = std::max(s.s[1], s.s[3]);
             into = unite(into, segmentBox);
-            radius2 = std::max({radius2, distance2(point(s, 0)), distance2(point(s, 1))});
+            radius2 = std::max({radius2, segmentDistance2(point(s, 0), a, ab, inverse),
+                                segmentDistance2(point(s, 1), a, ab, inverse)});
         }
         radius = std::sqrt(radius2);
         chord[leaves + leaf] = chordOf(a, b);
@@ -193,12 +201,14 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         }
         // Each child's segments lie within its dev of its chord, whose
         // points lie within the larger distance of its ends from ours.
-        const Point2 a = point(chord[l], 0), b = point(chord[r], 1);
+        const Point2 a = point(chord[l], 0), b = point(chord[r], 1), ab = b - a;
+        const double inverse = inverseLength2(ab);
         chord[n] = chordOf(a, b);
         for (const std::size_t c : {l, r})
-            dev[n] =
-                std::max(dev[n], dev[c] + std::max(distanceToSegment(point(chord[c], 0), a, b),
-                                                   distanceToSegment(point(chord[c], 1), a, b)));
+            dev[n] = std::max(
+                dev[n],
+                dev[c] + std::sqrt(std::max(segmentDistance2(point(chord[c], 0), a, ab, inverse),
+                                            segmentDistance2(point(chord[c], 1), a, ab, inverse))));
     }
 }
 
