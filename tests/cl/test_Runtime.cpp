@@ -78,3 +78,30 @@ TEST(Runtime, DeviceBufferOverHostMemorySeesKernelWrites) {
     EXPECT_EQ(DeviceBuffer<cl_int>(runtime, std::vector<cl_int>{}).size(), 0u);
     EXPECT_EQ(DeviceBuffer<cl_int>::over(runtime, nullptr, 0).size(), 0u);
 }
+
+// A buffer for reading host data: kernels see the vector's values; on the
+// CPU device the buffer is the vector's own memory (no copy), so a change
+// made after the buffer was created still reaches the kernel. A QueueDrain
+// going out of scope leaves nothing running on its queue.
+TEST(Runtime, DeviceBufferReadingIsTheHostMemoryOnTheCpu) {
+    Runtime runtime("cpu");
+    const cl::Program program = runtime.buildProgram(
+        "__kernel void twice(__global const int* in, __global int* out) {"
+        "  out[get_global_id(0)] = 2 * in[get_global_id(0)]; }",
+        "twice.cl");
+    std::vector<cl_int> input = {1, -2, 3};
+    std::vector<cl_int> output(input.size(), 0);
+    const auto in = DeviceBuffer<cl_int>::reading(runtime, input);
+    const auto out = DeviceBuffer<cl_int>::over(runtime, output.data(), output.size());
+    input[1] = 5;
+    {
+        const QueueDrain drain(runtime.queue());
+        cl::Kernel kernel(program, "twice");
+        kernel.setArg(0, in.get());
+        kernel.setArg(1, out.get());
+        runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(input.size()));
+    }
+    out.mapForHost(runtime, true);
+    EXPECT_EQ(output, (std::vector<cl_int>{2, 10, 6}));
+    EXPECT_EQ(DeviceBuffer<cl_int>::reading(runtime, std::vector<cl_int>{}).size(), 0u);
+}
