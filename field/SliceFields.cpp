@@ -10,6 +10,7 @@
 
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Precision.hpp"
+#include "geometry/ClosestPoint.hpp"
 
 namespace dfrecon {
 
@@ -128,6 +129,24 @@ std::vector<RealN> swappedXY(const std::vector<RealN>& vectors) {
     return swapped;
 }
 
+// A table the kernels read in both of the field kernel's frames: as it is
+// (lanes along rows) and with x and y swapped (lanes down columns), each
+// with its buffer. On CPU devices the buffers are these vectors themselves
+// (DeviceBuffer::reading), so the table stays where it was made.
+template <class T>
+struct FramedTable {
+    FramedTable(ocl::Runtime& runtime, std::vector<T> table)
+        : xy(std::move(table)),
+          yx(swappedXY(xy)),
+          xyBuffer(ocl::DeviceBuffer<T>::reading(runtime, xy)),
+          yxBuffer(ocl::DeviceBuffer<T>::reading(runtime, yx)) {}
+    FramedTable(const FramedTable&) = delete;
+    FramedTable& operator=(const FramedTable&) = delete;
+
+    const std::vector<T> xy, yx;
+    const ocl::DeviceBuffer<T> xyBuffer, yxBuffer;
+};
+
 // The tree of segments[first, first + count): O(count). Capsules are
 // computed in double from the coordinates the kernel reads; its b - a
 // rounded once (originAndStep) and a dev rounded down to float are covered
@@ -156,17 +175,12 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
         return r;
     };
-    // Squared distance from p to segment a + t·ab, given 1 / |ab|^2 (0 for a
-    // point): a multiplication where segment_parameter divides, as this runs
-    // for both ends of every segment.
-    const auto segmentDistance2 = [](Point2 p, Point2 a, Point2 ab, double inverse) {
+    // Squared distance from p to the chord a + t·ab (the shared closest-point
+    // parameter, with b - a formed once per chord rather than per call).
+    const auto chordDistance2 = [](Point2 p, Point2 a, Point2 ab) {
         const Point2 ap = p - a;
-        const Point2 q = ap - std::clamp(dot(ap, ab) * inverse, 0.0, 1.0) * ab;
+        const Point2 q = ap - nearestSegmentParameter(ap.x, ap.y, ab.x, ab.y) * ab;
         return dot(q, q);
-    };
-    const auto inverseLength2 = [](Point2 ab) {
-        const double length2 = dot(ab, ab);
-        return length2 > 0 ? 1 / length2 : 0.0;
     };
     for (std::size_t leaf = 0; leaf * kLeaf < count; ++leaf) {
         const std::size_t begin = first + leaf * kLeaf,
@@ -178,7 +192,6 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         // squares, with one square root per leaf (hypot per end cost a
         // quarter of the host's time on dense contours).
         const Point2 ab = b - a;
-        const double inverse = inverseLength2(ab);
         double radius2 = 0;
         for (std::size_t k = begin; k < end; ++k) {
             const Real4 s = flat.segments[k];
@@ -186,8 +199,8 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
             segmentBox.s[0] = std::min(s.s[0], s.s[2]), segmentBox.s[1] = std::min(s.s[1], s.s[3]);
             segmentBox.s[2] = std::max(s.s[0], s.s[2]), segmentBox.s[3] = std::max(s.s[1], s.s[3]);
             into = unite(into, segmentBox);
-            radius2 = std::max({radius2, segmentDistance2(point(s, 0), a, ab, inverse),
-                                segmentDistance2(point(s, 1), a, ab, inverse)});
+            radius2 = std::max(
+                {radius2, chordDistance2(point(s, 0), a, ab), chordDistance2(point(s, 1), a, ab)});
         }
         radius = std::sqrt(radius2);
         chord[leaves + leaf] = chordOf(a, b);
@@ -202,13 +215,11 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
         // Each child's segments lie within its dev of its chord, whose
         // points lie within the larger distance of its ends from ours.
         const Point2 a = point(chord[l], 0), b = point(chord[r], 1), ab = b - a;
-        const double inverse = inverseLength2(ab);
         chord[n] = chordOf(a, b);
         for (const std::size_t c : {l, r})
             dev[n] = std::max(
-                dev[n],
-                dev[c] + std::sqrt(std::max(segmentDistance2(point(chord[c], 0), a, ab, inverse),
-                                            segmentDistance2(point(chord[c], 1), a, ab, inverse))));
+                dev[n], dev[c] + std::sqrt(std::max(chordDistance2(point(chord[c], 0), a, ab),
+                                                    chordDistance2(point(chord[c], 1), a, ab))));
     }
 }
 
@@ -314,30 +325,17 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     // The tables the kernels read, kept here while they run: on CPU devices
     // the buffers are these host vectors themselves (DeviceBuffer::reading).
     using Real2 = std::conditional_t<std::is_same_v<Real, cl_double>, cl_double2, cl_float2>;
-    const std::vector<Real4> segmentSteps = originAndStep(flat.segments),
-                             chordSteps = originAndStep(flat.chords);
-    const std::vector<Real4> segmentStepsYX = swappedXY(segmentSteps),
-                             boxesYX = swappedXY(flat.boxes), chordStepsYX = swappedXY(chordSteps);
-    const std::vector<Real2> segmentProjectors = projectorsOf<Real2>(flat.segments),
-                             chordProjectorTable = projectorsOf<Real2>(flat.chords);
-    const std::vector<Real2> segmentProjectorsYX = swappedXY(segmentProjectors),
-                             chordProjectorsYX = swappedXY(chordProjectorTable);
-    const std::vector<Real> devTable(flat.devs.begin(), flat.devs.end());
     using ocl::DeviceBuffer;
-    const auto segments = DeviceBuffer<Real4>::reading(runtime, segmentSteps);
-    const auto segmentsSwapped = DeviceBuffer<Real4>::reading(runtime, segmentStepsYX);
-    const auto projectors = DeviceBuffer<Real2>::reading(runtime, segmentProjectors);
-    const auto projectorsSwapped = DeviceBuffer<Real2>::reading(runtime, segmentProjectorsYX);
+    const FramedTable<Real4> segments(runtime, originAndStep(flat.segments));
+    const FramedTable<Real2> projectors(runtime, projectorsOf<Real2>(flat.segments));
+    const FramedTable<Real4> boxes(runtime, flat.boxes);
+    const FramedTable<Real4> chords(runtime, originAndStep(flat.chords));
+    const FramedTable<Real2> chordProjectors(runtime, projectorsOf<Real2>(flat.chords));
+    const std::vector<Real> devTable(flat.devs.begin(), flat.devs.end());
+    const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
     const auto ids = DeviceBuffer<cl_uint2>::reading(runtime, flat.ids);
     const auto sliceFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst);
     const auto sliceCount = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceCount);
-    const auto boxes = DeviceBuffer<Real4>::reading(runtime, flat.boxes);
-    const auto boxesSwapped = DeviceBuffer<Real4>::reading(runtime, boxesYX);
-    const auto chords = DeviceBuffer<Real4>::reading(runtime, chordSteps);
-    const auto chordsSwapped = DeviceBuffer<Real4>::reading(runtime, chordStepsYX);
-    const auto chordProjectors = DeviceBuffer<Real2>::reading(runtime, chordProjectorTable);
-    const auto chordProjectorsSwapped = DeviceBuffer<Real2>::reading(runtime, chordProjectorsYX);
-    const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
 
     const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
@@ -383,13 +381,13 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         const ocl::QueueDrain drain(runtime.queue());
         cl::Kernel cull(program, "tile_candidates");
         int a = 0;
-        cull.setArg(a++, segments.get());
-        cull.setArg(a++, projectors.get());
+        cull.setArg(a++, segments.xyBuffer.get());
+        cull.setArg(a++, projectors.xyBuffer.get());
         cull.setArg(a++, sliceFirst.get());
         cull.setArg(a++, sliceCount.get());
-        cull.setArg(a++, boxes.get());
-        cull.setArg(a++, chords.get());
-        cull.setArg(a++, chordProjectors.get());
+        cull.setArg(a++, boxes.xyBuffer.get());
+        cull.setArg(a++, chords.xyBuffer.get());
+        cull.setArg(a++, chordProjectors.xyBuffer.get());
         cull.setArg(a++, devs.get());
         cull.setArg(a++, treeFirst.get());
         cull.setArg(a++, leafBase.get());
@@ -419,19 +417,19 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
 
         cl::Kernel field(program, "signed_distance_2d");
         a = 0;
-        field.setArg(a++, segments.get());
-        field.setArg(a++, segmentsSwapped.get());
-        field.setArg(a++, projectors.get());
-        field.setArg(a++, projectorsSwapped.get());
+        field.setArg(a++, segments.xyBuffer.get());
+        field.setArg(a++, segments.yxBuffer.get());
+        field.setArg(a++, projectors.xyBuffer.get());
+        field.setArg(a++, projectors.yxBuffer.get());
         field.setArg(a++, ids.get());
         field.setArg(a++, sliceFirst.get());
         field.setArg(a++, sliceCount.get());
-        field.setArg(a++, boxes.get());
-        field.setArg(a++, boxesSwapped.get());
-        field.setArg(a++, chords.get());
-        field.setArg(a++, chordsSwapped.get());
-        field.setArg(a++, chordProjectors.get());
-        field.setArg(a++, chordProjectorsSwapped.get());
+        field.setArg(a++, boxes.xyBuffer.get());
+        field.setArg(a++, boxes.yxBuffer.get());
+        field.setArg(a++, chords.xyBuffer.get());
+        field.setArg(a++, chords.yxBuffer.get());
+        field.setArg(a++, chordProjectors.xyBuffer.get());
+        field.setArg(a++, chordProjectors.yxBuffer.get());
         field.setArg(a++, devs.get());
         field.setArg(a++, treeFirst.get());
         field.setArg(a++, leafBase.get());

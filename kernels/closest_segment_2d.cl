@@ -78,9 +78,9 @@
 #ifndef COLUMNS
 #define COLUMNS 0x40000000u
 #endif
-// tile_candidates' lanesAlong: by the contour (the default), rows, columns.
+// tile_candidates' lanesAlong (FieldKernelOptions::lanesAlong): by the
+// contour (the default), columns, or any other value for rows.
 #define LANES_ALONG_CONTOUR 0u
-#define LANES_ALONG_ROWS 1u
 #define LANES_ALONG_COLUMNS 2u
 // Leaves tile_candidates keeps to list the segments of a sparse tile from:
 // more than those hold more segments than the default leafListsFrom.
