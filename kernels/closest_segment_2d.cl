@@ -110,6 +110,7 @@
 #define CONVERT_FLOATV(x) ((float)(x))
 #define CONVERT_MASKV(x) ((int)(x))
 #define VSTORE(v, offset, p) ((p)[offset] = (v))
+#define VLOAD(offset, p) ((p)[offset])
 #define MASKV int  // scalar comparisons give int whatever the operand type
 #define UINTV uint
 #define SELECT_ID(a, b, mask) ((mask) ? (b) : (a))
@@ -125,6 +126,7 @@
 #define CONVERT_FLOATV CONCAT(convert_float, LANES)
 #define CONVERT_MASKV CONCAT(convert_, MASKV)
 #define VSTORE CONCAT(vstore, LANES)
+#define VLOAD CONCAT(vload, LANES)
 // Vector comparison and select() masks have the lane type's width.
 #if defined(REAL_IS_DOUBLE)
 #define MASKV CONCAT(long, LANES)
@@ -847,7 +849,6 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     // that: where the nearest point slides along the contour from step to
     // step, the nearer bound of the two (any segment bounds).
     MASK_SCALAR ahead[LANES];
-    MASKV twoBefore = (MASKV)(0);
     uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS steps
     uint blockListed = 0;
     const uint lastLane = min(laneFirst + LANES, laneLimit) - 1;
@@ -944,12 +945,11 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
 
 #undef BLOCK_LO
 #undef BLOCK_HI
-        VSTORE(n.bestSeg, 0, segs);
-        if (listed & LEAF_LISTED) {
-            const MASKV moved = j == stepFirst ? (MASKV)(0) : n.bestSeg - twoBefore;
+        if (listed & LEAF_LISTED) {  // segs still holds the step before's
+            const MASKV moved = j == stepFirst ? (MASKV)(0) : n.bestSeg - VLOAD(0, segs);
             VSTORE(clamp(n.bestSeg + moved, (MASKV)(first), (MASKV)(first + count - 1)), 0, ahead);
-            twoBefore = n.bestSeg;
         }
+        VSTORE(n.bestSeg, 0, segs);
         const UINTV id = count > 0 ? laneIds(ids, segs, n.bestT) : (UINTV)(0xffffffffu);
         const REALV unsigned_ = sqrt(n.best2);
         if (down)
