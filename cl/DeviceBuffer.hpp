@@ -46,7 +46,8 @@ class DeviceBuffer {
     /// Device memory holding a copy of `host`, copied at creation: no queue
     /// round trip, which costs more than the copy for the small tables most
     /// launches take.
-    DeviceBuffer(Runtime& runtime, const std::vector<T>& host,
+    template <class Allocator>
+    DeviceBuffer(Runtime& runtime, const std::vector<T, Allocator>& host,
                  cl_mem_flags flags = CL_MEM_READ_ONLY)
         // OpenCL takes the pointer as void*; with COPY_HOST_PTR it only reads.
         : buffer_(allocate(runtime, flags | CL_MEM_COPY_HOST_PTR, host.size(),
@@ -67,9 +68,10 @@ class DeviceBuffer {
 
     /// Device memory for kernels to read `host` from: on CPU devices the
     /// host memory itself (over(), read-only: PoCL took 150 µs to create a
-    /// copy of 320 KB, measured alone), elsewhere a copy. `host` must stay allocated and unchanged
-    /// while the buffer lives.
-    static DeviceBuffer reading(Runtime& runtime, const std::vector<T>& host) {
+    /// copy of 320 KB, measured alone), elsewhere a copy. `host` must stay
+    /// allocated and unchanged while the buffer lives.
+    template <class Allocator>
+    static DeviceBuffer reading(Runtime& runtime, const std::vector<T, Allocator>& host) {
         if (runtime.device().kind != DeviceKind::Cpu) return DeviceBuffer(runtime, host);
         // OpenCL takes the pointer as void*; a read-only buffer only reads it.
         return over(runtime, const_cast<T*>(host.data()), host.size(), CL_MEM_READ_ONLY);

@@ -3,18 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
 #include "cl/DeviceBuffer.hpp"
+#include "cl/HostScratch.hpp"
 #include "cl/Precision.hpp"
 #include "geometry/ClosestPoint.hpp"
 
 namespace dfrecon {
 
 namespace {
+
+// Host tables and lists live in kept scratch memory: fresh pages for them on
+// every call cost up to 0.8 ms of a 5.5 ms field (cl/HostScratch.hpp).
+using ocl::ScratchVector;
 
 constexpr std::uint32_t kTile = 16;  // work-group side in pixels
 constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
@@ -56,12 +60,12 @@ void checkLimits(const std::vector<Slice>& slices) {
 // segments (the kernel's header says how it is read).
 template <class Real4>
 struct FlatSegments {
-    std::vector<Real4> segments;
-    std::vector<cl_uint2> ids;  // (segment id, end vertex id)
+    ScratchVector<Real4> segments;
+    ScratchVector<cl_uint2> ids;  // (segment id, end vertex id)
     std::vector<cl_uint> sliceFirst, sliceCount;
-    std::vector<Real4> boxes;   // (xmin, ymin, xmax, ymax) per node
-    std::vector<Real4> chords;  // per node: (ax, ay, bx, by), a segment that lies within
-    std::vector<double> devs;   // dev of all its segments (in the Real coordinates)
+    ScratchVector<Real4> boxes;   // (xmin, ymin, xmax, ymax) per node
+    ScratchVector<Real4> chords;  // per node: (ax, ay, bx, by), a segment that lies within
+    ScratchVector<double> devs;   // dev of all its segments (in the Real coordinates)
     std::vector<cl_uint> treeFirst, leafBase;  // per slice: its heap in boxes, first leaf node
     double magnitudeMm = 0;                    // largest coordinate, for the rounding slack
 };
@@ -85,8 +89,8 @@ Real4 unite(Real4 a, Real4 b) {
 // Segments (ax, ay, bx, by) as the kernel reads them: (ax, ay, bx - ax,
 // by - ay), the differences rounded once from the exact ones.
 template <class Real4>
-std::vector<Real4> originAndStep(const std::vector<Real4>& segments) {
-    std::vector<Real4> kernelForm(segments.size());
+ScratchVector<Real4> originAndStep(const ScratchVector<Real4>& segments) {
+    ScratchVector<Real4> kernelForm(segments.size());
     std::transform(segments.begin(), segments.end(), kernelForm.begin(), [](const Real4& s) {
         using Real = std::decay_t<decltype(s.s[0])>;
         Real4 r = s;
@@ -101,8 +105,8 @@ std::vector<Real4> originAndStep(const std::vector<Real4>& segments) {
 // nearest point of the segment to p has parameter dot(p - a, projector)
 // clamped to [0, 1], with no division in the kernel.
 template <class Real2, class Real4>
-std::vector<Real2> projectorsOf(const std::vector<Real4>& segments) {
-    std::vector<Real2> projectors(segments.size());
+ScratchVector<Real2> projectorsOf(const ScratchVector<Real4>& segments) {
+    ScratchVector<Real2> projectors(segments.size());
     std::transform(segments.begin(), segments.end(), projectors.begin(), [](const Real4& s) {
         const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
         const double length2 = dx * dx + dy * dy;
@@ -118,8 +122,8 @@ std::vector<Real2> projectorsOf(const std::vector<Real4>& segments) {
 // The same vectors with x and y swapped ((y0, x0, y1, x1) or (y, x)): the
 // kernel's frame for lanes down a column.
 template <class RealN>
-std::vector<RealN> swappedXY(const std::vector<RealN>& vectors) {
-    std::vector<RealN> swapped(vectors.size());
+ScratchVector<RealN> swappedXY(const ScratchVector<RealN>& vectors) {
+    ScratchVector<RealN> swapped(vectors.size());
     std::transform(vectors.begin(), vectors.end(), swapped.begin(), [](const RealN& v) {
         RealN r = v;
         for (std::size_t k = 0; k + 1 < sizeof(v.s) / sizeof(v.s[0]); k += 2)
@@ -135,7 +139,7 @@ std::vector<RealN> swappedXY(const std::vector<RealN>& vectors) {
 // (DeviceBuffer::reading), so the table stays where it was made.
 template <class T>
 struct FramedTable {
-    FramedTable(ocl::Runtime& runtime, std::vector<T> table)
+    FramedTable(ocl::Runtime& runtime, ScratchVector<T> table)
         : xy(std::move(table)),
           yx(swappedXY(xy)),
           xyBuffer(ocl::DeviceBuffer<T>::reading(runtime, xy)),
@@ -143,7 +147,7 @@ struct FramedTable {
     FramedTable(const FramedTable&) = delete;
     FramedTable& operator=(const FramedTable&) = delete;
 
-    const std::vector<T> xy, yx;
+    const ScratchVector<T> xy, yx;
     const ocl::DeviceBuffer<T> xyBuffer, yxBuffer;
 };
 
@@ -264,8 +268,8 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
 // contour too), w the sum of the directions from this crossing to the row's
 // end. O(segments · rows they span + crossings · log).
 struct RowCrossings {
-    std::vector<cl_uint> rowFirst;  // size rows + 1
-    std::vector<cl_int2> crossings;
+    ScratchVector<cl_uint> rowFirst;  // size rows + 1
+    ScratchVector<cl_int2> crossings;
 };
 
 RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, std::size_t end,
@@ -331,7 +335,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const FramedTable<Real4> boxes(runtime, flat.boxes);
     const FramedTable<Real4> chords(runtime, originAndStep(flat.chords));
     const FramedTable<Real2> chordProjectors(runtime, projectorsOf<Real2>(flat.chords));
-    const std::vector<Real> devTable(flat.devs.begin(), flat.devs.end());
+    const ScratchVector<Real> devTable(flat.devs.begin(), flat.devs.end());
     const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
     const auto ids = DeviceBuffer<cl_uint2>::reading(runtime, flat.ids);
     const auto sliceFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst);
@@ -341,14 +345,14 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
     const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
     const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
-    // The tile lists, in host memory on CPU devices too: a new device
+    // The tile lists, in kept host memory on CPU devices too: a new device
     // allocation is fresh pages, which the kernel would fault in one by one
-    // (a 512² grid's lists take 1.3 MB), where the host heap can reuse its own.
+    // (a 512² grid's lists take 1.3 MB).
     const std::size_t listRoom = tilesX * tilesY * batch * capacity;
     const bool cpu = runtime.device().kind == ocl::DeviceKind::Cpu;
-    const std::unique_ptr<cl_uint[]> listMemory(cpu ? new cl_uint[listRoom] : nullptr);
+    const ocl::ScratchArray<cl_uint> listMemory(cpu ? listRoom : 0);
     const auto candidates =
-        cpu ? DeviceBuffer<cl_uint>::over(runtime, listMemory.get(), listRoom, CL_MEM_READ_WRITE)
+        cpu ? DeviceBuffer<cl_uint>::over(runtime, listMemory.data(), listRoom, CL_MEM_READ_WRITE)
             : DeviceBuffer<cl_uint>(runtime, listRoom);
     DeviceBuffer<cl_uint> candidateCount(runtime, tilesX * tilesY * batch);
     // The kernel writes straight into the result where the device shares host
