@@ -847,7 +847,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     MASK_SCALAR segs[LANES];  // each lane's nearest segment in the step before
     // ... moved on along the contour as far as it moved from the step before
     // that: where the nearest point slides along the contour from step to
-    // step, the nearer bound of the two (any segment bounds).
+    // step, a near bound (any segment bounds).
     MASK_SCALAR ahead[LANES];
     uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS steps
     uint blockListed = 0;
@@ -876,13 +876,16 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
                 blockListed = blockLeaves(segments, projectors, first, count, box, chord,
                                           chordProjector, dev, leaves, list, leafCount, BLOCK_LO,
                                           BLOCK_HI, marginMm2, &hint, block);
-            // Each lane's bound: its own nearest segment in the step before,
-            // or on the tile's first step the one nearest the block's centre.
+            // Each lane's bound: its nearest segment in the step before,
+            // moved on along the contour as far as it moved then (ahead), or
+            // on the tile's first step the one nearest the block's centre.
+            // The lesser of that and the unmoved segment was no tighter
+            // overall: 5.13 against 5.05 ms at 10 000 segments, as the
+            // second gather cost more than the leaves it saved.
             REALV t;
             const REALV within2 =
                 j == stepFirst ? segmentDistance2(segments[hint], projectors[hint], px, py, &t)
-                               : fmin(laneSegmentDistance2(segments, projectors, segs, px, py),
-                                      laneSegmentDistance2(segments, projectors, ahead, px, py));
+                               : laneSegmentDistance2(segments, projectors, ahead, px, py);
             scanLeaves(&n, segments, projectors, first, count, chord, chordProjector, dev, leaves,
                        block, blockListed, within2, px, py, slackMm);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
