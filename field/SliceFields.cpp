@@ -20,8 +20,15 @@ namespace {
 // every call cost up to 0.8 ms of a 5.5 ms field (cl/HostScratch.hpp).
 using ocl::ScratchVector;
 
-constexpr std::uint32_t kTile = 16;  // work-group side in pixels
-constexpr std::uint32_t kLeaf = 8;   // segments per leaf of the box tree
+// Tile sides in pixels (a work-group's): wide tiles where segments are
+// shorter than kWideTilesBelowPx on average. There nearly every tile lists
+// leaves, and a wide tile lists them with a quarter of the tree walks for
+// little more filtering per block of pixels: 5000, 10 000 and 20 000
+// segments took 10, 5 and 5 % less time; 1 000 and 3 000 took 26 and 3 %
+// more, as segment lists grow with the tile (docs/fields.md).
+constexpr std::uint32_t kTile = 16, kWideTile = 32;
+constexpr double kWideTilesBelowPx = 0.5;
+constexpr std::uint32_t kLeaf = 8;  // segments per leaf of the box tree
 // Candidates a tile lists at most; beyond, its pixels walk the tree. Each
 // work-item filters the list again per 8 rows, so long lists still scan
 // faster than the walk: 96 and 192 were slower on dense contours, 512 and
@@ -318,10 +325,21 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
     return rows;
 }
 
+// The mean length of `segments` in pixels. O(segments).
+template <class Real4>
+double meanLengthPx(const ScratchVector<Real4>& segments, const SliceGrid& grid) {
+    double length = 0;
+    for (const Real4& s : segments) {
+        const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
+        length += std::sqrt(dx * dx + dy * dy);  // hypot is several times slower
+    }
+    return segments.empty() ? 0 : length / double(segments.size()) / grid.pixelMm;
+}
+
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
-              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, cl_uint capacity,
-              cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
+              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, std::uint32_t tile,
+              cl_uint capacity, cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
               FieldKernelStats* stats) {
     const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const std::size_t batch = end - begin;
@@ -343,8 +361,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
 
     const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
-    const std::size_t tilesX = (std::size_t(grid.width) + kTile - 1) / kTile;
-    const std::size_t tilesY = (std::size_t(grid.height) + kTile - 1) / kTile;
+    if (tile == 0) tile = meanLengthPx(flat.segments, grid) < kWideTilesBelowPx ? kWideTile : kTile;
+    const std::size_t tilesX = (std::size_t(grid.width) + tile - 1) / tile;
+    const std::size_t tilesY = (std::size_t(grid.height) + tile - 1) / tile;
     // The tile lists, in kept host memory on CPU devices too: a new device
     // allocation is fresh pages, which the kernel would fault in one by one
     // (a 512² grid's lists take 1.3 MB).
@@ -363,7 +382,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const auto nearest = DeviceBuffer<cl_uint>::over(runtime, out.nearestId.data() + offset,
                                                      batch * grid.pixelCount());
 
-    const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(kTile) +
+    const std::string options = ocl::realOptions<Real>() + " -DTILE=" + std::to_string(tile) +
                                 " -DLANES=" + std::to_string(lanes) +
                                 " -DLEAF=" + std::to_string(kLeaf) +
                                 " -DBLOCK_LIST=" + std::to_string(kListCapacity) +
@@ -451,10 +470,11 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         field.setArg(a++, nearest.get());
         // A work-item computes `lanes` pixels of a tile's rows, row after row.
         runtime.queue().enqueueNDRangeKernel(field, cl::NullRange,
-                                             cl::NDRange(tilesX * kTile / lanes, tilesY, batch),
-                                             cl::NDRange(kTile / lanes, 1, 1));
+                                             cl::NDRange(tilesX * tile / lanes, tilesY, batch),
+                                             cl::NDRange(tile / lanes, 1, 1));
         distance.mapForHost(runtime, false);
         nearest.mapForHost(runtime, true);
+        if (stats) stats->tilePixels = tile;
         if (stats)
             for (const cl_uint counted : candidateCount.download(runtime)) {
                 const cl_uint listed = counted & ~kColumns;
@@ -492,6 +512,9 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
     if (lanes == 0) lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
     if (lanes != 1 && lanes != 4 && lanes != 8)
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
+    const std::uint32_t tile = std::uint32_t(options.tilePixels);
+    if (tile != 0 && tile != kTile && tile != kWideTile)
+        throw std::invalid_argument("field kernel tiles must be 0 (by density), 16 or 32 pixels");
     const cl_uint capacity = cl_uint(
         options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
     const cl_uint leafListsFrom =
@@ -512,7 +535,7 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
             runBatch<decltype(real), decltype(real4)>(
-                runtime, slices, begin, end, grid, lanes, capacity, leafListsFrom,
+                runtime, slices, begin, end, grid, lanes, tile, capacity, leafListsFrom,
                 cl_uint(options.lanesAlong), fields, options.stats);
         });
         begin = end;

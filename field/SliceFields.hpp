@@ -42,6 +42,9 @@ struct FieldKernelStats {
     std::size_t columnTiles = 0;
     /// Candidate segments in all the segment lists.
     std::size_t listed = 0;
+    /// The side of the tiles, in pixels, of the last batch of slices
+    /// (FieldKernelOptions::tilePixels).
+    std::uint32_t tilePixels = 0;
     /// Candidate segments per tile listing segments, on average.
     double meanListed() const {
         const std::size_t listing = tiles - overflowingTiles - leafListingTiles;
@@ -69,9 +72,9 @@ struct FieldKernelOptions {
     /// Float arithmetic, what devices without fp64 get (about 1e-6 relative
     /// error instead of 1e-12).
     bool singlePrecision = false;
-    /// Candidates a tile of 16×16 pixels lists at most before its pixels walk
-    /// the segment tree instead: -1 = the default. Results are the same
-    /// (0: always walk; tests run both ways).
+    /// Candidates a tile lists at most before its pixels walk the segment
+    /// tree instead: -1 = the default. Results are the same (0: always walk;
+    /// tests run both ways).
     int tileListCapacity = -1;
     /// Tiles whose candidates lie in leaves of the segment tree (runs of 8
     /// segments) holding more segments than this list those leaves instead:
@@ -82,6 +85,10 @@ struct FieldKernelOptions {
     /// Which way each work-item's pixels lie; results are the same (tests run
     /// every way).
     LanesAlong lanesAlong = LanesAlong::Contour;
+    /// The side of a tile, in pixels: 0 = by density (32 where a batch's
+    /// segments are shorter than half a pixel on average, else 16), or 16
+    /// or 32. Results are the same; tests run both.
+    int tilePixels = 0;
     /// When set, receives what the tile lists held (one more download of a
     /// count per tile; for benchmarks and tests).
     FieldKernelStats* stats = nullptr;
@@ -89,7 +96,8 @@ struct FieldKernelOptions {
 
 /// Fields of all `slices` on `grid` with the OpenCL kernels of
 /// kernels/closest_segment_2d.cl: a tree of boxes and capsules over runs of
-/// consecutive segments per slice; each 16×16 tile lists the segments that can
+/// consecutive segments per slice; each tile (16×16 pixels, 32×32 for dense
+/// contours) lists the segments that can
 /// be nearest to one of its pixels (when few) or the leaves of the tree that
 /// hold them (when many: each row of pixels then scans the leaves it can
 /// reach from the row below's nearest), else its pixels walk the tree row by

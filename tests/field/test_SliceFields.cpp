@@ -74,26 +74,39 @@ void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid
 // shapes) in double precision, and float (devices without fp64) in 8 and 1;
 // and every way to the nearest segment: every tile walking the tree per
 // pixel row (lists of 0), every tile scanning its list of segments (lists
-// of 4096, never of leaves), and every tile listing leaves (from 0).
+// of 4096, never of leaves), and every tile listing leaves (from 0); lanes
+// along rows, columns or by the contour; tiles of 16 and 32 pixels.
 void expectAgreement(const std::vector<Slice>& slices, const SliceGrid& grid) {
     const SliceFields reference = computeSliceFieldsReference(slices, grid);
     const int never = 1 << 30;
     for (const FieldKernelOptions options :
-         {FieldKernelOptions{8, false}, FieldKernelOptions{4, false}, FieldKernelOptions{1, false},
-          FieldKernelOptions{8, true}, FieldKernelOptions{1, true}, FieldKernelOptions{8, false, 0},
-          FieldKernelOptions{1, true, 0}, FieldKernelOptions{8, false, 4096, never},
-          FieldKernelOptions{1, true, 4096, never}, FieldKernelOptions{8, false, -1, 0},
-          FieldKernelOptions{4, false, -1, 0}, FieldKernelOptions{1, true, -1, 0},
+         {FieldKernelOptions{8, false},
+          FieldKernelOptions{4, false},
+          FieldKernelOptions{1, false},
+          FieldKernelOptions{8, true},
+          FieldKernelOptions{1, true},
+          FieldKernelOptions{8, false, 0},
+          FieldKernelOptions{1, true, 0},
+          FieldKernelOptions{8, false, 4096, never},
+          FieldKernelOptions{1, true, 4096, never},
+          FieldKernelOptions{8, false, -1, 0},
+          FieldKernelOptions{4, false, -1, 0},
+          FieldKernelOptions{1, true, -1, 0},
           FieldKernelOptions{8, false, -1, -1, LanesAlong::Columns},
           FieldKernelOptions{8, false, 0, -1, LanesAlong::Columns},
           FieldKernelOptions{8, false, -1, 0, LanesAlong::Columns},
           FieldKernelOptions{1, true, -1, 0, LanesAlong::Columns},
-          FieldKernelOptions{8, false, -1, 0, LanesAlong::Rows}}) {
+          FieldKernelOptions{8, false, -1, 0, LanesAlong::Rows},
+          FieldKernelOptions{8, false, -1, -1, LanesAlong::Contour, 16},
+          FieldKernelOptions{8, false, -1, -1, LanesAlong::Contour, 32},
+          FieldKernelOptions{8, false, -1, 0, LanesAlong::Contour, 32},
+          FieldKernelOptions{1, true, -1, 0, LanesAlong::Contour, 32}}) {
         SCOPED_TRACE("lanes " + std::to_string(options.lanes) +
                      (options.singlePrecision ? ", float" : ", double") + ", tile lists of " +
                      std::to_string(options.tileListCapacity) + ", leaves listed from " +
                      std::to_string(options.leafListsFrom) + ", lanes along " +
-                     std::to_string(int(options.lanesAlong)));
+                     std::to_string(int(options.lanesAlong)) + ", tiles of " +
+                     std::to_string(options.tilePixels));
         expectVariantAgrees(slices, grid, reference, options);
     }
 }
@@ -219,6 +232,7 @@ TEST(SliceFields, ContoursWithThousandsOfSegments) {
     EXPECT_GT(stats.leafListingTiles, 0u);
     EXPECT_GT(stats.columnTiles, 0u);
     EXPECT_LT(stats.columnTiles, stats.leafListingTiles + stats.overflowingTiles);
+    EXPECT_EQ(stats.tilePixels, 32u);  // segments far shorter than a pixel
 }
 
 // Pixel centres exactly on edges and vertices (1 mm pixels from 0: centres
@@ -277,6 +291,7 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     options.stats = &stats;
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 2u * 7u * 4u);
+    EXPECT_EQ(stats.tilePixels, 16u);  // sides of 20 and 30 pixels
     EXPECT_EQ(stats.overflowingTiles, 0u);
     EXPECT_GE(stats.meanListed(), 1.0);
     EXPECT_LE(stats.meanListed(), 4.0);
@@ -306,6 +321,12 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     options.lanesAlong = LanesAlong::Contour;
     computeSliceFields(runtime(), slices, grid, {}, options);
     EXPECT_EQ(stats.columnTiles, 0u);
+    options.tilePixels = 32;
+    computeSliceFields(runtime(), slices, grid, {}, options);
+    EXPECT_EQ(stats.tiles, 2u * 4u * 2u);
+    EXPECT_EQ(stats.tilePixels, 32u);
+    options.tilePixels = 24;
+    EXPECT_THROW(computeSliceFields(runtime(), slices, grid, {}, options), std::invalid_argument);
 }
 
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
