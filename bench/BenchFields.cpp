@@ -138,6 +138,7 @@ int benchFields(const std::string& device) {
                  compare(kernel.distanceMm, exact.distanceMm, grid.pixelMm));
         ours["x_opencv"] = kernelSeconds / opencvSeconds;
         ours["device"] = runtime.device().deviceName;
+        ours["tile_pixels"] = stats.tilePixels;
         ours["tiles"] = stats.tiles;
         ours["overflowing_tiles"] = stats.overflowingTiles;
         ours["leaf_listing_tiles"] = stats.leafListingTiles;
