@@ -75,6 +75,7 @@ struct FlatSegments {
     ScratchVector<double> devs;   // dev of all its segments (in the Real coordinates)
     std::vector<cl_uint> treeFirst, leafBase;  // per slice: its heap in boxes, first leaf node
     double magnitudeMm = 0;                    // largest coordinate, for the rounding slack
+    double lengthMm = 0;                       // of all the segments, for the tile size
 };
 
 template <class Real4>
@@ -258,6 +259,7 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
                 const Point2 a = contours[c][k] - grid.originMm,
                              b = contours[c][next] - grid.originMm;
                 flat.magnitudeMm = std::max({flat.magnitudeMm, std::abs(a.x), std::abs(a.y)});
+                flat.lengthMm += length(b - a);
                 Real4& r = flat.segments[at];
                 r.s[0] = a.x, r.s[1] = a.y, r.s[2] = b.x, r.s[3] = b.y;
                 cl_uint2& id = flat.ids[at];
@@ -329,23 +331,12 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
     return rows;
 }
 
-// The mean length of `segments` in pixels. O(segments).
-template <class Real4>
-double meanLengthPx(const ScratchVector<Real4>& segments, const SliceGrid& grid) {
-    double length = 0;
-    for (const Real4& s : segments) {
-        const double dx = double(s.s[2]) - double(s.s[0]), dy = double(s.s[3]) - double(s.s[1]);
-        length += std::sqrt(dx * dx + dy * dy);  // hypot is several times slower
-    }
-    return segments.empty() ? 0 : length / double(segments.size()) / grid.pixelMm;
-}
-
 template <class Real, class Real4>
 void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, std::uint32_t tile,
               cl_uint capacity, cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
               FieldKernelStats* stats) {
-    const FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
+    FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const std::size_t batch = end - begin;
 
     // The tables the kernels read, kept here while they run: on CPU devices
@@ -354,7 +345,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     using ocl::DeviceBuffer;
     const FramedTable<Real4> segments(runtime, originAndStep(flat.segments));
     const FramedTable<Real2> projectors(runtime, projectorsOf<Real2>(flat.segments));
-    const FramedTable<Real4> boxes(runtime, flat.boxes);
+    const FramedTable<Real4> boxes(runtime, std::move(flat.boxes));
     const FramedTable<Real4> chords(runtime, originAndStep(flat.chords));
     const FramedTable<Real2> chordProjectors(runtime, projectorsOf<Real2>(flat.chords));
     const ScratchVector<Real> devTable(flat.devs.begin(), flat.devs.end());
@@ -365,7 +356,11 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
 
     const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
     const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
-    if (tile == 0) tile = meanLengthPx(flat.segments, grid) < kWideTilesBelowPx ? kWideTile : kTile;
+    if (tile == 0) {
+        const double meanLengthPx =
+            flat.lengthMm / double(std::max<std::size_t>(1, flat.segments.size())) / grid.pixelMm;
+        tile = meanLengthPx < kWideTilesBelowPx ? kWideTile : kTile;
+    }
     const std::size_t tilesX = (std::size_t(grid.width) + tile - 1) / tile;
     const std::size_t tilesY = (std::size_t(grid.height) + tile - 1) / tile;
     // The tile lists, in kept host memory on CPU devices too: a new device
@@ -478,8 +473,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                                              cl::NDRange(tile / lanes, 1, 1));
         distance.mapForHost(runtime, false);
         nearest.mapForHost(runtime, true);
-        if (stats) stats->tilePixels = tile;
-        if (stats)
+        if (stats) {
+            stats->tilePixels = tile;
             for (const cl_uint counted : candidateCount.download(runtime)) {
                 const cl_uint listed = counted & ~kColumns;
                 ++stats->tiles;
@@ -491,6 +486,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                 else
                     stats->listed += listed;
             }
+        }
     } catch (const cl::Error& e) {
         throw ocl::toClError(e, "closest_segment_2d.cl");
     }
