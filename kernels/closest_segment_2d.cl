@@ -763,30 +763,45 @@ __attribute__((always_inline)) inline void writeRow(__global const uint* rowFirs
     }
 }
 
+// Where writeColumn's lanes stand in their rows' crossings: next[lane] is
+// the first crossing with k > the column last written (or the row's end),
+// winding[lane] its w (0 at the end), and changeAt the least k among them,
+// the first column at which any of them moves on.
+typedef struct {
+    uint next[LANES];
+    int winding[LANES];
+    uint changeAt;
+} ColumnCrossings;
+
 // writeRow for lanes down a column: pixel i of rows `firstRow` + lane (of
-// all the batch's rows), up to `lanesIn` of them. next[lane] is where the
-// search for the lane's row's first crossing with k > i starts; columns come
-// in increasing order, so it only moves on: O(1) per pixel beyond the
-// crossings passed.
-__attribute__((always_inline)) inline void writeColumn(__global const uint* rowFirst,
-                                                       __global const int2* crossings,
-                                                       size_t firstRow, uint lanesIn, uint i,
-                                                       uint width, REALV unsigned_, UINTV id,
-                                                       uint* next, __global float* distance,
-                                                       __global uint* nearestId) {
+// all the batch's rows), up to `lanesIn` of them. Columns come in
+// increasing order, so each lane's place in its crossings only moves on,
+// and only at a column that holds one (most columns hold none): O(1) per
+// pixel beyond the crossings passed.
+__attribute__((always_inline)) inline void writeColumn(
+    __global const uint* rowFirst, __global const int2* crossings, size_t firstRow, uint lanesIn,
+    uint i, uint width, REALV unsigned_, UINTV id, ColumnCrossings* at, __global float* distance,
+    __global uint* nearestId) {
+    if (i >= at->changeAt) {
+        uint changeAt = 0xffffffffu;
+        for (uint l = 0; l < lanesIn; ++l) {
+            const uint rowEnd = rowFirst[firstRow + l + 1];
+            uint c = at->next[l];
+            while (c < rowEnd && (uint)crossings[c].x <= i) ++c;
+            at->next[l] = c;
+            at->winding[l] = c < rowEnd ? crossings[c].y : 0;
+            if (c < rowEnd) changeAt = min(changeAt, (uint)crossings[c].x);
+        }
+        at->changeAt = changeAt;
+    }
     float d[LANES];
     uint idl[LANES];
     VSTORE(CONVERT_FLOATV(unsigned_), 0, d);
     VSTORE(id, 0, idl);
     for (uint l = 0; l < lanesIn; ++l) {
-        const size_t row = firstRow + l;
-        const uint rowEnd = rowFirst[row + 1];
-        uint c = next[l];
-        while (c < rowEnd && (uint)crossings[c].x <= i) ++c;
-        next[l] = c;
-        const int winding = c < rowEnd ? crossings[c].y : 0;
-        distance[row * width + i] = winding != 0 ? -d[l] : d[l];
-        nearestId[row * width + i] = idl[l];
+        const size_t pixel = (firstRow + l) * width + i;
+        distance[pixel] = at->winding[l] != 0 ? -d[l] : d[l];
+        nearestId[pixel] = idl[l];
     }
 }
 
@@ -852,11 +867,13 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS steps
     uint blockListed = 0;
     const uint lastLane = min(laneFirst + LANES, laneLimit) - 1;
-    uint next[LANES];  // writeColumn's crossings
+    ColumnCrossings columnCrossings;  // writeColumn's; its first call finds the windings
+    columnCrossings.changeAt = 0;
     if (down)
         for (uint l = 0; l < LANES; ++l) {
             const size_t row = (size_t)s * height + min(laneFirst + l, lastLane);
-            next[l] = firstCrossingAfter(crossings, rowFirst[row], rowFirst[row + 1], stepFirst);
+            columnCrossings.next[l] =
+                firstCrossingAfter(crossings, rowFirst[row], rowFirst[row + 1], stepFirst);
         }
     const uint lastStep = min(stepFirst + TILE, stepLimit) - 1;
     for (uint j = stepFirst; j <= lastStep; ++j) {
@@ -959,8 +976,8 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
         const REALV unsigned_ = sqrt(n.best2);
         if (down)
             writeColumn(rowFirst, crossings, (size_t)s * height + laneFirst,
-                        lastLane - laneFirst + 1, j, width, unsigned_, id, next, distance,
-                        nearestId);
+                        lastLane - laneFirst + 1, j, width, unsigned_, id, &columnCrossings,
+                        distance, nearestId);
         else
             writeRow(rowFirst, crossings, (size_t)s * height + j, laneFirst, width, unsigned_, id,
                      distance, nearestId);
