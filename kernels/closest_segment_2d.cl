@@ -184,12 +184,10 @@ inline REALV segmentDistance2(REAL4 s, REAL2 projector, REALV px, REAL py, REALV
 
 // The lanes' nearest segment so far: (squared distance, segment index)
 // compared lexicographically, so the lower index wins ties in any order of
-// visits; reach and reach2 say how far a box may be and still hold a segment
-// that beats or ties it. The nearest point's parameter is not kept: one
-// select per segment scanned cost more than finding it again per step
-// (laneSegmentDistance2).
+// visits; bestT is its parameter; reach and reach2 say how far a box may be
+// and still hold a segment that beats or ties it.
 typedef struct {
-    REALV best2, reach, reach2;
+    REALV best2, bestT, reach, reach2;
     MASKV bestSeg;
 } Nearest;
 
@@ -200,6 +198,7 @@ inline void consider(Nearest* n, __global const REAL4* segments, __global const 
     const MASKV better =
         isless(d2, n->best2) | (isequal(d2, n->best2) & ((MASKV)(seg) < n->bestSeg));
     n->best2 = PICK(n->best2, d2, better);
+    n->bestT = PICK(n->bestT, t, better);
     n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
 }
 
@@ -212,6 +211,7 @@ inline void considerInOrder(Nearest* n, __global const REAL4* segments,
     const REALV d2 = segmentDistance2(segments[seg], projectors[seg], px, py, &t);
     const MASKV better = isless(d2, n->best2);
     n->best2 = PICK(n->best2, d2, better);
+    n->bestT = PICK(n->bestT, t, better);
     n->bestSeg = PICK(n->bestSeg, (MASKV)(seg), better);
 }
 
@@ -219,8 +219,9 @@ inline void considerInOrder(Nearest* n, __global const REAL4* segments,
 inline void mergeMinima(Nearest* n, const Nearest* a, const Nearest* b) {
     const MASKV better =
         isless(b->best2, a->best2) | (isequal(b->best2, a->best2) & (b->bestSeg < a->bestSeg));
-    n->best2 = PICK(a->best2, b->best2, better);
+    const REALV best2 = PICK(a->best2, b->best2, better), bestT = PICK(a->bestT, b->bestT, better);
     n->bestSeg = PICK(a->bestSeg, b->bestSeg, better);
+    n->best2 = best2, n->bestT = bestT;
 }
 
 // The lanes' nearest of `listed` segments listed in increasing index order.
@@ -599,12 +600,11 @@ inline uint blockLeaves(__global const REAL4* segments, __global const REAL2* pr
 }
 
 // Squared distance from each lane's point to its own segment
-// segments[seg[lane]], all lanes at once; *t receives the parameters of the
-// nearest points, the same as segmentDistance2's. The lanes' coordinates
-// are put together in registers: written to memory one by one and read
-// back as a vector, they would wait for the stores to drain.
+// segments[seg[lane]], all lanes at once. The lanes' coordinates are put
+// together in registers: written to memory one by one and read back as a
+// vector, they would wait for the stores to drain.
 inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const REAL2* projectors,
-                                  const MASK_SCALAR* seg, REALV px, REAL py, REALV* t) {
+                                  const MASK_SCALAR* seg, REALV px, REAL py) {
 #define SEGMENT(l)                             \
     const REAL4 s##l = segments[(uint)seg[l]]; \
     const REAL2 u##l = projectors[(uint)seg[l]]
@@ -638,8 +638,8 @@ inline REALV laneSegmentDistance2(__global const REAL4* segments, __global const
 #undef PROJECTORS_OF
 #undef SEGMENT
     const REALV apx = px - ax, apy = py - ay;
-    *t = clamp(apx * ux + apy * uy, (REAL)0, (REAL)1);
-    const REALV qx = apx - *t * abx, qy = apy - *t * aby;
+    const REALV t = clamp(apx * ux + apy * uy, (REAL)0, (REAL)1);
+    const REALV qx = apx - t * abx, qy = apy - t * aby;
     return qx * qx + qy * qy;
 }
 
@@ -884,7 +884,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
     (REAL2)((lastLane + (REAL)0.5) * pixelMm, \
             (min(j + BLOCK_ROWS - 1, lastStep) + (REAL)0.5) * pixelMm)
         Nearest n;
-        n.best2 = (REALV)(INFINITY);
+        n.best2 = (REALV)(INFINITY), n.bestT = (REALV)(0);
         n.bestSeg = (MASKV)(0);
         if (listed & LEAF_LISTED) {
             const uint leafCount = listed & ~LEAF_LISTED;
@@ -902,7 +902,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             REALV t;
             const REALV within2 =
                 j == stepFirst ? segmentDistance2(segments[hint], projectors[hint], px, py, &t)
-                               : laneSegmentDistance2(segments, projectors, ahead, px, py, &t);
+                               : laneSegmentDistance2(segments, projectors, ahead, px, py);
             scanLeaves(&n, segments, projectors, first, count, chord, chordProjector, dev, leaves,
                        block, blockListed, within2, px, py, slackMm);
         } else if (listed <= capacity && listed <= BLOCK_LIST) {
@@ -970,9 +970,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             VSTORE(clamp(n.bestSeg + moved, (MASKV)(first), (MASKV)(first + count - 1)), 0, ahead);
         }
         VSTORE(n.bestSeg, 0, segs);
-        REALV t;
-        if (count > 0) laneSegmentDistance2(segments, projectors, segs, px, py, &t);
-        const UINTV id = count > 0 ? laneIds(ids, segs, t) : (UINTV)(0xffffffffu);
+        const UINTV id = count > 0 ? laneIds(ids, segs, n.bestT) : (UINTV)(0xffffffffu);
         const REALV unsigned_ = sqrt(n.best2);
         if (down)
             writeColumn(rowFirst, crossings, (size_t)s * height + laneFirst,
