@@ -45,6 +45,10 @@ constexpr cl_uint kLeafListed = 0x80000000u;
 // The bit that says its work-items' lanes go down its columns (the kernel's
 // COLUMNS).
 constexpr cl_uint kColumns = 0x40000000u;
+// Segments in a batch from which the rows' crossings are found on a thread
+// of their own (runBatch): 10 000 and 5 000 segments took 3 % less time,
+// 2 000 the same, 1 000 and 100 up to 15 % more (the thread's start).
+constexpr std::size_t kCrossingsThreadFrom = 2000;
 // Pixels per launch: bounds the output buffers (8 bytes a pixel) and gives
 // progress reports between launches.
 constexpr std::size_t kPixelsPerBatch = std::size_t(1) << 22;
@@ -339,13 +343,19 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
               std::size_t end, const SliceGrid& grid, std::uint32_t lanes, std::uint32_t tile,
               cl_uint capacity, cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
               FieldKernelStats* stats) {
-    // The rows' crossings (only the field kernel reads them) on a thread of
-    // their own, while this one builds the tables and the device lists the
-    // tiles' candidates: found after the tables, they ran beside the
-    // listing, which already has every core, and the host work before the
-    // first launch left a core idle (3 % of a 10 000-segment field).
-    std::future<RowCrossings> crossingRows =
-        std::async(std::launch::async, [&] { return rowCrossings(slices, begin, end, grid); });
+    // The rows' crossings (only the field kernel reads them), for a batch of
+    // many segments on a thread of their own while this one builds the
+    // tables: found after the tables, they ran beside the candidate listing,
+    // which already has every core, and the host work before the first
+    // launch left a core idle. Fewer segments make tables too quick for the
+    // thread's start to pay (kCrossingsThreadFrom).
+    std::size_t segmentCount = 0;
+    for (std::size_t s = begin; s < end; ++s)
+        for (const Polygon& contour : slices[s].contours) segmentCount += contour.size();
+    std::future<RowCrossings> crossingRows;
+    if (segmentCount >= kCrossingsThreadFrom)
+        crossingRows =
+            std::async(std::launch::async, [&] { return rowCrossings(slices, begin, end, grid); });
     FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const std::size_t batch = end - begin;
 
@@ -406,7 +416,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     const Real marginMm2 =
         Real(256 * double(std::numeric_limits<Real>::epsilon()) *
              (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
-    RowCrossings rows;  // crossingRows' result, kept until the kernels finish
+    RowCrossings rows;  // kept until the kernels finish
     try {
         // Kernels read the host memory of the tables above on CPU devices:
         // whatever is thrown after a launch, they finish before it is freed.
@@ -441,7 +451,7 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
             cl::NDRange(ocl::roundUp(tilesX, 4), ocl::roundUp(tilesY, 4), batch),
             cl::NDRange(4, 4, 1));
         runtime.queue().flush();
-        rows = crossingRows.get();
+        rows = crossingRows.valid() ? crossingRows.get() : rowCrossings(slices, begin, end, grid);
         const auto rowFirst = DeviceBuffer<cl_uint>::reading(runtime, rows.rowFirst);
         const auto crossings = DeviceBuffer<cl_int2>::reading(runtime, rows.crossings);
 
