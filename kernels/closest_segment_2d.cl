@@ -82,6 +82,10 @@
 // contour (the default), columns, or any other value for rows.
 #define LANES_ALONG_CONTOUR 0u
 #define LANES_ALONG_COLUMNS 2u
+// The most segments a lane's bound moves on along the contour from one step
+// to the next (the field kernel's `ahead`): two leaves. 8, 16 and 32 gave
+// 3.63, 3.62 and 3.64 leaves a row at 10 000 segments, no cap 4.05.
+#define MAX_MOVE (2 * LEAF)
 // Leaves tile_candidates keeps to list the segments of a sparse tile from:
 // more than those hold more segments than the default leafListsFrom.
 #define KEPT_LEAVES 16
@@ -861,8 +865,13 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
 
     MASK_SCALAR segs[LANES];  // each lane's nearest segment in the step before
     // ... moved on along the contour as far as it moved from the step before
-    // that: where the nearest point slides along the contour from step to
-    // step, a near bound (any segment bounds).
+    // that, by at most MAX_MOVE segments: where the nearest point slides
+    // along the contour from step to step, a near bound (any segment
+    // bounds). Where it jumps (across the medial axis, or to another
+    // contour), a jump repeated lands anywhere, and that lane's loose bound
+    // made its whole row scan more leaves: with the move capped, a row
+    // scans 3.62 leaves instead of 4.05 at 10 000 segments (3.44 with exact
+    // bounds).
     MASK_SCALAR ahead[LANES];
     uint block[BLOCK_LIST];  // the list's entries for the current BLOCK_ROWS steps
     uint blockListed = 0;
@@ -966,7 +975,9 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
 #undef BLOCK_LO
 #undef BLOCK_HI
         if (listed & LEAF_LISTED) {  // segs still holds the step before's
-            const MASKV moved = j == stepFirst ? (MASKV)(0) : n.bestSeg - VLOAD(0, segs);
+            const MASKV moved = j == stepFirst ? (MASKV)(0)
+                                               : clamp(n.bestSeg - VLOAD(0, segs),
+                                                       (MASKV)(-MAX_MOVE), (MASKV)(MAX_MOVE));
             VSTORE(clamp(n.bestSeg + moved, (MASKV)(first), (MASKV)(first + count - 1)), 0, ahead);
         }
         VSTORE(n.bestSeg, 0, segs);
