@@ -240,14 +240,20 @@ void appendTree(FlatSegments<Real4>& flat, std::size_t first, std::size_t count)
     }
 }
 
+// Segments of slices[begin, end): one per contour point. O(contours).
+std::size_t segmentCount(const std::vector<Slice>& slices, std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
+    for (std::size_t s = begin; s < end; ++s)
+        for (const Polygon& contour : slices[s].contours) count += contour.size();
+    return count;
+}
+
 template <class Real4>
 FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin, std::size_t end,
                             const SliceGrid& grid) {
     FlatSegments<Real4> flat;
     flat.magnitudeMm = double(std::max(grid.width, grid.height)) * grid.pixelMm;
-    std::size_t total = 0;
-    for (std::size_t s = begin; s < end; ++s)
-        for (const Polygon& contour : slices[s].contours) total += contour.size();
+    const std::size_t total = segmentCount(slices, begin, end);
     // Written in place: a segment or id pair put together on the stack and
     // copied in was read back before its stores had landed, which stalled
     // each copy (two fifths of this function's time at 10 000 segments).
@@ -349,11 +355,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     // which already has every core, and the host work before the first
     // launch left a core idle. Fewer segments make tables too quick for the
     // thread's start to pay (kCrossingsThreadFrom).
-    std::size_t segmentCount = 0;
-    for (std::size_t s = begin; s < end; ++s)
-        for (const Polygon& contour : slices[s].contours) segmentCount += contour.size();
     std::future<RowCrossings> crossingRows;
-    if (segmentCount >= kCrossingsThreadFrom)
+    if (segmentCount(slices, begin, end) >= kCrossingsThreadFrom)
         crossingRows =
             std::async(std::launch::async, [&] { return rowCrossings(slices, begin, end, grid); });
     FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);

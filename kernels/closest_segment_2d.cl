@@ -908,8 +908,9 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             // overall: 5.13 against 5.05 ms at 10 000 segments, as the
             // second gather cost more than the leaves it saved. On the
             // tile's first step, the lesser of the distances to the segment
-            // nearest the block's centre and to the first vertex of each
-            // leaf of the block (a contour point, so a bound too): for
+            // nearest the block's centre and to the first point of each leaf
+            // of the block (its first segment's start: a contour point, so a
+            // bound too): for
             // lanes far from the centre the segment alone is loose, and
             // those rows scanned 7.8 leaves instead of 4.0. On every step
             // the vertices would make the bound nearly exact (3.47 leaves a
@@ -919,7 +920,7 @@ __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_d
             if (j == stepFirst) {
                 within2 = segmentDistance2(segments[hint], projectors[hint], px, py, &t);
                 for (uint k = 0; k < blockListed; ++k) {
-                    const REAL4 vertex = chord[leaves + block[k]];
+                    const REAL4 vertex = segments[first + block[k] * LEAF];
                     const REALV dx = px - vertex.x;
                     const REAL dy = py - vertex.y;
                     within2 = fmin(within2, dx * dx + dy * dy);
