@@ -10,11 +10,15 @@ using namespace dfrecon::bench;
 int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
-        "fields|recon|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|all "
-        "[--device SPEC]\n"
+        "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|all "
+        "[--device SPEC] [--truth-sets DIR] [--truth-set NAME]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
         "  recon      reconstruction quality on the synth shapes (marching-cubes baseline)\n"
+        "  truth      reconstruction against known truth: atlas surfaces cut by planes "
+        "(scripts/truth_sets.sh; --truth-sets DIR, default build/truth-sets; --truth-set NAME "
+        "for one), every ROI by dfrecon linear and smooth, shape-based interpolation, "
+        "rasterise + marching cubes and the contour-implied volume\n"
         "  simplify   error-bounded simplification vs OpenMesh's ModQuadric+ModHausdorff\n"
         "  slices-io  .slices reading and writing vs a bare iostream read\n"
         "  rtstruct   RTSTRUCT reading and writing (plastimatch fixtures) vs DCMTK's dcmrt "
@@ -32,12 +36,17 @@ int main(int argc, char** argv) {
         return 1;
     }
     const std::string suite = argv[1];
-    std::string device;
-    for (int a = 2; a + 1 < argc; ++a)
-        if (std::string(argv[a]) == "--device") device = argv[a + 1];
+    std::string device, truthSets, truthSet;
+    for (int a = 2; a + 1 < argc; ++a) {
+        const std::string flag = argv[a];
+        if (flag == "--device") device = argv[a + 1];
+        if (flag == "--truth-sets") truthSets = argv[a + 1];
+        if (flag == "--truth-set") truthSet = argv[a + 1];
+    }
     if (suite == "fields") return benchFields(device);
     if (suite == "slices-io") return benchSlicesIO();
     if (suite == "recon") return benchRecon(device);
+    if (suite == "truth") return benchTruth(device, truthSets, truthSet);
     if (suite == "simplify") return benchSimplify(device);
     if (suite == "rtstruct") return benchRtStruct();
     if (suite == "sdm") return benchSdm(device);
@@ -46,6 +55,7 @@ int main(int argc, char** argv) {
     if (suite == "compare") return benchCompare();
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
+               benchTruth(device, truthSets, truthSet) |
                benchSimplify(device) | benchSdm(device) | benchSegment(device) |
                benchStructureSet(device) | benchCompare();
     std::cerr << usage;
