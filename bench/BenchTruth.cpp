@@ -217,6 +217,10 @@ int benchTruth(const std::string& device, const std::string& setsDir,
             for (Vec3& p : c.truth.points) p = roi.frame.fromPatient(p);
             for (const Slice& s : roi.slices)
                 if (!s.contours.empty()) c.planesMm.push_back(s.zMm);
+            // The atlas's own axes may be mirrored (a NIfTI sform with a
+            // negative determinant), which turns the true surface inside out.
+            if (checkMesh(c.truth).volumeMm3 < 0)
+                for (auto& t : c.truth.triangles) std::swap(t[1], t[2]);
             c.truthVolumeMm3 = checkMesh(c.truth).volumeMm3;
             c.truthBetweenMm3 = volumeBelow(c.truth, c.planesMm.back()) -
                                 volumeBelow(c.truth, c.planesMm.front());
@@ -228,6 +232,15 @@ int benchTruth(const std::string& device, const std::string& setsDir,
             Row impliedRow;
             impliedRow.system = "contour-implied";
             printRow(c, impliedRow, implied);
+            {   // diagnostics: between-planes estimates from plane areas
+                std::vector<double> A, Z;
+                for (const Slice& sl : roi.slices) { if (sl.contours.empty()) continue; double a=0; for (const Polygon& q : sl.contours) a += signedArea(q); A.push_back(a); Z.push_back(sl.zMm);}
+                double trap=0, herm=0;
+                for (std::size_t k=0;k+1<A.size();++k){ double h=Z[k+1]-Z[k]; trap+=0.5*h*(A[k]+A[k+1]);
+                  double s=(A[k+1]-A[k])/h; double m0 = k>0 ? ((A[k]-A[k-1])/(Z[k]-Z[k-1])*h + (Z[k]-Z[k-1])*s)/(h+Z[k]-Z[k-1]) : s; double m1 = k+2<A.size()? ((A[k+2]-A[k+1])/(Z[k+2]-Z[k+1])*h + (Z[k+2]-Z[k+1])*s)/(h+Z[k+2]-Z[k+1]) : s;
+                  herm += 0.5*h*(A[k]+A[k+1]) + h*h/12*(m0-m1);}
+                std::cout << nlohmann::json{{"diag",c.name},{"trap_between_err_pct",100*(trap-c.truthBetweenMm3)/c.truthVolumeMm3},{"herm_between_err_pct",100*(herm-c.truthBetweenMm3)/c.truthVolumeMm3},{"truth_caps_pct",100*(c.truthVolumeMm3-c.truthBetweenMm3)/c.truthVolumeMm3},{"implied_caps_pct",100*0.5*(A.front()*(Z[1]-Z[0])+A.back()*(Z.back()-Z[Z.size()-2]))/c.truthVolumeMm3}}.dump() << std::endl;
+            }
             volumeErr["contour-implied"].push_back(implied);
 
             std::vector<Row> rows;

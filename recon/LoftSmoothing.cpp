@@ -12,8 +12,15 @@ namespace {
 // this close counts as horizontal.
 constexpr double kHorizontalMm = 1e-6;
 constexpr int kMaxRounds = 5;
+// Volume passes: each moves every bent vertex once more; the secant steps
+// settle within 0.1 % in two or three.
+constexpr int kVolumePasses = 4;
+// Attempts at unbending the vertices around broken triangles before whole
+// pieces go back to linear.
+constexpr int kUnbendAttempts = 4;
 
 using Triangle = std::array<std::uint32_t, 3>;
+using Edge = std::array<std::uint32_t, 2>;
 
 std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
@@ -25,7 +32,7 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
 /// strays). Returns the number of edges split.
 std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
                        std::vector<bool>& isLoft, const SliceInterpolant& field,
-                       double toleranceMm) {
+                       double toleranceMm, std::vector<Edge>& parents) {
     std::unordered_map<std::uint64_t, std::uint32_t> middle;
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         if (!isLoft[t]) continue;
@@ -44,6 +51,7 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
             if (std::abs(field.value(m)) <= toleranceMm) continue;
             middle.emplace(edgeKey(a, b), std::uint32_t(soup.points.size()));
             soup.points.push_back(m);
+            parents.push_back({a, b});
         }
     }
     std::vector<Triangle> triangles;
@@ -129,36 +137,148 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
     return true;
 }
 
+/// Vertices from `first` on whose triangles are all loft triangles move onto
+/// the zero set of `field` (one shared with a cap or prism triangle would
+/// drag that flat piece along); moved[v] records which did.
+void bendNewVertices(TriangleSoup& surface, std::size_t first, const std::vector<bool>& isLoft,
+                     const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
+                     LoftSmoothingStats& stats) {
+    std::vector<bool> movable(surface.points.size(), true);
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+        if (!isLoft[t])
+            for (std::uint32_t v : surface.triangles[t]) movable[v] = false;
+    moved.resize(surface.points.size(), false);
+    for (std::size_t v = first; v < surface.points.size(); ++v) {
+        Vec3 p = surface.points[v];
+        const double slab = field.slabHeightAt(p.z);
+        if (movable[v] && projectOntoZeroSet(field, p, 0.5 * slab, 0.2 * toleranceMm)) {
+            surface.points[v] = p;
+            if (!moved[v]) ++stats.movedVertices;
+            moved[v] = true;
+        }
+    }
+}
+
+/// Each round splits the edges that stray and bends the new vertices onto
+/// the smooth surface, so the next round measures chords of the curve (each
+/// halving divides a smooth band's sag by about four).
+void refineAndBend(TriangleSoup& surface, std::vector<std::uint32_t>& pieceOf,
+                   std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
+                   std::vector<Edge>& parents, std::vector<bool>& moved,
+                   LoftSmoothingStats& stats) {
+    for (int round = 0; round < kMaxRounds; ++round) {
+        const std::size_t before = surface.points.size();
+        if (refineOnce(surface, pieceOf, isLoft, field, toleranceMm, parents) == 0) break;
+        stats.rounds = std::max(stats.rounds, round + 1);
+        bendNewVertices(surface, before, isLoft, field, toleranceMm, moved, stats);
+    }
+}
+
+/// The bulge of each slab that brings its volume to its target, by secant
+/// steps from the last pass (the first step assumes the whole band moves:
+/// dV/db = h (P0 + P1) / 3 for a perimeter linear in z). A slab within
+/// 0.1 % of its target keeps its bulge. Returns whether any changed.
+bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
+                const std::vector<double>& volumes, std::vector<double>& bulge,
+                std::vector<double>& lastBulge, std::vector<double>& lastVolume) {
+    bool changed = false;
+    for (std::size_t s = 0; s < targets.size(); ++s) {
+        const double h = planes.zMm[s + 1] - planes.zMm[s];
+        const double deficit = targets[s] - volumes[s];
+        const double whole = h * (planes.perimeterMm[s] + planes.perimeterMm[s + 1]) / 3;
+        double slope = whole;
+        if (bulge[s] != lastBulge[s]) {
+            const double measured = (volumes[s] - lastVolume[s]) / (bulge[s] - lastBulge[s]);
+            // Only part of a band may move (pieces closed by prisms, caps).
+            if (measured > 0.05 * whole && measured < 2 * whole) slope = measured;
+        }
+        lastBulge[s] = bulge[s];
+        lastVolume[s] = volumes[s];
+        if (!(slope > 0) || std::abs(deficit) <= 1e-3 * std::abs(targets[s])) continue;
+        // Never more than a quarter of the slab: the bulge restores what
+        // lofting loses, it does not invent anatomy.
+        const double next = std::clamp(bulge[s] + deficit / slope, -0.25 * h, 0.25 * h);
+        changed = changed || next != bulge[s];
+        bulge[s] = next;
+    }
+    return changed;
+}
+
+/// Where the bent surface is broken (bent bands passing through each other
+/// across a narrow gap, say), the new vertices of the defective triangles go
+/// back to where they lie on the linear surface (the middle of their parent
+/// edge there), each attempt together with one more ring of neighbours, so
+/// that the rest of the piece stays bent. True, with `check` describing the
+/// surface, once it is a valid solid. O(T) per attempt plus a mesh check.
+bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::size_t first,
+                       const std::vector<Edge>& parents, const TriangleSoup& linear,
+                       MeshCheckReport& check, LoftSmoothingStats& stats) {
+    std::vector<Vec3> straight(surface.points.size());
+    for (std::size_t v = 0; v < straight.size(); ++v)
+        straight[v] = v < first ? linear.points[v]
+                                : 0.5 * (straight[parents[v - first][0]] +
+                                         straight[parents[v - first][1]]);
+    for (int attempt = 0; attempt < kUnbendAttempts; ++attempt) {
+        roundPointsToFloat(surface);
+        check = checkMesh(surface);
+        if (check.validSolid()) return true;
+        std::vector<bool> unbend(surface.points.size(), false);
+        for (std::size_t t : check.defectiveTriangles)
+            for (std::uint32_t v : surface.triangles[t]) unbend[v] = true;
+        for (int ring = 0; ring < attempt; ++ring) {
+            std::vector<bool> grown = unbend;
+            for (const Triangle& tri : surface.triangles)
+                if (unbend[tri[0]] || unbend[tri[1]] || unbend[tri[2]])
+                    for (std::uint32_t v : tri) grown[v] = true;
+            unbend = std::move(grown);
+        }
+        for (std::size_t v = contourVertices; v < surface.points.size(); ++v)
+            if (unbend[v] && !(surface.points[v] == straight[v])) {
+                surface.points[v] = straight[v];
+                ++stats.unbentVertices;
+            }
+    }
+    return false;
+}
+
 }  // namespace
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
-                               std::vector<bool> isLoft, const SliceInterpolant& field,
+                               std::vector<bool> isLoft, std::size_t contourVertices,
+                               SliceInterpolant& field, const PlaneSections& planes,
                                double toleranceMm, MeshCheckReport& check) {
     LoftSmoothingStats stats;
     const TriangleSoup linear = surface;
     const std::vector<std::uint32_t> linearPieceOf = pieceOf;
     std::vector<bool> restoredBefore;
-    // Each round splits the edges that stray and bends the new vertices onto
-    // the smooth surface, so the next round measures chords of the curve
-    // (each halving divides a smooth band's sag by about four).
-    for (; stats.rounds < kMaxRounds; ++stats.rounds) {
-        const std::size_t before = surface.points.size();
-        if (refineOnce(surface, pieceOf, isLoft, field, toleranceMm) == 0) break;
-        // Only vertices inside loft bands move: one shared with a cap or
-        // prism triangle would drag that flat piece along.
-        std::vector<bool> movable(surface.points.size(), true);
-        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-            if (!isLoft[t])
-                for (std::uint32_t v : surface.triangles[t]) movable[v] = false;
-        for (std::size_t v = before; v < surface.points.size(); ++v) {
-            Vec3 p = surface.points[v];
-            const double slab = field.slabHeightAt(p.z);
-            if (movable[v] && projectOntoZeroSet(field, p, 0.5 * slab, 0.2 * toleranceMm)) {
-                surface.points[v] = p;
-                ++stats.movedVertices;
-            }
-        }
+    std::vector<bool> moved;
+    // parents[v − first]: the edge whose middle new vertex v was made at.
+    const std::size_t first = linear.points.size();
+    std::vector<Edge> parents;
+    // Intermediate contours (recursion layers half-way) lie on the zero set
+    // of the linear interpolation; between loft bands they follow the smooth
+    // surface like every other point that is not a contour point.
+    bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
+    refineAndBend(surface, pieceOf, isLoft, field, toleranceMm, parents, moved, stats);
+    // Volume: each slab bulges until it holds its target (recon/SlabVolumes);
+    // every bent vertex moves again with the field. Bands are not refined
+    // again: red–green rounds beyond the first few only make slivers (their
+    // long diagonals never reach the z floor), so a bulge moves the vertices
+    // the smooth surface needed, and the secant steps learn how much volume
+    // that moves.
+    const std::vector<double> targets = slabVolumeTargets(planes);
+    std::vector<double> bulge(targets.size(), 0), lastBulge(targets.size(), 0),
+        lastVolume(targets.size(), 0);
+    for (int pass = 0; pass < kVolumePasses; ++pass) {
+        if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), bulge, lastBulge,
+                        lastVolume))
+            break;
+        ++stats.volumePasses;
+        field.setSlabBulges(bulge);
+        bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
+    if (unbendWhereBroken(surface, contourVertices, first, parents, linear, check, stats))
+        return stats;
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the
     // surface gets its linear triangles back. Pieces meet only in contour

@@ -12,6 +12,7 @@
 
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "recon/SlabVolumes.hpp"
 #include "recon/SliceInterpolant.hpp"
 
 namespace dfrecon {
@@ -20,6 +21,8 @@ struct LoftSmoothingStats {
     int rounds = 0;                  // refinement rounds that split something
     std::size_t movedVertices = 0;   // new vertices bent onto the smooth surface
     std::size_t revertedPieces = 0;  // pieces whose bent vertices went back (validity)
+    int volumePasses = 0;            // passes that changed a slab's bulge
+    std::size_t unbentVertices = 0;  // bent vertices put back on the linear surface (validity)
     bool fellBack = false;           // the linear surface was kept
 };
 
@@ -33,12 +36,18 @@ struct LoftSmoothingStats {
 /// Each new vertex all of whose triangles are loft triangles then moves, at
 /// its own z, to the zero set of `field` (Newton steps along the xy
 /// gradient); one that would move more than half its slab's height stays.
+/// Then each slab's volume is brought to its target (slabVolumeTargets of
+/// `planes`, the field's planes): the slab's bulge in `field`
+/// (SliceInterpolant::setSlabBulges) is set by secant steps, every bent
+/// vertex moves again, and bands refine where they now stray, up to four
+/// passes; a bulge stays within a quarter of its slab's height.
 /// Pieces whose moved vertices make the surface invalid (checked with points
 /// rounded to float) get them back; if it is still not valid, the linear
 /// surface is restored. On return `check` describes `surface`.
 /// Work: O(T) per round over the triangles made, plus up to three mesh checks.
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
-                               std::vector<bool> isLoft, const SliceInterpolant& field,
+                               std::vector<bool> isLoft, std::size_t contourVertices,
+                               SliceInterpolant& field, const PlaneSections& planes,
                                double toleranceMm, MeshCheckReport& check);
 
 }  // namespace dfrecon

@@ -562,6 +562,9 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     std::deque<Layer> layers;
     for (const Slice& s : slices)
         layers.push_back(makeLayer(reconstructor.builder(), s.zMm, s.contours));
+    // The contour points are the builder's first vertices; every later one
+    // (intermediate contours, lids, refinement) may move in smooth mode.
+    const std::size_t contourVertices = reconstructor.builder().soup().points.size();
     const SpacingStats spacing = spacingOf(roi);
     const double endSpacing = spacing.meanMm > 0 ? spacing.meanMm : 1.0;
     auto capOffset = [&](std::size_t s, bool up) {
@@ -634,9 +637,10 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     if (options.interpolation == Interpolation::Smooth && slices.size() > 1 &&
         result.check.validSolid()) {
         start = Clock::now();
+        SliceInterpolant interpolant(fields);
         const LoftSmoothingStats smooth =
-            smoothLofts(result.surface, builder.pieces(), builder.lofts(), SliceInterpolant(fields),
-                        options.smoothToleranceMm, result.check);
+            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices, interpolant,
+                        sectionsOf(slices), options.smoothToleranceMm, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;
         stats.smoothFellBack = smooth.fellBack;

@@ -43,6 +43,36 @@ double SliceInterpolant::planeValue(std::size_t slice, Point2 p) const {
            fy * ((1 - fx) * at(i, j1) + fx * at(i1, j1));
 }
 
+double SliceInterpolant::tangent(std::size_t slice, Point2 xy) const {
+    const std::vector<double>& z = fields_.zMm;
+    const std::size_t n = z.size();
+    if (n < 2) return 0;
+    auto secant = [&](std::size_t k) {  // of the slab [k, k + 1]
+        return (planeValue(k + 1, xy) - planeValue(k, xy)) / (z[k + 1] - z[k]);
+    };
+    // Inside the stack, the slope of the parabola through the plane and its
+    // two neighbours: a weighted mean of the secants below and above, never
+    // steeper than the steeper of them, and exact for a quadratic in z. At
+    // the ends, the end slab's secant (no extrapolation where a shape ends).
+    if (slice == 0) return secant(0);
+    if (slice + 1 == n) return secant(n - 2);
+    const double hBelow = z[slice] - z[slice - 1], hAbove = z[slice + 1] - z[slice];
+    return (hAbove * secant(slice - 1) + hBelow * secant(slice)) / (hBelow + hAbove);
+}
+
+void SliceInterpolant::setSlabBulges(std::vector<double> bulgeMm) {
+    if (bulgeMm.size() != (fields_.zMm.size() > 1 ? fields_.zMm.size() - 1 : 0))
+        throw std::invalid_argument("SliceInterpolant: one bulge per slab");
+    bulgeMm_ = std::move(bulgeMm);
+}
+
+double SliceInterpolant::bulgeAt(double zMm) const {
+    if (bulgeMm_.empty() || zMm <= fields_.zMm.front() || zMm >= fields_.zMm.back()) return 0;
+    const std::size_t s = slabAt(zMm);
+    const double t = (zMm - fields_.zMm[s]) / (fields_.zMm[s + 1] - fields_.zMm[s]);
+    return 4 * t * (1 - t) * bulgeMm_[s];
+}
+
 double SliceInterpolant::value(Vec3 p) const {
     const std::vector<double>& z = fields_.zMm;
     const Point2 xy{p.x, p.y};
@@ -51,35 +81,14 @@ double SliceInterpolant::value(Vec3 p) const {
     const double h = z[s + 1] - z[s];
     const double v0 = planeValue(s, xy), v1 = planeValue(s + 1, xy);
     const double secant = (v1 - v0) / h;
-    // Beyond the end planes (the caps), the end slab's trend continues: the
-    // tangent there is that slab's secant, so F stays C1 at the end plane.
+    // Beyond the end planes (the caps), the end slab's trend continues.
     if (p.z < z.front()) return v0 + (p.z - z[s]) * secant;
     if (p.z > z.back()) return v1 + (p.z - z[s + 1]) * secant;
     const double t = (p.z - z[s]) / h;
-    // Tangents from the neighbouring secants (one-sided at the ends); zero
-    // where the data turn, then limited (Fritsch–Carlson) so the cubic
-    // stays monotone between v0 and v1.
-    auto tangent = [&](bool hasOther, double other) {
-        if (!hasOther) return secant;
-        return other * secant <= 0 ? 0.0 : 0.5 * (other + secant);
-    };
-    const double below = s > 0 ? (v0 - planeValue(s - 1, xy)) / (z[s] - z[s - 1]) : 0;
-    const double above =
-        s + 2 < z.size() ? (planeValue(s + 2, xy) - v1) / (z[s + 2] - z[s + 1]) : 0;
-    double m0 = tangent(s > 0, below), m1 = tangent(s + 2 < z.size(), above);
-    if (secant == 0) {
-        m0 = m1 = 0;
-    } else {
-        const double a = m0 / secant, b = m1 / secant, r = a * a + b * b;
-        if (r > 9) {
-            const double k = 3 / std::sqrt(r);
-            m0 = k * a * secant;
-            m1 = k * b * secant;
-        }
-    }
+    const double m0 = tangent(s, xy), m1 = tangent(s + 1, xy);
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * v0 + (t3 - 2 * t2 + t) * h * m0 + (-2 * t3 + 3 * t2) * v1 +
-           (t3 - t2) * h * m1;
+           (t3 - t2) * h * m1 - bulgeAt(p.z);
 }
 
 Point2 SliceInterpolant::gradientXy(Vec3 p) const {

@@ -1,13 +1,17 @@
 #pragma once
 // A C1 implicit function through a stack of slices: F(x, y, z) is each
 // slice's signed distance field (bilinear between pixel centres) and, between
-// the planes, a monotone cubic Hermite interpolation in z (Fritsch–Carlson
-// tangents). It equals each slice's field on its plane, has a continuous
-// z-derivative across planes (the tangent at a plane is shared by the slabs
-// above and below), and between two planes never leaves the range of their
-// two values, so it does not overshoot where a shape ends or branches. Its
-// zero set is what `--interpolation smooth` bends the loft bands onto.
+// the planes, a cubic Hermite interpolation in z whose tangent at a plane is
+// the slope of the parabola through that plane's value and its neighbours'.
+// It equals each slice's field on its plane, has a continuous z-derivative
+// across planes (the tangent is shared by the slabs above and below), and
+// reproduces any field quadratic in z, so a surface that bulges between two
+// planes (convex anatomy half-way) bulges in F too, which a monotone
+// interpolant cannot do. Its zero set, moved outward in the plane by each
+// slab's bulge (setSlabBulges), is what `--interpolation smooth` bends the
+// loft bands onto.
 #include <cstddef>
+#include <vector>
 
 #include "field/SliceFields.hpp"
 #include "geometry/Polygon.hpp"
@@ -21,9 +25,17 @@ class SliceInterpolant {
     /// every value finite). Keeps a reference: `fields` must outlive it.
     explicit SliceInterpolant(const SliceFields& fields);
 
-    /// F at p, mm (< 0 inside). Beyond the first and last plane, the end
-    /// slab's secant in z continues (a single slice: its field). O(1).
+    /// F at p, mm (< 0 inside), less the bulge at p.z. Beyond the first and
+    /// last plane, the end slab's secant in z continues (a single slice: its
+    /// field). O(1): four planes' bilinear look-ups.
     double value(Vec3 p) const;
+    /// Each slab's zero set moves outward in the plane by bulgeMm[s] ·
+    /// 4t(1 − t) (t the height within slab s; negative: inward): nothing at
+    /// the planes, so F still passes through every contour. One value per
+    /// slab (sliceCount − 1); throws std::invalid_argument otherwise.
+    void setSlabBulges(std::vector<double> bulgeMm);
+    /// The bulge at height z (0 outside the stack). O(log slices).
+    double bulgeAt(double zMm) const;
     /// dF/dx and dF/dy at p by central differences of half a pixel. O(1).
     Point2 gradientXy(Vec3 p) const;
 
@@ -35,8 +47,11 @@ class SliceInterpolant {
 
   private:
     double planeValue(std::size_t slice, Point2 p) const;
+    /// dF/dz at plane `slice`: the parabola through it and its neighbours.
+    double tangent(std::size_t slice, Point2 xy) const;
 
     const SliceFields& fields_;
+    std::vector<double> bulgeMm_;  // per slab; empty: none
 };
 
 }  // namespace dfrecon
