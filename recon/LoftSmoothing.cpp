@@ -204,13 +204,47 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
     return changed;
 }
 
+/// The triangles of the pieces in `pieces` that meet another of them or have
+/// no area. Pieces meet only in contour points, which never move, so after
+/// moving vertices inside some pieces only those pieces need looking at.
+std::vector<std::size_t> brokenWithin(const TriangleSoup& surface,
+                                      const std::vector<std::uint32_t>& pieceOf,
+                                      const std::vector<bool>& pieces) {
+    TriangleSoup part;
+    part.points = surface.points;
+    std::vector<std::size_t> whole;  // part's triangle -> surface's
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+        if (pieces[pieceOf[t]]) {
+            part.triangles.push_back(surface.triangles[t]);
+            whole.push_back(t);
+        }
+    std::vector<std::size_t> broken;
+    for (std::size_t k = 0; k < part.triangles.size(); ++k) {
+        const Triangle& tri = part.triangles[k];
+        const Vec3 a = part.points[tri[0]], b = part.points[tri[1]], c = part.points[tri[2]];
+        if (length(cross(b - a, c - a)) == 0) broken.push_back(whole[k]);
+    }
+    for (const auto& [i, j] : selfIntersectingPairs(part)) {
+        broken.push_back(whole[i]);
+        broken.push_back(whole[j]);
+    }
+    std::sort(broken.begin(), broken.end());
+    broken.erase(std::unique(broken.begin(), broken.end()), broken.end());
+    return broken;
+}
+
 /// Where the bent surface is broken (bent bands passing through each other
-/// across a narrow gap, say), the new vertices of the defective triangles go
-/// back to where they lie on the linear surface (the middle of their parent
-/// edge there), each attempt together with one more ring of neighbours, so
-/// that the rest of the piece stays bent. True, with `check` describing the
-/// surface, once it is a valid solid. O(T) per attempt plus a mesh check.
-bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::size_t first,
+/// across a narrow gap, say), the moved vertices of the defective triangles
+/// go back to where they lie on the linear surface (the middle of their
+/// parent edge there), each attempt with one more ring of neighbours, so the
+/// rest of the piece stays bent. Only the pieces that held defects are
+/// checked again between attempts: pieces meet only in contour points, which
+/// never move, and unbending moves only vertices inside broken pieces. True,
+/// with `check` describing the surface, once it is a valid solid; false (the
+/// surface then has some defects left) otherwise. Work: one whole-mesh
+/// check, plus a check of the broken pieces per attempt.
+bool unbendWhereBroken(TriangleSoup& surface, const std::vector<std::uint32_t>& pieceOf,
+                       std::size_t contourVertices, std::size_t first,
                        const std::vector<Edge>& parents, const TriangleSoup& linear,
                        MeshCheckReport& check, LoftSmoothingStats& stats) {
     std::vector<Vec3> straight(surface.points.size());
@@ -218,14 +252,23 @@ bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::
         straight[v] = v < first ? linear.points[v]
                                 : 0.5 * (straight[parents[v - first][0]] +
                                          straight[parents[v - first][1]]);
-    for (int attempt = 0; attempt < kUnbendAttempts; ++attempt) {
-        roundPointsToFloat(surface);
-        check = checkMesh(surface);
-        if (check.validSolid()) return true;
-        std::vector<bool> unbend(surface.points.size(), false);
-        for (std::size_t t : check.defectiveTriangles)
+    roundPointsToFloat(surface);
+    check = checkMesh(surface);
+    if (check.validSolid()) return true;
+    // Moving vertices cannot mend the topology: that is for the caller.
+    if (check.boundaryEdges || check.nonManifoldEdges || check.nonManifoldVertices ||
+        check.misorientedEdges)
+        return false;
+    std::vector<std::size_t> broken = check.defectiveTriangles;
+    for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
+        std::vector<bool> unbend(surface.points.size(), false), pieces;
+        for (std::size_t t : broken) {
             for (std::uint32_t v : surface.triangles[t]) unbend[v] = true;
-        for (int ring = 0; ring < attempt; ++ring) {
+            if (pieceOf[t] >= pieces.size()) pieces.resize(pieceOf[t] + 1, false);
+            pieces[pieceOf[t]] = true;
+        }
+        pieces.resize(*std::max_element(pieceOf.begin(), pieceOf.end()) + 1, false);
+        for (int ring = 0; ring <= attempt; ++ring) {
             std::vector<bool> grown = unbend;
             for (const Triangle& tri : surface.triangles)
                 if (unbend[tri[0]] || unbend[tri[1]] || unbend[tri[2]])
@@ -237,8 +280,23 @@ bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::
                 surface.points[v] = straight[v];
                 ++stats.unbentVertices;
             }
+        roundPointsToFloat(surface);
+        broken = brokenWithin(surface, pieceOf, pieces);
     }
-    return false;
+    if (!broken.empty()) return false;
+    // What the first check found besides these triangles still holds: the
+    // topology did not change, the other pieces did not move, and the broken
+    // pieces are clean now, so only the enclosed volume and area are new.
+    check.degenerateTriangles = check.intersectingPairs = 0;
+    check.intersectingExamples.clear();
+    check.defectiveTriangles.clear();
+    check.volumeMm3 = check.areaMm2 = 0;
+    for (const Triangle& tri : surface.triangles) {
+        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]], c = surface.points[tri[2]];
+        check.areaMm2 += 0.5 * length(cross(b - a, c - a));
+        check.volumeMm3 += dot(a, cross(b, c)) / 6;
+    }
+    return check.validSolid();
 }
 
 }  // namespace
@@ -277,7 +335,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         field.setSlabBulges(bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
-    if (unbendWhereBroken(surface, contourVertices, first, parents, linear, check, stats))
+    if (unbendWhereBroken(surface, pieceOf, contourVertices, first, parents, linear, check, stats))
         return stats;
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the

@@ -66,7 +66,7 @@ struct ReconstructionOptions {
     Interpolation interpolation = Interpolation::Linear;
     /// Smooth mode: bands are halved in z until no straight edge strays
     /// farther than this from the smooth surface.
-    double smoothToleranceMm = 0.02;
+    double smoothToleranceMm = 0.05;
     FieldKernelOptions kernel;
 };
 
