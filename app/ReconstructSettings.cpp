@@ -38,10 +38,12 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
            [&options](const std::string& name) {
                options.interpolation = parseEnum(kInterpolationNames, name, "--interpolation");
            },
-           "Between planes: 'linear' runs straight from contour to contour; 'smooth' "
-           "bends the strips onto a monotone cubic in z of the planes' distance fields "
-           "(C1 across planes, still through every contour point, still a valid solid: "
-           "a slab where bending would break it stays linear)")
+           "Between planes: 'smooth' bends the strips onto a cubic in z of the planes' "
+           "distance fields (C1 across planes, bulging where the anatomy does) and "
+           "brings each slab's volume to the C1 integral of its planes' areas, still "
+           "through every contour point and a valid solid (a place where bending would "
+           "break it stays straight); 'linear' runs straight from contour to contour "
+           "(smaller: straight strips cut inside curved anatomy)")
         ->default_str(nameOf(kInterpolationNames, options.interpolation))
         ->check(CLI::IsMember(namesOf(kInterpolationNames)));
     cmd.add_option("--smooth-tolerance", options.smoothToleranceMm,

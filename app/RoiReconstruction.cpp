@@ -132,6 +132,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
                  {"cap", nameOf(kCapModeNames, settings.options.cap)},
                  {"interpolation", nameOf(kInterpolationNames, settings.options.interpolation)},
                  {"smoothedVertices", s.smoothedVertices},
+                 {"smoothUnbentVertices", s.smoothUnbentVertices},
                  {"smoothKeptLinearPieces", s.smoothRevertedPieces},
                  {"smoothFellBackToLinear", s.smoothFellBack},
                  {"strips", s.strips},

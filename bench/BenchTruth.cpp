@@ -53,9 +53,11 @@ double volumeBelow(const TriangleSoup& soup, double c) {
     for (const auto& t : soup.triangles) {
         std::vector<Vec3> in;
         for (int k = 0; k < 3; ++k) {
-            const Vec3 p = soup.points[t[std::size_t(k)]], q = soup.points[t[std::size_t((k + 1) % 3)]];
+            const Vec3 p = soup.points[t[std::size_t(k)]],
+                       q = soup.points[t[std::size_t((k + 1) % 3)]];
             if (p.z <= c) in.push_back(p);
-            if ((p.z < c) != (q.z < c) && p.z != q.z) in.push_back(p + ((c - p.z) / (q.z - p.z)) * (q - p));
+            if ((p.z < c) != (q.z < c) && p.z != q.z)
+                in.push_back(p + ((c - p.z) / (q.z - p.z)) * (q - p));
         }
         for (std::size_t k = 1; k + 1 < in.size(); ++k) add(in[0], in[k], in[k + 1]);
     }
@@ -137,8 +139,8 @@ nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value) {
 }
 
 void printRow(const Case& c, const Row& r, double volumeErrPctOnly = NAN) {
-    nlohmann::ordered_json j{{"bench", "truth"}, {"set", c.set}, {"case", c.name},
-                             {"system", r.system}};
+    nlohmann::ordered_json j{
+        {"bench", "truth"}, {"set", c.set}, {"case", c.name}, {"system", r.system}};
     if (!std::isnan(volumeErrPctOnly)) {
         j["volume_err_pct"] = volumeErrPctOnly;
         std::cout << j.dump() << std::endl;
@@ -178,9 +180,9 @@ double meanAbs(const std::vector<double>& v) {
 
 /// The folder of truth sets: made by scripts/truth_sets.sh when missing.
 std::filesystem::path truthSetsDir(const std::string& requested) {
-    const std::filesystem::path dir =
-        requested.empty() ? std::filesystem::path(DFRECON_BUILD_DIR) / "truth-sets"
-                          : std::filesystem::path(requested);
+    const std::filesystem::path dir = requested.empty()
+                                          ? std::filesystem::path(DFRECON_BUILD_DIR) / "truth-sets"
+                                          : std::filesystem::path(requested);
     const std::string command = std::string("bash '") + DFRECON_SOURCE_DIR +
                                 "/scripts/truth_sets.sh' '" + dir.string() + "'";
     if (std::system(command.c_str()) != 0)
@@ -190,8 +192,7 @@ std::filesystem::path truthSetsDir(const std::string& requested) {
 
 }  // namespace
 
-int benchTruth(const std::string& device, const std::string& setsDir,
-               const std::string& onlySet) {
+int benchTruth(const std::string& device, const std::string& setsDir, const std::string& onlySet) {
     ocl::Runtime runtime(device);
     const std::filesystem::path dir = truthSetsDir(setsDir);
     std::vector<std::filesystem::path> sets;
@@ -222,8 +223,8 @@ int benchTruth(const std::string& device, const std::string& setsDir,
             if (checkMesh(c.truth).volumeMm3 < 0)
                 for (auto& t : c.truth.triangles) std::swap(t[1], t[2]);
             c.truthVolumeMm3 = checkMesh(c.truth).volumeMm3;
-            c.truthBetweenMm3 = volumeBelow(c.truth, c.planesMm.back()) -
-                                volumeBelow(c.truth, c.planesMm.front());
+            c.truthBetweenMm3 =
+                volumeBelow(c.truth, c.planesMm.back()) - volumeBelow(c.truth, c.planesMm.front());
             c.truthSamples = sampleTriangles(c.truth, kSamples, 11);
             TriangleBvh truthBvh(c.truth);
             c.truthBvh = &truthBvh;
@@ -232,16 +233,6 @@ int benchTruth(const std::string& device, const std::string& setsDir,
             Row impliedRow;
             impliedRow.system = "contour-implied";
             printRow(c, impliedRow, implied);
-            {   // diagnostics: between-planes estimates from plane areas
-                std::vector<double> A, Z;
-                for (const Slice& sl : roi.slices) { if (sl.contours.empty()) continue; double a=0; for (const Polygon& q : sl.contours) a += signedArea(q); A.push_back(a); Z.push_back(sl.zMm);}
-                double trap=0, herm=0;
-                for (std::size_t k=0;k+1<A.size();++k){ double h=Z[k+1]-Z[k]; trap+=0.5*h*(A[k]+A[k+1]);
-                  double s=(A[k+1]-A[k])/h; double m0 = k>0 ? ((A[k]-A[k-1])/(Z[k]-Z[k-1])*h + (Z[k]-Z[k-1])*s)/(h+Z[k]-Z[k-1]) : s; double m1 = k+2<A.size()? ((A[k+2]-A[k+1])/(Z[k+2]-Z[k+1])*h + (Z[k+2]-Z[k+1])*s)/(h+Z[k+2]-Z[k+1]) : s;
-                  herm += 0.5*h*(A[k]+A[k+1]) + h*h/12*(m0-m1);}
-                std::cout << nlohmann::json{{"diag",c.name},{"trap_between_err_pct",100*(trap-c.truthBetweenMm3)/c.truthVolumeMm3},{"herm_between_err_pct",100*(herm-c.truthBetweenMm3)/c.truthVolumeMm3},{"truth_caps_pct",100*(c.truthVolumeMm3-c.truthBetweenMm3)/c.truthVolumeMm3},{"implied_caps_pct",100*0.5*(A.front()*(Z[1]-Z[0])+A.back()*(Z.back()-Z[Z.size()-2]))/c.truthVolumeMm3}}.dump() << std::endl;
-            }
-            volumeErr["contour-implied"].push_back(implied);
 
             std::vector<Row> rows;
             TriangleSoup soup;
@@ -257,10 +248,11 @@ int benchTruth(const std::string& device, const std::string& setsDir,
                 ReconstructionOptions options;
                 options.interpolation = mode;
                 Reconstruction result;
-                seconds = bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, options); });
-                Row row = measure(c, mode == Interpolation::Linear ? "dfrecon-linear"
-                                                                    : "dfrecon-smooth",
-                                  seconds, result.surface);
+                seconds =
+                    bestSeconds(1, [&] { result = reconstructSurface(runtime, roi, options); });
+                Row row =
+                    measure(c, mode == Interpolation::Linear ? "dfrecon-linear" : "dfrecon-smooth",
+                            seconds, result.surface);
                 row.isDefault = mode == defaults.interpolation;
                 rows.push_back(row);
             }

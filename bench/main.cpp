@@ -55,9 +55,8 @@ int main(int argc, char** argv) {
     if (suite == "compare") return benchCompare();
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
-               benchTruth(device, truthSets, truthSet) |
-               benchSimplify(device) | benchSdm(device) | benchSegment(device) |
-               benchStructureSet(device) | benchCompare();
+               benchTruth(device, truthSets, truthSet) | benchSimplify(device) | benchSdm(device) |
+               benchSegment(device) | benchStructureSet(device) | benchCompare();
     std::cerr << usage;
     return 1;
 }

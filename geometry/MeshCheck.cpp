@@ -178,7 +178,7 @@ namespace {
 // Visits the pairs of non-degenerate triangles that collide.
 template <class Visit>
 void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenerate, Visit&& visit) {
-    const TriangleBvh bvh(soup);
+    const TriangleBvh bvh(soup, BvhSplit::Halving);
     bvh.selfPairs([&](std::size_t i, std::size_t j) {
         if (degenerate[i] || degenerate[j]) return;
         if (trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) visit(i, j);

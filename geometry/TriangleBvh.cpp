@@ -6,7 +6,7 @@
 
 namespace dfrecon {
 
-TriangleBvh::TriangleBvh(const TriangleSoup& soup)
+TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how)
     : soup_(soup),
       boxes_(soup.triangles.size()),
       balls_(soup.triangles.size()),
@@ -22,7 +22,7 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup)
     for (std::size_t t = 0; t < items.size(); ++t) items[t] = {boxes_[t], t};
     std::vector<BuildItem> scratch;
     scratch.reserve(items.size());
-    if (!items.empty()) build(items, scratch, 0, items.size(), 0);
+    if (!items.empty()) build(items, scratch, 0, items.size(), 0, how);
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
     packForSearch();
 }
@@ -179,7 +179,7 @@ std::size_t TriangleBvh::halve(std::vector<BuildItem>& items, std::size_t first,
 }
 
 int TriangleBvh::build(std::vector<BuildItem>& items, std::vector<BuildItem>& scratch,
-                       std::size_t first, std::size_t last, int depth) {
+                       std::size_t first, std::size_t last, int depth, BvhSplit how) {
     const int index = int(nodes_.size());
     nodes_.emplace_back();
     Box3 box;
@@ -190,9 +190,10 @@ int TriangleBvh::build(std::vector<BuildItem>& items, std::vector<BuildItem>& sc
         nodes_[std::size_t(index)].count = last - first;
         return index;
     }
-    const std::size_t mid = split(items, scratch, first, last, box, depth < kAreaSplitDepth);
-    const int left = build(items, scratch, first, mid, depth + 1);
-    const int right = build(items, scratch, mid, last, depth + 1);
+    const bool byArea = how == BvhSplit::SurfaceArea && depth < kAreaSplitDepth;
+    const std::size_t mid = split(items, scratch, first, last, box, byArea);
+    const int left = build(items, scratch, first, mid, depth + 1, how);
+    const int right = build(items, scratch, mid, last, depth + 1, how);
     nodes_[std::size_t(index)].left = left;
     nodes_[std::size_t(index)].right = right;
     nodes_[std::size_t(index)].count = last - first;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "geometry/BoxGrid.hpp"
+
 namespace dfrecon {
 
 namespace {
@@ -16,8 +18,10 @@ constexpr int kMaxRounds = 5;
 // settle within 0.1 % in two or three.
 constexpr int kVolumePasses = 4;
 // Attempts at unbending the vertices around broken triangles before whole
-// pieces go back to linear.
-constexpr int kUnbendAttempts = 4;
+// pieces go back to linear, and how many rings of neighbours each takes
+// along: wide at once, since every attempt costs a check of the pieces.
+constexpr int kUnbendAttempts = 3;
+constexpr int kUnbendRings[kUnbendAttempts] = {1, 3, 8};
 
 using Triangle = std::array<std::uint32_t, 3>;
 using Edge = std::array<std::uint32_t, 2>;
@@ -31,8 +35,8 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
 /// is a distance in the plane, so |F| there is how far the straight edge
 /// strays). Returns the number of edges split.
 std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
-                       std::vector<bool>& isLoft, const SliceInterpolant& field,
-                       double toleranceMm, std::vector<Edge>& parents) {
+                       std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
+                       std::vector<Edge>& parents) {
     std::unordered_map<std::uint64_t, std::uint32_t> middle;
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         if (!isLoft[t]) continue;
@@ -204,29 +208,36 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
     return changed;
 }
 
-/// The triangles of the pieces in `pieces` that meet another of them or have
-/// no area. Pieces meet only in contour points, which never move, so after
-/// moving vertices inside some pieces only those pieces need looking at.
-std::vector<std::size_t> brokenWithin(const TriangleSoup& surface,
-                                      const std::vector<std::uint32_t>& pieceOf,
-                                      const std::vector<bool>& pieces) {
-    TriangleSoup part;
-    part.points = surface.points;
-    std::vector<std::size_t> whole;  // part's triangle -> surface's
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-        if (pieces[pieceOf[t]]) {
-            part.triangles.push_back(surface.triangles[t]);
-            whole.push_back(t);
-        }
+bool hasNoArea(const TriangleSoup& surface, const Triangle& tri) {
+    const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]], c = surface.points[tri[2]];
+    return length(cross(b - a, c - a)) == 0;
+}
+
+/// Those of `suspects` that have no area or meet another triangle of
+/// `surface` where they should not (as checkMesh judges), with the ones they
+/// meet; `near` must hold every triangle's box. Sorted, no repeats.
+std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid& near,
+                                     const std::vector<std::size_t>& suspects) {
     std::vector<std::size_t> broken;
-    for (std::size_t k = 0; k < part.triangles.size(); ++k) {
-        const Triangle& tri = part.triangles[k];
-        const Vec3 a = part.points[tri[0]], b = part.points[tri[1]], c = part.points[tri[2]];
-        if (length(cross(b - a, c - a)) == 0) broken.push_back(whole[k]);
-    }
-    for (const auto& [i, j] : selfIntersectingPairs(part)) {
-        broken.push_back(whole[i]);
-        broken.push_back(whole[j]);
+    for (std::size_t t : suspects) {
+        const Triangle& tri = surface.triangles[t];
+        if (hasNoArea(surface, tri)) {
+            broken.push_back(t);
+            continue;
+        }
+        const Vec3 a[3] = {surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]};
+        Box3 box;
+        for (const Vec3& p : a) box.add(p);
+        near.overlapping(box, [&](std::uint32_t u) {
+            const Triangle& other = surface.triangles[u];
+            if (u == t || hasNoArea(surface, other)) return;
+            const Vec3 b[3] = {surface.points[other[0]], surface.points[other[1]],
+                               surface.points[other[2]]};
+            if (trianglesCollide(tri, a, other, b)) {
+                broken.push_back(t);
+                broken.push_back(u);
+            }
+        });
     }
     std::sort(broken.begin(), broken.end());
     broken.erase(std::unique(broken.begin(), broken.end()), broken.end());
@@ -236,22 +247,22 @@ std::vector<std::size_t> brokenWithin(const TriangleSoup& surface,
 /// Where the bent surface is broken (bent bands passing through each other
 /// across a narrow gap, say), the moved vertices of the defective triangles
 /// go back to where they lie on the linear surface (the middle of their
-/// parent edge there), each attempt with one more ring of neighbours, so the
-/// rest of the piece stays bent. Only the pieces that held defects are
-/// checked again between attempts: pieces meet only in contour points, which
-/// never move, and unbending moves only vertices inside broken pieces. True,
-/// with `check` describing the surface, once it is a valid solid; false (the
-/// surface then has some defects left) otherwise. Work: one whole-mesh
-/// check, plus a check of the broken pieces per attempt.
-bool unbendWhereBroken(TriangleSoup& surface, const std::vector<std::uint32_t>& pieceOf,
-                       std::size_t contourVertices, std::size_t first,
+/// parent edge there), with rings of neighbours (kUnbendRings), so the rest
+/// of the piece stays bent. Between attempts only the triangles that moved
+/// or were broken are tested again, against their neighbours on a grid of
+/// boxes that hold every triangle bent or straight: the topology does not
+/// change, and every other pair was clean in the whole-mesh check. True,
+/// with `check` describing the surface, once it is a valid solid; false
+/// (some defects left) otherwise. Work: one whole-mesh check, plus O(T) for
+/// the grid and local tests per attempt.
+bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::size_t first,
                        const std::vector<Edge>& parents, const TriangleSoup& linear,
                        MeshCheckReport& check, LoftSmoothingStats& stats) {
     std::vector<Vec3> straight(surface.points.size());
     for (std::size_t v = 0; v < straight.size(); ++v)
-        straight[v] = v < first ? linear.points[v]
-                                : 0.5 * (straight[parents[v - first][0]] +
-                                         straight[parents[v - first][1]]);
+        straight[v] =
+            v < first ? linear.points[v]
+                      : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
     roundPointsToFloat(surface);
     check = checkMesh(surface);
     if (check.validSolid()) return true;
@@ -259,29 +270,55 @@ bool unbendWhereBroken(TriangleSoup& surface, const std::vector<std::uint32_t>& 
     if (check.boundaryEdges || check.nonManifoldEdges || check.nonManifoldVertices ||
         check.misorientedEdges)
         return false;
+    std::vector<Box3> reach(surface.triangles.size());
+    std::vector<double> extents;
+    Box3 scene;
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+        for (std::uint32_t v : surface.triangles[t]) {
+            reach[t].add(surface.points[v]);
+            reach[t].add(straight[v]);
+        }
+        // Points are rounded to float after they move.
+        const Vec3 pad{1e-4, 1e-4, 1e-4};
+        reach[t].lo = reach[t].lo - pad;
+        reach[t].hi = reach[t].hi + pad;
+        const Vec3 e = reach[t].hi - reach[t].lo;
+        extents.push_back(std::max({e.x, e.y, e.z}));
+        scene.add(reach[t]);
+    }
+    // Cells about a triangle across (the median), never so small that one
+    // box spans more than 64 a side.
+    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
+                     extents.end());
+    const Vec3 sceneSize = scene.hi - scene.lo;
+    const BoxGrid near(reach, std::max(extents[extents.size() / 2],
+                                       std::max({sceneSize.x, sceneSize.y, sceneSize.z}) / 64));
     std::vector<std::size_t> broken = check.defectiveTriangles;
     for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
-        std::vector<bool> unbend(surface.points.size(), false), pieces;
-        for (std::size_t t : broken) {
+        std::vector<bool> unbend(surface.points.size(), false);
+        for (std::size_t t : broken)
             for (std::uint32_t v : surface.triangles[t]) unbend[v] = true;
-            if (pieceOf[t] >= pieces.size()) pieces.resize(pieceOf[t] + 1, false);
-            pieces[pieceOf[t]] = true;
-        }
-        pieces.resize(*std::max_element(pieceOf.begin(), pieceOf.end()) + 1, false);
-        for (int ring = 0; ring <= attempt; ++ring) {
+        for (int ring = 0; ring < kUnbendRings[attempt]; ++ring) {
             std::vector<bool> grown = unbend;
             for (const Triangle& tri : surface.triangles)
                 if (unbend[tri[0]] || unbend[tri[1]] || unbend[tri[2]])
                     for (std::uint32_t v : tri) grown[v] = true;
             unbend = std::move(grown);
         }
+        std::vector<bool> changed(surface.points.size(), false);
         for (std::size_t v = contourVertices; v < surface.points.size(); ++v)
             if (unbend[v] && !(surface.points[v] == straight[v])) {
                 surface.points[v] = straight[v];
+                changed[v] = true;
                 ++stats.unbentVertices;
             }
         roundPointsToFloat(surface);
-        broken = brokenWithin(surface, pieceOf, pieces);
+        std::vector<std::size_t> suspects = broken;
+        for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+            const Triangle& tri = surface.triangles[t];
+            if (changed[tri[0]] || changed[tri[1]] || changed[tri[2]]) suspects.push_back(t);
+        }
+        broken = brokenAmong(surface, near, suspects);
     }
     if (!broken.empty()) return false;
     // What the first check found besides these triangles still holds: the
@@ -292,7 +329,8 @@ bool unbendWhereBroken(TriangleSoup& surface, const std::vector<std::uint32_t>& 
     check.defectiveTriangles.clear();
     check.volumeMm3 = check.areaMm2 = 0;
     for (const Triangle& tri : surface.triangles) {
-        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]], c = surface.points[tri[2]];
+        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
+                   c = surface.points[tri[2]];
         check.areaMm2 += 0.5 * length(cross(b - a, c - a));
         check.volumeMm3 += dot(a, cross(b, c)) / 6;
     }
@@ -335,7 +373,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         field.setSlabBulges(bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
-    if (unbendWhereBroken(surface, pieceOf, contourVertices, first, parents, linear, check, stats))
+    if (unbendWhereBroken(surface, contourVertices, first, parents, linear, check, stats))
         return stats;
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the

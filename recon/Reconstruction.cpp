@@ -639,10 +639,11 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         start = Clock::now();
         SliceInterpolant interpolant(fields);
         const LoftSmoothingStats smooth =
-            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices, interpolant,
-                        sectionsOf(slices), options.smoothToleranceMm, result.check);
+            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices,
+                        interpolant, sectionsOf(slices), options.smoothToleranceMm, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;
+        stats.smoothUnbentVertices = smooth.unbentVertices;
         stats.smoothFellBack = smooth.fellBack;
         stats.checkSeconds += secondsSince(start);
     }

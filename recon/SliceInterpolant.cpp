@@ -43,21 +43,18 @@ double SliceInterpolant::planeValue(std::size_t slice, Point2 p) const {
            fy * ((1 - fx) * at(i, j1) + fx * at(i1, j1));
 }
 
-double SliceInterpolant::tangent(std::size_t slice, Point2 xy) const {
+double SliceInterpolant::tangent(std::size_t slice, double below, double here, double above) const {
     const std::vector<double>& z = fields_.zMm;
     const std::size_t n = z.size();
-    if (n < 2) return 0;
-    auto secant = [&](std::size_t k) {  // of the slab [k, k + 1]
-        return (planeValue(k + 1, xy) - planeValue(k, xy)) / (z[k + 1] - z[k]);
-    };
     // Inside the stack, the slope of the parabola through the plane and its
     // two neighbours: a weighted mean of the secants below and above, never
     // steeper than the steeper of them, and exact for a quadratic in z. At
     // the ends, the end slab's secant (no extrapolation where a shape ends).
-    if (slice == 0) return secant(0);
-    if (slice + 1 == n) return secant(n - 2);
+    if (slice == 0) return (above - here) / (z[1] - z[0]);
+    if (slice + 1 == n) return (here - below) / (z[n - 1] - z[n - 2]);
     const double hBelow = z[slice] - z[slice - 1], hAbove = z[slice + 1] - z[slice];
-    return (hAbove * secant(slice - 1) + hBelow * secant(slice)) / (hBelow + hAbove);
+    return (hAbove * (here - below) / hBelow + hBelow * (above - here) / hAbove) /
+           (hBelow + hAbove);
 }
 
 void SliceInterpolant::setSlabBulges(std::vector<double> bulgeMm) {
@@ -85,7 +82,10 @@ double SliceInterpolant::value(Vec3 p) const {
     if (p.z < z.front()) return v0 + (p.z - z[s]) * secant;
     if (p.z > z.back()) return v1 + (p.z - z[s + 1]) * secant;
     const double t = (p.z - z[s]) / h;
-    const double m0 = tangent(s, xy), m1 = tangent(s + 1, xy);
+    // The four planes around the slab, each read once.
+    const double vBelow = s > 0 ? planeValue(s - 1, xy) : 0;
+    const double vAbove = s + 2 < z.size() ? planeValue(s + 2, xy) : 0;
+    const double m0 = tangent(s, vBelow, v0, v1), m1 = tangent(s + 1, v0, v1, vAbove);
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * v0 + (t3 - 2 * t2 + t) * h * m0 + (-2 * t3 + 3 * t2) * v1 +
            (t3 - t2) * h * m1 - bulgeAt(p.z);

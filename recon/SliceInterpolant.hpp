@@ -47,8 +47,10 @@ class SliceInterpolant {
 
   private:
     double planeValue(std::size_t slice, Point2 p) const;
-    /// dF/dz at plane `slice`: the parabola through it and its neighbours.
-    double tangent(std::size_t slice, Point2 xy) const;
+    /// dF/dz at plane `slice`, from the field there (`here`) and on the
+    /// planes below and above it (unused where the stack ends): the slope of
+    /// the parabola through the three.
+    double tangent(std::size_t slice, double below, double here, double above) const;
 
     const SliceFields& fields_;
     std::vector<double> bulgeMm_;  // per slab; empty: none
