@@ -178,13 +178,21 @@ void refineAndBend(TriangleSoup& surface, std::vector<std::uint32_t>& pieceOf,
     }
 }
 
+/// Each slab's bulge, and the bulge and volume of the pass before, from
+/// which the secant steps learn how much volume a bulge moves.
+struct BulgeSteps {
+    std::vector<double> bulge, lastBulge, lastVolume;
+};
+
 /// The bulge of each slab that brings its volume to its target, by secant
 /// steps from the last pass (the first step assumes the whole band moves:
 /// dV/db = h (P0 + P1) / 3 for a perimeter linear in z). A slab within
 /// 0.1 % of its target keeps its bulge. Returns whether any changed.
 bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
-                const std::vector<double>& volumes, std::vector<double>& bulge,
-                std::vector<double>& lastBulge, std::vector<double>& lastVolume) {
+                const std::vector<double>& volumes, BulgeSteps& steps) {
+    std::vector<double>& bulge = steps.bulge;
+    std::vector<double>& lastBulge = steps.lastBulge;
+    std::vector<double>& lastVolume = steps.lastVolume;
     bool changed = false;
     for (std::size_t s = 0; s < targets.size(); ++s) {
         const double h = planes.zMm[s + 1] - planes.zMm[s];
@@ -363,14 +371,13 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // the smooth surface needed, and the secant steps learn how much volume
     // that moves.
     const std::vector<double> targets = slabVolumeTargets(planes);
-    std::vector<double> bulge(targets.size(), 0), lastBulge(targets.size(), 0),
-        lastVolume(targets.size(), 0);
+    BulgeSteps steps;
+    steps.bulge.assign(targets.size(), 0.0);
+    steps.lastBulge = steps.lastVolume = steps.bulge;
     for (int pass = 0; pass < kVolumePasses; ++pass) {
-        if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), bulge, lastBulge,
-                        lastVolume))
-            break;
+        if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
         ++stats.volumePasses;
-        field.setSlabBulges(bulge);
+        field.setSlabBulges(steps.bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
     if (unbendWhereBroken(surface, contourVertices, first, parents, linear, check, stats))
