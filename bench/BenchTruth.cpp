@@ -233,6 +233,7 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
             Row impliedRow;
             impliedRow.system = "contour-implied";
             printRow(c, impliedRow, implied);
+            volumeErr["contour-implied"].push_back(implied);
 
             std::vector<Row> rows;
             TriangleSoup soup;

@@ -22,6 +22,8 @@ constexpr int kVolumePasses = 4;
 // along: wide at once, since every attempt costs a check of the pieces.
 constexpr int kUnbendAttempts = 3;
 constexpr int kUnbendRings[kUnbendAttempts] = {1, 3, 8};
+// Volume passes after the repairs, for the slabs that lost volume there.
+constexpr int kVolumePassesAfterRepair = 2;
 
 using Triangle = std::array<std::uint32_t, 3>;
 using Edge = std::array<std::uint32_t, 2>;
@@ -163,6 +165,18 @@ void bendNewVertices(TriangleSoup& surface, std::size_t first, const std::vector
     }
 }
 
+/// The vertices marked in `which` move again onto the zero set of `field`
+/// (after its bulges changed), from where they are.
+void rebend(TriangleSoup& surface, const std::vector<bool>& which, const SliceInterpolant& field,
+            double toleranceMm) {
+    for (std::size_t v = 0; v < which.size(); ++v) {
+        if (!which[v]) continue;
+        Vec3 p = surface.points[v];
+        if (projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm))
+            surface.points[v] = p;
+    }
+}
+
 /// Each round splits the edges that stray and bends the new vertices onto
 /// the smooth surface, so the next round measures chords of the curve (each
 /// halving divides a smooth band's sag by about four).
@@ -227,6 +241,9 @@ bool hasNoArea(const TriangleSoup& surface, const Triangle& tri) {
 std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid& near,
                                      const std::vector<std::size_t>& suspects) {
     std::vector<std::size_t> broken;
+    // A pair of two suspects is tested once, from its smaller triangle.
+    std::vector<bool> suspect(surface.triangles.size(), false);
+    for (std::size_t t : suspects) suspect[t] = true;
     for (std::size_t t : suspects) {
         const Triangle& tri = surface.triangles[t];
         if (hasNoArea(surface, tri)) {
@@ -238,7 +255,7 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid&
         for (const Vec3& p : a) box.add(p);
         near.overlapping(box, [&](std::uint32_t u) {
             const Triangle& other = surface.triangles[u];
-            if (u == t || hasNoArea(surface, other)) return;
+            if (u == t || (suspect[u] && u < t) || hasNoArea(surface, other)) return;
             const Vec3 b[3] = {surface.points[other[0]], surface.points[other[1]],
                                surface.points[other[2]]};
             if (trianglesCollide(tri, a, other, b)) {
@@ -252,86 +269,99 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid&
     return broken;
 }
 
-/// Where the bent surface is broken (bent bands passing through each other
-/// across a narrow gap, say), the moved vertices of the defective triangles
-/// go back to where they lie on the linear surface (the middle of their
-/// parent edge there), with rings of neighbours (kUnbendRings), so the rest
-/// of the piece stays bent. Between attempts only the triangles that moved
-/// or were broken are tested again, against their neighbours on a grid of
-/// boxes that hold every triangle bent or straight: the topology does not
-/// change, and every other pair was clean in the whole-mesh check. True,
-/// with `check` describing the surface, once it is a valid solid; false
-/// (some defects left) otherwise. Work: one whole-mesh check, plus O(T) for
-/// the grid and local tests per attempt.
-bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::size_t first,
-                       const std::vector<Edge>& parents, const TriangleSoup& linear,
-                       MeshCheckReport& check, LoftSmoothingStats& stats) {
-    std::vector<Vec3> straight(surface.points.size());
-    for (std::size_t v = 0; v < straight.size(); ++v)
-        straight[v] =
-            v < first ? linear.points[v]
-                      : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
-    roundPointsToFloat(surface);
-    check = checkMesh(surface);
-    if (check.validSolid()) return true;
-    // Moving vertices cannot mend the topology: that is for the caller.
-    if (check.boundaryEdges || check.nonManifoldEdges || check.nonManifoldVertices ||
-        check.misorientedEdges)
-        return false;
-    std::vector<Box3> reach(surface.triangles.size());
-    std::vector<double> extents;
-    Box3 scene;
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-        for (std::uint32_t v : surface.triangles[t]) {
-            reach[t].add(surface.points[v]);
-            reach[t].add(straight[v]);
-        }
-        // Points are rounded to float after they move.
-        const Vec3 pad{1e-4, 1e-4, 1e-4};
-        reach[t].lo = reach[t].lo - pad;
-        reach[t].hi = reach[t].hi + pad;
-        const Vec3 e = reach[t].hi - reach[t].lo;
-        extents.push_back(std::max({e.x, e.y, e.z}));
-        scene.add(reach[t]);
-    }
-    // Cells about a triangle across (the median), never so small that one
-    // box spans more than 64 a side.
-    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
-                     extents.end());
-    const Vec3 sceneSize = scene.hi - scene.lo;
-    const BoxGrid near(reach, std::max(extents[extents.size() / 2],
-                                       std::max({sceneSize.x, sceneSize.y, sceneSize.z}) / 64));
-    std::vector<std::size_t> broken = check.defectiveTriangles;
-    for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
-        std::vector<bool> unbend(surface.points.size(), false);
-        for (std::size_t t : broken)
-            for (std::uint32_t v : surface.triangles[t]) unbend[v] = true;
-        for (int ring = 0; ring < kUnbendRings[attempt]; ++ring) {
-            std::vector<bool> grown = unbend;
-            for (const Triangle& tri : surface.triangles)
-                if (unbend[tri[0]] || unbend[tri[1]] || unbend[tri[2]])
-                    for (std::uint32_t v : tri) grown[v] = true;
-            unbend = std::move(grown);
-        }
-        std::vector<bool> changed(surface.points.size(), false);
-        for (std::size_t v = contourVertices; v < surface.points.size(); ++v)
-            if (unbend[v] && !(surface.points[v] == straight[v])) {
-                surface.points[v] = straight[v];
-                changed[v] = true;
-                ++stats.unbentVertices;
+/// Keeps a bent surface valid by local repairs: where triangles meet or
+/// lose their area, the moved vertices around them go back to the straight
+/// (linear) surface and stay there (pinned). Between repairs only the
+/// triangles that moved or were broken are tested, against their
+/// neighbours on a grid of boxes (BoxGrid): the topology never changes, and
+/// every other pair was clean before.
+class LocalRepair {
+  public:
+    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, std::vector<Vec3> straight)
+        : surface_(surface),
+          contourVertices_(contourVertices),
+          straight_(std::move(straight)),
+          pinned_(surface.points.size(), false) {}
+
+    bool pinned(std::size_t v) const { return pinned_[v]; }
+
+    /// Tests `suspects` (and what they meet) and unbends around what is
+    /// broken, with kUnbendRings rings of neighbours, up to kUnbendAttempts
+    /// times. True once the tested triangles are clean. Work: O(T) for the
+    /// grid and the rings, plus local tests.
+    bool settle(std::vector<std::size_t> suspects, LoftSmoothingStats& stats) {
+        const BoxGrid near = gridOfReach();
+        std::vector<std::size_t> broken = brokenAmong(surface_, near, suspects);
+        for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
+            std::vector<bool> unbend(surface_.points.size(), false);
+            for (std::size_t t : broken)
+                for (std::uint32_t v : surface_.triangles[t]) unbend[v] = true;
+            for (int ring = 0; ring < kUnbendRings[attempt]; ++ring) {
+                std::vector<bool> grown = unbend;
+                for (const Triangle& tri : surface_.triangles)
+                    if (unbend[tri[0]] || unbend[tri[1]] || unbend[tri[2]])
+                        for (std::uint32_t v : tri) grown[v] = true;
+                unbend = std::move(grown);
             }
-        roundPointsToFloat(surface);
-        std::vector<std::size_t> suspects = broken;
-        for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-            const Triangle& tri = surface.triangles[t];
-            if (changed[tri[0]] || changed[tri[1]] || changed[tri[2]]) suspects.push_back(t);
+            std::vector<bool> changed(surface_.points.size(), false);
+            for (std::size_t v = contourVertices_; v < surface_.points.size(); ++v)
+                if (unbend[v]) {
+                    pinned_[v] = true;
+                    if (surface_.points[v] == straight_[v]) continue;
+                    surface_.points[v] = straight_[v];
+                    changed[v] = true;
+                    ++stats.unbentVertices;
+                }
+            roundPointsToFloat(surface_);
+            suspects = broken;
+            for (std::size_t t = 0; t < surface_.triangles.size(); ++t) {
+                const Triangle& tri = surface_.triangles[t];
+                if (changed[tri[0]] || changed[tri[1]] || changed[tri[2]]) suspects.push_back(t);
+            }
+            broken = brokenAmong(surface_, near, suspects);
         }
-        broken = brokenAmong(surface, near, suspects);
+        return broken.empty();
     }
-    if (!broken.empty()) return false;
-    // What the first check found besides these triangles still holds: the
-    // topology did not change, the other pieces did not move, and the broken
-    // pieces are clean now, so only the enclosed volume and area are new.
+
+  private:
+    /// A grid over boxes that hold every triangle where it is now and
+    /// wherever unbending may put it (its straight place).
+    BoxGrid gridOfReach() const {
+        std::vector<Box3> reach(surface_.triangles.size());
+        std::vector<double> extents;
+        Box3 scene;
+        for (std::size_t t = 0; t < surface_.triangles.size(); ++t) {
+            for (std::uint32_t v : surface_.triangles[t]) {
+                reach[t].add(surface_.points[v]);
+                reach[t].add(straight_[v]);
+            }
+            // Points are rounded to float after they move.
+            const Vec3 pad{1e-4, 1e-4, 1e-4};
+            reach[t].lo = reach[t].lo - pad;
+            reach[t].hi = reach[t].hi + pad;
+            const Vec3 e = reach[t].hi - reach[t].lo;
+            extents.push_back(std::max({e.x, e.y, e.z}));
+            scene.add(reach[t]);
+        }
+        // Cells about a triangle across (the median), never so small that
+        // one box spans more than 64 a side.
+        std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
+                         extents.end());
+        const Vec3 size = scene.hi - scene.lo;
+        return BoxGrid(
+            reach, std::max(extents[extents.size() / 2], std::max({size.x, size.y, size.z}) / 64));
+    }
+
+    TriangleSoup& surface_;
+    std::size_t contourVertices_;
+    std::vector<Vec3> straight_;  // every vertex's place on the linear surface
+    std::vector<bool> pinned_;    // unbent: stays straight
+};
+
+/// `check` made true again after local repairs: the topology is the one
+/// checkMesh saw, the repaired triangles are clean, so only the enclosed
+/// volume and area are new. O(T).
+void markRepaired(const TriangleSoup& surface, MeshCheckReport& check) {
     check.degenerateTriangles = check.intersectingPairs = 0;
     check.intersectingExamples.clear();
     check.defectiveTriangles.clear();
@@ -342,7 +372,6 @@ bool unbendWhereBroken(TriangleSoup& surface, std::size_t contourVertices, std::
         check.areaMm2 += 0.5 * length(cross(b - a, c - a));
         check.volumeMm3 += dot(a, cross(b, c)) / 6;
     }
-    return check.validSolid();
 }
 
 }  // namespace
@@ -380,8 +409,60 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         field.setSlabBulges(steps.bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
-    if (unbendWhereBroken(surface, contourVertices, first, parents, linear, check, stats))
+    // Where bent bands pass through each other (across a narrow gap between
+    // two folds, say), the vertices around go back to the straight surface;
+    // the slabs that lost volume that way bulge again with those vertices
+    // pinned, and are repaired again where that breaks something.
+    std::vector<Vec3> straight(surface.points.size());
+    for (std::size_t v = 0; v < straight.size(); ++v)
+        straight[v] =
+            v < first ? linear.points[v]
+                      : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
+    LocalRepair repair(surface, contourVertices, std::move(straight));
+    roundPointsToFloat(surface);
+    check = checkMesh(surface);
+    // Moving vertices cannot mend the topology: that is for the pieces below.
+    const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
+                              check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
+    if (check.validSolid()) return stats;
+    if (topologyKept && repair.settle(check.defectiveTriangles, stats)) {
+        // Unbending changed volumes without changing bulges: the secant of
+        // the passes before does not hold for it, so start afresh.
+        steps.lastBulge = steps.bulge;
+        std::vector<bool> repaired(targets.size(), false);
+        for (std::size_t v = 0; v < surface.points.size(); ++v)
+            if (repair.pinned(v)) repaired[field.slabAt(surface.points[v].z)] = true;
+        for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
+            const std::vector<double> bulgeBefore = steps.bulge;
+            if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
+            field.setSlabBulges(steps.bulge);
+            const std::vector<Vec3> before = surface.points;
+            // Only the slabs that were repaired (the others are where the
+            // passes above left them) and whose bulge changed move, and not
+            // where pinned.
+            std::vector<bool> free = moved;
+            for (std::size_t v = 0; v < free.size(); ++v) {
+                const std::size_t slab = field.slabAt(surface.points[v].z);
+                free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
+                          steps.bulge[slab] != bulgeBefore[slab];
+            }
+            rebend(surface, free, field, toleranceMm);
+            roundPointsToFloat(surface);
+            std::vector<std::size_t> suspects;
+            for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+                for (std::uint32_t v : surface.triangles[t])
+                    if (!(surface.points[v] == before[v])) {
+                        suspects.push_back(t);
+                        break;
+                    }
+            if (!repair.settle(suspects, stats)) {
+                surface.points = before;  // valid as it was
+                break;
+            }
+        }
+        markRepaired(surface, check);
         return stats;
+    }
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the
     // surface gets its linear triangles back. Pieces meet only in contour

@@ -28,11 +28,14 @@ packages=(
 # python3-pil, dicom3tools' ghostscript and netpbm). The Slurm daemons,
 # client and munge run the array-job test (tests/app/slurm_array_test.sh) on
 # a single-node Slurm; their recommends are the plugin development headers.
+# mricron-data holds the atlases the truth benchmark cuts (scripts/truth_sets.sh,
+# dfrecon-bench truth); its recommends are mricron itself.
 packages_no_recommends=(
   libopencv-dev python3 python3-vtk9
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge
+  mricron-data
 )
 
 missing() {
