@@ -19,8 +19,7 @@ int benchStructureSet(const std::string& device);
 int benchCompare();
 /// `setsDir` empty: build/truth-sets, made by scripts/truth_sets.sh where
 /// missing; `onlySet` empty: every set there.
-int benchTruth(const std::string& device, const std::string& setsDir,
-               const std::string& onlySet);
+int benchTruth(const std::string& device, const std::string& setsDir, const std::string& onlySet);
 
 /// Wall-clock seconds of the fastest of `runs` calls of `work`.
 template <class F>
