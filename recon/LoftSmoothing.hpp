@@ -27,24 +27,31 @@ struct LoftSmoothingStats {
 };
 
 /// `surface` is a valid reconstruction whose triangle t lies in piece
-/// pieceOf[t] (a slab or a cap) and is part of a loft band iff isLoft[t].
-/// Every edge of a loft triangle that is not horizontal and whose middle is
-/// farther than `toleranceMm` from the smooth surface is halved, in rounds
-/// until none is (at most 5; red–green: neighbouring triangles split too, so
-/// the mesh stays conforming; edges in a plane, contour edges included, are
-/// never split).
-/// Each new vertex all of whose triangles are loft triangles then moves, at
-/// its own z, to the zero set of `field` (Newton steps along the xy
-/// gradient); one that would move more than half its slab's height stays.
+/// pieceOf[t] (a slab or a cap) and is part of a loft band iff isLoft[t];
+/// its first `contourVertices` vertices are the contour points.
+/// Every edge of a loft triangle that is not horizontal, not shorter in z
+/// than a quarter of its slab, and whose middle is farther than
+/// `toleranceMm` from the smooth surface is halved, in rounds until none is
+/// (at most 5; red–green: neighbouring triangles split too, so the mesh
+/// stays conforming; edges in a plane, contour edges included, are never
+/// split). Every vertex that is not a contour point and all of whose
+/// triangles are loft triangles (new ones, and intermediate contours between
+/// strips) then moves, at its own z, to the zero set of `field` (Newton
+/// steps along the xy gradient); one that would move more than half its
+/// slab's height stays.
 /// Then each slab's volume is brought to its target (slabVolumeTargets of
 /// `planes`, the field's planes): the slab's bulge in `field`
-/// (SliceInterpolant::setSlabBulges) is set by secant steps, every bent
-/// vertex moves again, and bands refine where they now stray, up to four
-/// passes; a bulge stays within a quarter of its slab's height.
-/// Pieces whose moved vertices make the surface invalid (checked with points
-/// rounded to float) get them back; if it is still not valid, the linear
-/// surface is restored. On return `check` describes `surface`.
-/// Work: O(T) per round over the triangles made, plus up to three mesh checks.
+/// (SliceInterpolant::setSlabBulges) is set by secant steps and every bent
+/// vertex moves again, up to four passes; a bulge stays within half its
+/// slab's height.
+/// Where the bent surface is broken (checked with points rounded to float),
+/// the bent vertices around go back onto the linear surface, tested again
+/// locally, and the slabs repaired that way bulge again with them held
+/// straight. Pieces still broken get their linear triangles back; if the
+/// surface is still not valid, the linear surface is restored. On return
+/// `check` describes `surface`.
+/// Work: O(T) per round and pass over the triangles made, one or two
+/// whole-mesh checks, local tests around what was repaired.
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
                                std::vector<bool> isLoft, std::size_t contourVertices,
                                SliceInterpolant& field, const PlaneSections& planes,
