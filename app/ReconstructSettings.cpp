@@ -47,8 +47,8 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
         ->default_str(nameOf(kInterpolationNames, options.interpolation))
         ->check(CLI::IsMember(namesOf(kInterpolationNames)));
     cmd.add_option("--smooth-tolerance", options.smoothToleranceMm,
-                   "Smooth mode: strips are halved in z until no straight edge strays farther "
-                   "than this from the smooth surface, mm")
+                   "Smooth mode: strips are halved in z (down to a quarter of the slab) until "
+                   "no straight edge strays farther than this from the smooth surface, mm")
         ->capture_default_str()
         ->check(kPositive);
     cmd.add_option("--cap-offset", options.capOffsetMm,
