@@ -11,7 +11,7 @@
 // Distances are sampled uniformly by area on both surfaces (kSamples each)
 // and split by where they lie: near a plane (t < 0.25 or t > 0.75 of the
 // slab), mid-slab, or beyond the end planes (caps). Volumes are split the
-// same way: between the end planes and beyond them (bench/VolumeSplit).
+// same way: between the end planes and beyond them (geometry/SurfaceMeasures).
 // One JSON line per ROI and system, then one `truth-summary` line per set
 // and system with the targets.
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include "bench/Benchmarks.hpp"
 #include "bench/SlabErrors.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
@@ -39,30 +40,6 @@ namespace {
 
 constexpr std::size_t kSamples = 20000;
 constexpr double kBaselineVoxelMm = 0.5;
-
-/// Volume of the part of a closed, outward-oriented surface with z below
-/// `c`: by the divergence theorem with the field (0, 0, z − c), which
-/// vanishes on the cutting plane, it is the integral of (z − c)·n_z over the
-/// surface below c. Triangles crossing c are clipped. O(T).
-double volumeBelow(const TriangleSoup& soup, double c) {
-    double volume = 0;
-    auto add = [&](Vec3 a, Vec3 b, Vec3 d) {
-        const double areaZ = 0.5 * cross(b - a, d - a).z;  // n_z · area
-        volume += areaZ * ((a.z + b.z + d.z) / 3 - c);
-    };
-    for (const auto& t : soup.triangles) {
-        std::vector<Vec3> in;
-        for (int k = 0; k < 3; ++k) {
-            const Vec3 p = soup.points[t[std::size_t(k)]],
-                       q = soup.points[t[std::size_t((k + 1) % 3)]];
-            if (p.z <= c) in.push_back(p);
-            if ((p.z < c) != (q.z < c) && p.z != q.z)
-                in.push_back(p + ((c - p.z) / (q.z - p.z)) * (q - p));
-        }
-        for (std::size_t k = 1; k + 1 < in.size(); ++k) add(in[0], in[k], in[k + 1]);
-    }
-    return volume;
-}
 
 /// Σ net area (holes subtract) × the plane's share of the spacing: half
 /// the gaps to its neighbours, a whole gap at the ends (the slab
@@ -116,7 +93,7 @@ Row measure(const Case& c, const std::string& system, double seconds, const Tria
     row.triangles = check.triangles;
     row.volumeErrPct = 100 * (check.volumeMm3 / c.truthVolumeMm3 - 1);
     const double between =
-        volumeBelow(soup, c.planesMm.back()) - volumeBelow(soup, c.planesMm.front());
+        volumeBelowPlane(soup, c.planesMm.back()) - volumeBelowPlane(soup, c.planesMm.front());
     // Both parts as a share of the true total, so they add up to the whole error.
     row.betweenErrPct = 100 * (between - c.truthBetweenMm3) / c.truthVolumeMm3;
     row.capsErrPct = row.volumeErrPct - row.betweenErrPct;
@@ -220,11 +197,11 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
                 if (!s.contours.empty()) c.planesMm.push_back(s.zMm);
             // The atlas's own axes may be mirrored (a NIfTI sform with a
             // negative determinant), which turns the true surface inside out.
-            if (checkMesh(c.truth).volumeMm3 < 0)
+            if (measureSurface(c.truth).volumeMm3 < 0)
                 for (auto& t : c.truth.triangles) std::swap(t[1], t[2]);
-            c.truthVolumeMm3 = checkMesh(c.truth).volumeMm3;
-            c.truthBetweenMm3 =
-                volumeBelow(c.truth, c.planesMm.back()) - volumeBelow(c.truth, c.planesMm.front());
+            c.truthVolumeMm3 = measureSurface(c.truth).volumeMm3;
+            c.truthBetweenMm3 = volumeBelowPlane(c.truth, c.planesMm.back()) -
+                                volumeBelowPlane(c.truth, c.planesMm.front());
             c.truthSamples = sampleTriangles(c.truth, kSamples, 11);
             TriangleBvh truthBvh(c.truth);
             c.truthBvh = &truthBvh;

@@ -12,6 +12,8 @@
 
 namespace dfrecon {
 
+using Triangle = std::array<std::uint32_t, 3>;
+
 namespace {
 
 // Orientations within this fraction of the product of the edge lengths
@@ -91,17 +93,13 @@ bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
     return insideTriangle2(x, t, dominantAxis(cross(t[1] - t[0], t[2] - t[0])));
 }
 
-using Triangle = std::array<std::uint32_t, 3>;
+}  // namespace
 
 bool isDegenerate(const TriangleSoup& soup, const Triangle& t) {
     const Vec3 p0 = soup.points[t[0]], p1 = soup.points[t[1]], p2 = soup.points[t[2]];
     return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || length(cross(p1 - p0, p2 - p0)) == 0;
 }
 
-// Do triangles s and t (of the soup, non-degenerate) meet anywhere they
-// should not? Shared vertices are allowed contact: sharing an edge, they
-// meet wrongly only when folded onto each other; sharing one vertex, only
-// when they overlap beyond it.
 bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangle& t) {
     Vec3 a[3], b[3];
     for (int k = 0; k < 3; ++k) {
@@ -110,8 +108,6 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     }
     return trianglesCollide(s, a, t, b);
 }
-
-}  // namespace
 
 bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
                       const std::array<std::uint32_t, 3>& t, const Vec3 b[3]) {
@@ -234,16 +230,16 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     };
     std::vector<EdgeUse> uses;
     std::vector<bool> used(n, false), degenerate(soup.triangles.size(), false);
+    const SurfaceMeasures measures = measureSurface(soup);
+    report.volumeMm3 = measures.volumeMm3;
+    report.areaMm2 = measures.areaMm2;
     for (std::uint32_t t = 0; t < soup.triangles.size(); ++t) {
         const Triangle& tri = soup.triangles[t];
-        const Vec3 p0 = soup.points[tri[0]], p1 = soup.points[tri[1]], p2 = soup.points[tri[2]];
         if (isDegenerate(soup, tri)) {
             degenerate[t] = true;
             ++report.degenerateTriangles;
             report.defectiveTriangles.push_back(t);
         }
-        report.areaMm2 += 0.5 * length(cross(p1 - p0, p2 - p0));
-        report.volumeMm3 += dot(p0, cross(p1, p2)) / 6;
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
             used[a] = true;

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
@@ -60,6 +61,13 @@ std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const Tri
 /// vertices (by index) are handled by checkMesh; this is the plain test.
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]);
 
+/// Has triangle t of `soup` a repeated vertex or no area (as checkMesh
+/// counts degenerate triangles)? O(1).
+bool isDegenerate(const TriangleSoup& soup, const std::array<std::uint32_t, 3>& t);
+/// Do triangles s and t of `soup` (both non-degenerate) meet where they
+/// should not, as checkMesh judges a pair? O(1).
+bool trianglesCollide(const TriangleSoup& soup, const std::array<std::uint32_t, 3>& s,
+                      const std::array<std::uint32_t, 3>& t);
 /// Do triangles s (corners a) and t (corners b), given by vertex ids, meet
 /// where they should not? Shared vertices are allowed contact: sharing an
 /// edge they collide only when folded onto each other, sharing one vertex

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "geometry/BoxGrid.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 
 namespace dfrecon {
 
@@ -155,38 +156,36 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
     return true;
 }
 
-/// Vertices from `first` on whose triangles are all loft triangles move onto
-/// the zero set of `field` (one shared with a cap or prism triangle would
-/// drag that flat piece along); moved[v] records which did.
-void bendNewVertices(TriangleSoup& surface, std::size_t first, const std::vector<bool>& isLoft,
-                     const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
-                     LoftSmoothingStats& stats) {
-    std::vector<bool> movable(surface.points.size(), true);
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-        if (!isLoft[t])
-            for (std::uint32_t v : surface.triangles[t]) movable[v] = false;
+/// The vertices marked in `which` move, at their own z, onto the zero set
+/// of `field` from where they are (up to half their slab's height away);
+/// moved[v] records which ever did.
+void bendVertices(TriangleSoup& surface, const std::vector<bool>& which,
+                  const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
+                  LoftSmoothingStats& stats) {
     moved.resize(surface.points.size(), false);
-    for (std::size_t v = first; v < surface.points.size(); ++v) {
-        Vec3 p = surface.points[v];
-        const double slab = field.slabHeightAt(p.z);
-        if (movable[v] && projectOntoZeroSet(field, p, 0.5 * slab, 0.2 * toleranceMm)) {
-            surface.points[v] = p;
-            if (!moved[v]) ++stats.movedVertices;
-            moved[v] = true;
-        }
-    }
-}
-
-/// The vertices marked in `which` move again onto the zero set of `field`
-/// (after its bulges changed), from where they are.
-void rebend(TriangleSoup& surface, const std::vector<bool>& which, const SliceInterpolant& field,
-            double toleranceMm) {
     for (std::size_t v = 0; v < which.size(); ++v) {
         if (!which[v]) continue;
         Vec3 p = surface.points[v];
-        if (projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm))
-            surface.points[v] = p;
+        if (!projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm))
+            continue;
+        surface.points[v] = p;
+        if (!moved[v]) ++stats.movedVertices;
+        moved[v] = true;
     }
+}
+
+/// Vertices from `first` on whose triangles are all loft triangles bend
+/// (one shared with a cap or prism triangle would drag that flat piece
+/// along).
+void bendNewVertices(TriangleSoup& surface, std::size_t first, const std::vector<bool>& isLoft,
+                     const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
+                     LoftSmoothingStats& stats) {
+    std::vector<bool> which(surface.points.size(), true);
+    for (std::size_t v = 0; v < first; ++v) which[v] = false;
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+        if (!isLoft[t])
+            for (std::uint32_t v : surface.triangles[t]) which[v] = false;
+    bendVertices(surface, which, field, toleranceMm, moved, stats);
 }
 
 /// Each round splits the edges that stray and bends the new vertices onto
@@ -242,11 +241,6 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
     return changed;
 }
 
-bool hasNoArea(const TriangleSoup& surface, const Triangle& tri) {
-    const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]], c = surface.points[tri[2]];
-    return length(cross(b - a, c - a)) == 0;
-}
-
 /// Those of `suspects` that have no area or meet another triangle of
 /// `surface` where they should not (as checkMesh judges), with the ones they
 /// meet; `near` must hold every triangle's box. Sorted, no repeats.
@@ -258,19 +252,16 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid&
     for (std::size_t t : suspects) suspect[t] = true;
     for (std::size_t t : suspects) {
         const Triangle& tri = surface.triangles[t];
-        if (hasNoArea(surface, tri)) {
+        if (isDegenerate(surface, tri)) {
             broken.push_back(t);
             continue;
         }
-        const Vec3 a[3] = {surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]]};
         Box3 box;
-        for (const Vec3& p : a) box.add(p);
+        for (std::uint32_t v : tri) box.add(surface.points[v]);
         near.overlapping(box, [&](std::uint32_t u) {
             const Triangle& other = surface.triangles[u];
-            if (u == t || (suspect[u] && u < t) || hasNoArea(surface, other)) return;
-            const Vec3 b[3] = {surface.points[other[0]], surface.points[other[1]],
-                               surface.points[other[2]]};
-            if (trianglesCollide(tri, a, other, b)) {
+            if (u == t || (suspect[u] && u < t) || isDegenerate(surface, other)) return;
+            if (trianglesCollide(surface, tri, other)) {
                 broken.push_back(t);
                 broken.push_back(u);
             }
@@ -377,13 +368,9 @@ void markRepaired(const TriangleSoup& surface, MeshCheckReport& check) {
     check.degenerateTriangles = check.intersectingPairs = 0;
     check.intersectingExamples.clear();
     check.defectiveTriangles.clear();
-    check.volumeMm3 = check.areaMm2 = 0;
-    for (const Triangle& tri : surface.triangles) {
-        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
-                   c = surface.points[tri[2]];
-        check.areaMm2 += 0.5 * length(cross(b - a, c - a));
-        check.volumeMm3 += dot(a, cross(b, c)) / 6;
-    }
+    const SurfaceMeasures measures = measureSurface(surface);
+    check.volumeMm3 = measures.volumeMm3;
+    check.areaMm2 = measures.areaMm2;
 }
 
 }  // namespace
@@ -458,7 +445,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                 free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
                           steps.bulge[slab] != bulgeBefore[slab];
             }
-            rebend(surface, free, field, toleranceMm);
+            bendVertices(surface, free, field, toleranceMm, moved, stats);
             roundPointsToFloat(surface);
             std::vector<std::size_t> suspects;
             for (std::size_t t = 0; t < surface.triangles.size(); ++t)

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "recon/Reconstruction.hpp"
 #include "recon/SlabVolumes.hpp"
 #include "recon/SliceInterpolant.hpp"
@@ -146,27 +147,10 @@ TEST(SmoothInterpolation, SlabVolumesMatchTheirTargets) {
     ASSERT_TRUE(smooth.check.validSolid());
     const PlaneSections planes = sectionsOf(roi.slices);
     const std::vector<double> targets = slabVolumeTargets(planes);
-    // The surface's volume between the end planes, by the divergence theorem
-    // over triangles clipped to z <= c (as the truth benchmark measures it).
-    auto below = [&](double c) {
-        double v = 0;
-        for (const auto& t : smooth.surface.triangles) {
-            std::vector<Vec3> in;
-            for (int k = 0; k < 3; ++k) {
-                const Vec3 p = smooth.surface.points[t[std::size_t(k)]];
-                const Vec3 q = smooth.surface.points[t[std::size_t((k + 1) % 3)]];
-                if (p.z <= c) in.push_back(p);
-                if ((p.z < c) != (q.z < c)) in.push_back(p + ((c - p.z) / (q.z - p.z)) * (q - p));
-            }
-            for (std::size_t k = 1; k + 1 < in.size(); ++k)
-                v += 0.5 * cross(in[k] - in[0], in[k + 1] - in[0]).z *
-                     ((in[0].z + in[k].z + in[k + 1].z) / 3 - c);
-        }
-        return v;
-    };
     double target = 0;
     for (double t : targets) target += t;
-    const double between = below(planes.zMm.back()) - below(planes.zMm.front());
+    const double between = volumeBelowPlane(smooth.surface, planes.zMm.back()) -
+                           volumeBelowPlane(smooth.surface, planes.zMm.front());
     EXPECT_NEAR(between / target, 1, 2e-3);
 }
 
