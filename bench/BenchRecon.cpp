@@ -70,11 +70,6 @@ SurfaceDistance measure(const Truth& truth, const TriangleSoup& soup) {
     return d;
 }
 
-// null where a class holds no sample (fewer than two planes).
-nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value) {
-    return stats.samples == 0 ? nlohmann::json() : nlohmann::json(stats.*value);
-}
-
 void printRow(const std::string& caseName, const std::string& system, double seconds,
               const Truth& truth, const TriangleSoup& soup) {
     const MeshCheckReport check = checkMesh(soup);

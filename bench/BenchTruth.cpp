@@ -111,10 +111,6 @@ Row measure(const Case& c, const std::string& system, double seconds, const Tria
     return row;
 }
 
-nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value) {
-    return stats.samples == 0 ? nlohmann::json() : nlohmann::json(stats.*value);
-}
-
 void printRow(const Case& c, const Row& r, double volumeErrPctOnly = NAN) {
     nlohmann::ordered_json j{
         {"bench", "truth"}, {"set", c.set}, {"case", c.name}, {"system", r.system}};

@@ -5,6 +5,8 @@
 // the first and last plane has a position t in [0, 1] within its slab.
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace dfrecon::bench {
 
 /// An error measured at height z: the distance from a point of one surface
@@ -23,6 +25,12 @@ struct SlabErrors {
     ErrorStats nearPlane;  // t < 0.25 or t > 0.75 in its slab
     ErrorStats midSlab;    // 0.25 <= t <= 0.75
 };
+
+/// One figure of a class for a JSON line: null where the class holds no
+/// sample (fewer than two planes).
+inline nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value) {
+    return stats.samples == 0 ? nlohmann::json() : nlohmann::json(stats.*value);
+}
 
 /// Mean, 95th percentile (nearest rank) and maximum of each class; samples
 /// below the first or above the last of `planesMm` (sorted, at least two
