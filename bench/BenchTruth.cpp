@@ -67,7 +67,6 @@ double contourImpliedVolume(const Roi& roi) {
 
 struct Case {
     std::string set, name;
-    const Roi* roi;
     TriangleSoup truth;  // in the ROI's plane frame
     double truthVolumeMm3 = 0, truthBetweenMm3 = 0;
     std::vector<double> planesMm;
@@ -187,7 +186,7 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
         for (const Roi& roi : load.contours.rois) {
             const std::filesystem::path plyPath = setDir / (roi.name + ".ply");
             if (!std::filesystem::exists(plyPath) || roi.slices.size() < 2) continue;
-            Case c{setName, roi.name, &roi, readTriangleSoup(plyPath.string()), 0, 0, {}, {}, {}};
+            Case c{setName, roi.name, readTriangleSoup(plyPath.string()), 0, 0, {}, {}, {}};
             for (Vec3& p : c.truth.points) p = roi.frame.fromPatient(p);
             for (const Slice& s : roi.slices)
                 if (!s.contours.empty()) c.planesMm.push_back(s.zMm);

@@ -408,22 +408,22 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         field.setSlabBulges(steps.bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
+    roundPointsToFloat(surface);
+    check = checkMesh(surface);
+    if (check.validSolid()) return stats;
     // Where bent bands pass through each other (across a narrow gap between
     // two folds, say), the vertices around go back to the straight surface;
     // the slabs that lost volume that way bulge again with those vertices
-    // pinned, and are repaired again where that breaks something.
+    // pinned, and are repaired again where that breaks something. Moving
+    // vertices cannot mend the topology: that is for the pieces below.
+    const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
+                              check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
     std::vector<Vec3> straight(surface.points.size());
     for (std::size_t v = 0; v < straight.size(); ++v)
         straight[v] =
             v < first ? linear.points[v]
                       : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
     LocalRepair repair(surface, contourVertices, std::move(straight));
-    roundPointsToFloat(surface);
-    check = checkMesh(surface);
-    // Moving vertices cannot mend the topology: that is for the pieces below.
-    const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
-                              check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
-    if (check.validSolid()) return stats;
     if (topologyKept && repair.settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
         // the passes before does not hold for it, so start afresh.
