@@ -114,9 +114,9 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global) {
                         "decides)");
     cmd->add_option("--max-error", args->options.maxErrorMm,
                     "The two-sided bound in mm (every point of either surface this close to the "
-                    "other)")
+                    "other); at least 1e-6 mm, below which coordinates do not resolve it")
         ->required()
-        ->check(kPositive);
+        ->check(maxErrorCheck(kMinMaxErrorMm, false));
     cmd->add_option("--field", args->field,
                     "A .vdb distance field (from dfrecon field): also report the largest |field| "
                     "on the result, i.e. how far it is from the contours' surface (measured, not "

@@ -29,4 +29,16 @@ inline const CLI::Validator kNonNegative =
 inline const CLI::Validator kPositive =
     numberCheck([](double v) { return v > 0; }, "must be greater than 0", "NUMBER > 0");
 
+/// A simplification bound: 0 (keep every triangle) when `zeroAllowed`, else
+/// at least `minimumMm` (the floor below which the bound is under the
+/// coordinates' resolution: simplify/Simplification.hpp, kMinMaxErrorMm).
+inline CLI::Validator maxErrorCheck(double minimumMm, bool zeroAllowed) {
+    const std::string floor = CLI::detail::to_string(minimumMm);
+    return numberCheck(
+        [=](double v) { return (zeroAllowed && v == 0) || v >= minimumMm; },
+        zeroAllowed ? "must be 0 or at least " + floor + " mm"
+                    : "must be at least " + floor + " mm",
+        zeroAllowed ? "0 or NUMBER >= " + floor : "NUMBER >= " + floor);
+}
+
 }  // namespace dfrecon::app

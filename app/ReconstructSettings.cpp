@@ -6,6 +6,7 @@
 #include "app/EnumNames.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/StandardStreams.hpp"
+#include "simplify/Simplification.hpp"
 
 namespace dfrecon::app {
 
@@ -58,10 +59,11 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
         ->check(kNonNegative);
     cmd.add_option("--max-error", settings.maxErrorMm,
                    "Then simplify with this two-sided bound in mm, as dfrecon simplify does "
-                   "(0 = keep every triangle); the report gives the certified bound and the "
+                   "(0 = keep every triangle; else at least 1e-6 mm, below which coordinates do "
+                   "not resolve the bound); the report gives the certified bound and the "
                    "verified distance to the full surface and the contours")
         ->capture_default_str()
-        ->check(kNonNegative);
+        ->check(maxErrorCheck(kMinMaxErrorMm, true));
     cmd.add_flag("--allow-invalid", settings.allowInvalid,
                  "Write a surface that is not a valid closed solid anyway (it is reported, "
                  "and the exit code is still 4)");

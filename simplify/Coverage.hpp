@@ -48,13 +48,22 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 /// a neighbour of it cover it cut at their bisecting plane
 /// (coverAcrossAnEdge), reports the parts; otherwise halves its longest
 /// edge and covers each part the same way, down to parts of circumradius
-/// limits.finestFraction · limit. Returns the largest distance reported, or
-/// a value above the limit as soon as a part cannot be covered (onCovered
-/// may then have been called for other parts). The same pieces and
-/// candidates give the same answer.
+/// limits.finestFraction · limit or kMaxCoverDepth halvings, whichever comes
+/// first. Returns the largest distance reported, or a value above the limit
+/// as soon as a part cannot be covered (onCovered may then have been called
+/// for other parts). The same pieces and candidates give the same answer.
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered);
+                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered,
+                  int depth = 0);
+
+/// Most halvings of one original triangle in coverPiece. Three halvings of
+/// the longest edge about halve a piece, so this is some 2^-40 of its size:
+/// pieces reach the finest size long before on any surface within the input
+/// limits and a bound above kMinMaxErrorMm. It bounds the recursion where
+/// rounding would not let a piece shrink (a part not covered there only
+/// refuses the collapse, as any uncovered part does).
+inline constexpr int kMaxCoverDepth = 120;
 
 /// The straddle rule (kernels/straddle_bound.cl) for coverage: with the
 /// piece cut by the plane bisecting the angle between candidate `nearest`
@@ -103,7 +112,8 @@ double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCand
 
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered) {
+                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered,
+                  int depth) {
     const double limit = limits.limitMm;
     if (firstTry >= 0) {
         const double d = cornerDistance(piece, candidates[std::size_t(firstTry)]);
@@ -157,14 +167,15 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     }
     double radius = 0;
     for (const Vec3& q : piece.p) radius = std::max(radius, length(q - centre));
-    if (radius < limits.finestFraction * limit) return bestDistance;
+    if (radius < limits.finestFraction * limit || depth == kMaxCoverDepth) return bestDistance;
     const int k = longestEdge(piece.p);  // halved: see deviationBound
     const Vec3 mid = 0.5 * (piece.p[k] + piece.p[(k + 1) % 3]);
     const Vec3 apex = piece.p[(k + 2) % 3];
     const OriginalPiece parts[2] = {{{piece.p[k], mid, apex}}, {{mid, piece.p[(k + 1) % 3], apex}}};
     double worst = 0;
     for (const OriginalPiece& part : parts) {
-        worst = std::max(worst, coverPiece(part, candidates, best, -1, limits, onCovered));
+        worst = std::max(worst,
+                         coverPiece(part, candidates, best, -1, limits, onCovered, depth + 1));
         if (worst > limit) return worst;
     }
     return worst;

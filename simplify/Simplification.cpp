@@ -95,7 +95,8 @@ Attempt decimate(ocl::Runtime* runtime, const TriangleSoup& input, const Deviati
 
 Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
                            const SimplifyOptions& options) {
-    if (!(options.maxErrorMm > 0)) throw std::invalid_argument("--max-error must be positive");
+    if (!(options.maxErrorMm >= kMinMaxErrorMm))
+        throw std::invalid_argument("--max-error must be at least 1e-6 mm");
     std::size_t refused = 0;
     toTriMesh(input, &refused);
     if (refused > 0)

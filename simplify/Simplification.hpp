@@ -9,8 +9,16 @@
 
 namespace dfrecon {
 
+/// The smallest bound simplification accepts: 1 nm. Coordinates are within
+/// a kilometre of the origin (io/InputLimits.hpp), where doubles resolve
+/// 1.2e-10 mm, and the coverage of a collapse splits pieces of the original
+/// surface down to a tenth of the bound: below about 10^4 units of that
+/// resolution the halves of a piece would round onto their parent and the
+/// splitting would never end.
+inline constexpr double kMinMaxErrorMm = 1e-6;
+
 struct SimplifyOptions {
-    double maxErrorMm = 0.5;  ///< two-sided bound; must be > 0
+    double maxErrorMm = 0.5;  ///< two-sided bound; at least kMinMaxErrorMm
     /// The largest angle a face's normal may turn in one collapse (stops
     /// flips and the slivers that come just before them).
     double maxNormalTurnDeg = 60;
@@ -46,7 +54,8 @@ struct Simplified {
 /// it, keeps genus and orientation, and is within options.maxErrorMm of the
 /// input in both directions at every point of the result and every vertex
 /// of the input. `runtime` may be null (CPU only). Throws
-/// std::invalid_argument for a non-manifold input or a bad option.
+/// std::invalid_argument for a non-manifold input or a bad option (a bound
+/// below kMinMaxErrorMm).
 Simplified simplifySurface(ocl::Runtime* runtime, const TriangleSoup& input,
                            const SimplifyOptions& options);
 

@@ -61,13 +61,19 @@ TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
 }
 
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm) {
+    double totalMm = 0;
+    for (const Slice& slice : roi.slices)
+        for (const Polygon& contour : slice.contours)
+            for (std::size_t k = 0; k < contour.size(); ++k)
+                totalMm += length(contour[(k + 1) % contour.size()] - contour[k]);
+    stepMm = std::max(stepMm, totalMm / double(kMaxContourSamples));
     std::vector<Vec3> points;
     for (const Slice& slice : roi.slices)
         for (const Polygon& contour : slice.contours)
             for (std::size_t k = 0; k < contour.size(); ++k) {
                 const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
-                const int steps = std::max(1, int(std::ceil(length(b - a) / stepMm)));
-                for (int s = 0; s < steps; ++s) {
+                const double steps = std::max(1.0, std::ceil(length(b - a) / stepMm));
+                for (int s = 0; s < int(steps); ++s) {
                     const Point2 p = a + (double(s) / steps) * (b - a);
                     points.push_back(roi.frame.toPatient({p.x, p.y, slice.zMm}));
                 }

@@ -34,9 +34,15 @@ TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
                                   std::size_t samplesPerSurface, unsigned seed = 1);
 
 /// Points along every contour of `roi` (every vertex, and along each edge
-/// at most `stepMm` apart), at their slice's z, in patient coordinates
-/// (through the ROI's frame).
+/// at most `stepMm` apart, or the step that gives kMaxContourSamples over
+/// all contours where that is longer), at their slice's z, in patient
+/// coordinates (through the ROI's frame). O(points + samples).
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm);
+
+/// Most samples contourSamples takes between vertices (100 MB): a step of
+/// an eighth of a 1 µm bound along a metre of contour would take 8·10^9
+/// points; a body outline's 200 m of contour at a 0.5 mm bound takes 3·10^6.
+inline constexpr std::size_t kMaxContourSamples = std::size_t(1) << 22;
 
 /// The verifier's verdict on a simplification: both directions between
 /// `input` and `result`, and, given `contours`, their points every
