@@ -16,6 +16,9 @@
 #include "app/Stopwatch.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputDigest.hpp"
+#include "io/InputError.hpp"
+#include "io/JsonText.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon::app {
 
@@ -23,12 +26,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::optional<std::string> readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+// The record in an entry's folder: none when there is nothing by its name;
+// "" (unreadable, so the entry runs again and replaces it) when it is no
+// regular file of a record's size: a named pipe there must not block the
+// batch, a link to /dev/zero must not fill its memory.
+std::optional<std::string> readRecordText(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(fs::symlink_status(path, error))) return std::nullopt;
+    try {
+        return readRegularFile(path.string(), recordJsonLimits().maxBytes, "a batch record");
+    } catch (const InputError&) {
+        return std::string();
+    }
 }
 
 // The outcome a record describes, for an entry skipped because of it.
@@ -37,10 +46,10 @@ EntryOutcome outcomeOfRecord(const std::string& recordText) {
     outcome.status = EntryOutcome::Status::Skipped;
     std::string summary = "done";
     try {
-        const nlohmann::json record = nlohmann::json::parse(recordText);
+        const nlohmann::json record = parseRecord(recordText, kRecordFileName);
         outcome.exitCode = record.value("exitCode", 0);
         summary = record.value("summary", summary);
-    } catch (const nlohmann::json::exception&) {
+    } catch (const std::exception&) {
         // decideResume read it; a value of an odd type here is only not shown
     }
     if (outcome.exitCode != 0) outcome.error = summary;
@@ -158,11 +167,11 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
             entryFailure = describeFailure(std::current_exception());
         }
 
-        const std::optional<std::string> previous = readText(recordPath);
+        const std::optional<std::string> previous = readRecordText(recordPath);
         if (!entryFailure) {
             const ResumeDecision decision = decideResume(
                 previous ? &*previous : nullptr, record["inputFiles"], options, version,
-                [&](const std::string& mesh) { return fs::exists(folder / mesh); });
+                [&](const std::string& mesh) { return isRegularFile((folder / mesh).string()); });
             if (decision.skip) {
                 EntryOutcome skipped = outcomeOfRecord(*previous);
                 skipped.seconds = watch.total();
@@ -205,7 +214,7 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
         record["rois"] = std::move(tally.reports);
         // Written last: a record means every file it names is in place.
         writeStreamAtomically(recordPath.string(),
-                              [&](std::ostream& out) { out << record.dump(2) << "\n"; });
+                              [&](std::ostream& out) { out << jsonText(record, 2) << "\n"; });
     } catch (...) {
         const Failure failure = describeFailure(std::current_exception());
         outcome.status = EntryOutcome::Status::Failed;

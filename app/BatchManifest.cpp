@@ -12,6 +12,9 @@
 
 #include "app/Inputs.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
+#include "io/RegularFile.hpp"
+#include "io/TextEncoding.hpp"
 
 namespace dfrecon::app {
 
@@ -273,28 +276,13 @@ std::vector<ManifestEntry> parseCsv(const std::string& text, const std::string& 
 
 // ---- JSON ---------------------------------------------------------------
 
-int lineOfByte(const std::string& text, std::size_t byte) {
-    return 1 + int(std::count(text.begin(), text.begin() + std::min(byte, text.size()), '\n'));
-}
-
 std::vector<ManifestEntry> parseJson(const std::string& text, const std::string& file,
                                      const std::string& folder) {
-    nlohmann::json list;
-    try {
-        // Deeper than list, object, value is no manifest: stop the parser
-        // there, before it builds what a hostile file nests.
-        list = nlohmann::json::parse(text, [&](int depth, nlohmann::json::parse_event_t,
-                                               nlohmann::json&) {
-            if (depth > 2)
-                throw InputError(file, 0,
-                                 "nested lists or objects as values (a value is a string, number, "
-                                 "boolean or null)");
-            return true;
-        });
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(file, lineOfByte(text, e.byte),
-                         std::string("not valid JSON: ") + e.what());
-    }
+    // Deeper than list, object, value is no manifest: the parser stops
+    // there, before it builds what a hostile file nests.
+    JsonLimits limits;
+    limits.maxDepth = 2;
+    const nlohmann::json list = parseJsonText(text, file, limits);
     if (!list.is_array())
         throw InputError(file, 0, "a JSON manifest is a list of objects, one per entry");
     if (list.size() > kMaxManifestEntries)
@@ -333,8 +321,10 @@ std::vector<ManifestEntry> parseManifest(const std::string& text, const std::str
     const std::size_t bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     const std::size_t start = text.find_first_not_of(" \t\r\n", bom);
     const bool json = start != std::string::npos && text[start] == '[';
+    // Cells typed on Windows may be Latin-1: made UTF-8 line by line.
+    const std::string utf8 = utf8FromLegacyLines(std::string_view(text).substr(bom));
     std::vector<ManifestEntry> entries =
-        json ? parseJson(text.substr(bom), file, folder) : parseCsv(text, file, folder);
+        json ? parseJson(utf8, file, folder) : parseCsv(utf8, file, folder);
     // Entries become folders, and folders may not tell case apart.
     std::map<std::string, const ManifestEntry*> byId;
     for (const ManifestEntry& entry : entries) {
@@ -354,19 +344,9 @@ std::vector<ManifestEntry> parseManifest(const std::string& text, const std::str
 }
 
 std::vector<ManifestEntry> readManifest(const std::string& path) {
-    std::error_code error;
-    const std::uintmax_t bytes = fs::file_size(path, error);
-    if (error) throw InputError(path, 0, "cannot open file");
-    if (bytes > kMaxManifestBytes)
-        throw InputError(path, 0,
-                         "larger than " + std::to_string(kMaxManifestBytes >> 20) + " MiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, "cannot open file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in && !in.eof()) throw InputError(path, 0, "cannot read file");
+    const std::string text = readRegularFile(path, kMaxManifestBytes, "a batch manifest");
     const fs::path parent = fs::path(path).parent_path();
-    return parseManifest(text.str(), path, parent.empty() ? "." : parent.string());
+    return parseManifest(text, path, parent.empty() ? "." : parent.string());
 }
 
 }  // namespace dfrecon::app

@@ -11,11 +11,28 @@
 #include <nlohmann/json.hpp>
 
 #include "io/InputDigest.hpp"
+#include "io/JsonText.hpp"
 
 namespace dfrecon::app {
 
 inline constexpr const char* kRecordFileName = "record.json";
 inline constexpr const char* kRecordFormat = "dfrecon-batch-record 1";
+
+/// How a record is read: a regular file of at most 256 MiB (a structure set
+/// of 10 000 ROIs takes some 20 MB), JSON at most 16 levels deep (records
+/// nest 5). io/JsonText.
+JsonLimits recordJsonLimits();
+
+/// Parses a record's text (record.json in `file`); InputError naming the
+/// file as io/JsonText reports it, or when it is not an object of
+/// kRecordFormat with a string id, an entry number and, for every ROI with a
+/// mesh, a mesh that is a plain file name (isPlainFileName): a record
+/// pointing outside its entry folder is not trusted. O(record size).
+nlohmann::json parseRecord(const std::string& text, const std::string& file);
+
+/// Whether `name` names a file in the folder it is relative to: one path
+/// component, neither "." nor "..", without '/', '\\' or NUL. O(name).
+bool isPlainFileName(const std::string& name);
 
 /// The input's files as [{path, bytes, sha256}], the form records keep. O(files).
 nlohmann::ordered_json inputFilesJson(const std::vector<InputFile>& files);
@@ -32,7 +49,7 @@ struct ResumeDecision {
 };
 
 /// Whether an entry whose folder holds `recordText` (nullptr: no record)
-/// can be skipped: the record parses, has kRecordFormat, is complete, its
+/// can be skipped: the record parses (parseRecord), is complete, its
 /// version, options and inputFiles equal the ones given (as JSON values:
 /// key order and number spelling aside), and every mesh it lists (rois[].mesh,
 /// relative to the entry's folder) exists by `meshExists`. O(record size).

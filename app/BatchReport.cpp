@@ -8,6 +8,8 @@
 #include "app/BatchRecord.hpp"
 #include "app/ExitCodes.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon::app {
 
@@ -25,19 +27,10 @@ std::vector<nlohmann::json> readBatchRecords(const std::string& outputFolder) {
         const std::string name = it->path().filename().string();
         if (name.empty() || name[0] == '.' || !it->is_directory(error)) continue;
         const fs::path file = it->path() / kRecordFileName;
-        if (!fs::exists(file, error)) continue;
-        std::ifstream in(file, std::ios::binary);
-        std::stringstream text;
-        text << in.rdbuf();
-        if (!in && !in.eof()) throw InputError(file.string(), 0, "cannot read file");
-        nlohmann::json record = nlohmann::json::parse(text.str(), nullptr, false);
-        if (record.is_discarded() || !record.is_object() || !record.contains("format") ||
-            record["format"] != kRecordFormat || !record.contains("id") ||
-            !record["id"].is_string() || !record.contains("entry") ||
-            !record["entry"].is_number_unsigned())
-            throw InputError(file.string(), 0,
-                             std::string("not a batch record (") + kRecordFormat + ")");
-        records.push_back(std::move(record));
+        if (!fs::exists(fs::symlink_status(file, error))) continue;
+        const std::string text =
+            readRegularFile(file.string(), recordJsonLimits().maxBytes, "a batch record");
+        records.push_back(parseRecord(text, file.string()));
     }
     if (error) throw InputError(outputFolder, 0, "cannot list folder: " + error.message());
     std::sort(records.begin(), records.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
@@ -52,7 +45,7 @@ namespace {
 // `object[key]` when it has it, else null.
 nlohmann::ordered_json field(const nlohmann::json& object, const char* key) {
     if (!object.is_object() || !object.contains(key)) return nullptr;
-    return nlohmann::ordered_json::parse(object[key].dump());
+    return nlohmann::ordered_json::parse(jsonText(object[key]));
 }
 
 nlohmann::ordered_json row(const nlohmann::json& record, const nlohmann::json* roi,
@@ -89,7 +82,7 @@ nlohmann::ordered_json row(const nlohmann::json& record, const nlohmann::json* r
 
 std::string csvCell(const nlohmann::ordered_json& value) {
     if (value.is_null()) return "";
-    const std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+    const std::string text = value.is_string() ? value.get<std::string>() : jsonText(value);
     if (text.find_first_of(",\"\r\n") == std::string::npos &&
         (text.empty() || (text.front() != ' ' && text.back() != ' ')))
         return text;

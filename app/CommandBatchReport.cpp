@@ -11,6 +11,7 @@
 #include "app/Commands.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 
 namespace dfrecon::app {
 
@@ -30,14 +31,18 @@ void runBatchReport(const BatchReportArgs& args) {
                          "no batch records (FOLDER/ID/record.json, written by dfrecon batch)");
     const bool withSeconds = !args.noSeconds;
     const nlohmann::ordered_json rows = batchReportRows(records, withSeconds);
-    const std::string base =
-        args.output.empty() ? (fs::path(args.folder) / "batch-report").string() : args.output;
     const nlohmann::ordered_json report{
         {"format", "dfrecon-batch-report 1"}, {"entries", records.size()}, {"rows", rows}};
+    if (args.output == "-") {  // the table itself to standard output, no files
+        std::cout << (args.json ? jsonText(report, 2) + "\n" : batchReportCsv(rows, withSeconds));
+        return;
+    }
+    const std::string base =
+        args.output.empty() ? (fs::path(args.folder) / "batch-report").string() : args.output;
     writeStreamAtomically(base + ".csv",
                           [&](std::ostream& out) { out << batchReportCsv(rows, withSeconds); });
     writeStreamAtomically(base + ".json",
-                          [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+                          [&](std::ostream& out) { out << jsonText(report, 2) << "\n"; });
     std::size_t failed = 0, invalid = 0;
     for (const auto& row : rows) {
         const int code = row["exitCode"].is_number() ? row["exitCode"].get<int>() : 0;
@@ -45,14 +50,14 @@ void runBatchReport(const BatchReportArgs& args) {
         invalid += code == 4;
     }
     if (args.json)
-        std::cout << nlohmann::ordered_json{{"command", "batch-report"},
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "batch-report"},
                                             {"entries", records.size()},
                                             {"rows", rows.size()},
                                             {"failed", failed},
                                             {"notValidSolids", invalid},
                                             {"csv", base + ".csv"},
-                                            {"json", base + ".json"}}
-                         .dump(2)
+                                            {"json", base + ".json"}},
+                                            2)
                   << "\n";
     else
         std::cout << records.size() << " entries, " << rows.size() << " rows (" << failed
@@ -77,7 +82,8 @@ void addBatchReportCommand(CLI::App& root, const GlobalOptions&) {
         "written, 2 no records or one unreadable, 3 cannot write.");
     cmd->add_option("folder", args->folder, "The output folder of dfrecon batch")->required();
     cmd->add_option("-o,--output", args->output,
-                    "Write BASE.csv and BASE.json (default: FOLDER/batch-report)");
+                    "Write BASE.csv and BASE.json (default: FOLDER/batch-report); - prints the "
+                    "CSV table (with --json the JSON table) to standard output instead, no files");
     cmd->add_flag("--no-seconds", args->noSeconds,
                   "Leave the seconds column out (the rest does not depend on the run)");
     cmd->add_flag("--json", args->json, "Print a JSON summary instead of a line");

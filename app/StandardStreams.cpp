@@ -1,5 +1,8 @@
 #include "app/StandardStreams.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -54,6 +57,15 @@ void writeMeshOutput(const TriMesh& mesh, const MeshOutput& output,
         writeMesh(mesh, std::cout, output.format, options);
     else
         writeMesh(mesh, output.path, options);
+}
+
+void checkStandardOutput() {
+    errno = 0;
+    std::cout.flush();
+    const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+    if (lost)
+        throw std::runtime_error("cannot write to standard output" +
+                                 (errno != 0 ? ": " + std::string(std::strerror(errno)) : ""));
 }
 
 std::ostream& reportStream(bool resultOnStandardOutput) {

@@ -49,6 +49,13 @@ MeshOutput meshOutput(const std::string& output, const std::string& format, bool
 void writeMeshOutput(const TriMesh& mesh, const MeshOutput& output,
                      const MeshWriteOptions& options);
 
+/// Flushes standard output and throws std::runtime_error (exit 3, "cannot
+/// write to standard output: REASON") when anything written to it since the
+/// start was lost: a full disk, a closed pipe, /dev/full. main() calls it
+/// after every command, so no report or streamed mesh that did not arrive
+/// ends in exit 0. O(1) beyond the flush.
+void checkStandardOutput();
+
 /// Where a command's text report goes: stderr when its result goes to
 /// standard output (keeping that stream the result alone), else stdout.
 std::ostream& reportStream(bool resultOnStandardOutput);

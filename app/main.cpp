@@ -9,6 +9,7 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
+#include "app/StandardStreams.hpp"
 
 using namespace dfrecon;
 using namespace dfrecon::app;
@@ -60,13 +61,15 @@ int main(int argc, char** argv) {
     addCompareCommand(root, global);
 
     // CLI11 reports a mistyped subcommand as a missing one; name it instead.
+    // The first word that is neither an option nor a global option's value
+    // (--device gpu, --label-table FILE) is the subcommand.
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--device") {
-            ++i;  // its value
+        if (arg.empty() || arg[0] == '-') {
+            const CLI::Option* option = root.get_option_no_throw(arg);
+            if (option && option->get_items_expected_min() > 0) ++i;  // its value
             continue;
         }
-        if (arg.empty() || arg[0] == '-') continue;
         bool known = false;
         for (const CLI::App* command : root.get_subcommands({}))
             known = known || command->check_name(arg);
@@ -80,6 +83,7 @@ int main(int argc, char** argv) {
 
     try {
         root.parse(argc, argv);
+        checkStandardOutput();
         return kExitOk;
     } catch (const CLI::CallForHelp& e) {
         return root.exit(e);

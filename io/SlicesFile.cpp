@@ -137,6 +137,9 @@ class Parser {
                 chunk_.resize(std::size_t(in_.gcount()));
                 chunkPos_ = 0;
                 bytesRead_ += chunk_.size();
+                if (bytesRead_ > limits_.maxBytes)
+                    fail(lineNo_ + 1, "more than " + std::to_string(limits_.maxBytes >> 20) +
+                                          " MiB of text, the limit of a .slices file");
                 if (progress_) progress_(bytesRead_);
                 if (chunk_.empty()) break;
             }

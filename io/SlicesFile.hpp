@@ -14,6 +14,10 @@ namespace dfrecon {
 
 /// Bounds that keep hostile or broken files from exhausting memory or time.
 struct SlicesLimits {
+    /// The whole text, file or standard input: 2·10^7 points as we write
+    /// them take under 1 GB, and an endless stream (of comment lines, say)
+    /// ends here in a few seconds.
+    std::uint64_t maxBytes = std::uint64_t(1) << 30;
     std::size_t maxLineBytes = 64 * 1024;
     std::size_t maxPointsPerContour = 1'000'000;
     std::size_t maxPointsTotal = 20'000'000;
