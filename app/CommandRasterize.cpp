@@ -180,6 +180,14 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     if (rois.empty()) throw InputError(args.input, 0, "no ROI could be read");
     const VolumeGeometry grid =
         args.like.empty() ? gridAroundRois(rois, args.voxelMm) : referenceGrid(args.like);
+    // Each voxel takes a label and its owner: refused before either is
+    // allocated, whoever described the grid.
+    if (const std::string problem = labelGridProblem(grid, sizeof(std::int32_t)); !problem.empty()) {
+        if (args.like.empty())
+            throw std::invalid_argument("--voxel-mm " + CLI::detail::to_string(args.voxelMm) +
+                                        ": the grid around the ROIs has " + problem);
+        throw InputError(args.like, 0, "its grid has " + problem);
+    }
 
     // Larger structures are painted first so that a structure inside
     // another (an organ inside the body outline) keeps its voxels: a label

@@ -55,6 +55,12 @@ struct ContourSet {
     const Roi* findRoiNumber(int number) const;
 };
 
+/// Longest ROI name, in bytes of UTF-8, that any reader accepts (.slices,
+/// label tables, .seg.nrrd; RTSTRUCT names are cut here with a warning):
+/// every writer can then write what was read, and read it back. DICOM's LO
+/// holds 64 characters.
+inline constexpr std::size_t kMaxRoiNameBytes = 256;
+
 /// What readers may fix in contours instead of refusing them.
 struct ContourRepairOptions {
     /// `--repair-contours`: a contour that crosses itself becomes the simple

@@ -8,6 +8,7 @@
 #include "io/InputError.hpp"
 #include "io/LabelInput.hpp"
 #include "io/LabelTable.hpp"
+#include "io/RegularFile.hpp"
 #include "io/Sha256.hpp"
 
 namespace dfrecon {
@@ -16,15 +17,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Listed and measured first, hashed only once the whole input is known to
+// be within kMaxInputBytes: a 100 GB sparse file or a folder of millions
+// must be refused in a moment, not after hashing it.
 void addFile(std::vector<InputFile>& files, const fs::path& file, const std::string& name,
              const std::string& input) {
     if (files.size() >= kMaxInputFiles)
         throw InputError(input, 0,
                          "more than " + std::to_string(kMaxInputFiles) + " files to checksum");
-    std::error_code error;
-    const std::uintmax_t bytes = fs::file_size(file, error);
-    if (error) throw InputError(file.string(), 0, "cannot read file: " + error.message());
-    files.push_back({name, bytes, sha256OfFile(file.string())});
+    files.push_back({name, checkRegularFile(file.string(), kMaxInputFileBytes, "an input file"),
+                     file.string()});  // the path to hash, until hashed
+}
+
+void hashFiles(std::vector<InputFile>& files, const std::string& input) {
+    std::uint64_t total = 0;
+    for (const InputFile& file : files) total += file.bytes;
+    if (total > kMaxInputBytes)
+        throw InputError(input, 0,
+                         "its files take " + std::to_string(total >> 20) + " MiB, over the " +
+                             std::to_string(kMaxInputBytes >> 20) + " MiB an input may take");
+    for (InputFile& file : files) file.sha256 = sha256OfFile(file.sha256);
 }
 
 }  // namespace
@@ -58,6 +70,7 @@ std::vector<InputFile> inputFiles(const std::string& path) {
     }
     std::sort(files.begin(), files.end(),
               [](const InputFile& a, const InputFile& b) { return a.path < b.path; });
+    hashFiles(files, path);
     return files;
 }
 

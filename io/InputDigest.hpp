@@ -23,10 +23,15 @@ struct InputFile {
 /// every other regular file of its folder; any other file gives itself (a
 /// label volume also the label table beside it, io/LabelTable). A
 /// path that does not exist gives none. Throws InputError naming the path
-/// when a file cannot be read or a folder holds more than kMaxInputFiles
-/// files. O(total bytes).
+/// when a file cannot be read or is no regular file, before hashing
+/// anything when there are more than kMaxInputFiles files or more than
+/// kMaxInputBytes in all. O(total bytes).
 std::vector<InputFile> inputFiles(const std::string& path);
 
-inline constexpr std::size_t kMaxInputFiles = 100000;
+/// As many as an image-series folder may hold (io/DicomImageSeries).
+inline constexpr std::size_t kMaxInputFiles = 10000;
+/// All files of one input together: 4 GiB, as one file of any kind may take
+/// (io/RegularFile.hpp); a CT series and its structure set take under 1 GB.
+inline constexpr std::uint64_t kMaxInputBytes = std::uint64_t(4) << 30;
 
 }  // namespace dfrecon

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,9 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/FileNames.hpp"
+#include "io/InputError.hpp"
+#include "io/RegularFile.hpp"
+#include "io/TextEncoding.hpp"
 
 namespace dfrecon {
 
@@ -67,12 +71,33 @@ std::uint8_t component(const std::string& token, const char* which) {
     return std::uint8_t(*value);
 }
 
+// A name as every writer can write it and every reader read it back (a
+// label table, a .seg.nrrd header line, a file name, .slices).
 std::string checkedName(const std::string& name) {
     if (name.empty()) throw std::invalid_argument("empty name");
     if (name.size() > kMaxLabelNameBytes)
         throw std::invalid_argument("name longer than " + std::to_string(kMaxLabelNameBytes) +
                                     " bytes");
+    for (const char c : name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) {
+            char code[8];
+            std::snprintf(code, sizeof code, "0x%02X", unsigned(static_cast<unsigned char>(c)));
+            throw std::invalid_argument("a control character (" + std::string(code) +
+                                        ") in the name");
+        }
     return name;
+}
+
+// Whether a token is meant as a number, good or bad ("1e9", "nan", "-3"):
+// such tokens after a name are its colour and must be one.
+bool looksNumeric(const std::string& token) {
+    if (token.empty()) return false;
+    const char c = token[0];
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.')
+        return true;
+    std::string lower;
+    for (const char ch : token) lower += char(std::tolower(static_cast<unsigned char>(ch)));
+    return lower == "nan" || lower == "inf" || lower == "infinity";
 }
 
 // One line in whichever form it has: (value, entry).
@@ -85,9 +110,11 @@ std::pair<std::int32_t, LabelEntry> entryOfLine(const std::vector<std::string>& 
                 {checkedName(t[7]),
                  Rgb{component(t[1], "red"), component(t[2], "green"), component(t[3], "blue")}}};
     }
-    // FreeSurfer LUT / Slicer colour table: VALUE NAME R G B [A].
-    if ((t.size() == 5 || t.size() == 6) && first && !integerOf(t[1]) && integerOf(t[2]) &&
-        integerOf(t[3]) && integerOf(t[4])) {
+    // FreeSurfer LUT / Slicer colour table: VALUE NAME R G B [A]; a colour
+    // that is out of range or no integer ("1e9", "nan") is an error, not a
+    // plain-list line's trailing words.
+    if ((t.size() == 5 || t.size() == 6) && first && !integerOf(t[1]) && looksNumeric(t[2]) &&
+        looksNumeric(t[3]) && looksNumeric(t[4])) {
         return {labelValue(*first),
                 {checkedName(t[1]),
                  Rgb{component(t[2], "red"), component(t[3], "green"), component(t[4], "blue")}}};
@@ -117,21 +144,15 @@ Rgb colourOf(std::int32_t value, const LabelEntry& entry) {
 }  // namespace
 
 LabelTable readLabelTable(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw InputError(path, 0, "no such label table file");
-    const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (ec || bytes > kMaxLabelTableBytes)
-        throw InputError(
-            path, 0,
-            "label table larger than " + std::to_string(kMaxLabelTableBytes >> 20) + " MiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, "cannot open the label table");
+    std::istringstream in(readRegularFile(path, kMaxLabelTableBytes, "a label table"));
     LabelTable table;
     std::map<std::int32_t, int> lineOf;
     std::string line;
     std::vector<bool> quoted;
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        // Names typed on Windows may be Latin-1: each line made UTF-8.
+        line = utf8FromLegacyText(line);
         if (line.find('\0') != std::string::npos)
             throw InputError(path, lineNo, "a NUL byte: not a text label table");
         try {
@@ -148,7 +169,6 @@ LabelTable readLabelTable(const std::string& path) {
             throw InputError(path, lineNo, e.what());
         }
     }
-    if (in.bad()) throw InputError(path, 0, "read error");
     return table;
 }
 
@@ -182,9 +202,12 @@ LabelTable labelTableFromSegmentation(
                              "from Slicer as a label map");
         layer = segmentLayer;
         LabelEntry entry;
-        entry.name = field("Name").empty() ? field("ID") : field("Name");
-        if (entry.name.empty() || entry.name.size() > kMaxLabelNameBytes)
-            throw InputError(path, 0, where + "Name missing or too long");
+        entry.name = utf8FromLegacyText(field("Name").empty() ? field("ID") : field("Name"));
+        try {
+            checkedName(entry.name);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(path, 0, where + "Name: " + e.what());
+        }
         const std::string colour = field("Color");
         if (!colour.empty()) {
             std::istringstream in(colour);

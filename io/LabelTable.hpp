@@ -32,9 +32,9 @@ struct LabelEntry {
 using LabelTable = std::map<std::int32_t, LabelEntry>;
 
 /// Most bytes of a label table file (FreeSurfer's full LUT is ~70 kB) and
-/// most characters of one name.
+/// of one name (every ROI name's limit, so whatever is read can be written).
 inline constexpr std::uintmax_t kMaxLabelTableBytes = 16u << 20;
-inline constexpr std::size_t kMaxLabelNameBytes = 256;
+inline constexpr std::size_t kMaxLabelNameBytes = kMaxRoiNameBytes;
 
 /// Reads a text label table in any of the forms above, recognised per line.
 /// Throws InputError(path, line, what) for a missing or oversized file, a

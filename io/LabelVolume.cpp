@@ -410,4 +410,9 @@ void writeLabelVolume(const std::string& path, const LabelVolume& volume) {
                    });
 }
 
+std::string labelGridProblem(const VolumeGeometry& grid, std::size_t bytesPerVoxel) {
+    if (std::string problem = labelvolume::geometryProblem(grid); !problem.empty()) return problem;
+    return labelvolume::memoryProblem(std::uint64_t(grid.voxelCount()), bytesPerVoxel);
+}
+
 }  // namespace dfrecon

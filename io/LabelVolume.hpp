@@ -77,6 +77,14 @@ struct LabelVolume {
 /// O(voxels).
 LabelVolume readLabelVolume(const std::string& path);
 
+/// Why a label map on `grid` may not be made ("" when it may): the
+/// geometry checks of a label volume read from a file, and its voxels times
+/// (4 + `bytesPerVoxel`) within kMaxLabelVolumeBytes, the budget a read
+/// volume's samples and labels have. For writers that allocate a grid
+/// someone else describes (rasterize --like CT, --voxel-mm), before they
+/// allocate. O(1).
+std::string labelGridProblem(const VolumeGeometry& grid, std::size_t bytesPerVoxel);
+
 /// Writes `mask` (geometry.voxelCount() bytes, x fastest) as an attached
 /// NRRD: type uchar, gzip encoding, `space: left-posterior-superior`,
 /// `space directions` = spacingMm[a]·direction[a], `space origin` = originMm

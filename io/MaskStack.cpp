@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"
@@ -216,15 +217,10 @@ MaskStack readMaskStack(const std::string& path) {
     const fs::path sidecarPath =
         fs::is_directory(path, error) ? fs::path(path) / kMaskStackSidecar : fs::path(path);
     const std::string sidecar = sidecarPath.string();
-    std::ifstream in(sidecarPath);
-    if (!fs::is_regular_file(sidecarPath, error) || !in)
-        throw InputError(sidecar, 0, "mask stack sidecar not found or unreadable");
-    json doc;
-    try {
-        doc = json::parse(in);
-    } catch (const json::exception& e) {
-        throw InputError(sidecar, 0, std::string("not valid JSON: ") + e.what());
-    }
+    JsonLimits limits;
+    limits.maxDepth = 4;  // the object, its lists of numbers and of images
+    limits.maxBytes = std::uint64_t(64) << 20;
+    const json doc = readJsonFile(sidecar, limits, "a mask stack sidecar");
     if (!doc.is_object()) throw InputError(sidecar, 0, "the sidecar must be a JSON object");
 
     MaskStack stack;

@@ -3,6 +3,7 @@
 // contour data model and writing it back. Coordinates are patient (LPS)
 // millimetres, as in the file.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -49,6 +50,8 @@ struct RtStructRoiInfo {
 
 /// Bounds that keep hostile files from exhausting memory or time.
 struct RtStructLimits {
+    /// The file: 2·10^7 points of three 16-character decimals take 1 GB.
+    std::uint64_t maxFileBytes = std::uint64_t(1) << 30;
     std::size_t maxRois = 10'000;
     std::size_t maxContoursPerRoi = 1'000'000;
     std::size_t maxPointsTotal = 20'000'000;

@@ -17,7 +17,9 @@
 #include "io/DicomNesting.hpp"
 #include "io/FileNames.hpp"
 #include "io/InputsInUse.hpp"
+#include "io/RegularFile.hpp"
 #include "io/RtStruct.hpp"
+#include "io/TextEncoding.hpp"
 
 namespace dfrecon {
 
@@ -29,6 +31,7 @@ const char* holeConventionName(HoleConvention convention) {
 
 bool isDicomFile(const std::string& path) {
     if (endsWithIgnoringCase(path, ".dcm")) return true;
+    if (!isRegularFile(path)) return false;  // never open a pipe or a device to sniff it
     std::ifstream in(path, std::ios::binary);
     char magic[4] = {};
     return in.seekg(128) && in.read(magic, 4) && std::string(magic, 4) == "DICM";
@@ -55,6 +58,7 @@ class Reader {
 
     RtStructLoad run() {
         silenceDcmtkLog();
+        checkRegularFile(file_, limits_.maxFileBytes, "an RTSTRUCT file");
         checkDicomNesting(file_, limits_.maxNestingDepth);
         DcmFileFormat fileFormat;
         const OFCondition status = fileFormat.loadFile(file_.c_str(), EXS_Unknown, EGL_noChange,
@@ -163,6 +167,16 @@ class Reader {
     // Names are UTF-8 by now, which DCMTK's checker does not know
     // (isValidDicomText).
     std::string validRoiName(std::string name, const std::string& where) {
+        // Latin-1 written without a SpecificCharacterSet, as older planning
+        // systems do: read as Windows-1252 rather than mended into '_'.
+        name = utf8FromLegacyText(name);
+        if (name.size() > kMaxRoiNameBytes) {
+            std::size_t cut = kMaxRoiNameBytes;  // at a character's start
+            while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;
+            warn(where + ": " + tagName(DCM_ROIName) + " of " + std::to_string(name.size()) +
+                 " bytes cut to " + std::to_string(cut) + ", the most a name may have");
+            name.resize(cut);
+        }
         if (isValidDicomText(name)) return name;
         name = mendedDicomText(std::move(name));
         warn(where + ": " + tagName(DCM_ROIName) +

@@ -15,6 +15,8 @@
 #include "io/AtomicWrite.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
+#include "io/RegularFile.hpp"
+#include "io/TextEncoding.hpp"
 
 namespace dfrecon {
 
@@ -57,9 +59,17 @@ struct Tokenizer {
                 continue;
             }
             if (c == '"') {
-                const std::size_t close = line.find('"', i + 1);
-                if (close == std::string::npos) return "unterminated quoted name";
-                tokens.push_back(line.substr(i + 1, close - i - 1));
+                // "" inside quotes is one quote: GTV "left" is "GTV ""left""".
+                std::string token;
+                std::size_t close = line.find('"', i + 1);
+                for (std::size_t from = i + 1;; close = line.find('"', from)) {
+                    if (close == std::string::npos) return "unterminated quoted name";
+                    token.append(line, from, close - from);
+                    if (close + 1 >= line.size() || line[close + 1] != '"') break;
+                    token += '"';
+                    from = close + 2;
+                }
+                tokens.push_back(std::move(token));
                 quoted.push_back(true);
                 i = close + 1;
                 continue;
@@ -160,6 +170,8 @@ class Parser {
         if (!any) return false;
         ++lineNo_;
         if (line.find('\0') != std::string::npos) fail(lineNo_, "NUL byte in text file");
+        // A name typed on Windows may be Latin-1: each line made UTF-8.
+        line = utf8FromLegacyText(line);
         return true;
     }
 
@@ -265,6 +277,10 @@ class Parser {
         source.line = lineNo_;
         source.roi.name = tok_.tokens[1];
         if (source.roi.name.empty()) fail(lineNo_, "empty ROI name");
+        if (source.roi.name.size() > kMaxRoiNameBytes)
+            fail(lineNo_, "an ROI name of " + std::to_string(source.roi.name.size()) +
+                              " bytes, over the " + std::to_string(kMaxRoiNameBytes) +
+                              " a name may have");
         for (const SourceRoi& other : rois_)
             if (other.roi.name == source.roi.name)
                 fail(lineNo_, "duplicate ROI name '" + source.roi.name + "' (first at line " +
@@ -485,14 +501,15 @@ std::string exactNumber(double v) {
 std::string quotedName(const std::string& name) {
     if (name.empty()) throw std::invalid_argument("ROI name is empty");
     bool needsQuotes = false;
+    std::string quoted;
     for (char c : name) {
-        if (c == '"' || c == '\n' || (static_cast<unsigned char>(c) < 0x20 && c != '\t'))
-            throw std::invalid_argument("ROI name '" + name +
-                                        "' holds a quote or control character");
-        if (c == ' ' || c == '\t' || c == '#') needsQuotes = true;
+        if (c == '\n' || (static_cast<unsigned char>(c) < 0x20 && c != '\t'))
+            throw std::invalid_argument("ROI name '" + name + "' holds a control character");
+        if (c == ' ' || c == '\t' || c == '#' || c == '"') needsQuotes = true;
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
     }
     if (isKeyword(name)) needsQuotes = true;
-    return needsQuotes ? "\"" + name + "\"" : name;
+    return needsQuotes ? "\"" + quoted + "\"" : name;
 }
 
 }  // namespace
@@ -506,13 +523,11 @@ SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
                           const std::function<void(double)>& progress,
                           const ContourRepairOptions& repair) {
     const ReadingInput reading(path);
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "is a directory");
+    const std::uint64_t size = checkRegularFile(path, limits.maxBytes, "a .slices file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "cannot open file");
-    const auto size = std::filesystem::file_size(path, ec);
     SlicesProgress bytes;
-    if (progress && !ec && size > 0)
+    if (progress && size > 0)
         bytes = [&](std::uint64_t read) { progress(std::min(1.0, double(read) / double(size))); };
     return parseSlices(in, path, limits, bytes, repair);
 }
