@@ -140,7 +140,47 @@ EntryOutcome outcomeOf(const std::optional<Failure>& entryFailure, const RoiTall
     return outcome;
 }
 
+// What a record says before the entry runs: the entry, its options as
+// given and its input's files (or, in `inputFailure`, why they cannot be
+// read). The rerun rule compares exactly these (app/BatchRecord).
+nlohmann::ordered_json recordStart(const ManifestEntry& entry, const ReconstructSettings& settings,
+                                   const std::string& version,
+                                   std::optional<Failure>& inputFailure) {
+    nlohmann::ordered_json options{{"roi", entry.roi.empty() ? nlohmann::ordered_json(nullptr)
+                                                             : nlohmann::ordered_json(entry.roi)}};
+    appendItems(options, reconstructSettingsJson(settings));
+    nlohmann::ordered_json record{{"format", kRecordFormat}, {"id", entry.id},
+                                  {"entry", entry.number},   {"input", entry.input},
+                                  {"inputFiles", nullptr},   {"options", options},
+                                  {"version", version}};
+    try {
+        record["inputFiles"] = inputFilesJson(inputFiles(entry.inputPath));
+    } catch (...) {
+        inputFailure = describeFailure(std::current_exception());
+    }
+    return record;
+}
+
 }  // namespace
+
+void writeFailedEntryRecord(const ManifestEntry& entry, const ReconstructSettings& base,
+                            const std::string& outputFolder, const std::string& version,
+                            const std::string& error, int exitCode, bool lasting) {
+    const fs::path folder = fs::path(outputFolder) / entry.id;
+    std::optional<Failure> inputFailure;
+    nlohmann::ordered_json record =
+        recordStart(entry, withGivenOptions(base, entry.options), version, inputFailure);
+    record["complete"] = lasting;
+    record["exitCode"] = exitCode;
+    record["error"] = error;
+    record["summary"] = "failed: " + error;
+    record["seconds"] = 0;
+    record["warnings"] = nlohmann::ordered_json::array();
+    record["rois"] = nlohmann::ordered_json::array();
+    fs::create_directories(folder);
+    writeStreamAtomically((folder / kRecordFileName).string(),
+                          [&](std::ostream& out) { out << jsonText(record, 2) << "\n"; });
+}
 
 EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
                            const ReconstructSettings& base, const std::string& outputFolder,
@@ -151,26 +191,13 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
         const fs::path folder = fs::path(outputFolder) / entry.id;
         const fs::path recordPath = folder / kRecordFileName;
         const ReconstructSettings settings = withGivenOptions(base, entry.options);
-        nlohmann::ordered_json options{{"roi", entry.roi.empty()
-                                                   ? nlohmann::ordered_json(nullptr)
-                                                   : nlohmann::ordered_json(entry.roi)}};
-        appendItems(options, reconstructSettingsJson(settings));
-
-        nlohmann::ordered_json record{{"format", kRecordFormat}, {"id", entry.id},
-                                      {"entry", entry.number},   {"input", entry.input},
-                                      {"inputFiles", nullptr},   {"options", options},
-                                      {"version", version}};
         std::optional<Failure> entryFailure;
-        try {
-            record["inputFiles"] = inputFilesJson(inputFiles(entry.inputPath));
-        } catch (...) {
-            entryFailure = describeFailure(std::current_exception());
-        }
+        nlohmann::ordered_json record = recordStart(entry, settings, version, entryFailure);
 
         const std::optional<std::string> previous = readRecordText(recordPath);
         if (!entryFailure) {
             const ResumeDecision decision = decideResume(
-                previous ? &*previous : nullptr, record["inputFiles"], options, version,
+                previous ? &*previous : nullptr, record["inputFiles"], record["options"], version,
                 [&](const std::string& mesh) { return isRegularFile((folder / mesh).string()); });
             if (decision.skip) {
                 EntryOutcome skipped = outcomeOfRecord(*previous);

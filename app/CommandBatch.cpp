@@ -12,6 +12,7 @@
 #include "app/BatchEntry.hpp"
 #include "app/BatchManifest.hpp"
 #include "app/BatchShard.hpp"
+#include "app/BatchWorkers.hpp"
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/OrderedParallel.hpp"
@@ -19,6 +20,7 @@
 #include "app/ReconstructSettings.hpp"
 #include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
+#include "io/JsonText.hpp"
 
 namespace dfrecon::app {
 
@@ -57,6 +59,16 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     std::vector<const ManifestEntry*> mine;
     for (const ManifestEntry& entry : entries)
         if (shard.has(entry.number)) mine.push_back(&entry);
+    if (isBatchWorkerProcess()) {  // started by a BatchWorker below, with this command line
+        WorkerRuntimes runtime(global.device, 1);
+        serveBatchEntries(
+            [&](std::size_t i) {
+                return runBatchEntry(runtime[0], *mine[i], args.settings, args.output,
+                                     DFRECON_VERSION);
+            },
+            [&](std::size_t i) { return mine[i]->id; });
+        return;
+    }
     fs::create_directories(args.output);
 
     const std::size_t jobs = mine.empty()    ? 1
@@ -66,8 +78,14 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
         std::cerr << "dfrecon batch: shard " << shard.index << "/" << shard.count << " ("
                   << shard.source << "): " << mine.size() << " of " << entries.size()
                   << " entries, " << jobs << " at once\n";
-    std::unique_ptr<WorkerRuntimes> runtimes;
-    if (!mine.empty()) runtimes = std::make_unique<WorkerRuntimes>(global.device, jobs);
+    // Opened here only so that a device that cannot be opened fails the
+    // batch before any work; the entries run in worker processes, each with
+    // its own runtime (app/BatchWorkers), so that one entry's crash is that
+    // entry's failure alone.
+    std::unique_ptr<WorkerRuntimes> deviceCheck;
+    if (!mine.empty()) deviceCheck = std::make_unique<WorkerRuntimes>(global.device, 1);
+    std::vector<std::unique_ptr<BatchWorker>> workers(jobs);
+    for (auto& worker : workers) worker = std::make_unique<BatchWorker>();
 
     std::size_t done = 0, skipped = 0, failed = 0, invalid = 0;
     int firstFailure = 0;
@@ -77,8 +95,18 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     forEachInOrder(
         mine.size(), jobs,
         [&](std::size_t i, std::size_t worker) {
-            return runBatchEntry((*runtimes)[worker], *mine[i], args.settings, args.output,
-                                 DFRECON_VERSION);
+            BatchWorker::Result result = workers[worker]->run(i);
+            if (result.died) try {
+                    // The worker wrote no record: the batch-report must
+                    // still show the entry, and a rerun skip a lasting one.
+                    writeFailedEntryRecord(*mine[i], args.settings, args.output,
+                                           DFRECON_VERSION, result.outcome.error,
+                                           result.outcome.exitCode, result.lasting);
+                } catch (const std::exception& e) {
+                    result.outcome.error += std::string("; its record could not be written: ") +
+                                            e.what();
+                }
+            return result.outcome;
         },
         [&](std::size_t i, EntryOutcome outcome) {
             overall.finish();
@@ -108,7 +136,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
         });
     overall.finish();
     if (args.json) {
-        std::cout << nlohmann::ordered_json{{"command", "batch"},
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "batch"},
                                             {"manifest", args.manifest},
                                             {"output", args.output},
                                             {"shard",
@@ -122,8 +150,8 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
                                             {"failed", failed},
                                             {"notValidSolid", invalid},
                                             {"seconds", watch.total()},
-                                            {"results", results}}
-                         .dump(2)
+                                            {"results", results}},
+                                            2)
                   << "\n";
     } else {
         std::cout << "batch: " << mine.size() << " of " << entries.size() << " entries (shard "

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/Commands.hpp"
+#include "app/BatchWorkers.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
 #include "app/StandardStreams.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
         break;
     }
 
+    keepProgramArguments(argc, argv);
     try {
         root.parse(argc, argv);
         checkStandardOutput();
