@@ -15,6 +15,36 @@ struct WeightedDistance {
     double distanceMm, weightMm2;
 };
 
+// The lattice of a triangle: n × n similar cells, each edge at most
+// spacingMm.
+double latticeSteps(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm) {
+    const double longest = std::max({length(p1 - p0), length(p2 - p1), length(p0 - p2)});
+    return std::max(1.0, std::ceil(longest / spacingMm));
+}
+
+double sampleCount(const TriangleSoup& soup, double spacingMm) {
+    double count = 0;
+    for (const auto& t : soup.triangles) {
+        const double n = latticeSteps(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]],
+                                      spacingMm);
+        count += (n + 1) * (n + 2) / 2;
+    }
+    return count;
+}
+
+// The spacing actually used: the one asked for, or coarser where that
+// would take more than kMaxDistanceSamples samples on either surface (a
+// metre-sized cube at 0.2 mm would take 10^8 and gigabytes).
+double spacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b, double spacingMm) {
+    for (;;) {
+        const double samples = std::max(sampleCount(a, spacingMm), sampleCount(b, spacingMm));
+        if (samples <= double(kMaxDistanceSamples)) return spacingMm;
+        // Samples fall with the square of the spacing, or slower (the
+        // lattice's +1 per triangle): grow by the root, at least by 5 %.
+        spacingMm *= std::max(1.05, std::sqrt(samples / double(kMaxDistanceSamples)));
+    }
+}
+
 DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, double spacingMm,
                            double& areaMm2) {
     std::vector<WeightedDistance> samples;
@@ -23,9 +53,7 @@ DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, doub
         const Vec3 p0 = from.points[t[0]], p1 = from.points[t[1]], p2 = from.points[t[2]];
         const double area = 0.5 * length(cross(p1 - p0, p2 - p0));
         areaMm2 += area;
-        const double longest = std::max({length(p1 - p0), length(p2 - p1), length(p0 - p2)});
-        // n × n similar cells, each edge at most spacingMm.
-        const int n = std::max(1, int(std::ceil(longest / spacingMm)));
+        const int n = int(latticeSteps(p0, p1, p2, spacingMm));
         const double weight = area / double((n + 1) * (n + 2) / 2);
         std::size_t hint = SIZE_MAX;
         for (int i = 0; i <= n; ++i)
@@ -83,6 +111,7 @@ SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, 
     if (!(spacingMm > 0)) throw std::invalid_argument("sample spacing must be > 0");
     const TriangleBvh bvhA(a), bvhB(b);
     SurfaceDistances d;
+    spacingMm = spacingWithinBudget(a, b, spacingMm);
     d.spacingMm = spacingMm;
     d.aToB = directed(a, bvhB, spacingMm, d.areaAMm2);
     d.bToA = directed(b, bvhA, spacingMm, d.areaBMm2);

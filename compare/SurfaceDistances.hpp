@@ -21,9 +21,16 @@ struct DirectedDistances {
     std::size_t samples = 0;
 };
 
+/// Most samples on either surface (each 16 bytes while the percentiles are
+/// found): where `spacingMm` would take more, the spacing is coarsened until
+/// it does not, and reported as used.
+inline constexpr std::size_t kMaxDistanceSamples = std::size_t(1) << 23;
+
 struct SurfaceDistances {
     DirectedDistances aToB, bToA;
-    double spacingMm = 0;  // the bound on every figure's error
+    /// The spacing used, the bound on every figure's error: the one asked
+    /// for unless that took more than kMaxDistanceSamples samples.
+    double spacingMm = 0;
     /// max of the two directed Hausdorff distances.
     double hausdorffMm() const;
     /// max of the two directed 95th percentiles (plastimatch's, Slicer's
@@ -36,7 +43,8 @@ struct SurfaceDistances {
 
 /// Distances between `a` and `b` (any triangle soups; closed or not).
 /// Throws std::invalid_argument for an empty surface or spacingMm <= 0.
-/// Work: O(S log T) for S = area / spacingMm² samples.
+/// Work: O(S log T) for S = area / spacingMm² samples, S at most
+/// kMaxDistanceSamples (the spacing grows to keep it so); memory O(S + T).
 SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm);
 
 }  // namespace dfrecon

@@ -49,14 +49,29 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gr
             for (Point2 p : contour) box.add(p);
     if (box.empty()) throw std::invalid_argument("no contours to place a grid around");
     const double extent = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
-    if (!(pixelMm > 0)) {
+    const bool chosen = !(pixelMm > 0);
+    if (chosen) {
         // Longest side: extent/pixel + 1 + 2·margin pixels = gridPixels.
         pixelMm = extent > 0 ? extent / std::max(1, gridPixels - 1 - 2 * kGridMarginPx) : 1.0;
     }
     if (extent / pixelMm > 16384)
         throw std::invalid_argument("pixel size " + std::to_string(pixelMm) +
                                     " mm gives a grid over 16384 pixels a side");
-    return gridAround(box, pixelMm, kGridMarginPx);
+    const auto pixelsInAll = [&](double pixel) {
+        return double(gridAround(box, pixel, kGridMarginPx).pixelCount()) * double(slices.size());
+    };
+    // Pixels fall with the square of the pixel size, or slower (the margin):
+    // grow by the root, at least by 5 %, until the slices fit.
+    double fitting = pixelMm;
+    while (pixelsInAll(fitting) > double(kMaxRoiFieldPixels))
+        fitting *= std::max(1.05, std::sqrt(pixelsInAll(fitting) / double(kMaxRoiFieldPixels)));
+    if (fitting > pixelMm && !chosen)
+        throw std::invalid_argument(
+            "pixel size " + std::to_string(pixelMm) + " mm gives " + std::to_string(slices.size()) +
+            " planes over " + std::to_string(kMaxRoiFieldPixels) +
+            " field pixels in all, more than memory allows; the smallest that fits is " +
+            std::to_string(fitting) + " mm");
+    return gridAround(box, fitting, kGridMarginPx);
 }
 
 }  // namespace dfrecon

@@ -2,6 +2,7 @@
 // The pixel grid on which a slice's fields are sampled: square pixels of
 // pixelMm, pixel (i, j) centred at origin + ((i + ½)·pixelMm, (j + ½)·pixelMm).
 #include <cstddef>
+#include <cstdint>
 
 #include <vector>
 
@@ -35,11 +36,19 @@ SliceGrid windowOf(const SliceGrid& grid, const Box2& box, int marginPx);
 inline constexpr int kDefaultGridPixels = 512;
 inline constexpr int kGridMarginPx = 8;
 
+/// Most pixels of all slices of one ROI together, whose fields are held at
+/// once (a distance and a nearest id, 8 bytes a pixel: 1 GiB): 2048 planes
+/// at 256 pixels a side, 512 at 512.
+inline constexpr std::uint64_t kMaxRoiFieldPixels = std::uint64_t(1) << 27;
+
 /// The one grid shared by all slices of an ROI: covers the union of its
 /// contours' bounding boxes plus kGridMarginPx pixels on each side. With
 /// pixelMm <= 0 the pixel size is chosen so the longer side is about
-/// `gridPixels`. Throws std::invalid_argument for an ROI without
-/// contours or a grid over 16384 pixels a side.
+/// `gridPixels`, or coarser where the slices would then take more than
+/// kMaxRoiFieldPixels together (10 000 planes of a tiny contour). Throws
+/// std::invalid_argument for an ROI without contours, or a pixelMm > 0 that
+/// gives a grid over 16384 pixels a side or over kMaxRoiFieldPixels in
+/// all (the message says the smallest pixel that fits).
 SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm = 0,
                         int gridPixels = kDefaultGridPixels);
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "io/InputError.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon {
 
@@ -27,10 +28,7 @@ bool isDigit(char c) {
 
 FileScanner::FileScanner(const std::string& path)
     : path_(path), file_(nullptr, &std::fclose), buffer_(kBufferBytes, '\0') {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, 0, "cannot open file");
-    size_ = std::filesystem::file_size(path, ec);
-    if (ec) throw InputError(path, 0, "cannot measure the file");
+    size_ = checkRegularFile(path, kMaxInputFileBytes, "an input file");
     file_.reset(std::fopen(path.c_str(), "rb"));
     if (!file_) throw InputError(path, 0, "cannot open file");
 }
