@@ -63,7 +63,8 @@ ResumeDecision decide(const std::string& recordText, const nlohmann::ordered_jso
     if (record.value("version", "") != version)
         return {false, "the program version changed (" + record.value("version", "?") + " -> " +
                            version + ")"};
-    if (!record.contains("options") || record["options"] != nlohmann::json::parse(jsonText(options)))
+    if (!record.contains("options") ||
+        record["options"] != nlohmann::json::parse(jsonText(options)))
         return {false, "its options changed"};
     if (!record.contains("inputFiles") ||
         record["inputFiles"] != nlohmann::json::parse(jsonText(inputFiles)))

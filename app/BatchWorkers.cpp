@@ -54,8 +54,9 @@ void writeAll(int fd, const std::string& text) {
     for (std::size_t sent = 0; sent < text.size();) {
         const ssize_t n = ::write(fd, text.data() + sent, text.size() - sent);
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw std::runtime_error("cannot write to a batch worker: " +
-                                             std::string(std::strerror(errno)));
+        if (n <= 0)
+            throw std::runtime_error("cannot write to a batch worker: " +
+                                     std::string(std::strerror(errno)));
         sent += std::size_t(n);
     }
 }
@@ -157,7 +158,8 @@ void BatchWorker::start() {
         ::close(input[1]);
         ::close(output[0]);
         pid_ = -1;
-        throw std::runtime_error("cannot start a batch worker: " + std::string(std::strerror(error)));
+        throw std::runtime_error("cannot start a batch worker: " +
+                                 std::string(std::strerror(error)));
     }
     toWorker_ = input[1];
     fromWorker_ = output[0];

@@ -6,10 +6,10 @@
 // same command line started again with DFRECON_BATCH_WORKER=1 in its
 // environment; it reads entry positions from standard input, one per line,
 // and answers each with one line of JSON on standard output.
+#include <sys/types.h>
 #include <cstddef>
 #include <functional>
 #include <string>
-#include <sys/types.h>
 
 #include "app/BatchEntry.hpp"
 

@@ -99,12 +99,12 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
             if (result.died) try {
                     // The worker wrote no record: the batch-report must
                     // still show the entry, and a rerun skip a lasting one.
-                    writeFailedEntryRecord(*mine[i], args.settings, args.output,
-                                           DFRECON_VERSION, result.outcome.error,
-                                           result.outcome.exitCode, result.lasting);
+                    writeFailedEntryRecord(*mine[i], args.settings, args.output, DFRECON_VERSION,
+                                           result.outcome.error, result.outcome.exitCode,
+                                           result.lasting);
                 } catch (const std::exception& e) {
-                    result.outcome.error += std::string("; its record could not be written: ") +
-                                            e.what();
+                    result.outcome.error +=
+                        std::string("; its record could not be written: ") + e.what();
                 }
             return result.outcome;
         },
@@ -137,21 +137,21 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     overall.finish();
     if (args.json) {
         std::cout << jsonText(nlohmann::ordered_json{{"command", "batch"},
-                                            {"manifest", args.manifest},
-                                            {"output", args.output},
-                                            {"shard",
-                                             {{"index", shard.index},
-                                              {"count", shard.count},
-                                              {"source", shard.source}}},
-                                            {"manifestEntries", entries.size()},
-                                            {"entries", mine.size()},
-                                            {"done", done},
-                                            {"skipped", skipped},
-                                            {"failed", failed},
-                                            {"notValidSolid", invalid},
-                                            {"seconds", watch.total()},
-                                            {"results", results}},
-                                            2)
+                                                     {"manifest", args.manifest},
+                                                     {"output", args.output},
+                                                     {"shard",
+                                                      {{"index", shard.index},
+                                                       {"count", shard.count},
+                                                       {"source", shard.source}}},
+                                                     {"manifestEntries", entries.size()},
+                                                     {"entries", mine.size()},
+                                                     {"done", done},
+                                                     {"skipped", skipped},
+                                                     {"failed", failed},
+                                                     {"notValidSolid", invalid},
+                                                     {"seconds", watch.total()},
+                                                     {"results", results}},
+                              2)
                   << "\n";
     } else {
         std::cout << "batch: " << mine.size() << " of " << entries.size() << " entries (shard "

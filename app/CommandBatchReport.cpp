@@ -51,13 +51,13 @@ void runBatchReport(const BatchReportArgs& args) {
     }
     if (args.json)
         std::cout << jsonText(nlohmann::ordered_json{{"command", "batch-report"},
-                                            {"entries", records.size()},
-                                            {"rows", rows.size()},
-                                            {"failed", failed},
-                                            {"notValidSolids", invalid},
-                                            {"csv", base + ".csv"},
-                                            {"json", base + ".json"}},
-                                            2)
+                                                     {"entries", records.size()},
+                                                     {"rows", rows.size()},
+                                                     {"failed", failed},
+                                                     {"notValidSolids", invalid},
+                                                     {"csv", base + ".csv"},
+                                                     {"json", base + ".json"}},
+                              2)
                   << "\n";
     else
         std::cout << records.size() << " entries, " << rows.size() << " rows (" << failed

@@ -11,6 +11,7 @@
 #include "app/StandardStreams.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 
 namespace dfrecon::app {
@@ -25,7 +26,7 @@ void runCheck(const std::string& path, bool json) {
         nlohmann::ordered_json report{{"command", "check"}, {"file", path}};
         appendItems(report, meshCheckJson(r));
         appendItems(report, where);
-        std::cout << report.dump(2) << "\n";
+        std::cout << jsonText(report, 2) << "\n";
     } else {
         std::cout << path << ": " << r.vertices << " vertices, " << r.triangles << " triangles, "
                   << r.components << " component(s)\n"

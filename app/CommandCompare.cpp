@@ -15,6 +15,7 @@
 #include "compare/SurfaceDistances.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"
 
@@ -70,28 +71,28 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                           {"meanMm", x.meanMm},
                                           {"samples", x.samples}};
         };
-        std::cout << nlohmann::ordered_json{{"command", "compare"},
-                                            {"a", args.a},
-                                            {"b", args.b},
-                                            {"volumeAMm3", overlap.volumeAMm3},
-                                            {"volumeBMm3", overlap.volumeBMm3},
-                                            {"volumeDifferenceMm3",
-                                             overlap.volumeBMm3 - overlap.volumeAMm3},
-                                            {"intersectionMm3", overlap.intersectionMm3},
-                                            {"unionMm3", overlap.unionMm3()},
-                                            {"dice", overlap.dice()},
-                                            {"jaccard", overlap.jaccard()},
-                                            {"hausdorffMm", d.hausdorffMm()},
-                                            {"hd95Mm", d.hd95Mm()},
-                                            {"meanSurfaceDistanceMm", d.meanMm()},
-                                            {"distanceBoundMm", d.spacingMm},
-                                            {"aToB", directed(d.aToB)},
-                                            {"bToA", directed(d.bToA)},
-                                            {"seconds",
-                                             {{"load", loadSeconds},
-                                              {"overlap", overlapSeconds},
-                                              {"distances", distanceSeconds}}}}
-                         .dump(2)
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "compare"},
+                                                     {"a", args.a},
+                                                     {"b", args.b},
+                                                     {"volumeAMm3", overlap.volumeAMm3},
+                                                     {"volumeBMm3", overlap.volumeBMm3},
+                                                     {"volumeDifferenceMm3",
+                                                      overlap.volumeBMm3 - overlap.volumeAMm3},
+                                                     {"intersectionMm3", overlap.intersectionMm3},
+                                                     {"unionMm3", overlap.unionMm3()},
+                                                     {"dice", overlap.dice()},
+                                                     {"jaccard", overlap.jaccard()},
+                                                     {"hausdorffMm", d.hausdorffMm()},
+                                                     {"hd95Mm", d.hd95Mm()},
+                                                     {"meanSurfaceDistanceMm", d.meanMm()},
+                                                     {"distanceBoundMm", d.spacingMm},
+                                                     {"aToB", directed(d.aToB)},
+                                                     {"bToA", directed(d.bToA)},
+                                                     {"seconds",
+                                                      {{"load", loadSeconds},
+                                                       {"overlap", overlapSeconds},
+                                                       {"distances", distanceSeconds}}}},
+                              2)
                   << "\n";
         return;
     }

@@ -10,6 +10,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/StandardStreams.hpp"
+#include "io/JsonText.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -98,7 +99,7 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
             report["like"] = like;
         }
         report["warnings"] = written.warnings;
-        std::cout << report.dump(2) << "\n";
+        std::cout << jsonText(report, 2) << "\n";
     } else {
         std::cout << args.input << ": " << chosen.rois.size() << " ROI(s), " << contours
                   << " contours -> " << args.output;

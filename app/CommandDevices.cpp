@@ -5,6 +5,7 @@
 
 #include "app/Commands.hpp"
 #include "cl/Devices.hpp"
+#include "io/JsonText.hpp"
 
 namespace dfrecon::app {
 
@@ -27,7 +28,7 @@ void runDevices(const GlobalOptions& global, bool json) {
                             {"maxWorkGroupSize", d.maxWorkGroupSize},
                             {"doublePrecision", d.doublePrecision},
                             {"selected", d.index == chosen.index}});
-        std::cout << nlohmann::ordered_json{{"command", "devices"}, {"devices", list}}.dump(2)
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "devices"}, {"devices", list}}, 2)
                   << "\n";
         return;
     }

@@ -12,6 +12,7 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/FieldVolume.hpp"
+#include "io/JsonText.hpp"
 #include "io/LevelSetVdb.hpp"
 
 namespace dfrecon::app {
@@ -73,25 +74,25 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     const Vec3 originLps =
         roi.frame.toPatient({volume.originMm[0], volume.originMm[1], volume.originMm[2]});
     if (args.json) {
-        std::cout << nlohmann::ordered_json{{"command", "field"},
-                                            {"input", args.input},
-                                            {"roi", roi.name},
-                                            {"output", args.output},
-                                            {"voxels", {volume.nx, volume.ny, volume.nz}},
-                                            {"voxelMm", xyzJson(volume.voxelMm)},
-                                            {"originMm", xyzJson(originLps)},
-                                            {"axes",
-                                             {{"i", xyzJson(roi.frame.u)},
-                                              {"j", xyzJson(roi.frame.v)},
-                                              {"k", xyzJson(roi.frame.n)}}},
-                                            {"bandVoxels", args.bandVoxels},
-                                            {"device", runtime.device().deviceName},
-                                            {"seconds",
-                                             {{"total", watch.total()},
-                                              {"fields", fieldsSeconds},
-                                              {"propagate", propagateSeconds},
-                                              {"write", writeSeconds}}}}
-                         .dump(2)
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "field"},
+                                                     {"input", args.input},
+                                                     {"roi", roi.name},
+                                                     {"output", args.output},
+                                                     {"voxels", {volume.nx, volume.ny, volume.nz}},
+                                                     {"voxelMm", xyzJson(volume.voxelMm)},
+                                                     {"originMm", xyzJson(originLps)},
+                                                     {"axes",
+                                                      {{"i", xyzJson(roi.frame.u)},
+                                                       {"j", xyzJson(roi.frame.v)},
+                                                       {"k", xyzJson(roi.frame.n)}}},
+                                                     {"bandVoxels", args.bandVoxels},
+                                                     {"device", runtime.device().deviceName},
+                                                     {"seconds",
+                                                      {{"total", watch.total()},
+                                                       {"fields", fieldsSeconds},
+                                                       {"propagate", propagateSeconds},
+                                                       {"write", writeSeconds}}}},
+                              2)
                   << "\n";
     } else {
         std::cout << roi.name << ": " << volume.nx << " x " << volume.ny << " x " << volume.nz

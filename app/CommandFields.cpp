@@ -17,6 +17,7 @@
 #include "field/SliceFields.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
+#include "io/JsonText.hpp"
 #include "io/RawVolume.hpp"
 #include "recon/ContourSimplification.hpp"
 #include "recon/MedialAxis.hpp"
@@ -162,7 +163,7 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
            "contour index in slice; 0xffffffff: none"}}},
         {"slices", sliceList}};
     writeStreamAtomically(stem + "-fields.json",
-                          [&](std::ostream& out) { out << meta.dump(2) << "\n"; });
+                          [&](std::ostream& out) { out << jsonText(meta, 2) << "\n"; });
     files.push_back(stem + "-fields.json");
     return files;
 }
@@ -215,11 +216,11 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
                       << files.size() << " files to " << args.outputDir << "\n";
     }
     if (args.json)
-        std::cout << nlohmann::ordered_json{{"command", "fields"},
-                                            {"input", args.input},
-                                            {"loadSeconds", loadSeconds},
-                                            {"rois", reports}}
-                         .dump(2)
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "fields"},
+                                                     {"input", args.input},
+                                                     {"loadSeconds", loadSeconds},
+                                                     {"rois", reports}},
+                              2)
                   << "\n";
 }
 

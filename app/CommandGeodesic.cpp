@@ -15,6 +15,7 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
+#include "io/JsonText.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"
 
@@ -126,7 +127,7 @@ void runGeodesic(const GeodesicArgs& args, const GlobalOptions& global) {
         {"unreachedVertices", n - reached},
         {"seconds", solveSeconds},
         {"totalSeconds", watch.total()}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << jsonText(out, 2) << "\n";
 }
 
 }  // namespace

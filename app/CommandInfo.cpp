@@ -10,6 +10,7 @@
 #include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
 #include "app/Reports.hpp"
+#include "io/JsonText.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon::app {
@@ -152,7 +153,7 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
                                        : nlohmann::ordered_json(load.labelTable);
         report["rois"] = rois;
         report["warnings"] = warnings;
-        std::cout << report.dump(2) << "\n";
+        std::cout << jsonText(report, 2) << "\n";
         reportDefects(load.contours);
         return;
     }

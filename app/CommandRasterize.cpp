@@ -23,6 +23,7 @@
 #include "field/DistanceField3D.hpp"
 #include "io/DicomImageSeries.hpp"
 #include "io/FileNames.hpp"
+#include "io/JsonText.hpp"
 #include "io/LabelTable.hpp"
 #include "io/LabelVolume.hpp"
 #include "io/RtStruct.hpp"
@@ -182,7 +183,8 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         args.like.empty() ? gridAroundRois(rois, args.voxelMm) : referenceGrid(args.like);
     // Each voxel takes a label and its owner: refused before either is
     // allocated, whoever described the grid.
-    if (const std::string problem = labelGridProblem(grid, sizeof(std::int32_t)); !problem.empty()) {
+    if (const std::string problem = labelGridProblem(grid, sizeof(std::int32_t));
+        !problem.empty()) {
         if (args.like.empty())
             throw std::invalid_argument("--voxel-mm " + CLI::detail::to_string(args.voxelMm) +
                                         ": the grid around the ROIs has " + problem);
@@ -241,20 +243,20 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
                       << "\n";
     }
     if (args.json)
-        std::cout << nlohmann::ordered_json{{"command", "rasterize"},
-                                            {"input", args.input},
-                                            {"output", args.output},
-                                            {"labelTable", tablePath.empty()
-                                                               ? nlohmann::ordered_json(nullptr)
-                                                               : nlohmann::ordered_json(tablePath)},
-                                            {"grid",
-                                             args.like.empty() ? "around the ROIs" : args.like},
-                                            {"size", xyzJson(grid.size)},
-                                            {"spacingMm", xyzJson(grid.spacingMm)},
-                                            {"rois", roiReports},
-                                            {"notRead", notRead},
-                                            {"seconds", watch.total()}}
-                         .dump(2)
+        std::cout << jsonText(
+                         nlohmann::ordered_json{
+                             {"command", "rasterize"},
+                             {"input", args.input},
+                             {"output", args.output},
+                             {"labelTable", tablePath.empty() ? nlohmann::ordered_json(nullptr)
+                                                              : nlohmann::ordered_json(tablePath)},
+                             {"grid", args.like.empty() ? "around the ROIs" : args.like},
+                             {"size", xyzJson(grid.size)},
+                             {"spacingMm", xyzJson(grid.spacingMm)},
+                             {"rois", roiReports},
+                             {"notRead", notRead},
+                             {"seconds", watch.total()}},
+                         2)
                   << "\n";
     else
         std::cout << "-> " << args.output << (tablePath.empty() ? "" : " and " + tablePath) << "\n";

@@ -15,6 +15,7 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
+#include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 
 namespace dfrecon::app {
@@ -98,17 +99,17 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
         for (const Roi& roi : load.contours.rois)
             if (roi.slices.empty()) empty.push_back(roi.name);
     if (args.json)
-        std::cout << nlohmann::ordered_json{{"command", "reconstruct"},
-                                            {"input", args.input},
-                                            {"format", load.format},
-                                            {"device", runtime.device().deviceName},
-                                            {"maxDepth", args.settings.options.maxDepth},
-                                            {"contourErrorMm",
-                                             args.settings.options.contourErrorMm},
-                                            {"seconds", watch.total()},
-                                            {"rois", reports},
-                                            {"emptyRois", empty}}
-                         .dump(2)
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "reconstruct"},
+                                                     {"input", args.input},
+                                                     {"format", load.format},
+                                                     {"device", runtime.device().deviceName},
+                                                     {"maxDepth", args.settings.options.maxDepth},
+                                                     {"contourErrorMm",
+                                                      args.settings.options.contourErrorMm},
+                                                     {"seconds", watch.total()},
+                                                     {"rois", reports},
+                                                     {"emptyRois", empty}},
+                              2)
                   << "\n";
     if (!failed.empty())
         throw ItemsFailed("failed: " + failed +

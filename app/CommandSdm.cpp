@@ -22,6 +22,7 @@
 #include "io/Colours.hpp"
 #include "io/FieldImages.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 #include "sdm/ProximityQueries.hpp"
 
@@ -204,9 +205,9 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
         {"mapSeconds", mapSeconds},
         {"totalSeconds", watch.total()}};
     writeStreamAtomically((dir / "report.json").string(),
-                          [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+                          [&](std::ostream& out) { out << jsonText(report, 2) << "\n"; });
     if (args.json) {
-        std::cout << report.dump(2) << "\n";
+        std::cout << jsonText(report, 2) << "\n";
         return;
     }
     // Micrometres are the most any of these numbers means.

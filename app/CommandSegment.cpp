@@ -16,6 +16,7 @@
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
+#include "io/JsonText.hpp"
 #include "segment/Segmentation.hpp"
 
 namespace dfrecon::app {
@@ -89,7 +90,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                                      {"regions", regions},
                                      {"seconds", s.seconds},
                                      {"totalSeconds", watch.total()}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << jsonText(out, 2) << "\n";
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/InputError.hpp"
+#include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 
 namespace dfrecon::app {
@@ -85,7 +86,7 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
     out["genusBefore"] = before.genus;
     out["genus"] = after.genus;
     out["totalSeconds"] = watch.total();
-    std::cout << out.dump(2) << "\n";
+    std::cout << jsonText(out, 2) << "\n";
 }
 
 }  // namespace

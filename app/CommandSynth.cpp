@@ -7,6 +7,7 @@
 #include "app/Commands.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/StandardStreams.hpp"
+#include "io/JsonText.hpp"
 #include "io/SlicesFile.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
@@ -64,7 +65,7 @@ void runSynth(const SynthArgs& args) {
             {"exactVolumeMm3", exact},
             {"planimetricVolumeMm3", estimate},
         };
-        std::cout << report.dump(2) << "\n";
+        std::cout << jsonText(report, 2) << "\n";
     } else {
         reportStream(toStandardOutput)
             << "wrote " << (toStandardOutput ? "standard output" : args.output) << ": "

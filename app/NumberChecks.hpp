@@ -34,11 +34,10 @@ inline const CLI::Validator kPositive =
 /// coordinates' resolution: simplify/Simplification.hpp, kMinMaxErrorMm).
 inline CLI::Validator maxErrorCheck(double minimumMm, bool zeroAllowed) {
     const std::string floor = CLI::detail::to_string(minimumMm);
-    return numberCheck(
-        [=](double v) { return (zeroAllowed && v == 0) || v >= minimumMm; },
-        zeroAllowed ? "must be 0 or at least " + floor + " mm"
-                    : "must be at least " + floor + " mm",
-        zeroAllowed ? "0 or NUMBER >= " + floor : "NUMBER >= " + floor);
+    return numberCheck([=](double v) { return (zeroAllowed && v == 0) || v >= minimumMm; },
+                       zeroAllowed ? "must be 0 or at least " + floor + " mm"
+                                   : "must be at least " + floor + " mm",
+                       zeroAllowed ? "0 or NUMBER >= " + floor : "NUMBER >= " + floor);
 }
 
 }  // namespace dfrecon::app

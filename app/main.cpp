@@ -6,8 +6,8 @@
 #include <new>
 #include <string>
 
-#include "app/Commands.hpp"
 #include "app/BatchWorkers.hpp"
+#include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
 #include "app/StandardStreams.hpp"

@@ -25,8 +25,8 @@ double latticeSteps(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spaci
 double sampleCount(const TriangleSoup& soup, double spacingMm) {
     double count = 0;
     for (const auto& t : soup.triangles) {
-        const double n = latticeSteps(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]],
-                                      spacingMm);
+        const double n =
+            latticeSteps(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]], spacingMm);
         count += (n + 1) * (n + 2) / 2;
     }
     return count;

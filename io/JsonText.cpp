@@ -34,12 +34,12 @@ class JsonChecker : public nlohmann::json_sax<Json> {
     bool start_object(std::size_t) override { return open(true); }
     bool key(string_t& key) override {
         Level& level = levels_.back();
+        level.key = key;
         if (!level.keys.insert(key).second) {
             problem_ = "the key '" + key + "' a second time in one object, at " + pointer() +
                        " (each key at most once)";
             return false;
         }
-        level.key = key;
         return true;
     }
     bool end_object() override { return close(); }
@@ -90,7 +90,9 @@ class JsonChecker : public nlohmann::json_sax<Json> {
                 continue;
             }
             for (const char c : level.key)
-                where += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
+                where += c == '~'   ? std::string("~0")
+                         : c == '/' ? std::string("~1")
+                                    : std::string(1, c);
         }
         return where.empty() ? "/" : where;
     }

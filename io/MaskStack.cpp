@@ -10,9 +10,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "io/InputError.hpp"
-#include "io/JsonText.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
+#include "io/JsonText.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon {

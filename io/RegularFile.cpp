@@ -37,10 +37,11 @@ std::string mebibytes(std::uint64_t bytes) {
 
 std::uint64_t checkRegularFile(const std::string& path, std::uint64_t maxBytes,
                                const std::string& what) {
-    struct stat info{};
+    struct stat info {};
     if (::stat(path.c_str(), &info) != 0)
-        throw InputError(path, 0,
-                         errno == ENOENT ? "no such file" : "cannot open: " + std::string(std::strerror(errno)));
+        throw InputError(
+            path, 0,
+            errno == ENOENT ? "no such file" : "cannot open: " + std::string(std::strerror(errno)));
     if (!S_ISREG(info.st_mode))
         throw InputError(path, 0, kindOf(info.st_mode) + ", not a regular file");
     const std::uint64_t bytes = std::uint64_t(info.st_size);
@@ -68,7 +69,7 @@ std::string readRegularFile(const std::string& path, std::uint64_t maxBytes,
 }
 
 bool isRegularFile(const std::string& path) {
-    struct stat info{};
+    struct stat info {};
     return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
 }
 

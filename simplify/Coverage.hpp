@@ -174,8 +174,8 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     const OriginalPiece parts[2] = {{{piece.p[k], mid, apex}}, {{mid, piece.p[(k + 1) % 3], apex}}};
     double worst = 0;
     for (const OriginalPiece& part : parts) {
-        worst = std::max(worst,
-                         coverPiece(part, candidates, best, -1, limits, onCovered, depth + 1));
+        worst =
+            std::max(worst, coverPiece(part, candidates, best, -1, limits, onCovered, depth + 1));
         if (worst > limit) return worst;
     }
     return worst;
