@@ -27,7 +27,7 @@ namespace {
 struct Field {
     std::string key, value;
     int line = 0;
-    std::string where;  // "column C" or "entry N, key 'K'"
+    std::string where;  // "cell C (KEY)" or "entry N, key 'K'"
 };
 
 const std::vector<std::string> kEntryKeys{"input", "id", "roi"};
@@ -267,8 +267,8 @@ std::vector<ManifestEntry> parseCsv(const std::string& text, const std::string& 
         for (std::size_t c = 0; c < row.size(); ++c)
             if (!row[c].text.empty())  // an empty cell: the default
                 fields.push_back(
-                    {keys[c], row[c].text, row[c].line,
-                     "column " + std::to_string(row[c].column) + " (" + keys[c] + ")"});
+                    {keys[c], keys[c] == "input" ? row[c].text : utf8FromLegacyText(row[c].text),
+                     row[c].line, "cell " + std::to_string(c + 1) + " (" + keys[c] + ")"});
         entries.push_back(makeEntry(entries.size() + 1, fields, file, row[0].line, folder));
     }
     return entries;
@@ -321,10 +321,11 @@ std::vector<ManifestEntry> parseManifest(const std::string& text, const std::str
     const std::size_t bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     const std::size_t start = text.find_first_not_of(" \t\r\n", bom);
     const bool json = start != std::string::npos && text[start] == '[';
-    // Cells typed on Windows may be Latin-1: made UTF-8 line by line.
-    const std::string utf8 = utf8FromLegacyLines(std::string_view(text).substr(bom));
+    // Text typed on Windows may be Latin-1. JSON must be UTF-8 to parse,
+    // so its lines are made so (io/JsonText); CSV cells are made so one by
+    // one, all but the input's path, which names a file by its bytes.
     std::vector<ManifestEntry> entries =
-        json ? parseJson(utf8, file, folder) : parseCsv(utf8, file, folder);
+        json ? parseJson(text.substr(bom), file, folder) : parseCsv(text, file, folder);
     // Entries become folders, and folders may not tell case apart.
     std::map<std::string, const ManifestEntry*> byId;
     for (const ManifestEntry& entry : entries) {

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -93,6 +94,11 @@ bool isBatchWorkerProcess() {
 
 void serveBatchEntries(const std::function<EntryOutcome(std::size_t)>& run,
                        const std::function<std::string(std::size_t)>& idOf) {
+    // A worker ends with its batch: killed with it (a scheduler's SIGKILL to
+    // the batch alone), it must not finish an entry and record it.
+    const pid_t batch = ::getppid();
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != batch) return;  // the batch died before that took hold
     const char* crashId = std::getenv(kCrashVariable);
     std::string line;
     while (std::getline(std::cin, line)) {

@@ -27,6 +27,7 @@ struct SyntheticImage {
     std::string characterSet;    // SpecificCharacterSet; empty: not written (ASCII)
     std::string patientName = "SYNTHETIC^SERIES";  // in characterSet's encoding
     bool withPosition = true;
+    bool withPixels = true;  // false: a header claiming rows × columns, no PixelData
 };
 
 inline std::string decimalList(const double* values, int count) {
@@ -77,9 +78,11 @@ inline void writeSyntheticImage(const std::string& path, const SyntheticImage& i
     d.putAndInsertUint16(DCM_BitsStored, 16);
     d.putAndInsertUint16(DCM_HighBit, 15);
     d.putAndInsertUint16(DCM_PixelRepresentation, 1);
-    std::vector<Uint16> pixels(std::size_t(image.rows * image.columns), 0);
-    d.putAndInsertUint16Array(DCM_PixelData, pixels.data(),
-                              static_cast<unsigned long>(pixels.size()));
+    if (image.withPixels) {
+        std::vector<Uint16> pixels(std::size_t(image.rows) * std::size_t(image.columns), 0);
+        d.putAndInsertUint16Array(DCM_PixelData, pixels.data(),
+                                  static_cast<unsigned long>(pixels.size()));
+    }
     if (file.saveFile(path.c_str(), EXS_LittleEndianExplicit).bad())
         throw std::runtime_error("cannot write " + path);
 }

@@ -188,8 +188,7 @@ TEST(CliBatch, ABadManifestRunsNothing) {
     std::ofstream(dir / "m.csv") << "input,cap\na.slices,flat\nb.slices,round\n";
     const auto run = runDfrecon(dir, "batch " + (dir / "m.csv") + " -o " + (dir / "out"));
     EXPECT_EQ(run.exitCode, 2);
-    EXPECT_NE(run.err.find(dir / "m.csv:3: column 10 (cap): --cap: round not in"),
-              std::string::npos)
+    EXPECT_NE(run.err.find(dir / "m.csv:3: cell 2 (cap): --cap: round not in"), std::string::npos)
         << run.err;
     EXPECT_FALSE(fs::exists(dir / "out"));
 

@@ -16,6 +16,7 @@
 
 #include "tests/CliRun.hpp"
 #include "tests/HostileDicom.hpp"
+#include "tests/SyntheticDicomSeries.hpp"
 #include "tests/TempDir.hpp"
 
 namespace fs = std::filesystem;
@@ -201,4 +202,318 @@ TEST(HostileInputs, OutOfMemoryNamesTheFile) {
     EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 3);
     EXPECT_EQ(slurp(err), "dfrecon: " + path + ": out of memory while reading it\n");
 #endif
+}
+
+// ---- The second sweep (issue 35): batch records and manifests, label
+// tables, text encodings, pipes and standard streams, option extremes. ----
+
+namespace {
+
+std::string writeFile(const TempDir& dir, const std::string& name, const std::string& bytes) {
+    const std::string path = dir / name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+
+// A batch output folder with one done entry "a" of the torus: its record
+// and mesh, for tests that then spoil the record.
+std::string batchOutput(const TempDir& dir) {
+    const std::string manifest = writeFile(
+        dir, "manifest.csv", "input,id\n" + std::string(DFRECON_EXAMPLES) + "/torus.slices,a\n");
+    const Result r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return dir / "out";
+}
+
+std::string volumeOfTheTorus(const TempDir& dir) {
+    const std::string volume = dir / "torus.nrrd";
+    const Result r = run(dir, "rasterize " + std::string(DFRECON_EXAMPLES) +
+                                  "/torus.slices --voxel-mm 2 -o " + volume);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    fs::remove(dir / "torus.txt");  // the table rasterize wrote: each test brings its own
+    return volume;
+}
+
+}  // namespace
+
+TEST(HostileInputs, BoundsBelowCoordinateResolutionAreUsageErrorsNotCrashes) {
+    // 1e-16 mm recursed without end in the coverage of a collapse (SIGSEGV);
+    // 1e-12..1e-4 mm ran out of memory sampling the contours every bound/8.
+    const TempDir dir("hostile-max-error");
+    const std::string y = std::string(DFRECON_EXAMPLES) + "/y.slices";
+    for (const char* command : {"reconstruct", "simplify"}) {
+        const std::string input = std::string(command) == "simplify" ? dir / "y.ply" : y;
+        if (input != y) ASSERT_EQ(run(dir, "reconstruct " + y + " -o " + input).exitCode, 0);
+        const Result r = run(
+            dir, std::string(command) + " " + input + " --max-error 1e-16 -o " + dir / "out.ply");
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find("--max-error: must be"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("at least 1e-06 mm, not 1e-16"), std::string::npos) << r.err;
+    }
+    // At the floor it works, within the memory cap.
+    const Result r =
+        run(dir, "reconstruct " + y + " --max-error 1e-6 --json -o " + dir / "out.ply");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("\"withinBound\": true"), std::string::npos) << r.out;
+}
+
+TEST(HostileInputs, ABatchEntryWhoseProcessDiesFailsAlone) {
+    // A crash in one entry killed the whole batch, on every rerun. Crashes
+    // are no longer known, so the worker is told to raise SIGSEGV on entry b.
+    const TempDir dir("hostile-batch-crash");
+    const std::string torus = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    const std::string manifest =
+        writeFile(dir, "m.csv", "input,id\n" + torus + ",a\n" + torus + ",b\n" + torus + ",c\n");
+    const std::string out = dir / "out";
+    const std::string batch = std::string(DFRECON_BINARY) + " -q batch " + manifest + " -o " + out;
+    for (const char* jobs : {" -j 1", " -j 2"}) {
+        fs::remove_all(out);
+        const Result r = dfrecon::testing::runShell(
+            dir.str(), "DFRECON_BATCH_WORKER_CRASH_ENTRY=b exec " + batch + jobs + " </dev/null");
+        EXPECT_EQ(r.exitCode, 3) << r.err;
+        EXPECT_NE(r.out.find("a: 1 ROI done"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("b: failed: the entry's process ended on signal 11"),
+                  std::string::npos)
+            << r.out;
+        EXPECT_NE(r.out.find("c: 1 ROI done"), std::string::npos) << r.out;
+        EXPECT_TRUE(fs::exists(out + "/c/torus.ply"));
+        // The crashed entry has a record, so the report shows it.
+        const Result report = run(dir, "batch-report " + out + " -o -");
+        EXPECT_EQ(report.exitCode, 0) << report.err;
+        EXPECT_NE(report.out.find("\nb,,,,,,,0,3,the entry's process ended on signal 11"),
+                  std::string::npos)
+            << report.out;
+    }
+    // A rerun skips it (same input, options, version), and skips the others.
+    const Result rerun = run(dir, "batch " + manifest + " -o " + out);
+    EXPECT_EQ(rerun.exitCode, 3) << rerun.err;
+    EXPECT_NE(rerun.out.find("0 done, 3 skipped"), std::string::npos) << rerun.out;
+}
+
+TEST(HostileInputs, SpoiledBatchRecordsAreBadInputNotHangsOrCrashes) {
+    const TempDir dir("hostile-records");
+    const std::string out = batchOutput(dir);
+    const std::string record = out + "/a/record.json";
+    // Nested 100 000 deep: batch-report crashed.
+    writeFile(dir, "out/a/record.json",
+              "{\"format\": \"dfrecon-batch-record 1\", \"id\": \"a\", \"entry\": 1, \"error\": " +
+                  std::string(100000, '[') + std::string(100000, ']') + "}");
+    expectRefused(dir, record, "batch-report " + out, "lists or objects nested more than 16 deep");
+    // A named pipe: batch-report and the rerun hung on opening it.
+    fs::remove(record);
+    ASSERT_EQ(std::system(("mkfifo " + record).c_str()), 0);
+    expectRefused(dir, record, "batch-report " + out, "a named pipe, not a regular file");
+    Result r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    EXPECT_EQ(r.exitCode, 0) << r.err;  // the entry ran again and replaced it
+    EXPECT_NE(r.out.find("a: 1 ROI done"), std::string::npos) << r.out;
+    // A link to /dev/zero: 2 GB read before refusing.
+    fs::remove(record);
+    fs::create_symlink("/dev/zero", record);
+    expectRefused(dir, record, "batch-report " + out, "a character device, not a regular file");
+    // A mesh outside the entry's folder: trusted on resume.
+    fs::remove(record);
+    r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::string text = slurp(record);
+    const std::string mesh = "\"mesh\": \"torus.ply\"";
+    ASSERT_NE(text.find(mesh), std::string::npos) << text;
+    text.replace(text.find(mesh), mesh.size(), "\"mesh\": \"../../manifest.csv\"");
+    writeFile(dir, "out/a/record.json", text);
+    expectRefused(dir, record, "batch-report " + out,
+                  "/rois/0/mesh is not the name of a file in the entry's folder");
+    r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("a: 1 ROI done"), std::string::npos) << r.out;  // not "skipped"
+}
+
+TEST(HostileInputs, BatchReportToStandardOutputWritesNoFile) {
+    const TempDir dir("hostile-report-stdout");
+    const std::string out = batchOutput(dir);
+    const Result r = run(dir, "batch-report " + out + " -o -");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("entry,roi,mesh,", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("\na,torus,a/torus.ply,"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "-.csv"));
+    EXPECT_FALSE(fs::exists(dir / "-.json"));
+}
+
+TEST(HostileInputs, ManifestsThatAreNoManifestsAreRefusedInTime) {
+    const TempDir dir("hostile-manifests");
+    const std::string torus = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    // A repeated key: the last one silently won.
+    const std::string repeated = writeFile(
+        dir, "repeated.json", "[{\"input\": \"" + torus + "\", \"input\": \"other.slices\"}]");
+    expectRefused(dir, repeated, "batch " + repeated + " -o " + dir / "out",
+                  "the key 'input' a second time in one object, at /0/input");
+    // A pipe and a device instead of a manifest.
+    const std::string pipe = dir / "pipe.csv";
+    ASSERT_EQ(std::system(("mkfifo " + pipe).c_str()), 0);
+    expectRefused(dir, pipe, "batch " + pipe + " -o " + dir / "out",
+                  "a named pipe, not a regular file");
+    // An input of 100 GB (sparse) was hashed in full before being read.
+    const std::string giant = dir / "giant.slices";
+    std::ofstream(giant).close();
+    fs::resize_file(giant, std::uint64_t(100) << 30);
+    const std::string manifest = writeFile(dir, "giant.csv", "input,id\n" + giant + ",g\n");
+    const Result r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("dfrecon: entry g (" + manifest + ":2): " + giant +
+                         ": larger than 4096 MiB, the limit of an input file"),
+              std::string::npos)
+        << r.err;
+    // 200 000 entries: the JSON parse was quadratic (minutes), now as fast
+    // as the CSV one; one shard of one entry runs.
+    std::string list = "[";
+    for (int k = 0; k < 200000; ++k)
+        list += std::string(k ? "," : "") + "{\"input\": \"" + torus + "\", \"id\": \"e" +
+                std::to_string(k) + "\"}\n";
+    const std::string big = writeFile(dir, "big.json", list + "]");
+    const Result many = run(dir, "batch " + big + " -o " + dir / "many --shard 0/200000");
+    EXPECT_EQ(many.exitCode, 0) << many.err;
+    EXPECT_NE(many.out.find("e0: 1 ROI done"), std::string::npos) << many.out;
+}
+
+TEST(HostileInputs, TextThatIsNotUtf8IsReadAsWindows1252) {
+    // Latin-1 names are common in clinics: exit 3 with a raw JSON-library
+    // message, and in batch a mesh without a record.
+    const TempDir dir("hostile-latin1");
+    std::string slices = slurp(std::string(DFRECON_EXAMPLES) + "/torus.slices");
+    slices.replace(slices.find("roi torus"), 9, "roi L\xE4sion");
+    const std::string path = writeFile(dir, "caf\xE9.slices", slices);
+    Result r = run(dir, "info " + path + " --json");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("\"name\": \"L\xC3\xA4sion\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("caf\xEF\xBF\xBD.slices"), std::string::npos) << r.out;  // U+FFFD
+    // In a batch: the entry's record is written, and the report lists it.
+    const std::string manifest = writeFile(dir, "m.csv", "input,id\n" + path + ",a\n");
+    r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    r = run(dir, "batch-report " + dir / "out" + " -o -");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("\na,L\xC3\xA4sion,a/L__sion.ply,"), std::string::npos) << r.out;
+    // A label table: its names too.
+    const std::string volume = volumeOfTheTorus(dir);
+    const std::string table = writeFile(dir, "names.txt", "1 C\xF4t\xE9_D\n");
+    r = run(dir, "--label-table " + table + " info " + volume + " --json");
+    EXPECT_EQ(r.exitCode, 0) << r.err;  // and the usage line's order works
+    EXPECT_NE(r.out.find("\"name\": \"C\xC3\xB4t\xC3\xA9_D\""), std::string::npos) << r.out;
+}
+
+TEST(HostileInputs, LabelTablesThatLieAreRefusedByLine) {
+    const TempDir dir("hostile-label-table");
+    const std::string volume = volumeOfTheTorus(dir);
+    // A colour of 1e9 or nan was dropped silently; a control character was
+    // exit 3.
+    const std::pair<const char*, const char*> cases[] = {
+        {"1 torus 1e9 0 0\n", "red '1e9' is not in 0..255"},
+        {"1 torus 0 nan 0 255\n", "green 'nan' is not in 0..255"},
+        {"# a comment\n1 tor\x1bus\n", "a control character (0x1B) in the name"},
+    };
+    for (const auto& [text, problem] : cases) {
+        const std::string table = writeFile(dir, "table.txt", text);
+        expectRefused(dir, table, "--label-table " + table + " info " + volume, problem);
+    }
+    expectRefused(dir, dir / "table.txt", "--label-table " + dir / "table.txt" + " info " + volume,
+                  ":2: a control character");
+}
+
+TEST(HostileInputs, NamesThatWritersWriteReadersReadBack) {
+    const TempDir dir("hostile-names");
+    std::string slices = slurp(std::string(DFRECON_EXAMPLES) + "/torus.slices");
+    // 300 bytes went into a label table and .seg.nrrd that info refused.
+    std::string longName = slices;
+    longName.replace(longName.find("roi torus"), 9, "roi " + std::string(300, 'x'));
+    const std::string tooLong = writeFile(dir, "long.slices", longName);
+    expectRefused(dir, tooLong,
+                  "rasterize " + tooLong + " --all --voxel-mm 2 -o " + dir / "l.seg.nrrd",
+                  ":3: an ROI name of 300 bytes, over the 256 a name may have");
+    // GTV "left" (valid DICOM) was a usage error when converted to .slices.
+    std::string quoted = slices;
+    quoted.replace(quoted.find("roi torus"), 9, "roi \"GTV \"\"left\"\"\"");
+    const std::string source = writeFile(dir, "quoted.slices", quoted);
+    ASSERT_EQ(run(dir, "convert " + source + " -o " + dir / "q.dcm").exitCode, 0);
+    Result r = run(dir, "convert " + dir / "q.dcm" + " -o " + dir / "back.slices");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(slurp(dir / "back.slices").find("roi \"GTV \"\"left\"\"\""), std::string::npos);
+    r = run(dir, "info " + dir / "back.slices" + " --json");
+    EXPECT_NE(r.out.find("\"name\": \"GTV \\\"left\\\"\""), std::string::npos) << r.out;
+}
+
+TEST(HostileInputs, PipesAndFullOutputsEndWithTheirErrors) {
+    const TempDir dir("hostile-streams");
+    const std::string torus = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    // A report to a full standard output was exit 0.
+    Result r = dfrecon::testing::runShell(
+        dir.str(), "exec " + std::string(DFRECON_BINARY) + " info " + torus + " --json >/dev/full");
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_EQ(r.err, "dfrecon: cannot write to standard output: No space left on device\n");
+    // A .slices that is a pipe hung.
+    const std::string pipe = dir / "pipe.slices";
+    ASSERT_EQ(std::system(("mkfifo " + pipe).c_str()), 0);
+    expectRefused(dir, pipe, "info " + pipe, "a named pipe, not a regular file");
+    // A DICOM file of 2 GiB of zeros after its magic was read in full.
+    const std::string zeros = dir / "zeros.dcm";
+    {
+        std::ofstream out(zeros, std::ios::binary);
+        out << std::string(128, '\0') << "DICM";
+    }
+    fs::resize_file(zeros, (std::uint64_t(2) << 30) + 132);
+    expectRefused(dir, zeros, "info " + zeros,
+                  "larger than 1024 MiB, the limit of an RTSTRUCT file");
+}
+
+TEST(HostileInputs, EndlessStandardInputEndsAtTheTextLimit) {
+#ifdef DFRECON_SANITIZE_BUILD
+    GTEST_SKIP() << "a gigabyte through the sanitizers takes minutes; the release build checks it";
+#else
+    const TempDir dir("hostile-endless");
+    const Result r = dfrecon::testing::runShell(
+        dir.str(), "yes '# a comment' | " + std::string(DFRECON_BINARY) + " -q info -");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("more than 1024 MiB of text, the limit of a .slices file"),
+              std::string::npos)
+        << r.err;
+#endif
+}
+
+TEST(HostileInputs, InputsClaimingHugeGridsAreRefusedBeforeAllocating) {
+    const TempDir dir("hostile-grids");
+    const std::string torus = std::string(DFRECON_EXAMPLES) + "/torus.slices";
+    // A CT series whose headers claim 65535 × 65535 × 3 voxels ran out of
+    // memory (the NRRD route refused it).
+    const std::string series = dir / "ct";
+    fs::create_directories(series);
+    dfrecon::testing::SyntheticImage image;
+    image.rows = image.columns = 65535;
+    image.withPixels = false;
+    dfrecon::testing::writeSyntheticSeries(series, 3, 0, 2, image);
+    expectRefused(dir, series, "rasterize " + torus + " --like " + series + " -o " + dir / "o.nrrd",
+                  "its grid has more than 2147483648 voxels");
+    const Result r = run(dir, "rasterize " + torus + " --voxel-mm 0.02 -o " + dir / "o.nrrd");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("--voxel-mm 0.02: the grid around the ROIs has"), std::string::npos)
+        << r.err;
+}
+
+TEST(HostileInputs, HugeOrManyThingsStayWithinMemory) {
+    const TempDir dir("hostile-memory-bounds");
+    // 10 000 planes of one tiny contour: every plane's 256² field at once.
+    std::string tiny = "dfrecon-slices 1\nunits mm\nroi tiny\n";
+    for (int k = 0; k < 10000; ++k)
+        tiny += "slice " + std::to_string(k) + "\ncontour 3\n0 0\n0.01 0\n0 0.01\n";
+    const std::string planes = writeFile(dir, "tiny.slices", tiny);
+    Result r = run(dir, "reconstruct " + planes + " -o " + dir / "tiny.ply");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    // A 1 m cube against itself: samples grew with the area.
+    const std::string cube = writeFile(dir, "cube.off",
+                                       "OFF\n8 12 0\n0 0 0\n1000 0 0\n1000 1000 0\n0 1000 0\n"
+                                       "0 0 1000\n1000 0 1000\n1000 1000 1000\n0 1000 1000\n"
+                                       "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+                                       "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n");
+    r = dfrecon::testing::runCli(dir.str(), "compare " + cube + " " + cube + " --json",
+                                 "ulimit -v 3000000; ");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: --spacing 0.2 mm would take more than 8388608 samples"),
+              std::string::npos)
+        << r.err;
 }
