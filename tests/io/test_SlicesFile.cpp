@@ -167,9 +167,21 @@ TEST(SlicesWriter, RoundTripsExactly) {
 TEST(SlicesWriter, RejectsNamesTheFormatCannotHold) {
     ContourSet set;
     set.rois.emplace_back();
-    set.rois.back().name = "bad\"name";
+    set.rois.back().name = "bad\nname";
     std::ostringstream out;
     EXPECT_THROW(formatSlices(set, out), std::invalid_argument);
+}
+
+TEST(SlicesWriter, QuotesAQuoteByDoublingIt) {
+    // GTV "left" is valid DICOM; converting it to .slices was a usage error.
+    ContourSet set;
+    set.rois.emplace_back();
+    set.rois.back().name = "GTV \"left\"";
+    std::ostringstream out;
+    formatSlices(set, out);
+    EXPECT_NE(out.str().find("roi \"GTV \"\"left\"\"\"\n"), std::string::npos) << out.str();
+    std::istringstream in(out.str());
+    EXPECT_EQ(parseSlices(in, "q.slices").contours.rois.at(0).name, "GTV \"left\"");
 }
 
 }  // namespace
