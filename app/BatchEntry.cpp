@@ -163,6 +163,24 @@ nlohmann::ordered_json recordStart(const ManifestEntry& entry, const Reconstruct
 
 }  // namespace
 
+const char* entryStatusName(EntryOutcome::Status status) {
+    switch (status) {
+        case EntryOutcome::Status::Done:
+            return "done";
+        case EntryOutcome::Status::Skipped:
+            return "skipped";
+        case EntryOutcome::Status::Failed:
+            return "failed";
+    }
+    return "failed";
+}
+
+EntryOutcome::Status entryStatusNamed(const std::string& name) {
+    if (name == "done") return EntryOutcome::Status::Done;
+    if (name == "skipped") return EntryOutcome::Status::Skipped;
+    return EntryOutcome::Status::Failed;
+}
+
 void writeFailedEntryRecord(const ManifestEntry& entry, const ReconstructSettings& base,
                             const std::string& outputFolder, const std::string& version,
                             const std::string& error, int exitCode, bool lasting) {

@@ -19,6 +19,11 @@ struct EntryOutcome {
     double seconds = 0;
 };
 
+/// "done", "skipped" or "failed", as reports and worker answers name a
+/// status; and back (anything else is "failed"). O(1).
+const char* entryStatusName(EntryOutcome::Status status);
+EntryOutcome::Status entryStatusNamed(const std::string& name);
+
 /// Runs `entry` into OUTPUT/ID/ with `base` changed by the entry's options,
 /// unless its record says it is done with the same input bytes, options and
 /// `version` (decideResume), in which case the outcome is the record's. One

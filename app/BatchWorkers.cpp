@@ -33,24 +33,6 @@ std::vector<std::string>& programArguments() {
     return arguments;
 }
 
-const char* statusName(EntryOutcome::Status status) {
-    switch (status) {
-        case EntryOutcome::Status::Done:
-            return "done";
-        case EntryOutcome::Status::Skipped:
-            return "skipped";
-        case EntryOutcome::Status::Failed:
-            return "failed";
-    }
-    return "failed";
-}
-
-EntryOutcome::Status statusNamed(const std::string& name) {
-    if (name == "done") return EntryOutcome::Status::Done;
-    if (name == "skipped") return EntryOutcome::Status::Skipped;
-    return EntryOutcome::Status::Failed;
-}
-
 void writeAll(int fd, const std::string& text) {
     for (std::size_t sent = 0; sent < text.size();) {
         const ssize_t n = ::write(fd, text.data() + sent, text.size() - sent);
@@ -108,7 +90,7 @@ void serveBatchEntries(const std::function<EntryOutcome(std::size_t)>& run,
             std::raise(SIGSEGV);
         }
         const EntryOutcome outcome = run(position);
-        std::cout << jsonText(nlohmann::ordered_json{{"status", statusName(outcome.status)},
+        std::cout << jsonText(nlohmann::ordered_json{{"status", entryStatusName(outcome.status)},
                                                      {"exitCode", outcome.exitCode},
                                                      {"summary", outcome.summary},
                                                      {"error", outcome.error},
@@ -218,7 +200,7 @@ BatchWorker::Result BatchWorker::run(std::size_t position) {
     if (!answered) return death();
     const nlohmann::json answer = parseJsonText(line, "a batch worker's answer", JsonLimits{});
     Result result;
-    result.outcome.status = statusNamed(answer.value("status", "failed"));
+    result.outcome.status = entryStatusNamed(answer.value("status", "failed"));
     result.outcome.exitCode = answer.value("exitCode", int(kExitRuntime));
     result.outcome.summary = answer.value("summary", "");
     result.outcome.error = answer.value("error", "");

@@ -34,18 +34,6 @@ struct BatchArgs {
     ReconstructSettings settings;  // the defaults of every entry
 };
 
-const char* statusName(EntryOutcome::Status status) {
-    switch (status) {
-        case EntryOutcome::Status::Done:
-            return "done";
-        case EntryOutcome::Status::Skipped:
-            return "skipped";
-        case EntryOutcome::Status::Failed:
-            return "failed";
-    }
-    return "?";
-}
-
 void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const Stopwatch watch;
@@ -128,7 +116,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
                           << std::flush;
             results.push_back({{"id", entry.id},
                                {"entry", entry.number},
-                               {"status", statusName(outcome.status)},
+                               {"status", entryStatusName(outcome.status)},
                                {"summary", outcome.summary},
                                {"exitCode", outcome.exitCode},
                                {"seconds", outcome.seconds}});
