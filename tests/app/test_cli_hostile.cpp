@@ -27,15 +27,19 @@ namespace {
 using Result = dfrecon::testing::CliResult;
 using dfrecon::testing::slurp;
 
-// Runs dfrecon with `args` under the address-space cap the issue sets
-// (not under AddressSanitizer, whose shadow memory needs far more).
-Result run(const TempDir& dir, const std::string& args) {
+// The address-space cap the issue sets, as a shell prefix (none under
+// AddressSanitizer, whose shadow memory needs far more).
+std::string memoryCap() {
 #ifdef DFRECON_SANITIZE_BUILD
-    const std::string cap;
+    return "";
 #else
-    const std::string cap = "ulimit -v 3000000; ";
+    return "ulimit -v 3000000; ";
 #endif
-    return dfrecon::testing::runCli(dir.str(), "-q " + args, cap);
+}
+
+// Runs dfrecon -q with `args` under the cap.
+Result run(const TempDir& dir, const std::string& args) {
+    return dfrecon::testing::runCli(dir.str(), "-q " + args, memoryCap());
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -511,7 +515,7 @@ TEST(HostileInputs, HugeOrManyThingsStayWithinMemory) {
                                        "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
                                        "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n");
     r = dfrecon::testing::runCli(dir.str(), "compare " + cube + " " + cube + " --json",
-                                 "ulimit -v 3000000; ");
+                                 memoryCap());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("warning: --spacing 0.2 mm would take more than 8388608 samples"),
               std::string::npos)
