@@ -55,8 +55,10 @@ void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings)
     cmd.add_option("--cap-offset", options.capOffsetMm,
                    "How far beyond an end contour its cap reaches, mm (default: half the DICOM "
                    "contour slab thickness if given, else half the slice spacing; at most half "
-                   "the gap to the next slice)")
-        ->check(kNonNegative);
+                   "the gap to the next slice; at most 1000: a cap a metre beyond its contour "
+                   "is no anatomy, and beyond that it is no valid solid)")
+        ->check(numberCheck([](double v) { return v >= 0 && v <= 1000; },
+                            "must be from 0 to 1000 mm", "0 <= NUMBER <= 1000"));
     cmd.add_option("--max-error", settings.maxErrorMm,
                    "Then simplify with this two-sided bound in mm, as dfrecon simplify does "
                    "(0 = keep every triangle; else at least 1e-6 mm, below which coordinates do "

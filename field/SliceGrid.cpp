@@ -2,10 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace dfrecon {
+
+namespace {
+
+// A length as %g writes it: 1e-09 mm, not 0.000000 mm.
+std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+}  // namespace
 
 SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
     if (!(pixelMm > 0) || box.empty())
@@ -55,7 +67,7 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gr
         pixelMm = extent > 0 ? extent / std::max(1, gridPixels - 1 - 2 * kGridMarginPx) : 1.0;
     }
     if (extent / pixelMm > 16384)
-        throw std::invalid_argument("pixel size " + std::to_string(pixelMm) +
+        throw std::invalid_argument("pixel size " + shortNumber(pixelMm) +
                                     " mm gives a grid over 16384 pixels a side");
     const auto pixelsInAll = [&](double pixel) {
         return double(gridAround(box, pixel, kGridMarginPx).pixelCount()) * double(slices.size());
@@ -67,10 +79,10 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gr
         fitting *= std::max(1.05, std::sqrt(pixelsInAll(fitting) / double(kMaxRoiFieldPixels)));
     if (fitting > pixelMm && !chosen)
         throw std::invalid_argument(
-            "pixel size " + std::to_string(pixelMm) + " mm gives " + std::to_string(slices.size()) +
+            "pixel size " + shortNumber(pixelMm) + " mm gives " + std::to_string(slices.size()) +
             " planes over " + std::to_string(kMaxRoiFieldPixels) +
             " field pixels in all, more than memory allows; the smallest that fits is " +
-            std::to_string(fitting) + " mm");
+            shortNumber(fitting) + " mm");
     return gridAround(box, fitting, kGridMarginPx);
 }
 

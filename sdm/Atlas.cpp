@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,13 @@
 namespace dfrecon {
 
 namespace {
+
+// A number as %g writes it: 1e-09, not 0.000000; 2.5e+19, not a wrapped long.
+std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
 
 // A triangle in its own plane, in mm: the longest edge from `origin` along
 // `along` to (length, 0), the third corner above it at (apexX, heightMm)
@@ -150,8 +158,8 @@ Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options) {
         const double side = std::ceil(std::sqrt(1.15 * texels));
         if (side * side > double(options.maxTexels))
             throw std::invalid_argument(
-                "atlas: a sampling bound of " + std::to_string(options.maxErrorMm) +
-                " mm needs about " + std::to_string(long(side * side)) + " texels, more than " +
+                "atlas: a sampling bound of " + shortNumber(options.maxErrorMm) +
+                " mm needs about " + shortNumber(side * side) + " texels, more than " +
                 std::to_string(options.maxTexels) + "; ask for a larger bound");
         atlas.width = std::max(widest, int(side));
         atlas.height = int(packRows(sizes, order, atlas.width, nullptr));
