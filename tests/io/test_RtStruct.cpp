@@ -471,6 +471,29 @@ TEST(RtStruct, DeepNestingIsRefusedBeforeDcmtkParsesIt) {
     fs::remove(path);
 }
 
+TEST(RtStruct, GarbageAfterTheMagicIsRefusedBeforeDcmtkParsesIt) {
+    // 2 GiB of zeros after "DICM": DCMTK parses an empty element every 8
+    // bytes, a minute a gigabyte.
+    const std::string path = tempPath("zeros");
+    std::ofstream(path, std::ios::binary)
+        << std::string(128, '\0') << "DICM" << std::string(1 << 16, '\0');
+    EXPECT_NE(readError(path).find("a command element (0000,0000) at byte 0 of the data set"),
+              std::string::npos)
+        << readError(path);
+    // One empty element over and over.
+    std::string repeated;
+    for (int k = 0; k < 1000; ++k)
+        repeated += std::string(
+            "\x08\x00\x05\x00"
+            "CS\0\0",
+            8);
+    std::ofstream(path, std::ios::binary) << std::string(128, '\0') << "DICM" << repeated;
+    EXPECT_NE(readError(path).find("the element (0008,0005) twice in a row at byte 8"),
+              std::string::npos)
+        << readError(path);
+    fs::remove(path);
+}
+
 TEST(RtStruct, ExclusiveOrWorkIsBoundedPerPlaneAndPerFile) {
     // Stars that all cross one another: 150 of them took 2.5 GB in CGAL,
     // then overflowed the stack.
