@@ -5,13 +5,15 @@ BUILD_DIR      ?= build
 SANITIZE_DIR   ?= build-sanitize
 FUZZ_DIR       ?= build-fuzz
 JOBS           ?= $(shell nproc 2>/dev/null || echo 2)
-# make fuzz runs the four fuzz targets one after the other, FUZZ_SECONDS in
-# all, a quarter each; a target given 0 seconds is skipped.
+# make fuzz runs the five fuzz targets one after the other, FUZZ_SECONDS in
+# all, a fifth each (the last one the remainder); a target given 0 seconds is
+# skipped.
 FUZZ_SECONDS   ?= 600
-FUZZ_SLICES_SECONDS   ?= $(shell echo $$(( $(FUZZ_SECONDS) / 4 )))
-FUZZ_RTSTRUCT_SECONDS ?= $(shell echo $$(( $(FUZZ_SECONDS) / 4 )))
-FUZZ_MESH_SECONDS     ?= $(shell echo $$(( $(FUZZ_SECONDS) / 4 )))
-FUZZ_LABEL_SECONDS    ?= $(shell echo $$(( $(FUZZ_SECONDS) - 3 * ($(FUZZ_SECONDS) / 4) )))
+FUZZ_SLICES_SECONDS   ?= $(shell echo $$(( $(FUZZ_SECONDS) / 5 )))
+FUZZ_RTSTRUCT_SECONDS ?= $(shell echo $$(( $(FUZZ_SECONDS) / 5 )))
+FUZZ_MESH_SECONDS     ?= $(shell echo $$(( $(FUZZ_SECONDS) / 5 )))
+FUZZ_LABEL_SECONDS    ?= $(shell echo $$(( $(FUZZ_SECONDS) / 5 )))
+FUZZ_BATCH_SECONDS    ?= $(shell echo $$(( $(FUZZ_SECONDS) - 4 * ($(FUZZ_SECONDS) / 5) )))
 CMAKE_FLAGS    ?=
 # CI sets CI=true: warnings become errors there.
 ifeq ($(CI),true)
@@ -52,17 +54,19 @@ sanitize-test: setup
 	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:use_tls=0:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tests/ubsan.supp ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer on the .slices parser, the RTSTRUCT reader, the mesh readers and
-# the label-volume readers, for FUZZ_SECONDS in all (docs/fuzzing.md). One
-# process each: one core. libFuzzer reads -max_total_time=0 as "no limit",
-# so a target given 0 seconds is not started at all.
+# libFuzzer on the .slices parser, the RTSTRUCT reader, the mesh readers,
+# the label-volume readers and the batch manifest, batch record and label
+# table parsers, for FUZZ_SECONDS in all (docs/fuzzing.md). One process
+# each: one core. libFuzzer reads -max_total_time=0 as "no limit", so a
+# target given 0 seconds is not started at all.
 FUZZ_FLAGS = -rss_limit_mb=2048 -timeout=10
 fuzz: setup
 	@cmake --preset fuzz >/dev/null
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_slices_parser fuzz_rtstruct fuzz_mesh \
-	  fuzz_label_volume
+	  fuzz_label_volume fuzz_batch_texts
 	@mkdir -p $(FUZZ_DIR)/corpus $(FUZZ_DIR)/crashes $(FUZZ_DIR)/corpus-rtstruct \
-	  $(FUZZ_DIR)/crashes-rtstruct $(FUZZ_DIR)/crashes-mesh $(FUZZ_DIR)/crashes-label
+	  $(FUZZ_DIR)/crashes-rtstruct $(FUZZ_DIR)/crashes-mesh $(FUZZ_DIR)/crashes-label \
+	  $(FUZZ_DIR)/corpus-batch $(FUZZ_DIR)/crashes-batch
 	@cp -n examples/*.slices tests/data/fuzz/*.slices $(FUZZ_DIR)/corpus/ 2>/dev/null || true
 	@cp -n tests/data/fuzz-rtstruct/* tests/data/fuzz-rtstruct-regressions/* \
 	  $(FUZZ_DIR)/corpus-rtstruct/ 2>/dev/null || true
@@ -70,6 +74,8 @@ fuzz: setup
 	  tests/data/fuzz-mesh-regressions/*
 	@scripts/fuzz_corpus.sh label $(FUZZ_DIR)/corpus-label tests/data/fuzz-label/* \
 	  tests/data/fuzz-label-regressions/*
+	@cp -n tests/data/fuzz-batch/* tests/data/fuzz-batch-regressions/* \
+	  $(FUZZ_DIR)/corpus-batch/ 2>/dev/null || true
 	[ $(FUZZ_SLICES_SECONDS) -le 0 ] || $(FUZZ_DIR)/bin/fuzz_slices_parser \
 	  -max_total_time=$(FUZZ_SLICES_SECONDS) $(FUZZ_FLAGS) -artifact_prefix=$(FUZZ_DIR)/crashes/ \
 	  $(FUZZ_DIR)/corpus
@@ -82,6 +88,9 @@ fuzz: setup
 	[ $(FUZZ_LABEL_SECONDS) -le 0 ] || $(FUZZ_DIR)/bin/fuzz_label_volume \
 	  -max_total_time=$(FUZZ_LABEL_SECONDS) $(FUZZ_FLAGS) -max_len=8192 \
 	  -artifact_prefix=$(FUZZ_DIR)/crashes-label/ $(FUZZ_DIR)/corpus-label
+	[ $(FUZZ_BATCH_SECONDS) -le 0 ] || $(FUZZ_DIR)/bin/fuzz_batch_texts \
+	  -max_total_time=$(FUZZ_BATCH_SECONDS) $(FUZZ_FLAGS) -max_len=8192 \
+	  -artifact_prefix=$(FUZZ_DIR)/crashes-batch/ $(FUZZ_DIR)/corpus-batch
 
 format:
 	@clang-format -i $$(git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp' '*.cl')

@@ -19,7 +19,7 @@ bool isPlainFileName(const std::string& name) {
 
 nlohmann::json parseRecord(const std::string& text, const std::string& file) {
     nlohmann::json record = parseJsonText(text, file, recordJsonLimits());
-    if (!record.is_object() || record.value("format", "") != kRecordFormat ||
+    if (!record.is_object() || !record.contains("format") || record["format"] != kRecordFormat ||
         !record.contains("id") || !record["id"].is_string() || !record.contains("entry") ||
         !record["entry"].is_number_unsigned())
         throw InputError(file, 0, std::string("not a batch record (") + kRecordFormat + ")");

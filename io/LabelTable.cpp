@@ -186,8 +186,10 @@ LabelTable labelTableFromSegmentation(
     }
     LabelTable table;
     std::optional<std::string> layer;
-    for (const auto& [index, fields] : segments) {
+    for (const auto& [index, segmentFields] : segments) {
         const std::string where = "Segment" + std::to_string(index) + "_";
+        // A name for the binding: lambdas may capture bindings only from C++20.
+        const std::map<std::string, std::string>& fields = segmentFields;
         const auto field = [&](const char* name) -> std::string {
             const auto it = fields.find(name);
             return it == fields.end() ? std::string() : it->second;

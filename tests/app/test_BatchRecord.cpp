@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "app/BatchRecord.hpp"
+#include "io/InputError.hpp"
 
 using namespace dfrecon;
 using namespace dfrecon::app;
@@ -75,4 +76,29 @@ TEST(BatchRecord, OnlyRuntimeFailuresLeaveAnEntryIncomplete) {
     EXPECT_TRUE(isLastingFailure(2));
     EXPECT_FALSE(isLastingFailure(3));
     EXPECT_TRUE(isLastingFailure(4));
+}
+
+TEST(BatchRecord, ParsingRefusesWhatIsNoRecordAsBadInput) {
+    // Found by fuzz_batch_texts: a format that is no string escaped as the
+    // JSON library's type error, not as bad input naming the record.
+    for (const std::string& text :
+         {std::string("{\"format\": 1}"), std::string("{\"format\": null, \"id\": \"a\"}"),
+          std::string("{\"format\": \"dfrecon-batch-record 1\", \"id\": 3, \"entry\": 1}")}) {
+        try {
+            parseRecord(text, "r.json");
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), "r.json");
+            EXPECT_NE(e.problem().find("not a batch record"), std::string::npos) << e.problem();
+        }
+    }
+    // A mesh outside the entry's folder: not trusted.
+    for (const char* mesh : {"../x.ply", "/etc/passwd", "a/b.ply", "..", ""}) {
+        nlohmann::ordered_json r = record();
+        r["rois"][0]["mesh"] = mesh;
+        EXPECT_THROW(parseRecord(r.dump(), "r.json"), InputError) << mesh;
+        EXPECT_FALSE(decide(r).skip) << mesh;
+    }
+    EXPECT_TRUE(isPlainFileName("A.ply"));
+    EXPECT_FALSE(isPlainFileName(std::string("A\0.ply", 6)));
 }

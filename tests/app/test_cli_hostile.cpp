@@ -247,7 +247,9 @@ TEST(HostileInputs, BoundsBelowCoordinateResolutionAreUsageErrorsNotCrashes) {
     const std::string y = std::string(DFRECON_EXAMPLES) + "/y.slices";
     for (const char* command : {"reconstruct", "simplify"}) {
         const std::string input = std::string(command) == "simplify" ? dir / "y.ply" : y;
-        if (input != y) ASSERT_EQ(run(dir, "reconstruct " + y + " -o " + input).exitCode, 0);
+        if (input != y) {
+            ASSERT_EQ(run(dir, "reconstruct " + y + " -o " + input).exitCode, 0);
+        }
         const Result r = run(
             dir, std::string(command) + " " + input + " --max-error 1e-16 -o " + dir / "out.ply");
         EXPECT_EQ(r.exitCode, 1) << r.err;

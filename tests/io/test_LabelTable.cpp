@@ -124,5 +124,41 @@ TEST(LabelTable, FindsTheTableBesideAVolume) {
     EXPECT_EQ(labelTableBeside(dir / "atlas.seg.nrrd"), dir / "atlas.ctbl");
 }
 
+TEST(LabelTable, RefusesColoursAndNamesThatAreNone) {
+    const TempDir dir("labeltable-hostile");
+    // A colour of 1e9 or nan was dropped silently (the line read as a plain
+    // list); a control character reached the reports (exit 3).
+    const std::pair<std::string, std::string> cases[] = {
+        {"1 torus 1e9 0 0\n", "t.txt:1: red '1e9' is not in 0..255"},
+        {"1 torus 0 nan 0 255\n", "t.txt:1: green 'nan' is not in 0..255"},
+        {"1 torus 0 0 -1\n", "t.txt:1: blue '-1' is not in 0..255"},
+        {"1 tor\x1bus\n", "t.txt:1: a control character (0x1B) in the name"},
+        {"1 " + std::string(257, 'x') + "\n", "t.txt:1: name longer than 256 bytes"},
+    };
+    for (const auto& [text, message] : cases) {
+        try {
+            readLabelTable(written(dir, "t.txt", text));
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    }
+    // Words after a name are no colour: a plain list, as before.
+    EXPECT_EQ(readLabelTable(written(dir, "t.txt", "5 Left Superior Frontal\n")).at(5).name,
+              "Left");
+}
+
+TEST(LabelTable, ReadsLatin1NamesAndWritesQuotesAsApostrophes) {
+    const TempDir dir("labeltable-text");
+    const LabelTable table =
+        readLabelTable(written(dir, "t.txt", "1 C\xF4t\xE9_D\n2 L\xC3\xA4sion\n3 a\"b\n"));
+    EXPECT_EQ(table.at(1).name, "C\xC3\xB4t\xC3\xA9_D");  // Windows-1252, line by line
+    EXPECT_EQ(table.at(2).name, "L\xC3\xA4sion");
+    // ITK-SNAP's quoted labels cannot hold a quote (found by fuzz_batch_texts).
+    writeLabelTable(dir / "back.txt", table);
+    EXPECT_EQ(readLabelTable(dir / "back.txt").at(3).name, "a'b");
+    EXPECT_EQ(readLabelTable(dir / "back.txt").at(1).name, table.at(1).name);
+}
+
 }  // namespace
 }  // namespace dfrecon
