@@ -34,7 +34,8 @@ void runCheck(const std::string& path, bool json) {
                   << r.nonManifoldEdges << ", non-manifold vertices " << r.nonManifoldVertices
                   << ", misoriented edges " << r.misorientedEdges << ", degenerate triangles "
                   << r.degenerateTriangles << "\n"
-                  << "  self-intersecting triangle pairs " << r.intersectingPairs << "\n"
+                  << "  self-intersecting triangle pairs "
+                  << (r.intersectingPairsCapped ? "at least " : "") << r.intersectingPairs << "\n"
                   << "  Euler characteristic " << r.eulerCharacteristic;
         if (r.genus >= 0) std::cout << ", genus " << r.genus;
         std::cout << "\n  volume " << r.volumeMm3 / 1000 << " cc, area " << r.areaMm2 << " mm2\n";

@@ -25,6 +25,7 @@ nlohmann::ordered_json meshCheckJson(const MeshCheckReport& r) {
             {"misorientedEdges", r.misorientedEdges},
             {"degenerateTriangles", r.degenerateTriangles},
             {"selfIntersectingPairs", r.intersectingPairs},
+            {"selfIntersectingPairsAtLeast", r.intersectingPairsCapped},
             {"selfIntersectingExamples", examples}};
 }
 

@@ -279,30 +279,30 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
         for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
             for (std::uint32_t v : soup.triangles[t]) around[fill[v]++] = t;
     }
-    std::vector<std::uint32_t> fan;  // reused: each triangle's group at v
+    // Reused from vertex to vertex: (other vertex, position in the ring) of
+    // each edge at v, and the groups of the ring's triangles.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> spokes;
+    UnionFind fan;
     for (std::size_t v = 0; v < n; ++v) {
         if (!used[v]) continue;
         ++report.vertices;
         // The triangles around v must form one fan: join those sharing an
-        // edge at v (relabelling groups; fans are small) and count the groups.
+        // edge at v and count the groups. By sorting the edges, not comparing
+        // every pair: a hostile file put ten million triangles at one vertex.
         const std::uint32_t* ring = around.data() + first[v];
         const std::size_t k = first[v + 1] - first[v];
-        fan.resize(k);
-        std::iota(fan.begin(), fan.end(), 0u);
+        spokes.clear();
         for (std::size_t p = 0; p < k; ++p)
-            for (std::size_t q = p + 1; q < k; ++q) {
-                if (fan[p] == fan[q]) continue;
-                const Triangle &s = soup.triangles[ring[p]], &t = soup.triangles[ring[q]];
-                bool common = false;
-                for (std::uint32_t x : s)
-                    for (std::uint32_t y : t) common |= x == y && x != v;
-                if (!common) continue;
-                const std::uint32_t from = fan[q], to = fan[p];
-                for (std::uint32_t& g : fan)
-                    if (g == from) g = to;
-            }
-        std::sort(fan.begin(), fan.end());
-        if (std::unique(fan.begin(), fan.end()) - fan.begin() > 1) {
+            for (std::uint32_t x : soup.triangles[ring[p]])
+                if (x != v) spokes.emplace_back(x, std::uint32_t(p));
+        std::sort(spokes.begin(), spokes.end());
+        fan.reset(k);
+        for (std::size_t s = 1; s < spokes.size(); ++s)
+            if (spokes[s].first == spokes[s - 1].first)
+                fan.join(spokes[s].second, spokes[s - 1].second);
+        std::size_t groups = 0;
+        for (std::size_t p = 0; p < k && groups < 2; ++p) groups += fan.find(p) == p;
+        if (groups > 1) {
             ++report.nonManifoldVertices;
             report.defectiveTriangles.insert(report.defectiveTriangles.end(), ring, ring + k);
         }
@@ -313,13 +313,20 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     if (report.watertight())
         report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
 
-    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
-        ++report.intersectingPairs;
-        if (report.intersectingExamples.size() < 10)
-            report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
-        report.defectiveTriangles.push_back(i);
-        report.defectiveTriangles.push_back(j);
-    });
+    // Thrown to leave the search at the cap; the BVH walk has no other exit.
+    struct EnoughCounted {};
+    try {
+        visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
+            ++report.intersectingPairs;
+            if (report.intersectingExamples.size() < 10)
+                report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
+            report.defectiveTriangles.push_back(i);
+            report.defectiveTriangles.push_back(j);
+            if (report.intersectingPairs == kMaxCountedIntersections) throw EnoughCounted{};
+        });
+    } catch (const EnoughCounted&) {
+        report.intersectingPairsCapped = true;
+    }
     std::vector<std::size_t>& defective = report.defectiveTriangles;
     std::sort(defective.begin(), defective.end());
     defective.erase(std::unique(defective.begin(), defective.end()), defective.end());

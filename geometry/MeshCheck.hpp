@@ -15,6 +15,10 @@
 
 namespace dfrecon {
 
+/// Most self-intersecting pairs checkMesh counts before it stops looking:
+/// one is enough for the verdict, and a million is enough to say where.
+inline constexpr std::size_t kMaxCountedIntersections = 1'000'000;
+
 struct MeshCheckReport {
     std::size_t vertices = 0;  // referenced by some triangle
     std::size_t triangles = 0;
@@ -25,6 +29,9 @@ struct MeshCheckReport {
     std::size_t nonManifoldVertices = 0;  // triangles around it form several fans
     std::size_t misorientedEdges = 0;     // two triangles traverse it the same way
     std::size_t intersectingPairs = 0;    // pairs of triangles that cross or touch wrongly
+    /// The search stopped at kMaxCountedIntersections pairs: there are at
+    /// least intersectingPairs (a soup of coincident triangles has n²/2).
+    bool intersectingPairsCapped = false;
     std::vector<std::pair<std::size_t, std::size_t>> intersectingExamples;  // first few
     /// Every triangle that takes part in a defect: degenerate, on a
     /// boundary, non-manifold or misoriented edge, around a non-manifold

@@ -9,7 +9,11 @@ namespace dfrecon {
 
 class UnionFind {
   public:
-    explicit UnionFind(std::size_t n) : parent_(n) {
+    explicit UnionFind(std::size_t n = 0) { reset(n); }
+    /// n singletons again, keeping the storage (for one small set after
+    /// another). O(n).
+    void reset(std::size_t n) {
+        parent_.resize(n);
         std::iota(parent_.begin(), parent_.end(), std::size_t(0));
     }
     /// The representative of x's set; amortised nearly O(1).

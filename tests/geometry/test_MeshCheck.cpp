@@ -201,3 +201,33 @@ TEST(MeshCheck, BvhFindsEveryIntersectingPairOfARandomSoup) {
     EXPECT_GT(expected, 10u);
     EXPECT_EQ(checkMesh(s).intersectingPairs, expected);
 }
+
+TEST(MeshCheck, HostileSoupsEndQuickly) {
+    // 20 000 triangles around one vertex, in 10 000 separate pairs: the fan
+    // test compared every pair of them (10^14 steps at ten million).
+    TriangleSoup star;
+    star.points.push_back({0, 0, 0});
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) {
+        const double angle = 2 * M_PI * k / n;
+        star.points.push_back({std::cos(angle), std::sin(angle), double(k % 2)});
+    }
+    for (std::uint32_t k = 1; k + 1 <= std::uint32_t(n); k += 2)
+        star.triangles.push_back({0, k, k + 1});
+    const MeshCheckReport fan = checkMesh(star);
+    EXPECT_EQ(fan.nonManifoldVertices, 1u);
+    // 1500 copies of one triangle: 1.1·10^6 intersecting pairs, counted up
+    // to the cap and then no further.
+    TriangleSoup copies;
+    for (std::uint32_t k = 0; k < 1500; ++k) {
+        copies.points.push_back({0, 0, 0});
+        copies.points.push_back({10, 0, 0});
+        copies.points.push_back({0, 10, 0});
+        copies.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    const MeshCheckReport same = checkMesh(copies);
+    EXPECT_EQ(same.intersectingPairs, kMaxCountedIntersections);
+    EXPECT_TRUE(same.intersectingPairsCapped);
+    EXPECT_FALSE(same.validSolid());
+    EXPECT_FALSE(checkMesh(star).intersectingPairsCapped);
+}
