@@ -23,6 +23,13 @@ inline constexpr double kMinVoxelSpacingMm = 1e-6;
 /// mesh face has more.
 inline constexpr std::size_t kMaxMeshFaceCorners = 4096;
 
+/// Most triangles at one vertex of a mesh file. The self-intersection check
+/// compares every pair of triangles whose boxes overlap, and all of a fan's
+/// do: 10^5 triangles at a vertex never ended, 10^4 take a few seconds. No
+/// surface this program reads or writes comes near (a sphere's pole in a
+/// fine UV mesh has a few hundred).
+inline constexpr std::size_t kMaxTrianglesAtVertex = 10000;
+
 /// Memory budget of a label volume: the decoded samples plus the 32-bit
 /// label per voxel must fit in 2 GiB, checked from the header before
 /// anything is allocated (a small gzip file can claim billions of voxels).

@@ -17,6 +17,7 @@
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
 #include "io/InputError.hpp"
+#include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/MeshFileCheck.hpp"
 #include "io/VtkPolyData.hpp"
@@ -62,7 +63,10 @@ void requireMeshFile(const std::string& path) {
 
 TriMesh readMesh(const std::string& path) {
     const ReadingInput reading(path);
-    requireMeshFile(path);
+    // As a plain list first (no topology: linear), so that a vertex of too
+    // many triangles is refused before OpenMesh links them, and before the
+    // checks that compare them pairwise.
+    (void)readTriangleSoup(path);
     TriMesh mesh;
     OpenMesh::IO::Options options;
     if (!OpenMesh::IO::read_mesh(mesh, path, options))
@@ -313,6 +317,15 @@ TriangleSoup readTriangleSoup(const std::string& path) {
                                      std::to_string(soup.points.size()));
     for (std::size_t v = 0; v < soup.points.size(); ++v) requireSanePoint(path, v, soup.points[v]);
     if (soup.triangles.empty()) throw InputError(path, 0, "mesh has no triangles");
+    std::vector<std::uint32_t> trianglesAt(soup.points.size(), 0);
+    for (const auto& t : soup.triangles)
+        for (std::uint32_t v : t)
+            if (++trianglesAt[v] > kMaxTrianglesAtVertex)
+                throw InputError(path, 0,
+                                 "vertex " + std::to_string(v) + " is a corner of more than " +
+                                     std::to_string(kMaxTrianglesAtVertex) +
+                                     " triangles, the most one vertex may have (checks compare "
+                                     "a vertex's triangles pairwise)");
     return soup;
 }
 

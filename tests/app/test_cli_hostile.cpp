@@ -523,3 +523,23 @@ TEST(HostileInputs, HugeOrManyThingsStayWithinMemory) {
               std::string::npos)
         << r.err;
 }
+
+TEST(HostileInputs, AVertexOfTooManyTrianglesIsRefusedBeforeThePairwiseChecks) {
+    // 10^5 triangles fanned around one vertex: every pair of them overlaps
+    // in its box, and check, segment, sdm and compare never ended.
+    const TempDir dir("hostile-fan");
+    std::ostringstream off;
+    const int n = 20002;
+    off << "OFF\n" << n + 1 << " " << n / 2 << " 0\n0 0 0\n";
+    for (int k = 0; k < n; ++k)
+        off << std::cos(2 * M_PI * k / n) << " " << std::sin(2 * M_PI * k / n) << " " << k % 2
+            << "\n";
+    for (int k = 1; k < n; k += 2) off << "3 0 " << k << " " << k + 1 << "\n";
+    const std::string fan = writeFile(dir, "fan.off", off.str());
+    for (const std::string& command :
+         {"check " + fan, "segment " + fan + " -k 2 -o " + dir / "s.ply",
+          "compare " + fan + " " + fan})
+        expectRefused(dir, fan, command,
+                      "vertex 0 is a corner of more than 10000 triangles, the most one vertex may "
+                      "have");
+}
