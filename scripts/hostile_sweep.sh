@@ -351,6 +351,31 @@ case_dicom_zeros() {
     printf 'DICM' >>zeros-2g.dcm
     truncate -s +2G zeros-2g.dcm
     run_case info-dicom-2g-zeros 2 zeros-2g.dcm dfr info zeros-2g.dcm
+    # Under the size limit: zeros that DCMTK parses as empty elements.
+    head -c 128 /dev/zero >zeros-1000m.dcm
+    printf 'DICM' >>zeros-1000m.dcm
+    truncate -s 1000M zeros-1000m.dcm
+    run_case info-dicom-1000m-zeros 2 zeros-1000m.dcm dfr info zeros-1000m.dcm
+    rm -f zeros-2g.dcm zeros-1000m.dcm
+}
+
+# 7a. A mesh of 10^5 triangles fanned around one vertex: every pair of them
+#     overlaps in its box for the self-intersection check.
+case_mesh_fan() {
+    /usr/bin/python3 - <<'PY'
+import math
+n = 200000
+with open("fan.off", "w") as f:
+    f.write("OFF\n%d %d 0\n0 0 0\n" % (n + 1, n // 2))
+    for k in range(n):
+        a = 2 * math.pi * k / n
+        f.write("%f %f %d\n" % (math.cos(a), math.sin(a), k % 2))
+    for k in range(1, n, 2):
+        f.write("3 0 %d %d\n" % (k, k + 1))
+PY
+    run_case mesh-fan-100000-check 2 fan.off dfr check fan.off
+    run_case mesh-fan-100000-compare 2 fan.off dfr compare fan.off fan.off
+    run_case mesh-fan-100000-segment 2 fan.off dfr segment fan.off -k 2 -o fan-segments.ply
 }
 
 # 8. Endless comment lines on standard input.
@@ -644,6 +669,7 @@ CASES=(
     case_record_dev_zero
     case_batch_huge_inputs
     case_dicom_zeros
+    case_mesh_fan
     case_stdin_endless_comments
     case_manifest_400k
     case_like_huge_grid
