@@ -111,13 +111,17 @@ INSTANTIATE_TEST_SUITE_P(CasesTsv, HostileCorpus, ::testing::ValuesIn(corpusCase
                          [](const auto& testInfo) { return testInfo.param.name; });
 
 TEST(HostileInputs, CorpusCoversEveryReader) {
-    int mesh = 0, label = 0;
+    int mesh = 0, label = 0, manifest = 0, contours = 0;
     for (const Case& c : corpusCases()) {
         mesh += c.file.rfind("mesh-", 0) == 0;
         label += c.file.rfind("label-", 0) == 0;
+        manifest += c.file.rfind("manifest-", 0) == 0;
+        contours += c.file.rfind("rtstruct-", 0) == 0 || c.file.rfind("slices-", 0) == 0;
     }
     EXPECT_GE(mesh, 10);
     EXPECT_GE(label, 10);
+    EXPECT_GE(manifest, 2);
+    EXPECT_GE(contours, 2);
 }
 
 TEST(HostileInputs, SimplifyRefusesWhatCheckRefusesBeforeDecimating) {
