@@ -71,34 +71,44 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                           {"meanMm", x.meanMm},
                                           {"samples", x.samples}};
         };
-        std::cout << jsonText(nlohmann::ordered_json{{"command", "compare"},
-                                                     {"a", args.a},
-                                                     {"b", args.b},
-                                                     {"volumeAMm3", overlap.volumeAMm3},
-                                                     {"volumeBMm3", overlap.volumeBMm3},
-                                                     {"volumeDifferenceMm3",
-                                                      overlap.volumeBMm3 - overlap.volumeAMm3},
-                                                     {"intersectionMm3", overlap.intersectionMm3},
-                                                     {"unionMm3", overlap.unionMm3()},
-                                                     {"dice", overlap.dice()},
-                                                     {"jaccard", overlap.jaccard()},
-                                                     {"hausdorffMm", d.hausdorffMm()},
-                                                     {"hd95Mm", d.hd95Mm()},
-                                                     {"meanSurfaceDistanceMm", d.meanMm()},
-                                                     {"distanceBoundMm", d.spacingMm},
-                                                     {"aToB", directed(d.aToB)},
-                                                     {"bToA", directed(d.bToA)},
-                                                     {"seconds",
-                                                      {{"load", loadSeconds},
-                                                       {"overlap", overlapSeconds},
-                                                       {"distances", distanceSeconds}}}},
-                              2)
+        std::cout << jsonText(
+                         nlohmann::ordered_json{
+                             {"command", "compare"},
+                             {"a", args.a},
+                             {"b", args.b},
+                             {"volumeAMm3", overlap.volumeAMm3},
+                             {"volumeBMm3", overlap.volumeBMm3},
+                             {"volumeDifferenceMm3", overlap.volumeBMm3 - overlap.volumeAMm3},
+                             {"intersectionMm3", overlap.intersectionMm3},
+                             {"unionMm3", overlap.unionMm3()},
+                             {"dice", overlap.dice()},
+                             {"jaccard", overlap.jaccard()},
+                             {"overlapMethod", overlap.method},
+                             {"overlapShiftMm", overlap.shiftMm},
+                             {"intersectionBoundMm3", overlap.intersectionBoundMm3},
+                             {"hausdorffMm", d.hausdorffMm()},
+                             {"hd95Mm", d.hd95Mm()},
+                             {"meanSurfaceDistanceMm", d.meanMm()},
+                             {"distanceBoundMm", d.spacingMm},
+                             {"aToB", directed(d.aToB)},
+                             {"bToA", directed(d.bToA)},
+                             {"seconds",
+                              {{"load", loadSeconds},
+                               {"overlap", overlapSeconds},
+                               {"distances", distanceSeconds}}}},
+                         2)
                   << "\n";
         return;
     }
     std::cout << "volume A " << overlap.volumeAMm3 / 1000 << " cc, B " << overlap.volumeBMm3 / 1000
               << " cc, both " << overlap.intersectionMm3 / 1000 << " cc\n"
-              << "Dice " << overlap.dice() << ", Jaccard " << overlap.jaccard() << " (exact)\n"
+              << "Dice " << overlap.dice() << ", Jaccard " << overlap.jaccard() << " ("
+              << (overlap.shiftMm > 0 ? "exact with B shifted " + std::to_string(overlap.shiftMm) +
+                                            " mm off the surfaces it shares with A: intersection "
+                                            "within " +
+                                            std::to_string(overlap.intersectionBoundMm3) + " mm3"
+                                      : std::string("exact"))
+              << ")\n"
               << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm()
               << " mm, mean surface distance " << d.meanMm() << " mm (each within " << d.spacingMm
               << " mm)\n";

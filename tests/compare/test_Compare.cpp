@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "compare/OverlapVolume.hpp"
 #include "compare/SurfaceDistances.hpp"
@@ -43,6 +44,56 @@ TEST(OverlapVolume, OffsetSpheresFollowTheLensFormula) {
         const double exact = (4 * r + d) * (2 * r - d) * (2 * r - d) / (16 * r * r * r);
         EXPECT_NEAR(o.dice(), exact, 2e-3) << d;
     }
+}
+
+TEST(OverlapVolume, SurfacesThatCoincideInPartStillCompare) {
+    // Shared faces, edges and vertices: corefinement builds no solid of
+    // them ("not a manifold solid", or CGAL's "Unauthorized intersections of
+    // constraints"), and Brodmann neighbours, a mesh against itself and
+    // against its simplification all ended in exit 3.
+    struct Pair {
+        const char* what;
+        TriangleSoup a, b;
+        double intersectionMm3;  // < 0: all of A
+    };
+    const Pair pairs[] = {
+        {"a box and itself", boxMesh({0, 0, 0}, {10, 10, 10}, 3),
+         boxMesh({0, 0, 0}, {10, 10, 10}, 3), 1000},
+        {"a sphere and itself", geodesicSphere(16, 10), geodesicSphere(16, 10), -1},
+        {"boxes sharing a face, side by side", boxMesh({0, 0, 0}, {10, 10, 10}, 3),
+         boxMesh({10, 0, 0}, {20, 10, 10}, 2), 0},
+        {"a half box inside, sharing five faces", boxMesh({0, 0, 0}, {10, 10, 10}, 2),
+         boxMesh({0, 0, 0}, {5, 10, 10}, 2), 500},
+        {"boxes sharing an edge", boxMesh({0, 0, 0}, {10, 10, 10}, 1),
+         boxMesh({10, 10, 0}, {20, 20, 10}, 1), 0},
+        {"boxes sharing a vertex", boxMesh({0, 0, 0}, {10, 10, 10}, 1),
+         boxMesh({10, 10, 10}, {20, 20, 20}, 1), 0},
+    };
+    for (const Pair& p : pairs) {
+        const Overlap o = overlapOf(p.a, p.b);
+        const double exact = p.intersectionMm3 < 0 ? o.volumeAMm3 : p.intersectionMm3;
+        EXPECT_NEAR(o.intersectionMm3, exact, o.intersectionBoundMm3 + 1e-9) << p.what;
+        EXPECT_LE(o.intersectionBoundMm3, 1e-3) << p.what;  // area · 1e-6 mm, here
+        EXPECT_EQ(std::string(o.method), o.shiftMm > 0 ? "exact, B shifted" : "exact") << p.what;
+    }
+}
+
+TEST(OverlapVolume, AShiftOfBChangesTheIntersectionByAtMostAreaTimesShift) {
+    // The bound the shifted fallback reports: moving B by s sweeps at most
+    // area(B)·s of volume in or out of A.
+    const TriangleSoup a = geodesicSphere(24, 10), b = geodesicSphere(24, 10, {6, 0, 0});
+    const double areaB = checkMesh(b).areaMm2;
+    const double unshifted = intersectionVolume(a, b, {0, 0, 0}).value();
+    for (const double s : {1e-6, 1e-3, 0.1}) {
+        const Vec3 shift = (s / std::sqrt(3.0)) * Vec3{1, 1, 1};
+        const double moved = intersectionVolume(a, b, shift).value();
+        EXPECT_LE(std::abs(moved - unshifted), areaB * s) << s;
+    }
+    // And a shift of the lens along the axis changes it as the lens formula says.
+    const double r = 10, d0 = 6, ds = 0.1;
+    const auto lens = [&](double d) { return M_PI * (4 * r + d) * (2 * r - d) * (2 * r - d) / 12; };
+    const double change = intersectionVolume(a, b, {ds, 0, 0}).value() - unshifted;
+    EXPECT_NEAR(change, lens(d0 + ds) - lens(d0), 0.05 * std::abs(lens(d0 + ds) - lens(d0)));
 }
 
 TEST(OverlapVolume, RefusesWhatIsNoSolid) {
