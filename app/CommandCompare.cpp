@@ -14,6 +14,7 @@
 #include "compare/OverlapVolume.hpp"
 #include "compare/SurfaceDistances.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "io/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
@@ -26,6 +27,7 @@ namespace {
 struct CompareArgs {
     std::string a, b, roiA, roiB;
     double spacingMm = 0.2;
+    double toleranceMm = 1;
     bool json = false;
 };
 
@@ -58,7 +60,9 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
     const double loadSeconds = watch.lap();
     const Overlap overlap = overlapOf(a, b);
     const double overlapSeconds = watch.lap();
-    const SurfaceDistances d = surfaceDistances(a, b, args.spacingMm);
+    const SurfaceDistances d = surfaceDistances(a, b, args.spacingMm, args.toleranceMm);
+    const double centroidDistanceMm =
+        length(measureSurface(b).centroidMm - measureSurface(a).centroidMm);
     const double distanceSeconds = watch.lap();
     if (d.spacingMm > args.spacingMm && !global.quiet)
         std::cerr << "dfrecon: warning: --spacing " << args.spacingMm << " mm would take more than "
@@ -69,6 +73,7 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
             return nlohmann::ordered_json{{"hausdorffMm", x.maxMm},
                                           {"hd95Mm", x.p95Mm},
                                           {"meanMm", x.meanMm},
+                                          {"areaWithinToleranceMm2", x.areaWithinToleranceMm2},
                                           {"samples", x.samples}};
         };
         std::cout << jsonText(
@@ -88,7 +93,11 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
                              {"intersectionBoundMm3", overlap.intersectionBoundMm3},
                              {"hausdorffMm", d.hausdorffMm()},
                              {"hd95Mm", d.hd95Mm()},
+                             {"hd95PooledMm", d.hd95PooledMm},
                              {"meanSurfaceDistanceMm", d.meanMm()},
+                             {"surfaceDice", d.surfaceDice()},
+                             {"toleranceMm", d.toleranceMm},
+                             {"centroidDistanceMm", centroidDistanceMm},
                              {"distanceBoundMm", d.spacingMm},
                              {"aToB", directed(d.aToB)},
                              {"bToA", directed(d.bToA)},
@@ -109,9 +118,11 @@ void runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                             std::to_string(overlap.intersectionBoundMm3) + " mm3"
                                       : std::string("exact"))
               << ")\n"
-              << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm()
-              << " mm, mean surface distance " << d.meanMm() << " mm (each within " << d.spacingMm
-              << " mm)\n";
+              << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm() << " mm (pooled "
+              << d.hd95PooledMm << " mm), mean surface distance " << d.meanMm()
+              << " mm (each within " << d.spacingMm << " mm)\n"
+              << "surface Dice at " << d.toleranceMm << " mm " << d.surfaceDice()
+              << ", centroid distance " << centroidDistanceMm << " mm\n";
 }
 
 }  // namespace
@@ -143,6 +154,11 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
                     "distance's error")
         ->capture_default_str()
         ->check(kPositive);
+    cmd->add_option("--tolerance", args->toleranceMm,
+                    "Surface Dice's tolerance, mm: the share of both surfaces within this "
+                    "distance of the other (surfaceDice)")
+        ->capture_default_str()
+        ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runCompare(*args, global); });
 }

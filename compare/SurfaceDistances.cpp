@@ -15,6 +15,23 @@ struct WeightedDistance {
     double distanceMm, weightMm2;
 };
 
+// The smallest distance below or at which 95 % of the weight of `a` and `b`
+// together lies, both sorted by distance (a merge walk). O(|a| + |b|).
+double weightedPercentile95(const std::vector<WeightedDistance>& a,
+                            const std::vector<WeightedDistance>& b) {
+    double total = 0;
+    for (const auto* list : {&a, &b})
+        for (const WeightedDistance& s : *list) total += s.weightMm2;
+    double below = 0;
+    for (std::size_t i = 0, j = 0; i < a.size() || j < b.size();) {
+        const bool fromA = j == b.size() || (i < a.size() && a[i].distanceMm <= b[j].distanceMm);
+        const WeightedDistance& s = fromA ? a[i++] : b[j++];
+        below += s.weightMm2;
+        if (below >= 0.95 * total) return s.distanceMm;
+    }
+    return 0;
+}
+
 // The lattice of a triangle: n × n similar cells, each edge at most
 // spacingMm.
 double latticeSteps(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm) {
@@ -45,9 +62,12 @@ double spacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b, double 
     }
 }
 
+// The distances from every sample of `from` to `to`, summarised; the
+// samples are left in `samples`, sorted by distance, for the pooled figures.
 DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, double spacingMm,
-                           double& areaMm2) {
-    std::vector<WeightedDistance> samples;
+                           double toleranceMm, double& areaMm2,
+                           std::vector<WeightedDistance>& samples) {
+    samples.clear();
     areaMm2 = 0;
     for (const auto& t : from.triangles) {
         const Vec3 p0 = from.points[t[0]], p1 = from.points[t[1]], p2 = from.points[t[2]];
@@ -73,20 +93,14 @@ DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, doub
         total += s.weightMm2;
         sum += s.weightMm2 * s.distanceMm;
         d.maxMm = std::max(d.maxMm, s.distanceMm);
+        if (s.distanceMm <= toleranceMm) d.areaWithinToleranceMm2 += s.weightMm2;
     }
     d.meanMm = total > 0 ? sum / total : 0;
     std::sort(samples.begin(), samples.end(),
               [](const WeightedDistance& x, const WeightedDistance& y) {
                   return x.distanceMm < y.distanceMm;
               });
-    double below = 0;
-    for (const WeightedDistance& s : samples) {
-        below += s.weightMm2;
-        if (below >= 0.95 * total) {
-            d.p95Mm = s.distanceMm;
-            break;
-        }
-    }
+    d.p95Mm = weightedPercentile95(samples, {});
     return d;
 }
 
@@ -100,12 +114,18 @@ double SurfaceDistances::hd95Mm() const {
     return std::max(aToB.p95Mm, bToA.p95Mm);
 }
 
+double SurfaceDistances::surfaceDice() const {
+    const double total = areaAMm2 + areaBMm2;
+    return total > 0 ? (aToB.areaWithinToleranceMm2 + bToA.areaWithinToleranceMm2) / total : 1;
+}
+
 double SurfaceDistances::meanMm() const {
     const double total = areaAMm2 + areaBMm2;
     return total > 0 ? (aToB.meanMm * areaAMm2 + bToA.meanMm * areaBMm2) / total : 0;
 }
 
-SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm) {
+SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm,
+                                  double toleranceMm) {
     if (a.triangles.empty() || b.triangles.empty())
         throw std::invalid_argument("surface distances need two non-empty surfaces");
     if (!(spacingMm > 0)) throw std::invalid_argument("sample spacing must be > 0");
@@ -113,8 +133,11 @@ SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, 
     SurfaceDistances d;
     spacingMm = spacingWithinBudget(a, b, spacingMm);
     d.spacingMm = spacingMm;
-    d.aToB = directed(a, bvhB, spacingMm, d.areaAMm2);
-    d.bToA = directed(b, bvhA, spacingMm, d.areaBMm2);
+    d.toleranceMm = toleranceMm;
+    std::vector<WeightedDistance> fromA, fromB;
+    d.aToB = directed(a, bvhB, spacingMm, toleranceMm, d.areaAMm2, fromA);
+    d.bToA = directed(b, bvhA, spacingMm, toleranceMm, d.areaBMm2, fromB);
+    d.hd95PooledMm = weightedPercentile95(fromA, fromB);
     return d;
 }
 

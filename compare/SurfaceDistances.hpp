@@ -18,6 +18,9 @@ struct DirectedDistances {
     double maxMm = 0;   // Hausdorff from this surface to the other
     double p95Mm = 0;   // area-weighted 95th percentile
     double meanMm = 0;  // area-weighted mean
+    /// The area of this surface within the tolerance of the other (by the
+    /// samples: each stands for its lattice cell).
+    double areaWithinToleranceMm2 = 0;
     std::size_t samples = 0;
 };
 
@@ -39,12 +42,24 @@ struct SurfaceDistances {
     /// Area-weighted mean over both surfaces together.
     double meanMm() const;
     double areaAMm2 = 0, areaBMm2 = 0;
+    /// The 95th percentile of both directions' distances pooled, weighted
+    /// by area (DeepMind's surface-distance and MONAI's convention), where
+    /// hd95Mm() takes the larger of the two directions' own.
+    double hd95PooledMm = 0;
+    /// Surface Dice at toleranceMm (Nikolov et al. 2018): the area of each
+    /// surface within the tolerance of the other, over both areas:
+    /// (|A within τ of B| + |B within τ of A|) / (|A| + |B|). Each sample
+    /// stands for its cell, so it lies between the exact values at τ ∓
+    /// spacingMm.
+    double toleranceMm = 1;
+    double surfaceDice() const;
 };
 
 /// Distances between `a` and `b` (any triangle soups; closed or not).
 /// Throws std::invalid_argument for an empty surface or spacingMm <= 0.
 /// Work: O(S log T) for S = area / spacingMm² samples, S at most
 /// kMaxDistanceSamples (the spacing grows to keep it so); memory O(S + T).
-SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm);
+SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm,
+                                  double toleranceMm = 1);
 
 }  // namespace dfrecon

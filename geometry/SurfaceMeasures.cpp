@@ -6,11 +6,15 @@ namespace dfrecon {
 
 SurfaceMeasures measureSurface(const TriangleSoup& soup) {
     SurfaceMeasures m;
+    Vec3 moment;  // Σ volume · centroid of each tetrahedron (origin, p0, p1, p2)
     for (const auto& t : soup.triangles) {
         const Vec3 p0 = soup.points[t[0]], p1 = soup.points[t[1]], p2 = soup.points[t[2]];
         m.areaMm2 += 0.5 * length(cross(p1 - p0, p2 - p0));
-        m.volumeMm3 += dot(p0, cross(p1, p2)) / 6;
+        const double volume = dot(p0, cross(p1, p2)) / 6;
+        m.volumeMm3 += volume;
+        moment = moment + (volume / 4) * (p0 + p1 + p2);
     }
+    if (m.volumeMm3 != 0) m.centroidMm = (1 / m.volumeMm3) * moment;
     return m;
 }
 

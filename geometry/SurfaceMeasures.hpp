@@ -10,9 +10,13 @@ namespace dfrecon {
 struct SurfaceMeasures {
     double volumeMm3 = 0;  // signed: > 0 when normals point outward
     double areaMm2 = 0;
+    /// The enclosed solid's centre of mass (uniform density): the tetrahedra
+    /// from the origin to each triangle, weighted by signed volume. The
+    /// origin when the volume is 0.
+    Vec3 centroidMm;
 };
 
-/// Enclosed volume (Σ p0 · (p1 × p2) / 6) and area. O(T).
+/// Enclosed volume (Σ p0 · (p1 × p2) / 6), area and centroid. O(T).
 SurfaceMeasures measureSurface(const TriangleSoup& soup);
 
 /// The volume of the part with z ≤ `zMm`: the integral of (z − zMm)·n_z

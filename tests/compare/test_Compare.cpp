@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
+#include <utility>
 
 #include "compare/OverlapVolume.hpp"
 #include "compare/SurfaceDistances.hpp"
+#include "geometry/ClosestPoint.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
@@ -124,4 +128,76 @@ TEST(SurfaceDistances, IdenticalSurfacesAreZeroApart) {
     const SurfaceDistances s = surfaceDistances(a, a, 0.5);
     EXPECT_LT(s.hausdorffMm(), 1e-9);
     EXPECT_LT(s.meanMm(), 1e-9);
+}
+
+namespace {
+
+// Surface Dice by brute force: `perTriangle` random points on every
+// triangle of each surface, each weighted by its triangle's area, with its
+// distance to every triangle of the other. O(points · triangles).
+double bruteForceSurfaceDice(const TriangleSoup& a, const TriangleSoup& b, double toleranceMm,
+                             int perTriangle) {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    double within = 0, total = 0;
+    for (const auto& [from, to] : {std::pair{&a, &b}, std::pair{&b, &a}})
+        for (const auto& t : from->triangles) {
+            const Vec3 p0 = from->points[t[0]], p1 = from->points[t[1]], p2 = from->points[t[2]];
+            const double weight = 0.5 * length(cross(p1 - p0, p2 - p0)) / perTriangle;
+            for (int k = 0; k < perTriangle; ++k) {
+                double u = unit(random), v = unit(random);
+                if (u + v > 1) u = 1 - u, v = 1 - v;
+                const Vec3 p = p0 + u * (p1 - p0) + v * (p2 - p0);
+                double nearest = INFINITY;
+                for (const auto& s : to->triangles)
+                    nearest = std::min(nearest,
+                                       pointTriangleDistance(p, to->points[s[0]], to->points[s[1]],
+                                                             to->points[s[2]]));
+                within += nearest <= toleranceMm ? weight : 0;
+                total += weight;
+            }
+        }
+    return within / total;
+}
+
+}  // namespace
+
+TEST(SurfaceDistances, SurfaceDiceAgreesWithBruteForce) {
+    // Offset spheres: part of each surface inside the other's tolerance band.
+    const TriangleSoup a = geodesicSphere(6, 10), b = geodesicSphere(6, 9, {3, 0, 0});
+    const double spacing = 0.2;
+    for (const double tolerance : {0.5, 1.0, 2.0}) {
+        const SurfaceDistances s = surfaceDistances(a, b, spacing, tolerance);
+        // Each sample stands for its lattice cell, points within `spacing`:
+        // the figure lies between the exact ones at τ ∓ spacing (and the
+        // random reference's noise, some 0.01 at this count).
+        const double lower = bruteForceSurfaceDice(a, b, tolerance - spacing, 40) - 0.015;
+        const double upper = bruteForceSurfaceDice(a, b, tolerance + spacing, 40) + 0.015;
+        EXPECT_GE(s.surfaceDice(), lower) << tolerance;
+        EXPECT_LE(s.surfaceDice(), upper) << tolerance;
+        EXPECT_GT(upper - lower, 0) << tolerance;
+    }
+}
+
+TEST(SurfaceDistances, ConcentricSurfacesAreAllAtOneDistance) {
+    // Nested boxes d apart: every point of the inner one exactly d from the
+    // outer; surface Dice is 0 below d, pooled HD95 between the two
+    // directions' own.
+    const double d = 1.5;
+    const TriangleSoup inner = boxMesh({0, 0, 0}, {10, 10, 10}, 3);
+    const TriangleSoup outer = boxMesh({-d, -d, -d}, {10 + d, 10 + d, 10 + d}, 2);
+    const SurfaceDistances below = surfaceDistances(inner, outer, 0.25, d - 0.3);
+    EXPECT_EQ(below.surfaceDice(), 0);
+    const SurfaceDistances above = surfaceDistances(inner, outer, 0.25, d * std::sqrt(3.0) + 0.3);
+    EXPECT_NEAR(above.surfaceDice(), 1, 1e-12);
+    EXPECT_GE(above.hd95PooledMm, std::min(above.aToB.p95Mm, above.bToA.p95Mm));
+    EXPECT_LE(above.hd95PooledMm, above.hd95Mm());
+    EXPECT_NEAR(above.aToB.p95Mm, d, 1e-9);
+}
+
+TEST(SurfaceMeasures, CentroidsOfBoxesAndSpheres) {
+    const SurfaceMeasures box = measureSurface(boxMesh({2, 4, 6}, {4, 8, 12}, 3));
+    EXPECT_NEAR(length(box.centroidMm - Vec3{3, 6, 9}), 0, 1e-12);
+    const SurfaceMeasures ball = measureSurface(geodesicSphere(8, 5, {1, -2, 7}));
+    EXPECT_NEAR(length(ball.centroidMm - Vec3{1, -2, 7}), 0, 1e-9);
 }
