@@ -140,8 +140,11 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
         "exact constructions), so they carry no voxelisation error. Distances: every triangle "
         "of each surface is sampled on a lattice no coarser than --spacing and each sample gets "
         "its exact distance to the other surface; Hausdorff is the larger directed maximum, "
-        "HD95 the larger directed area-weighted 95th percentile, the mean is area-weighted over "
-        "both surfaces; each is within --spacing of its exact value (a spacing that would take "
+        "HD95 the larger directed area-weighted 95th percentile (hd95PooledMm: of both "
+        "directions pooled), the mean is area-weighted over both surfaces; surface Dice is the "
+        "share of both surfaces' area within --tolerance of the other; the centroid distance is "
+        "between the solids' centres of mass; each is within --spacing of its exact value (a "
+        "spacing that would take "
         "more than 8 388 608 samples on a surface is coarsened until it does not, with a "
         "warning; the report's distanceBoundMm is the one used). Exit codes: 0 done, 1 "
         "usage, 2 bad input (a surface that is not a valid closed solid), 3 runtime failure.");
