@@ -18,11 +18,14 @@ namespace {
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 
-Mesh toCgal(const TriangleSoup& soup) {
+Mesh toCgal(const TriangleSoup& soup, const Vec3& shift = {}) {
     Mesh mesh;
     std::vector<Mesh::Vertex_index> vertices;
     vertices.reserve(soup.points.size());
-    for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
+    for (const Vec3& p : soup.points) {
+        const Vec3 q = p + shift;
+        vertices.push_back(mesh.add_vertex({q.x, q.y, q.z}));
+    }
     for (const auto& t : soup.triangles)
         if (mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Mesh::null_face())
             throw std::invalid_argument("a triangle could not be added (not manifold)");
@@ -41,10 +44,8 @@ double volumeOf(const Mesh& mesh) {
 // trip corefinement's constrained triangulation (an exception).
 std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSoup& b,
                                          const Vec3& shift) {
-    TriangleSoup moved = b;
-    for (Vec3& p : moved.points) p = p + shift;
     // Corefinement refines both inputs along their intersection: copies.
-    Mesh meshA = toCgal(a), meshB = toCgal(moved), meet;
+    Mesh meshA = toCgal(a), meshB = toCgal(b, shift), meet;
     try {
         if (!CGAL::Polygon_mesh_processing::corefine_and_compute_intersection(meshA, meshB, meet))
             return std::nullopt;
@@ -65,17 +66,18 @@ double Overlap::jaccard() const {
 }
 
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b) {
-    double areaB = 0;
-    for (const TriangleSoup* soup : {&a, &b}) {
-        const MeshCheckReport check = checkMesh(*soup);
-        if (!check.validSolid())
-            throw std::invalid_argument(std::string("surface ") + (soup == &a ? "A" : "B") +
+    // The check measures what the overlap needs of each solid alone.
+    MeshCheckReport checks[2];
+    for (int k = 0; k < 2; ++k) {
+        checks[k] = checkMesh(k == 0 ? a : b);
+        if (!checks[k].validSolid())
+            throw std::invalid_argument(std::string("surface ") + (k == 0 ? "A" : "B") +
                                         " is not a valid closed solid (dfrecon check says where)");
-        if (soup == &b) areaB = check.areaMm2;
     }
+    const double areaB = checks[1].areaMm2;
     Overlap overlap;
-    overlap.volumeAMm3 = volumeOf(toCgal(a));
-    overlap.volumeBMm3 = volumeOf(toCgal(b));
+    overlap.volumeAMm3 = checks[0].volumeMm3;
+    overlap.volumeBMm3 = checks[1].volumeMm3;
     if (const std::optional<double> volume = intersectionVolume(a, b, {0, 0, 0})) {
         overlap.intersectionMm3 = *volume;
         return overlap;

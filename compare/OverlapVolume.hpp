@@ -39,8 +39,9 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 /// Any two valid solids get an answer — touching, nested, identical,
 /// disjoint: exact where the surfaces are in general position, else by the
 /// shift above (Overlap::method says which). Exact predicates and
-/// constructions; the volumes are summed in double from exact points
-/// rounded once. Work: O((n + k) log n) for n triangles and k intersecting
+/// constructions; A's and B's volumes are summed in double from their
+/// points (the mesh check's), the intersection's from exact points rounded
+/// once. Work: O((n + k) log n) for n triangles and k intersecting
 /// pairs, with exact arithmetic's constant, up to four times over.
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b);
 

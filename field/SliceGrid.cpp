@@ -2,22 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace dfrecon {
-
-namespace {
-
-// A length as %g writes it: 1e-09 mm, not 0.000000 mm.
-std::string shortNumber(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
-
-}  // namespace
 
 SliceGrid gridAround(const Box2& box, double pixelMm, int marginPx) {
     if (!(pixelMm > 0) || box.empty())
@@ -66,9 +55,12 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gr
         // Longest side: extent/pixel + 1 + 2·margin pixels = gridPixels.
         pixelMm = extent > 0 ? extent / std::max(1, gridPixels - 1 - 2 * kGridMarginPx) : 1.0;
     }
-    if (extent / pixelMm > 16384)
-        throw std::invalid_argument("pixel size " + shortNumber(pixelMm) +
-                                    " mm gives a grid over 16384 pixels a side");
+    // Streams write numbers as %g: 1e-09 mm, not std::to_string's 0.000000.
+    std::ostringstream problem;
+    if (extent / pixelMm > 16384) {
+        problem << "pixel size " << pixelMm << " mm gives a grid over 16384 pixels a side";
+        throw std::invalid_argument(problem.str());
+    }
     const auto pixelsInAll = [&](double pixel) {
         return double(gridAround(box, pixel, kGridMarginPx).pixelCount()) * double(slices.size());
     };
@@ -77,12 +69,13 @@ SliceGrid gridForSlices(const std::vector<Slice>& slices, double pixelMm, int gr
     double fitting = pixelMm;
     while (pixelsInAll(fitting) > double(kMaxRoiFieldPixels))
         fitting *= std::max(1.05, std::sqrt(pixelsInAll(fitting) / double(kMaxRoiFieldPixels)));
-    if (fitting > pixelMm && !chosen)
-        throw std::invalid_argument(
-            "pixel size " + shortNumber(pixelMm) + " mm gives " + std::to_string(slices.size()) +
-            " planes over " + std::to_string(kMaxRoiFieldPixels) +
-            " field pixels in all, more than memory allows; the smallest that fits is " +
-            shortNumber(fitting) + " mm");
+    if (fitting > pixelMm && !chosen) {
+        problem << "pixel size " << pixelMm << " mm gives " << slices.size() << " planes over "
+                << kMaxRoiFieldPixels
+                << " field pixels in all, more than memory allows; the smallest that fits is "
+                << fitting << " mm";
+        throw std::invalid_argument(problem.str());
+    }
     return gridAround(box, fitting, kGridMarginPx);
 }
 

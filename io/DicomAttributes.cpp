@@ -6,6 +6,8 @@
 
 #include <cstdio>
 
+#include "io/TextEncoding.hpp"
+
 namespace dfrecon {
 
 std::string dicomTagName(const DcmTagKey& key) {
@@ -29,22 +31,6 @@ std::string convertDicomTextToUtf8(DcmDataset& dataset) {
 
 namespace {
 
-// Length of the well-formed UTF-8 sequence at text[i] (1 to 4), or 0.
-std::size_t utf8SequenceAt(const std::string& text, std::size_t i) {
-    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-    const unsigned char lead = byte(i);
-    if (lead < 0x80) return 1;
-    const std::size_t length = lead >= 0xf0 ? 4 : lead >= 0xe0 ? 3 : lead >= 0xc2 ? 2 : 0;
-    if (length == 0 || lead > 0xf4 || i + length > text.size()) return 0;
-    for (std::size_t k = 1; k < length; ++k)
-        if ((byte(i + k) & 0xc0) != 0x80) return 0;
-    // Overlong forms, surrogates and code points past U+10FFFF.
-    if ((lead == 0xe0 && byte(i + 1) < 0xa0) || (lead == 0xed && byte(i + 1) >= 0xa0) ||
-        (lead == 0xf0 && byte(i + 1) < 0x90) || (lead == 0xf4 && byte(i + 1) >= 0x90))
-        return 0;
-    return length;
-}
-
 bool isControlOrSeparator(char c) {
     const auto byte = static_cast<unsigned char>(c);
     return byte < 0x20 || byte == 0x7f || c == '\\';
@@ -54,7 +40,7 @@ bool isControlOrSeparator(char c) {
 
 bool isValidDicomText(const std::string& value) {
     for (std::size_t i = 0; i < value.size();) {
-        const std::size_t length = utf8SequenceAt(value, i);
+        const std::size_t length = utf8SequenceLength(value, i);
         if (length == 0 || isControlOrSeparator(value[i])) return false;
         i += length;
     }
@@ -63,7 +49,7 @@ bool isValidDicomText(const std::string& value) {
 
 std::string mendedDicomText(std::string value) {
     for (std::size_t i = 0; i < value.size();) {
-        const std::size_t length = utf8SequenceAt(value, i);
+        const std::size_t length = utf8SequenceLength(value, i);
         if (length == 0 || isControlOrSeparator(value[i])) {
             value[i++] = '_';
             continue;

@@ -14,6 +14,7 @@
 
 #include "io/FileScanner.hpp"
 #include "io/InputError.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon {
 
@@ -366,8 +367,7 @@ void checkDicomNesting(const std::string& path, std::size_t maxDepth) {
     // A missing file is DCMTK's to report; a FIFO or device would block it.
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw InputError(path, 0, "not a regular file");
+    checkRegularFile(path, kMaxInputFileBytes, "a DICOM file");
     const Meta meta = readMeta(path);
     Walker walker(path, maxDepth);
     if (!meta.found) {

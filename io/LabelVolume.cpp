@@ -16,6 +16,7 @@
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon {
 
@@ -334,10 +335,7 @@ LabelVolume readLabelVolume(const std::string& path) {
                          "unknown label volume format; expected .nrrd, .nhdr, .nii or .nii.gz");
     // Checked here because both libraries would otherwise try other names
     // (niftilib adds .gz) or block on a FIFO.
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (ec || !fs::exists(status)) throw InputError(path, 0, "no such file");
-    if (!fs::is_regular_file(status)) throw InputError(path, 0, "not a regular file");
+    checkRegularFile(path, kMaxInputFileBytes, "a label volume");
     return nrrd ? labelvolume::readNrrdLabelVolume(path) : labelvolume::readNiftiLabelVolume(path);
 }
 

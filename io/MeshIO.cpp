@@ -55,8 +55,7 @@ void requireMeshFile(const std::string& path) {
     if (!isMeshExtension(path))
         throw InputError(path, 0,
                          "unsupported mesh extension (use " + meshExtensionList(true) + ")");
-    if (!std::filesystem::is_regular_file(path)) throw InputError(path, 0, "cannot open file");
-    checkMeshFileBeforeReading(path);
+    checkMeshFileBeforeReading(path);  // through io/RegularFile: no pipe or device is opened
 }
 
 }  // namespace

@@ -9,8 +9,13 @@
 
 namespace dfrecon {
 
-/// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no
-/// surrogates, nothing above U+10FFFF). O(text).
+/// The length of the well-formed UTF-8 sequence starting at byte `i` of
+/// `text` (1 for ASCII), or 0 where none starts (RFC 3629: no overlong
+/// forms, no surrogates, nothing above U+10FFFF, not cut short). O(1).
+std::size_t utf8SequenceLength(std::string_view text, std::size_t i);
+
+/// Whether `text` is well-formed UTF-8 (utf8SequenceLength all through).
+/// O(text).
 bool isUtf8(std::string_view text);
 
 /// `text` itself when it is UTF-8; otherwise every byte read as

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -12,13 +12,6 @@
 namespace dfrecon {
 
 namespace {
-
-// A number as %g writes it: 1e-09, not 0.000000; 2.5e+19, not a wrapped long.
-std::string shortNumber(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
 
 // A triangle in its own plane, in mm: the longest edge from `origin` along
 // `along` to (length, 0), the third corner above it at (apexX, heightMm)
@@ -156,11 +149,15 @@ Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options) {
         }
         // Square-ish, with room for the rows' ragged ends.
         const double side = std::ceil(std::sqrt(1.15 * texels));
-        if (side * side > double(options.maxTexels))
-            throw std::invalid_argument(
-                "atlas: a sampling bound of " + shortNumber(options.maxErrorMm) +
-                " mm needs about " + shortNumber(side * side) + " texels, more than " +
-                std::to_string(options.maxTexels) + "; ask for a larger bound");
+        if (side * side > double(options.maxTexels)) {
+            // Streams write numbers as %g: 1e-09, not 0.000000; 2.8e+21, not
+            // a wrapped long.
+            std::ostringstream problem;
+            problem << "atlas: a sampling bound of " << options.maxErrorMm << " mm needs about "
+                    << side * side << " texels, more than " << options.maxTexels
+                    << "; ask for a larger bound";
+            throw std::invalid_argument(problem.str());
+        }
         atlas.width = std::max(widest, int(side));
         atlas.height = int(packRows(sizes, order, atlas.width, nullptr));
     } else {
