@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/BatchRecord.hpp"
+#include "app/CsvTable.hpp"
 #include "app/ExitCodes.hpp"
 #include "io/InputError.hpp"
 #include "io/JsonText.hpp"
@@ -80,17 +81,6 @@ nlohmann::ordered_json row(const nlohmann::json& record, const nlohmann::json* r
     return out;
 }
 
-std::string csvCell(const nlohmann::ordered_json& value) {
-    if (value.is_null()) return "";
-    const std::string text = value.is_string() ? value.get<std::string>() : jsonText(value);
-    if (text.find_first_of(",\"\r\n") == std::string::npos &&
-        (text.empty() || (text.front() != ' ' && text.back() != ' ')))
-        return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-}
-
 }  // namespace
 
 nlohmann::ordered_json batchReportRows(const std::vector<nlohmann::json>& records,
@@ -109,18 +99,10 @@ nlohmann::ordered_json batchReportRows(const std::vector<nlohmann::json>& record
 }
 
 std::string batchReportCsv(const nlohmann::ordered_json& rows, bool withSeconds) {
-    std::string csv;
     std::vector<std::string> columns;
     for (const std::string& column : kBatchReportColumns)
         if (withSeconds || column != "seconds") columns.push_back(column);
-    for (std::size_t c = 0; c < columns.size(); ++c) csv += (c ? "," : "") + columns[c];
-    csv += "\n";
-    for (const nlohmann::ordered_json& r : rows) {
-        for (std::size_t c = 0; c < columns.size(); ++c)
-            csv += (c ? "," : "") + csvCell(r.contains(columns[c]) ? r[columns[c]] : nullptr);
-        csv += "\n";
-    }
-    return csv;
+    return csvTable(rows, columns);
 }
 
 }  // namespace dfrecon::app

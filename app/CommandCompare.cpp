@@ -1,20 +1,31 @@
 // dfrecon compare A B: how two structures agree, as contouring studies and QA
-// checks report it — volumes, Dice, Jaccard, Hausdorff, HD95 and mean surface
-// distance — computed on the surfaces (compare/), not on voxels, with the
-// distances' error bound stated.
+// checks report it — volumes, Dice, Jaccard, Hausdorff, HD95, mean surface
+// distance, surface Dice, centroid distance, and for two contour inputs the
+// planning system's per-plane overlap and the added path length — computed
+// on the surfaces and contours (compare/), not on voxels, with the
+// distances' error bound stated. Two structure sets are compared ROI by ROI
+// (app/RoiMatching), one row per pair.
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/CsvTable.hpp"
+#include "app/ExitCodes.hpp"
+#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/Progress.hpp"
+#include "app/RoiMatching.hpp"
 #include "app/Stopwatch.hpp"
 #include "compare/OverlapVolume.hpp"
+#include "compare/PlaneComparison.hpp"
 #include "compare/SurfaceDistances.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
+#include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
@@ -28,101 +39,327 @@ struct CompareArgs {
     std::string a, b, roiA, roiB;
     double spacingMm = 0.2;
     double toleranceMm = 1;
+    std::vector<std::string> matches;  // NAME_IN_A=NAME_IN_B
+    std::string csvPath;
     bool json = false;
 };
 
-/// A mesh file as it is, or an ROI of a contour file reconstructed (linear,
-/// flat caps: the surface whose volume is the contours' own).
-TriangleSoup surfaceOf(const std::string& path, const std::string& roi, const GlobalOptions& global,
-                       std::unique_ptr<ocl::Runtime>& runtime) {
-    if (isMeshExtension(path)) {
-        TriangleSoup soup = readTriangleSoup(path);
-        if (!checkMesh(soup).validSolid())
-            throw InputError(path, 0, "not a valid closed solid (dfrecon check says where)");
-        return soup;
+/// One side of a pair: its surface, and its contours where it came from a
+/// contour file (the per-plane comparison needs them).
+struct Structure {
+    TriangleSoup surface;
+    const Roi* roi = nullptr;
+};
+
+/// Surfaces of ROIs, reconstructed with reconstruct's defaults on one
+/// device and program cache, made only if an ROI needs it.
+class SurfaceMaker {
+  public:
+    explicit SurfaceMaker(const GlobalOptions& global) : global_(global) {}
+
+    Structure ofRoi(const std::string& file, const Roi& roi) {
+        if (roi.defect) throw *roi.defect;
+        if (!runtime_) runtime_ = std::make_unique<ocl::Runtime>(global_.device);
+        Reconstruction result = reconstructSurface(*runtime_, roi);
+        if (!result.check.validSolid())
+            throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
+        toPatient(result.surface, roi.frame);
+        return {std::move(result.surface), &roi};
     }
-    const ContourInput input = loadContours(path, global);
-    const Roi& chosen = *selectRois(input.contours, roi, false).front();
-    // One device and program cache for both inputs, made only if needed.
-    if (!runtime) runtime = std::make_unique<ocl::Runtime>(global.device);
-    Reconstruction result = reconstructSurface(*runtime, chosen);
-    if (!result.check.validSolid())
-        throw InputError(path, 0, "ROI '" + chosen.name + "' gives no valid closed solid");
-    toPatient(result.surface, chosen.frame);
-    return result.surface;
+
+  private:
+    const GlobalOptions& global_;
+    std::unique_ptr<ocl::Runtime> runtime_;
+};
+
+TriangleSoup readSolid(const std::string& path) {
+    TriangleSoup soup = readTriangleSoup(path);
+    if (!checkMesh(soup).validSolid())
+        throw InputError(path, 0, "not a valid closed solid (dfrecon check says where)");
+    return soup;
+}
+
+struct PairResult {
+    Overlap overlap;
+    SurfaceDistances distances;
+    double centroidDistanceMm = 0;
+    std::optional<PlaneComparison> planes;  // both from contours
+    double overlapSeconds = 0, distanceSeconds = 0, planeSeconds = 0;
+};
+
+PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args) {
+    Stopwatch watch;
+    PairResult r;
+    r.overlap = overlapOf(a.surface, b.surface);
+    r.overlapSeconds = watch.lap();
+    r.distances = surfaceDistances(a.surface, b.surface, args.spacingMm, args.toleranceMm);
+    r.centroidDistanceMm =
+        length(measureSurface(b.surface).centroidMm - measureSurface(a.surface).centroidMm);
+    r.distanceSeconds = watch.lap();
+    if (a.roi && b.roi) {
+        PlaneComparisonOptions options;
+        options.toleranceMm = args.toleranceMm;
+        r.planes = comparePlanes(*a.roi, *b.roi, options);
+        r.planeSeconds = watch.lap();
+    }
+    return r;
+}
+
+void warnIfCoarsened(const PairResult& r, const CompareArgs& args, const GlobalOptions& global) {
+    if (r.distances.spacingMm > args.spacingMm && !global.quiet)
+        std::cerr << "dfrecon: warning: --spacing " << args.spacingMm << " mm would take more than "
+                  << kMaxDistanceSamples << " samples on a surface; distances sampled every "
+                  << r.distances.spacingMm << " mm, each within that of its exact value\n";
+}
+
+nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes) {
+    if (!planes) return nullptr;
+    if (!planes->samePlanes) return {{"compared", false}, {"why", planes->whyNot}};
+    return {{"compared", true},
+            {"planes", planes->planes},
+            {"volumeAMm3", planes->volumeAMm3},
+            {"volumeBMm3", planes->volumeBMm3},
+            {"intersectionMm3", planes->intersectionMm3},
+            {"dice", planes->dice()},
+            {"jaccard", planes->jaccard()},
+            {"pathLengthAMm", planes->pathLengthAMm},
+            {"pathLengthBMm", planes->pathLengthBMm},
+            {"addedPathLengthMm", planes->addedPathLengthMm},
+            {"addedPathLengthAMm", planes->addedPathLengthAMm},
+            {"toleranceMm", planes->toleranceMm}};
+}
+
+// The report of one pair: docs/cli.md, "compare", lists every key.
+nlohmann::ordered_json pairJson(const PairResult& r) {
+    const Overlap& o = r.overlap;
+    const SurfaceDistances& d = r.distances;
+    auto directed = [](const DirectedDistances& x) {
+        return nlohmann::ordered_json{{"hausdorffMm", x.maxMm},
+                                      {"hd95Mm", x.p95Mm},
+                                      {"meanMm", x.meanMm},
+                                      {"areaWithinToleranceMm2", x.areaWithinToleranceMm2},
+                                      {"samples", x.samples}};
+    };
+    return {{"volumeAMm3", o.volumeAMm3},
+            {"volumeBMm3", o.volumeBMm3},
+            {"volumeDifferenceMm3", o.volumeBMm3 - o.volumeAMm3},
+            {"intersectionMm3", o.intersectionMm3},
+            {"unionMm3", o.unionMm3()},
+            {"dice", o.dice()},
+            {"jaccard", o.jaccard()},
+            {"overlapMethod", o.method},
+            {"overlapShiftMm", o.shiftMm},
+            {"intersectionBoundMm3", o.intersectionBoundMm3},
+            {"hausdorffMm", d.hausdorffMm()},
+            {"hd95Mm", d.hd95Mm()},
+            {"hd95PooledMm", d.hd95PooledMm},
+            {"meanSurfaceDistanceMm", d.meanMm()},
+            {"surfaceDice", d.surfaceDice()},
+            {"toleranceMm", d.toleranceMm},
+            {"centroidDistanceMm", r.centroidDistanceMm},
+            {"distanceBoundMm", d.spacingMm},
+            {"aToB", directed(d.aToB)},
+            {"bToA", directed(d.bToA)},
+            {"onPlanes", planesJson(r.planes)},
+            {"seconds",
+             {{"overlap", r.overlapSeconds},
+              {"distances", r.distanceSeconds},
+              {"planes", r.planeSeconds}}}};
+}
+
+void printPair(const PairResult& r, std::ostream& out) {
+    const Overlap& o = r.overlap;
+    const SurfaceDistances& d = r.distances;
+    out << "volume A " << o.volumeAMm3 / 1000 << " cc, B " << o.volumeBMm3 / 1000 << " cc, both "
+        << o.intersectionMm3 / 1000 << " cc\n"
+        << "Dice " << o.dice() << ", Jaccard " << o.jaccard() << " ("
+        << (o.shiftMm > 0 ? "exact with B shifted " + std::to_string(o.shiftMm) +
+                                " mm off the surfaces it shares with A: intersection within " +
+                                std::to_string(o.intersectionBoundMm3) + " mm3"
+                          : std::string("exact"))
+        << ")\n"
+        << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm() << " mm (pooled "
+        << d.hd95PooledMm << " mm), mean surface distance " << d.meanMm() << " mm (each within "
+        << d.spacingMm << " mm)\n"
+        << "surface Dice at " << d.toleranceMm << " mm " << d.surfaceDice()
+        << ", centroid distance " << r.centroidDistanceMm << " mm\n";
+    if (!r.planes) return;
+    const PlaneComparison& p = *r.planes;
+    if (!p.samePlanes) {
+        out << "on the planes: not compared (" << p.whyNot << ")\n";
+        return;
+    }
+    out << "on the planes (" << p.planes << "): volume A " << p.volumeAMm3 / 1000 << " cc, B "
+        << p.volumeBMm3 / 1000 << " cc, Dice " << p.dice() << ", added path length "
+        << p.addedPathLengthMm << " mm of " << p.pathLengthBMm << " mm at " << p.toleranceMm
+        << " mm\n";
+}
+
+// The CSV columns of a pair; the row holds these keys.
+const std::vector<std::string> kPairColumns{"roiA",
+                                            "roiB",
+                                            "matchedBy",
+                                            "volumeACc",
+                                            "volumeBCc",
+                                            "dice",
+                                            "jaccard",
+                                            "hausdorffMm",
+                                            "hd95Mm",
+                                            "hd95PooledMm",
+                                            "meanSurfaceDistanceMm",
+                                            "surfaceDice",
+                                            "centroidDistanceMm",
+                                            "planeDice",
+                                            "addedPathLengthMm",
+                                            "overlapMethod",
+                                            "exitCode",
+                                            "error"};
+
+nlohmann::ordered_json flatRow(const nlohmann::ordered_json& pair) {
+    nlohmann::ordered_json row;
+    for (const std::string& column : kPairColumns)
+        row[column] = pair.contains(column) ? pair[column] : nlohmann::ordered_json();
+    if (pair.contains("volumeAMm3")) {
+        row["volumeACc"] = pair["volumeAMm3"].get<double>() / 1000;
+        row["volumeBCc"] = pair["volumeBMm3"].get<double>() / 1000;
+    }
+    const nlohmann::ordered_json planes = pair.value("onPlanes", nlohmann::ordered_json());
+    if (planes.is_object() && planes.value("compared", false)) {
+        row["planeDice"] = planes["dice"];
+        row["addedPathLengthMm"] = planes["addedPathLengthMm"];
+    }
+    return row;
+}
+
+void writeCsv(const std::string& path, const nlohmann::ordered_json& pairs) {
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const nlohmann::ordered_json& pair : pairs) rows.push_back(flatRow(pair));
+    const std::string csv = csvTable(rows, kPairColumns);
+    writeStreamAtomically(path, [&](std::ostream& out) { out << csv; });
+}
+
+bool isStructureSetRun(const CompareArgs& args, const ContourInput* a, const ContourInput* b) {
+    if (!a || !b || !args.roiA.empty() || !args.roiB.empty()) return false;
+    auto several = [](const ContourInput& in) {
+        std::size_t n = 0;
+        for (const Roi& roi : in.contours.rois) n += !roi.slices.empty() || roi.defect.has_value();
+        return n > 1;
+    };
+    return !args.matches.empty() || several(*a) || several(*b);
+}
+
+void runOnePair(const CompareArgs& args, const GlobalOptions& global, const ContourInput* inputA,
+                const ContourInput* inputB) {
+    Stopwatch watch;
+    SurfaceMaker maker(global);
+    auto structure = [&](const std::string& path, const ContourInput* input,
+                         const std::string& roi) {
+        if (!input) return Structure{readSolid(path), nullptr};
+        return maker.ofRoi(path, *selectRois(input->contours, roi, false).front());
+    };
+    const Structure a = structure(args.a, inputA, args.roiA);
+    const Structure b = structure(args.b, inputB, args.roiB);
+    const double loadSeconds = watch.lap();
+    const PairResult r = comparePair(a, b, args);
+    warnIfCoarsened(r, args, global);
+    nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
+    if (a.roi) report["roiA"] = a.roi->name;
+    if (b.roi) report["roiB"] = b.roi->name;
+    report.update(pairJson(r));
+    report["seconds"]["load"] = loadSeconds;
+    if (!args.csvPath.empty()) writeCsv(args.csvPath, nlohmann::ordered_json::array({report}));
+    if (args.json)
+        std::cout << jsonText(report, 2) << "\n";
+    else
+        printPair(r, std::cout);
+}
+
+void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
+                      const ContourInput& inputA, const ContourInput& inputB) {
+    const RoiMatching matching = matchRois(inputA.contours, inputB.contours, args.matches);
+    SurfaceMaker maker(global);
+    nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+    std::optional<Failure> firstFailure;
+    std::size_t failures = 0;
+    Progress progress("compare", !global.quiet);
+    for (std::size_t i = 0; i < matching.pairs.size(); ++i) {
+        const RoiPair& pair = matching.pairs[i];
+        nlohmann::ordered_json row{
+            {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
+        try {
+            Stopwatch watch;
+            const Structure a = maker.ofRoi(args.a, *pair.a);
+            const Structure b = maker.ofRoi(args.b, *pair.b);
+            const double loadSeconds = watch.lap();
+            const PairResult r = comparePair(a, b, args);
+            warnIfCoarsened(r, args, global);
+            row.update(pairJson(r));
+            row["seconds"]["load"] = loadSeconds;
+            row["exitCode"] = 0;
+            row["error"] = nullptr;
+        } catch (...) {
+            const Failure failure = describeFailure(std::current_exception());
+            row["exitCode"] = failure.exitCode;
+            row["error"] = failure.message;
+            if (!firstFailure) firstFailure = failure;
+            ++failures;
+        }
+        pairs.push_back(std::move(row));
+        progress.update(double(i + 1) / double(matching.pairs.size()));
+    }
+    progress.finish();
+    auto names = [](const std::vector<const Roi*>& rois) {
+        nlohmann::ordered_json list = nlohmann::ordered_json::array();
+        for (const Roi* roi : rois) list.push_back(roi->name);
+        return list;
+    };
+    if (!args.csvPath.empty()) writeCsv(args.csvPath, pairs);
+    if (args.json) {
+        std::cout << jsonText(nlohmann::ordered_json{{"command", "compare"},
+                                                     {"a", args.a},
+                                                     {"b", args.b},
+                                                     {"pairs", pairs},
+                                                     {"unmatchedA", names(matching.onlyA)},
+                                                     {"unmatchedB", names(matching.onlyB)}},
+                              2)
+                  << "\n";
+    } else {
+        std::cout << "ROI A | ROI B | Dice | HD95 mm | mean mm | surface Dice | plane Dice | "
+                     "added path mm\n";
+        for (const nlohmann::ordered_json& pair : pairs) {
+            const nlohmann::ordered_json row = flatRow(pair);
+            std::cout << pair["roiA"].get<std::string>() << " | "
+                      << pair["roiB"].get<std::string>();
+            if (!row["error"].is_null()) {
+                std::cout << " | failed: " << row["error"].get<std::string>() << "\n";
+                continue;
+            }
+            for (const char* key : {"dice", "hd95Mm", "meanSurfaceDistanceMm", "surfaceDice",
+                                    "planeDice", "addedPathLengthMm"})
+                std::cout << " | " << (row[key].is_null() ? std::string("-") : jsonText(row[key]));
+            std::cout << "\n";
+        }
+        for (const Roi* roi : matching.onlyA) std::cout << "only in A: " << roi->name << "\n";
+        for (const Roi* roi : matching.onlyB) std::cout << "only in B: " << roi->name << "\n";
+    }
+    if (firstFailure)
+        throw ItemsFailed(std::to_string(failures) + " of " + std::to_string(pairs.size()) +
+                              " pairs failed; the first: " + firstFailure->message,
+                          firstFailure->exitCode);
 }
 
 void runCompare(const CompareArgs& args, const GlobalOptions& global) {
-    Stopwatch watch;
-    std::unique_ptr<ocl::Runtime> runtime;
-    const TriangleSoup a = surfaceOf(args.a, args.roiA, global, runtime);
-    const TriangleSoup b = surfaceOf(args.b, args.roiB, global, runtime);
-    const double loadSeconds = watch.lap();
-    const Overlap overlap = overlapOf(a, b);
-    const double overlapSeconds = watch.lap();
-    const SurfaceDistances d = surfaceDistances(a, b, args.spacingMm, args.toleranceMm);
-    const double centroidDistanceMm =
-        length(measureSurface(b).centroidMm - measureSurface(a).centroidMm);
-    const double distanceSeconds = watch.lap();
-    if (d.spacingMm > args.spacingMm && !global.quiet)
-        std::cerr << "dfrecon: warning: --spacing " << args.spacingMm << " mm would take more than "
-                  << kMaxDistanceSamples << " samples on a surface; distances sampled every "
-                  << d.spacingMm << " mm, each within that of its exact value\n";
-    if (args.json) {
-        auto directed = [](const DirectedDistances& x) {
-            return nlohmann::ordered_json{{"hausdorffMm", x.maxMm},
-                                          {"hd95Mm", x.p95Mm},
-                                          {"meanMm", x.meanMm},
-                                          {"areaWithinToleranceMm2", x.areaWithinToleranceMm2},
-                                          {"samples", x.samples}};
-        };
-        std::cout << jsonText(
-                         nlohmann::ordered_json{
-                             {"command", "compare"},
-                             {"a", args.a},
-                             {"b", args.b},
-                             {"volumeAMm3", overlap.volumeAMm3},
-                             {"volumeBMm3", overlap.volumeBMm3},
-                             {"volumeDifferenceMm3", overlap.volumeBMm3 - overlap.volumeAMm3},
-                             {"intersectionMm3", overlap.intersectionMm3},
-                             {"unionMm3", overlap.unionMm3()},
-                             {"dice", overlap.dice()},
-                             {"jaccard", overlap.jaccard()},
-                             {"overlapMethod", overlap.method},
-                             {"overlapShiftMm", overlap.shiftMm},
-                             {"intersectionBoundMm3", overlap.intersectionBoundMm3},
-                             {"hausdorffMm", d.hausdorffMm()},
-                             {"hd95Mm", d.hd95Mm()},
-                             {"hd95PooledMm", d.hd95PooledMm},
-                             {"meanSurfaceDistanceMm", d.meanMm()},
-                             {"surfaceDice", d.surfaceDice()},
-                             {"toleranceMm", d.toleranceMm},
-                             {"centroidDistanceMm", centroidDistanceMm},
-                             {"distanceBoundMm", d.spacingMm},
-                             {"aToB", directed(d.aToB)},
-                             {"bToA", directed(d.bToA)},
-                             {"seconds",
-                              {{"load", loadSeconds},
-                               {"overlap", overlapSeconds},
-                               {"distances", distanceSeconds}}}},
-                         2)
-                  << "\n";
-        return;
-    }
-    std::cout << "volume A " << overlap.volumeAMm3 / 1000 << " cc, B " << overlap.volumeBMm3 / 1000
-              << " cc, both " << overlap.intersectionMm3 / 1000 << " cc\n"
-              << "Dice " << overlap.dice() << ", Jaccard " << overlap.jaccard() << " ("
-              << (overlap.shiftMm > 0 ? "exact with B shifted " + std::to_string(overlap.shiftMm) +
-                                            " mm off the surfaces it shares with A: intersection "
-                                            "within " +
-                                            std::to_string(overlap.intersectionBoundMm3) + " mm3"
-                                      : std::string("exact"))
-              << ")\n"
-              << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm() << " mm (pooled "
-              << d.hd95PooledMm << " mm), mean surface distance " << d.meanMm()
-              << " mm (each within " << d.spacingMm << " mm)\n"
-              << "surface Dice at " << d.toleranceMm << " mm " << d.surfaceDice()
-              << ", centroid distance " << centroidDistanceMm << " mm\n";
+    std::optional<ContourInput> inputA, inputB;
+    if (!isMeshExtension(args.a)) inputA = loadContours(args.a, global);
+    if (!isMeshExtension(args.b)) inputB = loadContours(args.b, global);
+    const ContourInput* a = inputA ? &*inputA : nullptr;
+    const ContourInput* b = inputB ? &*inputB : nullptr;
+    if (!args.matches.empty() && !(a && b))
+        throw std::invalid_argument("--match needs two contour files (structure sets)");
+    if (isStructureSetRun(args, a, b))
+        runStructureSets(args, global, *a, *b);
+    else
+        runOnePair(args, global, a, b);
 }
 
 }  // namespace
@@ -131,35 +368,52 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = root.add_subcommand(
         "compare",
-        "Volumes, Dice, Jaccard, Hausdorff, HD95 and mean surface distance of two "
-        "structures, on their surfaces");
+        "Volumes, Dice, Jaccard, Hausdorff, HD95, mean surface distance, surface Dice, added "
+        "path length of two structures or two structure sets, on their surfaces and contours");
     cmd->footer(
         "A and B are mesh files (.ply .stl .obj .off; valid closed solids) or contour files "
-        "(.slices, DICOM RTSTRUCT, label volumes; the ROI is reconstructed with the defaults). "
-        "Dice and Jaccard come from the exact volume of the intersection (CGAL corefinement, "
-        "exact constructions), so they carry no voxelisation error. Distances: every triangle "
-        "of each surface is sampled on a lattice no coarser than --spacing and each sample gets "
-        "its exact distance to the other surface; Hausdorff is the larger directed maximum, "
-        "HD95 the larger directed area-weighted 95th percentile (hd95PooledMm: of both "
+        "(.slices, DICOM RTSTRUCT, label volumes; each ROI is reconstructed with reconstruct's "
+        "defaults). Dice and Jaccard come from the exact volume of the intersection (CGAL "
+        "corefinement, exact constructions; where the surfaces coincide in part, B is shifted "
+        "1e-6 mm and the bound stated), so they carry no voxelisation error. Distances: every "
+        "triangle of each surface is sampled on a lattice no coarser than --spacing and each "
+        "sample gets its exact distance to the other surface; Hausdorff is the larger directed "
+        "maximum, HD95 the larger directed area-weighted 95th percentile (hd95PooledMm: of both "
         "directions pooled), the mean is area-weighted over both surfaces; surface Dice is the "
         "share of both surfaces' area within --tolerance of the other; the centroid distance is "
         "between the solids' centres of mass; each is within --spacing of its exact value (a "
-        "spacing that would take "
-        "more than 8 388 608 samples on a surface is coarsened until it does not, with a "
-        "warning; the report's distanceBoundMm is the one used). Exit codes: 0 done, 1 "
-        "usage, 2 bad input (a surface that is not a valid closed solid), 3 runtime failure.");
-    cmd->add_option("a", args->a, "First structure: mesh or contour file")->required();
-    cmd->add_option("b", args->b, "Second structure: mesh or contour file")->required();
+        "spacing that would take more than 8 388 608 samples on a surface is coarsened until it "
+        "does not, with a warning; the report's distanceBoundMm is the one used). Two contour "
+        "inputs on the same planes are also compared the planning system's way (onPlanes): "
+        "exact polygon Booleans on each plane times its thickness, and the added path length, "
+        "the length of B's contours farther than --tolerance from A's on their plane (B the "
+        "test, A the reference). Two structure sets (contour files with several ROIs and no "
+        "--roi-a/--roi-b, or any --match) are compared ROI by ROI: matched by --match, then by "
+        "name, then by name ignoring case, spaces and punctuation; one row per pair, unmatched "
+        "ROIs listed. Exit codes: 0 done, 1 usage, 2 bad input (a surface that is not a valid "
+        "closed solid), 3 runtime failure, 4 an ROI that gives no valid closed solid; with "
+        "structure sets every pair is reported, then the first failure's code is the exit code.");
+    cmd->add_option("a", args->a, "First structure (the reference): mesh or contour file")
+        ->required();
+    cmd->add_option("b", args->b, "Second structure (the test): mesh or contour file")->required();
     cmd->add_option("--roi-a", args->roiA, "ROI of A when A is a contour file with several");
     cmd->add_option("--roi-b", args->roiB, "ROI of B when B is a contour file with several");
+    cmd->add_option("--match", args->matches,
+                    "Pair ROIs of two structure sets whose names differ: NAME_IN_A=NAME_IN_B "
+                    "(repeat for more pairs)");
+    cmd->add_option("--csv", args->csvPath,
+                    "Also write the table, one row per pair, to this CSV file (columns: "
+                    "roiA, roiB, matchedBy, volumes in cc, Dice, Jaccard, distances in mm, "
+                    "surfaceDice, planeDice, addedPathLengthMm, overlapMethod, exitCode, error)");
     cmd->add_option("--spacing", args->spacingMm,
                     "Largest lattice step of the distance samples, mm: the bound on every "
                     "distance's error")
         ->capture_default_str()
         ->check(kPositive);
     cmd->add_option("--tolerance", args->toleranceMm,
-                    "Surface Dice's tolerance, mm: the share of both surfaces within this "
-                    "distance of the other (surfaceDice)")
+                    "Tolerance of surface Dice and of the added path length, mm: the share of "
+                    "both surfaces within this distance of the other (surfaceDice); B's contour "
+                    "length farther than this from A's (addedPathLengthMm)")
         ->capture_default_str()
         ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");

@@ -116,7 +116,10 @@ double SurfaceDistances::hd95Mm() const {
 
 double SurfaceDistances::surfaceDice() const {
     const double total = areaAMm2 + areaBMm2;
-    return total > 0 ? (aToB.areaWithinToleranceMm2 + bToA.areaWithinToleranceMm2) / total : 1;
+    // The samples' weights sum to the areas up to rounding: kept within 1.
+    return total > 0
+               ? std::min(1.0, (aToB.areaWithinToleranceMm2 + bToA.areaWithinToleranceMm2) / total)
+               : 1;
 }
 
 double SurfaceDistances::meanMm() const {

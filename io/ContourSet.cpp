@@ -153,19 +153,29 @@ SpacingStats spacingOf(const Roi& roi) {
     return s;
 }
 
+std::vector<double> planeThicknessesMm(const std::vector<double>& planeZMm,
+                                       double slabThicknessMm) {
+    const std::size_t n = planeZMm.size();
+    std::vector<double> thickness(n, std::max(0.0, slabThicknessMm));
+    if (slabThicknessMm > 0 || n < 2) return thickness;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double below = i > 0 ? planeZMm[i] - planeZMm[i - 1] : -1;
+        const double above = i + 1 < n ? planeZMm[i + 1] - planeZMm[i] : -1;
+        thickness[i] =
+            std::max(0.0, below < 0 ? above : (above < 0 ? below : 0.5 * (below + above)));
+    }
+    return thickness;
+}
+
 double contourVolumeMm3(const Roi& roi) {
-    const std::vector<Slice>& slices = roi.slices;
+    std::vector<double> planeZMm;
+    for (const Slice& slice : roi.slices) planeZMm.push_back(slice.zMm);
+    const std::vector<double> thickness = planeThicknessesMm(planeZMm, roi.slabThicknessMm);
     double volume = 0;
-    for (std::size_t i = 0; i < slices.size(); ++i) {
-        double thickness = roi.slabThicknessMm;
-        if (thickness <= 0 && slices.size() > 1) {
-            const double below = i > 0 ? slices[i].zMm - slices[i - 1].zMm : -1;
-            const double above = i + 1 < slices.size() ? slices[i + 1].zMm - slices[i].zMm : -1;
-            thickness = below < 0 ? above : (above < 0 ? below : 0.5 * (below + above));
-        }
+    for (std::size_t i = 0; i < roi.slices.size(); ++i) {
         double area = 0;
-        for (const Polygon& contour : slices[i].contours) area += signedArea(contour);
-        volume += area * std::max(0.0, thickness);
+        for (const Polygon& contour : roi.slices[i].contours) area += signedArea(contour);
+        volume += area * thickness[i];
     }
     return volume;
 }

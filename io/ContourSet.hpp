@@ -111,6 +111,12 @@ struct SpacingStats {
 };
 SpacingStats spacingOf(const Roi& roi);
 
+/// The thickness each plane stands for, as planning systems weigh it: the
+/// DICOM slab thickness when given (> 0), else the mean of the gaps to the
+/// neighbouring planes (an end plane takes its one gap; a lone plane 0).
+/// `planeZMm` sorted increasing. O(planes).
+std::vector<double> planeThicknessesMm(const std::vector<double>& planeZMm, double slabThicknessMm);
+
 /// The volume planning systems report for an ROI: the sum over its planes
 /// of the contours' net area (holes subtracted) times the plane's thickness
 /// — the DICOM slab thickness when given, else the mean of the gaps to the

@@ -496,6 +496,64 @@ TEST(Cli, CompareGivesExactOverlapAndBoundedDistances) {
     EXPECT_NE(refused.err.find(holed.string()), std::string::npos) << refused.err;
 }
 
+namespace {
+
+// A .slices structure of squares of `side` at (x0, 0) on planes 0, 2, 4, 6.
+std::string squareRoi(const std::string& name, double x0, double side) {
+    std::string text = "roi " + name + "\n";
+    for (int k = 0; k < 4; ++k) {
+        text += "slice " + std::to_string(2 * k) + "\ncontour 4\n";
+        text += std::to_string(x0) + " 0\n" + std::to_string(x0 + side) + " 0\n" +
+                std::to_string(x0 + side) + " " + std::to_string(side) + "\n" + std::to_string(x0) +
+                " " + std::to_string(side) + "\n";
+    }
+    return text;
+}
+
+}  // namespace
+
+TEST(Cli, CompareStructureSetsPairsRoisByNameAndMap) {
+    // Reference: PTV and Cord; test: "ptv" shifted 3 mm (matched ignoring
+    // case), "Spinal Cord" (mapped) and an extra ROI. On the
+    // planes the PTVs overlap 7/10 and B's contour leaves A's 1 mm band for
+    // 22 mm a plane (tests/compare/test_PlaneComparison.cpp).
+    const fs::path a = scratch() / "set-a.slices", b = scratch() / "set-b.slices";
+    std::ofstream(a) << "dfrecon-slices 1\nunits mm\n"
+                     << squareRoi("PTV", 0, 10) << squareRoi("Cord", 30, 4);
+    std::ofstream(b) << "dfrecon-slices 1\nunits mm\n"
+                     << squareRoi("ptv", 3, 10) << squareRoi("\"Spinal Cord\"", 30, 4)
+                     << squareRoi("Extra", 60, 4);
+    const fs::path csv = scratch() / "set.csv";
+    const Result run = runDfrecon("-q compare " + a.string() + " " + b.string() +
+                                  " --match \"Cord=Spinal Cord\" --json --csv " + csv.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["pairs"].size(), 2u);
+    const auto& ptv = report["pairs"][0];
+    EXPECT_EQ(ptv["roiA"], "PTV");
+    EXPECT_EQ(ptv["roiB"], "ptv");
+    EXPECT_EQ(ptv["matchedBy"], "folded name");
+    EXPECT_EQ(ptv["exitCode"], 0);
+    EXPECT_NEAR(ptv["onPlanes"]["dice"].get<double>(), 0.7, 1e-12);
+    EXPECT_NEAR(ptv["onPlanes"]["addedPathLengthMm"].get<double>(), 4 * 22, 1e-9);
+    EXPECT_GT(ptv["dice"].get<double>(), 0.5);
+    EXPECT_EQ(report["pairs"][1]["matchedBy"], "map");
+    EXPECT_NEAR(report["pairs"][1]["dice"].get<double>(), 1, 1e-9);
+    EXPECT_EQ(report["unmatchedA"].size(), 0u);
+    ASSERT_EQ(report["unmatchedB"].size(), 1u);
+    EXPECT_EQ(report["unmatchedB"][0], "Extra");
+    std::ifstream table(csv);
+    std::string header, line;
+    std::getline(table, header);
+    EXPECT_EQ(header.rfind("roiA,roiB,matchedBy,", 0), 0u) << header;
+    int rows = 0;
+    while (std::getline(table, line)) ++rows;
+    EXPECT_EQ(rows, 2);
+    // A map naming an ROI the set lacks is a usage error.
+    EXPECT_EQ(
+        runDfrecon("compare " + a.string() + " " + b.string() + " --match Cord=Nope").exitCode, 1);
+}
+
 TEST(Cli, OneBadRoiInAnRtStructDoesNotBlockTheOthers) {
     // A clinical export with one contour loop crossing itself: that ROI is
     // reported (exit 2), every other one is read, chosen and reconstructed.
