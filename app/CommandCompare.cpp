@@ -51,16 +51,21 @@ struct Structure {
     const Roi* roi = nullptr;
 };
 
-/// Surfaces of ROIs, reconstructed with reconstruct's defaults on one
-/// device and program cache, made only if an ROI needs it.
+/// The one device and program cache of a run (reconstructions and
+/// distances), opened on first use, and the surfaces of ROIs,
+/// reconstructed with reconstruct's defaults.
 class SurfaceMaker {
   public:
     explicit SurfaceMaker(const GlobalOptions& global) : global_(global) {}
 
+    ocl::Runtime& runtime() {
+        if (!runtime_) runtime_ = std::make_unique<ocl::Runtime>(global_.device);
+        return *runtime_;
+    }
+
     Structure ofRoi(const std::string& file, const Roi& roi) {
         if (roi.defect) throw *roi.defect;
-        if (!runtime_) runtime_ = std::make_unique<ocl::Runtime>(global_.device);
-        Reconstruction result = reconstructSurface(*runtime_, roi);
+        Reconstruction result = reconstructSurface(runtime(), roi);
         if (!result.check.validSolid())
             throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
         toPatient(result.surface, roi.frame);
@@ -87,12 +92,14 @@ struct PairResult {
     double overlapSeconds = 0, distanceSeconds = 0, planeSeconds = 0;
 };
 
-PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args) {
+PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args,
+                       SurfaceMaker& maker) {
     Stopwatch watch;
     PairResult r;
     r.overlap = overlapOf(a.surface, b.surface);
     r.overlapSeconds = watch.lap();
-    r.distances = surfaceDistances(a.surface, b.surface, args.spacingMm, args.toleranceMm);
+    r.distances =
+        surfaceDistances(maker.runtime(), a.surface, b.surface, args.spacingMm, args.toleranceMm);
     r.centroidDistanceMm =
         length(measureSurface(b.surface).centroidMm - measureSurface(a.surface).centroidMm);
     r.distanceSeconds = watch.lap();
@@ -260,7 +267,7 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
     const Structure a = structure(args.a, inputA, args.roiA);
     const Structure b = structure(args.b, inputB, args.roiB);
     const double loadSeconds = watch.lap();
-    const PairResult r = comparePair(a, b, args);
+    const PairResult r = comparePair(a, b, args, maker);
     warnIfCoarsened(r, args, global);
     nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
     if (a.roi) report["roiA"] = a.roi->name;
@@ -291,7 +298,7 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
             const Structure a = maker.ofRoi(args.a, *pair.a);
             const Structure b = maker.ofRoi(args.b, *pair.b);
             const double loadSeconds = watch.lap();
-            const PairResult r = comparePair(a, b, args);
+            const PairResult r = comparePair(a, b, args, maker);
             warnIfCoarsened(r, args, global);
             row.update(pairJson(r));
             row["seconds"]["load"] = loadSeconds;
@@ -376,8 +383,9 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
         "defaults). Dice and Jaccard come from the exact volume of the intersection (CGAL "
         "corefinement, exact constructions; where the surfaces coincide in part, B is shifted "
         "1e-6 mm and the bound stated), so they carry no voxelisation error. Distances: every "
-        "triangle of each surface is sampled on a lattice no coarser than --spacing and each "
-        "sample gets its exact distance to the other surface; Hausdorff is the larger directed "
+        "triangle of each surface is cut into similar cells, every point of a cell within "
+        "--spacing of its centroid, and each centroid gets its exact distance to the other "
+        "surface (the closest-primitive kernel); Hausdorff is the larger directed "
         "maximum, HD95 the larger directed area-weighted 95th percentile (hd95PooledMm: of both "
         "directions pooled), the mean is area-weighted over both surfaces; surface Dice is the "
         "share of both surfaces' area within --tolerance of the other; the centroid distance is "
@@ -406,8 +414,8 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
                     "roiA, roiB, matchedBy, volumes in cc, Dice, Jaccard, distances in mm, "
                     "surfaceDice, planeDice, addedPathLengthMm, overlapMethod, exitCode, error)");
     cmd->add_option("--spacing", args->spacingMm,
-                    "Largest lattice step of the distance samples, mm: the bound on every "
-                    "distance's error")
+                    "Distance sampling, mm: every point of the surfaces lies within this of a "
+                    "sample, and every distance figure within this of its exact value")
         ->capture_default_str()
         ->check(kPositive);
     cmd->add_option("--tolerance", args->toleranceMm,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "field/ClosestPrimitives.hpp"
 #include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
@@ -32,20 +33,66 @@ double weightedPercentile95(const std::vector<WeightedDistance>& a,
     return 0;
 }
 
-// The lattice of a triangle: n × n similar cells, each edge at most
-// spacingMm.
-double latticeSteps(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm) {
-    const double longest = std::max({length(p1 - p0), length(p2 - p1), length(p0 - p2)});
-    return std::max(1.0, std::ceil(longest / spacingMm));
+// Calls visit(point, weightMm2) for the centroid of every cell of the
+// triangle (p0, p1, p2): cells made by halving the longest edge until no
+// edge is longer than 1.5 spacingMm, each weighed by its area, so the
+// weights sum to the triangle's area and each sample stands for exactly the
+// points of its cell. A cell's centroid lies within 2/3 of its longest
+// median, itself at most its longest edge, of every point of the cell:
+// within spacingMm. Halving the longest edge keeps cells' angles bounded
+// and a sliver's cells few (about its length over the spacing, where a
+// grid of similar cells would need that squared).
+template <class Visit>
+void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm, Visit&& visit) {
+    const double longest2 = 2.25 * spacingMm * spacingMm;
+    struct Cell {
+        Vec3 a, b, c;
+    };
+    Cell stack[64];
+    int top = 0;
+    stack[top++] = {p0, p1, p2};
+    while (top > 0) {
+        const Cell cell = stack[--top];
+        const double ab = dot(cell.b - cell.a, cell.b - cell.a),
+                     bc = dot(cell.c - cell.b, cell.c - cell.b),
+                     ca = dot(cell.a - cell.c, cell.a - cell.c);
+        // 60 halvings leave any edge of a valid mesh far below the spacing:
+        // the depth only guards the stack.
+        if (std::max({ab, bc, ca}) <= longest2 || top >= 62) {
+            visit((1.0 / 3) * (cell.a + cell.b + cell.c),
+                  0.5 * length(cross(cell.b - cell.a, cell.c - cell.a)));
+            continue;
+        }
+        if (ab >= bc && ab >= ca) {
+            const Vec3 m = 0.5 * (cell.a + cell.b);
+            stack[top++] = {cell.a, m, cell.c};
+            stack[top++] = {m, cell.b, cell.c};
+        } else if (bc >= ca) {
+            const Vec3 m = 0.5 * (cell.b + cell.c);
+            stack[top++] = {cell.a, cell.b, m};
+            stack[top++] = {cell.a, m, cell.c};
+        } else {
+            const Vec3 m = 0.5 * (cell.c + cell.a);
+            stack[top++] = {cell.a, cell.b, m};
+            stack[top++] = {m, cell.b, cell.c};
+        }
+    }
+}
+
+// Calls visit(triangle, point, weightMm2) for every cell of `soup`'s
+// triangles, triangle by triangle.
+template <class Visit>
+void forEachCellCentroid(const TriangleSoup& soup, double spacingMm, Visit&& visit) {
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+        const auto& tri = soup.triangles[t];
+        forEachCell(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]], spacingMm,
+                    [&](const Vec3& p, double weight) { visit(t, p, weight); });
+    }
 }
 
 double sampleCount(const TriangleSoup& soup, double spacingMm) {
     double count = 0;
-    for (const auto& t : soup.triangles) {
-        const double n =
-            latticeSteps(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]], spacingMm);
-        count += (n + 1) * (n + 2) / 2;
-    }
+    forEachCellCentroid(soup, spacingMm, [&](std::size_t, const Vec3&, double) { ++count; });
     return count;
 }
 
@@ -56,35 +103,15 @@ double spacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b, double 
     for (;;) {
         const double samples = std::max(sampleCount(a, spacingMm), sampleCount(b, spacingMm));
         if (samples <= double(kMaxDistanceSamples)) return spacingMm;
-        // Samples fall with the square of the spacing, or slower (the
-        // lattice's +1 per triangle): grow by the root, at least by 5 %.
+        // Samples fall with the square of the spacing, or slower (at least
+        // one per triangle): grow by the root, at least by 5 %.
         spacingMm *= std::max(1.05, std::sqrt(samples / double(kMaxDistanceSamples)));
     }
 }
 
-// The distances from every sample of `from` to `to`, summarised; the
-// samples are left in `samples`, sorted by distance, for the pooled figures.
-DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, double spacingMm,
-                           double toleranceMm, double& areaMm2,
-                           std::vector<WeightedDistance>& samples) {
-    samples.clear();
-    areaMm2 = 0;
-    for (const auto& t : from.triangles) {
-        const Vec3 p0 = from.points[t[0]], p1 = from.points[t[1]], p2 = from.points[t[2]];
-        const double area = 0.5 * length(cross(p1 - p0, p2 - p0));
-        areaMm2 += area;
-        const int n = int(latticeSteps(p0, p1, p2, spacingMm));
-        const double weight = area / double((n + 1) * (n + 2) / 2);
-        std::size_t hint = SIZE_MAX;
-        for (int i = 0; i <= n; ++i)
-            for (int j = 0; i + j <= n; ++j) {
-                const double u = double(i) / n, v = double(j) / n;
-                const Vec3 p = p0 + u * (p1 - p0) + v * (p2 - p0);
-                const TriangleBvh::Nearest nearest = to.nearest(p, hint);
-                hint = nearest.triangle;
-                samples.push_back({nearest.distance, weight});
-            }
-    }
+// The summary of one direction's samples, which it leaves sorted by
+// distance for the pooled figures.
+DirectedDistances summarise(std::vector<WeightedDistance>& samples, double toleranceMm) {
     DirectedDistances d;
     d.samples = samples.size();
     if (samples.empty()) return d;
@@ -102,6 +129,82 @@ DirectedDistances directed(const TriangleSoup& from, const TriangleBvh& to, doub
               });
     d.p95Mm = weightedPercentile95(samples, {});
     return d;
+}
+
+double areaOf(const TriangleSoup& soup) {
+    double area = 0;
+    for (const auto& t : soup.triangles)
+        area += 0.5 * length(cross(soup.points[t[1]] - soup.points[t[0]],
+                                   soup.points[t[2]] - soup.points[t[0]]));
+    return area;
+}
+
+// The distances from every cell centroid of `from` to `to` over its
+// hierarchy, each query starting from the last one's triangle.
+std::vector<WeightedDistance> hostDistances(const TriangleSoup& from, const TriangleBvh& to,
+                                            double spacingMm) {
+    std::vector<WeightedDistance> samples;
+    std::size_t hint = SIZE_MAX;
+    forEachCellCentroid(from, spacingMm, [&](std::size_t, const Vec3& p, double weight) {
+        const TriangleBvh::Nearest nearest = to.nearest(p, hint);
+        hint = nearest.triangle;
+        samples.push_back({nearest.distance, weight});
+    });
+    return samples;
+}
+
+// Samples go to the kernel in runs of this many (each about 100 bytes on
+// the host and the device while it runs).
+constexpr std::size_t kSamplesPerRun = std::size_t(1) << 20;
+
+// The same distances from the closest-primitive kernel: object `from` of
+// the scene asks object `to`. Runs hold whole triangles' samples, so each
+// source triangle is culled once.
+std::vector<WeightedDistance> deviceDistances(ClosestPrimitiveKernel& kernel,
+                                              const TriangleSoup& from, std::uint32_t fromObject,
+                                              int toObject, double spacingMm) {
+    std::vector<WeightedDistance> samples;
+    std::vector<SurfaceSample> run;
+    std::vector<double> weights;
+    DistanceQuery query;
+    query.target = toObject;
+    auto flush = [&] {
+        const std::vector<ClosestPrimitive> answers = kernel.run(run, query);
+        for (std::size_t k = 0; k < answers.size(); ++k)
+            samples.push_back({std::abs(answers[k].distanceMm), weights[k]});
+        run.clear();
+        weights.clear();
+    };
+    std::size_t lastTriangle = SIZE_MAX;
+    forEachCellCentroid(from, spacingMm, [&](std::size_t t, const Vec3& p, double weight) {
+        if (t != lastTriangle && run.size() >= kSamplesPerRun) flush();
+        lastTriangle = t;
+        run.push_back({p, fromObject, std::uint32_t(t)});
+        weights.push_back(weight);
+    });
+    if (!run.empty()) flush();
+    return samples;
+}
+
+// The figures of both directions from their samples.
+SurfaceDistances combine(const TriangleSoup& a, const TriangleSoup& b, double spacingMm,
+                         double toleranceMm, std::vector<WeightedDistance> fromA,
+                         std::vector<WeightedDistance> fromB) {
+    SurfaceDistances d;
+    d.spacingMm = spacingMm;
+    d.toleranceMm = toleranceMm;
+    d.areaAMm2 = areaOf(a);
+    d.areaBMm2 = areaOf(b);
+    d.aToB = summarise(fromA, toleranceMm);
+    d.bToA = summarise(fromB, toleranceMm);
+    d.hd95PooledMm = weightedPercentile95(fromA, fromB);
+    return d;
+}
+
+void checkArguments(const TriangleSoup& a, const TriangleSoup& b, double spacingMm) {
+    if (a.triangles.empty() || b.triangles.empty())
+        throw std::invalid_argument("surface distances need two non-empty surfaces");
+    if (!(spacingMm > 0)) throw std::invalid_argument("sample spacing must be > 0");
 }
 
 }  // namespace
@@ -129,19 +232,21 @@ double SurfaceDistances::meanMm() const {
 
 SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm,
                                   double toleranceMm) {
-    if (a.triangles.empty() || b.triangles.empty())
-        throw std::invalid_argument("surface distances need two non-empty surfaces");
-    if (!(spacingMm > 0)) throw std::invalid_argument("sample spacing must be > 0");
-    const TriangleBvh bvhA(a), bvhB(b);
-    SurfaceDistances d;
+    checkArguments(a, b, spacingMm);
     spacingMm = spacingWithinBudget(a, b, spacingMm);
-    d.spacingMm = spacingMm;
-    d.toleranceMm = toleranceMm;
-    std::vector<WeightedDistance> fromA, fromB;
-    d.aToB = directed(a, bvhB, spacingMm, toleranceMm, d.areaAMm2, fromA);
-    d.bToA = directed(b, bvhA, spacingMm, toleranceMm, d.areaBMm2, fromB);
-    d.hd95PooledMm = weightedPercentile95(fromA, fromB);
-    return d;
+    const TriangleBvh bvhA(a), bvhB(b);
+    return combine(a, b, spacingMm, toleranceMm, hostDistances(a, bvhB, spacingMm),
+                   hostDistances(b, bvhA, spacingMm));
+}
+
+SurfaceDistances surfaceDistances(ocl::Runtime& runtime, const TriangleSoup& a,
+                                  const TriangleSoup& b, double spacingMm, double toleranceMm) {
+    checkArguments(a, b, spacingMm);
+    spacingMm = spacingWithinBudget(a, b, spacingMm);
+    const SurfaceScene scene({a, b});
+    ClosestPrimitiveKernel kernel(runtime, scene);
+    return combine(a, b, spacingMm, toleranceMm, deviceDistances(kernel, a, 0, 1, spacingMm),
+                   deviceDistances(kernel, b, 1, 0, spacingMm));
 }
 
 }  // namespace dfrecon

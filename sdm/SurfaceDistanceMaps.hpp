@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "sdm/Atlas.hpp"
-#include "sdm/ClosestPrimitives.hpp"
+#include "field/ClosestPrimitives.hpp"
 
 namespace dfrecon {
 

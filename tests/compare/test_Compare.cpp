@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "cl/Runtime.hpp"
 #include "compare/OverlapVolume.hpp"
 #include "compare/SurfaceDistances.hpp"
 #include "geometry/ClosestPoint.hpp"
@@ -168,7 +169,7 @@ TEST(SurfaceDistances, SurfaceDiceAgreesWithBruteForce) {
     const double spacing = 0.2;
     for (const double tolerance : {0.5, 1.0, 2.0}) {
         const SurfaceDistances s = surfaceDistances(a, b, spacing, tolerance);
-        // Each sample stands for its lattice cell, points within `spacing`:
+        // Each sample stands for its cell, points within `spacing`:
         // the figure lies between the exact ones at τ ∓ spacing (and the
         // random reference's noise, some 0.01 at this count).
         const double lower = bruteForceSurfaceDice(a, b, tolerance - spacing, 40) - 0.015;
@@ -193,6 +194,40 @@ TEST(SurfaceDistances, ConcentricSurfacesAreAllAtOneDistance) {
     EXPECT_GE(above.hd95PooledMm, std::min(above.aToB.p95Mm, above.bToA.p95Mm));
     EXPECT_LE(above.hd95PooledMm, above.hd95Mm());
     EXPECT_NEAR(above.aToB.p95Mm, d, 1e-9);
+}
+
+TEST(SurfaceDistances, DeviceAgreesWithTheHostReference) {
+    // The closest-primitive kernel against its C++ twin (a host hierarchy):
+    // the same samples, distances equal to rounding in double precision and
+    // within the kernel's stated tolerance in single; every figure alike.
+    static ocl::Runtime runtime;
+    const TriangleSoup a = geodesicSphere(5, 10), b = boxMesh({-4, -3, -2}, {9, 8, 7}, 5);
+    for (const double spacing : {0.3, 1.0}) {
+        const SurfaceDistances host = surfaceDistances(a, b, spacing, 1.0);
+        const SurfaceDistances device = surfaceDistances(runtime, a, b, spacing, 1.0);
+        const double tolerance = runtime.device().doublePrecision ? 1e-9 : 1e-4;
+        EXPECT_EQ(host.aToB.samples, device.aToB.samples);
+        EXPECT_EQ(host.bToA.samples, device.bToA.samples);
+        EXPECT_NEAR(host.hausdorffMm(), device.hausdorffMm(), tolerance);
+        EXPECT_NEAR(host.hd95Mm(), device.hd95Mm(), tolerance);
+        EXPECT_NEAR(host.hd95PooledMm, device.hd95PooledMm, tolerance);
+        EXPECT_NEAR(host.meanMm(), device.meanMm(), tolerance);
+        EXPECT_NEAR(host.surfaceDice(), device.surfaceDice(), 1e-3);
+    }
+}
+
+TEST(SurfaceDistances, CellsCoverEveryPointWithinTheSpacing) {
+    // Hausdorff of a surface against itself shifted by d is at most d, and
+    // at least d minus the spacing wherever the surfaces run parallel: for
+    // a box moved along x, its faces x = const are exactly d apart.
+    const TriangleSoup a = boxMesh({0, 0, 0}, {10, 10, 10}, 1);  // large, thin cells
+    const TriangleSoup b = boxMesh({0.7, 0, 0}, {10.7, 10, 10}, 1);
+    for (const double spacing : {0.1, 0.5, 2.0}) {
+        const SurfaceDistances d = surfaceDistances(a, b, spacing);
+        EXPECT_LE(d.hausdorffMm(), 0.7 + 1e-12) << spacing;
+        EXPECT_GE(d.hausdorffMm(), 0.7 - spacing) << spacing;
+        EXPECT_NEAR(d.areaAMm2, 600, 1e-9);
+    }
 }
 
 TEST(SurfaceMeasures, CentroidsOfBoxesAndSpheres) {

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "io/MeshIO.hpp"
-#include "sdm/ClosestPrimitives.hpp"
+#include "field/ClosestPrimitives.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 #include "shapes/MeshShapes.hpp"
 

@@ -1,4 +1,4 @@
-#include "sdm/SurfaceScene.hpp"
+#include "field/SurfaceScene.hpp"
 
 #include <algorithm>
 #include <map>

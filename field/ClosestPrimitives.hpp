@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
-#include "sdm/SurfaceScene.hpp"
+#include "field/SurfaceScene.hpp"
 
 namespace dfrecon {
 

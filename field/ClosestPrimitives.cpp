@@ -1,4 +1,4 @@
-#include "sdm/ClosestPrimitives.hpp"
+#include "field/ClosestPrimitives.hpp"
 
 #include <algorithm>
 #include <cmath>
