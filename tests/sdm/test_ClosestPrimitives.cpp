@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <random>
 
-#include "io/MeshIO.hpp"
 #include "field/ClosestPrimitives.hpp"
+#include "io/MeshIO.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 #include "shapes/MeshShapes.hpp"
 
