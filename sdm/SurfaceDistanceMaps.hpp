@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "sdm/Atlas.hpp"
 #include "field/ClosestPrimitives.hpp"
+#include "sdm/Atlas.hpp"
 
 namespace dfrecon {
 
