@@ -554,6 +554,50 @@ TEST(Cli, CompareStructureSetsPairsRoisByNameAndMap) {
         runDfrecon("compare " + a.string() + " " + b.string() + " --match Cord=Nope").exitCode, 1);
 }
 
+TEST(Cli, CompareMeshWithItselfAndItsSimplification) {
+    // Identical: Dice 1, every distance 0 (the shared faces take the shift).
+    // Simplified within 0.5 mm: Hausdorff at most 0.5 plus the sampling.
+    const fs::path torus = scratch() / "cmp-torus.ply", simple = scratch() / "cmp-torus-s.ply";
+    ASSERT_EQ(runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) + "/torus.slices -o " +
+                         torus.string())
+                  .exitCode,
+              0);
+    const Result self = runDfrecon("compare " + torus.string() + " " + torus.string() + " --json");
+    ASSERT_EQ(self.exitCode, 0) << self.err;
+    const auto same = nlohmann::json::parse(self.out);
+    EXPECT_NEAR(same["dice"].get<double>(), 1, 1e-9);
+    EXPECT_NEAR(same["hausdorffMm"].get<double>(), 0, 1e-9);
+    EXPECT_TRUE(same["onPlanes"].is_null());
+    ASSERT_EQ(runDfrecon("-q simplify " + torus.string() + " --max-error 0.5 -o " + simple.string())
+                  .exitCode,
+              0);
+    const Result run =
+        runDfrecon("compare " + torus.string() + " " + simple.string() + " --json --spacing 0.1");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_LE(report["hausdorffMm"].get<double>(), 0.5 + 0.1);
+    EXPECT_GT(report["dice"].get<double>(), 0.9);
+}
+
+TEST(Cli, CompareTouchingNeighboursOfAnAtlas) {
+    // Brodmann areas 44 and 45 share contour edges on every plane they meet
+    // (a label map's neighbours): corefinement cannot build their
+    // intersection as a solid, so B is shifted, and on the planes the two
+    // do not overlap at all. Exit 3 before issue 36.
+    const std::string atlas = "/usr/share/mricron/templates/brodmann.nii.gz";
+    if (!fs::exists(atlas)) GTEST_SKIP() << atlas << " missing (make setup installs mricron-data)";
+    const Result run = runDfrecon("-q compare " + atlas + " " + atlas +
+                                  " --roi-a label_44 --roi-b label_45 --json");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_EQ(report["overlapMethod"], "exact, B shifted");
+    EXPECT_LT(report["intersectionBoundMm3"].get<double>(), 0.1);
+    EXPECT_LT(report["dice"].get<double>(), 0.01);
+    ASSERT_TRUE(report["onPlanes"]["compared"].get<bool>());
+    EXPECT_EQ(report["onPlanes"]["intersectionMm3"].get<double>(), 0);
+    EXPECT_GT(report["onPlanes"]["addedPathLengthMm"].get<double>(), 0);
+}
+
 TEST(Cli, OneBadRoiInAnRtStructDoesNotBlockTheOthers) {
     // A clinical export with one contour loop crossing itself: that ROI is
     // reported (exit 2), every other one is read, chosen and reconstructed.
