@@ -52,11 +52,11 @@ int main(int argc, char** argv) {
     if (suite == "sdm") return benchSdm(device);
     if (suite == "segment") return benchSegment(device);
     if (suite == "structure-set") return benchStructureSet(device);
-    if (suite == "compare") return benchCompare();
+    if (suite == "compare") return benchCompare(device);
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                benchTruth(device, truthSets, truthSet) | benchSimplify(device) | benchSdm(device) |
-               benchSegment(device) | benchStructureSet(device) | benchCompare();
+               benchSegment(device) | benchStructureSet(device) | benchCompare(device);
     std::cerr << usage;
     return 1;
 }
