@@ -37,8 +37,11 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 /// The overlap of the solids bounded by `a` and `b`, which must be valid
 /// closed solids (dfrecon check): throws std::invalid_argument otherwise.
 /// Any two valid solids get an answer — touching, nested, identical,
-/// disjoint: exact where the surfaces are in general position, else by the
-/// shift above (Overlap::method says which). Exact predicates and
+/// disjoint: exact where the surfaces are in general position (and for
+/// one surface given twice), else by the shift above (Overlap::method says
+/// which); surfaces sharing many points (at least 16 and 1 % of the
+/// smaller's) go to the shift at once, as corefinement of neighbours cut
+/// from one label map fails only after most of its work. Exact predicates and
 /// constructions; A's and B's volumes are summed in double from their
 /// points (the mesh check's), the intersection's from exact points rounded
 /// once. Work: O((n + k) log n) for n triangles and k intersecting
