@@ -34,17 +34,17 @@ double weightedPercentile95(const std::vector<WeightedDistance>& a,
 }
 
 // Calls visit(point, weightMm2) for the centroid of every cell of the
-// triangle (p0, p1, p2): cells made by halving the longest edge until no
-// edge is longer than 1.5 spacingMm, each weighed by its area, so the
-// weights sum to the triangle's area and each sample stands for exactly the
-// points of its cell. A cell's centroid lies within 2/3 of its longest
-// median, itself at most its longest edge, of every point of the cell:
-// within spacingMm. Halving the longest edge keeps cells' angles bounded
-// and a sliver's cells few (about its length over the spacing, where a
-// grid of similar cells would need that squared).
+// triangle (p0, p1, p2): cells made by halving the longest edge until every
+// cell's corners lie within spacingMm of its centroid, each weighed by its
+// area, so the weights sum to the triangle's area and each sample stands
+// for exactly the points of its cell. The farthest point of a triangle from
+// any point is a corner, so every point of a cell lies within spacingMm of
+// its sample. Halving the longest edge keeps cells' angles bounded and a
+// sliver's cells few (about its length over the spacing, where a grid of
+// similar cells would need that squared).
 template <class Visit>
 void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm, Visit&& visit) {
-    const double longest2 = 2.25 * spacingMm * spacingMm;
+    const double spacing2 = spacingMm * spacingMm;
     struct Cell {
         Vec3 a, b, c;
     };
@@ -53,16 +53,19 @@ void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingM
     stack[top++] = {p0, p1, p2};
     while (top > 0) {
         const Cell cell = stack[--top];
+        const Vec3 centroid = (1.0 / 3) * (cell.a + cell.b + cell.c);
+        const double reach2 = std::max({dot(cell.a - centroid, cell.a - centroid),
+                                        dot(cell.b - centroid, cell.b - centroid),
+                                        dot(cell.c - centroid, cell.c - centroid)});
+        // 60 halvings leave any cell of a valid mesh far below the spacing:
+        // the depth only guards the stack.
+        if (reach2 <= spacing2 || top >= 62) {
+            visit(centroid, 0.5 * length(cross(cell.b - cell.a, cell.c - cell.a)));
+            continue;
+        }
         const double ab = dot(cell.b - cell.a, cell.b - cell.a),
                      bc = dot(cell.c - cell.b, cell.c - cell.b),
                      ca = dot(cell.a - cell.c, cell.a - cell.c);
-        // 60 halvings leave any edge of a valid mesh far below the spacing:
-        // the depth only guards the stack.
-        if (std::max({ab, bc, ca}) <= longest2 || top >= 62) {
-            visit((1.0 / 3) * (cell.a + cell.b + cell.c),
-                  0.5 * length(cross(cell.b - cell.a, cell.c - cell.a)));
-            continue;
-        }
         if (ab >= bc && ab >= ca) {
             const Vec3 m = 0.5 * (cell.a + cell.b);
             stack[top++] = {cell.a, m, cell.c};

@@ -2,12 +2,12 @@
 // Distances between two surfaces as contouring studies report them —
 // Hausdorff, 95th percentile Hausdorff (HD95), mean surface distance and
 // surface Dice — from every point of each surface, not from voxels: each
-// triangle is cut into n × n similar cells, each cell's centroid gets the
-// exact distance to the other surface, and statistics weigh it by the
-// cell's area. Every point of a cell lies within `spacingMm` of its
-// centroid (cells' edges at most 1.5 spacingMm), and distances are
-// 1-Lipschitz, so every reported figure is within spacingMm of the exact
-// one over the surfaces.
+// triangle is cut into cells (halving longest edges) until every cell's
+// corners, and so all its points, lie within `spacingMm` of its centroid;
+// each centroid gets the exact distance to the other surface, and
+// statistics weigh it by its cell's area. Distances are 1-Lipschitz, so
+// every reported figure is within spacingMm of the exact one over the
+// surfaces.
 #include <cstddef>
 
 #include "cl/Runtime.hpp"
