@@ -17,9 +17,11 @@
 #include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/RoiMatching.hpp"
 #include "app/Stopwatch.hpp"
+#include "app/WorkerRuntimes.hpp"
 #include "compare/OverlapVolume.hpp"
 #include "compare/PlaneComparison.hpp"
 #include "compare/SurfaceDistances.hpp"
@@ -41,6 +43,7 @@ struct CompareArgs {
     double toleranceMm = 1;
     std::vector<std::string> matches;  // NAME_IN_A=NAME_IN_B
     std::string csvPath;
+    unsigned jobs = 0;  // pairs at once; 0: defaultJobs()
     bool json = false;
 };
 
@@ -51,31 +54,15 @@ struct Structure {
     const Roi* roi = nullptr;
 };
 
-/// The one device and program cache of a run (reconstructions and
-/// distances), opened on first use, and the surfaces of ROIs,
-/// reconstructed with reconstruct's defaults.
-class SurfaceMaker {
-  public:
-    explicit SurfaceMaker(const GlobalOptions& global) : global_(global) {}
-
-    ocl::Runtime& runtime() {
-        if (!runtime_) runtime_ = std::make_unique<ocl::Runtime>(global_.device);
-        return *runtime_;
-    }
-
-    Structure ofRoi(const std::string& file, const Roi& roi) {
-        if (roi.defect) throw *roi.defect;
-        Reconstruction result = reconstructSurface(runtime(), roi);
-        if (!result.check.validSolid())
-            throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
-        toPatient(result.surface, roi.frame);
-        return {std::move(result.surface), &roi};
-    }
-
-  private:
-    const GlobalOptions& global_;
-    std::unique_ptr<ocl::Runtime> runtime_;
-};
+/// The surface of an ROI, reconstructed with reconstruct's defaults.
+Structure reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
+    if (roi.defect) throw *roi.defect;
+    Reconstruction result = reconstructSurface(runtime, roi);
+    if (!result.check.validSolid())
+        throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
+    toPatient(result.surface, roi.frame);
+    return {std::move(result.surface), &roi};
+}
 
 TriangleSoup readSolid(const std::string& path) {
     TriangleSoup soup = readTriangleSoup(path);
@@ -93,13 +80,12 @@ struct PairResult {
 };
 
 PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args,
-                       SurfaceMaker& maker) {
+                       ocl::Runtime& runtime) {
     Stopwatch watch;
     PairResult r;
     r.overlap = overlapOf(a.surface, b.surface);
     r.overlapSeconds = watch.lap();
-    r.distances =
-        surfaceDistances(maker.runtime(), a.surface, b.surface, args.spacingMm, args.toleranceMm);
+    r.distances = surfaceDistances(runtime, a.surface, b.surface, args.spacingMm, args.toleranceMm);
     r.centroidDistanceMm =
         length(measureSurface(b.surface).centroidMm - measureSurface(a.surface).centroidMm);
     r.distanceSeconds = watch.lap();
@@ -112,11 +98,11 @@ PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs
     return r;
 }
 
-void warnIfCoarsened(const PairResult& r, const CompareArgs& args, const GlobalOptions& global) {
-    if (r.distances.spacingMm > args.spacingMm && !global.quiet)
+void warnIfCoarsened(double usedMm, const CompareArgs& args, const GlobalOptions& global) {
+    if (usedMm > args.spacingMm && !global.quiet)
         std::cerr << "dfrecon: warning: --spacing " << args.spacingMm << " mm would take more than "
                   << kMaxDistanceSamples << " samples on a surface; distances sampled every "
-                  << r.distances.spacingMm << " mm, each within that of its exact value\n";
+                  << usedMm << " mm, each within that of its exact value\n";
 }
 
 nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes) {
@@ -258,17 +244,17 @@ bool isStructureSetRun(const CompareArgs& args, const ContourInput* a, const Con
 void runOnePair(const CompareArgs& args, const GlobalOptions& global, const ContourInput* inputA,
                 const ContourInput* inputB) {
     Stopwatch watch;
-    SurfaceMaker maker(global);
+    ocl::Runtime runtime(global.device);
     auto structure = [&](const std::string& path, const ContourInput* input,
                          const std::string& roi) {
         if (!input) return Structure{readSolid(path), nullptr};
-        return maker.ofRoi(path, *selectRois(input->contours, roi, false).front());
+        return reconstructed(runtime, path, *selectRois(input->contours, roi, false).front());
     };
     const Structure a = structure(args.a, inputA, args.roiA);
     const Structure b = structure(args.b, inputB, args.roiB);
     const double loadSeconds = watch.lap();
-    const PairResult r = comparePair(a, b, args, maker);
-    warnIfCoarsened(r, args, global);
+    const PairResult r = comparePair(a, b, args, runtime);
+    warnIfCoarsened(r.distances.spacingMm, args, global);
     nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
     if (a.roi) report["roiA"] = a.roi->name;
     if (b.roi) report["roiB"] = b.roi->name;
@@ -281,39 +267,57 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
         printPair(r, std::cout);
 }
 
+// One pair of two structure sets as a row: the pair's report, or its
+// failure (exitCode, error) where either ROI or the comparison failed.
+nlohmann::ordered_json pairRow(const RoiPair& pair, const CompareArgs& args,
+                               ocl::Runtime& runtime) {
+    nlohmann::ordered_json row{
+        {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
+    try {
+        Stopwatch watch;
+        const Structure a = reconstructed(runtime, args.a, *pair.a);
+        const Structure b = reconstructed(runtime, args.b, *pair.b);
+        const double loadSeconds = watch.lap();
+        row.update(pairJson(comparePair(a, b, args, runtime)));
+        row["seconds"]["load"] = loadSeconds;
+        row["exitCode"] = 0;
+        row["error"] = nullptr;
+    } catch (...) {
+        const Failure failure = describeFailure(std::current_exception());
+        row["exitCode"] = failure.exitCode;
+        row["error"] = failure.message;
+    }
+    return row;
+}
+
 void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                       const ContourInput& inputA, const ContourInput& inputB) {
     const RoiMatching matching = matchRois(inputA.contours, inputB.contours, args.matches);
-    SurfaceMaker maker(global);
+    const std::size_t count = matching.pairs.size();
+    const std::size_t jobs =
+        args.jobs > 0 ? std::min<std::size_t>(args.jobs, count) : defaultJobs(count);
+    WorkerRuntimes runtimes(global.device, jobs);
     nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
     std::optional<Failure> firstFailure;
     std::size_t failures = 0;
     Progress progress("compare", !global.quiet);
-    for (std::size_t i = 0; i < matching.pairs.size(); ++i) {
-        const RoiPair& pair = matching.pairs[i];
-        nlohmann::ordered_json row{
-            {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
-        try {
-            Stopwatch watch;
-            const Structure a = maker.ofRoi(args.a, *pair.a);
-            const Structure b = maker.ofRoi(args.b, *pair.b);
-            const double loadSeconds = watch.lap();
-            const PairResult r = comparePair(a, b, args, maker);
-            warnIfCoarsened(r, args, global);
-            row.update(pairJson(r));
-            row["seconds"]["load"] = loadSeconds;
-            row["exitCode"] = 0;
-            row["error"] = nullptr;
-        } catch (...) {
-            const Failure failure = describeFailure(std::current_exception());
-            row["exitCode"] = failure.exitCode;
-            row["error"] = failure.message;
-            if (!firstFailure) firstFailure = failure;
-            ++failures;
-        }
-        pairs.push_back(std::move(row));
-        progress.update(double(i + 1) / double(matching.pairs.size()));
-    }
+    forEachInOrder(
+        count, jobs,
+        [&](std::size_t item, std::size_t worker) {
+            return pairRow(matching.pairs[item], args, runtimes[worker]);
+        },
+        [&](std::size_t item, nlohmann::ordered_json row) {
+            if (row["exitCode"] != 0) {
+                if (!firstFailure)
+                    firstFailure =
+                        Failure{row["exitCode"].get<int>(), row["error"].get<std::string>()};
+                ++failures;
+            } else {
+                warnIfCoarsened(row["distanceBoundMm"].get<double>(), args, global);
+            }
+            pairs.push_back(std::move(row));
+            progress.update(double(item + 1) / double(count));
+        });
     progress.finish();
     auto names = [](const std::vector<const Roi*>& rois) {
         nlohmann::ordered_json list = nlohmann::ordered_json::array();
@@ -424,6 +428,11 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
                     "length farther than this from A's (addedPathLengthMm)")
         ->capture_default_str()
         ->check(kNonNegative);
+    cmd->add_option("-j,--jobs", args->jobs,
+                    "Pairs of two structure sets compared at once (0: one per hardware "
+                    "thread); the rows are the same for any value but for their seconds and the "
+                    "overlap's last digits (CGAL orders faces by memory address)")
+        ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runCompare(*args, global); });
 }

@@ -33,25 +33,42 @@ Mesh toCgal(const TriangleSoup& soup, const Vec3& shift = {}) {
     return mesh;
 }
 
+// An exact coordinate as a double, the same whatever was computed before:
+// CGAL's to_double gives the midpoint of the current interval, which
+// narrows when a predicate has needed the exact value, so the same point
+// could round two ways. Input points (a single-point interval) are their
+// double; constructed ones are rounded from their exact value.
+double rounded(const Kernel::FT& x) {
+    const CGAL::Interval_nt<false>& interval = x.approx();
+    if (interval.inf() == interval.sup()) return interval.inf();
+    return CGAL::to_double(x.exact());
+}
+
 // The enclosed volume from the exact points each rounded once to double:
 // summing the tetrahedra in exact arithmetic (PMP::volume on Epeck) made
 // every intersection point's rational coordinates exact and cost more than
 // half of a 100 000-triangle overlap, for digits far below the rounding of
-// the inputs' own points.
+// the inputs' own points. The tetrahedra are summed in order of value,
+// not in corefinement's face order, which follows memory addresses. The
+// last digits can still differ between runs that allocated differently
+// before (several pairs in one process): how corefinement triangulates a
+// cut face follows addresses too.
 double volumeOf(const Mesh& mesh) {
-    double volume = 0;
+    std::vector<double> tetrahedra;
+    tetrahedra.reserve(mesh.number_of_faces());
     for (const Mesh::Face_index face : mesh.faces()) {
         Vec3 corner[3];
         int k = 0;
         for (const Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(face), mesh)) {
             const Kernel::Point_3& p = mesh.point(v);
-            if (k < 3)
-                corner[k] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()),
-                             CGAL::to_double(p.z())};
+            if (k < 3) corner[k] = {rounded(p.x()), rounded(p.y()), rounded(p.z())};
             ++k;
         }
-        volume += dot(corner[0], cross(corner[1], corner[2])) / 6;
+        tetrahedra.push_back(dot(corner[0], cross(corner[1], corner[2])) / 6);
     }
+    std::sort(tetrahedra.begin(), tetrahedra.end());
+    double volume = 0;
+    for (const double t : tetrahedra) volume += t;
     return volume;
 }
 
