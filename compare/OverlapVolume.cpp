@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "compare/OverlapRatios.hpp"
 #include "geometry/MeshCheck.hpp"
 
 namespace dfrecon {
@@ -111,13 +112,11 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 }
 
 double Overlap::dice() const {
-    const double sum = volumeAMm3 + volumeBMm3;
-    return sum > 0 ? 2 * intersectionMm3 / sum : 1.0;
+    return diceOf(volumeAMm3, volumeBMm3, intersectionMm3);
 }
 
 double Overlap::jaccard() const {
-    const double all = unionMm3();
-    return all > 0 ? intersectionMm3 / all : 1.0;
+    return jaccardOf(volumeAMm3, volumeBMm3, intersectionMm3);
 }
 
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b) {

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "compare/OverlapRatios.hpp"
 #include "geometry/BoxGrid.hpp"
 #include "geometry/PolygonXor.hpp"
 
@@ -158,13 +159,11 @@ const std::vector<Polygon>& orNone(const std::vector<Polygon>* contours) {
 }  // namespace
 
 double PlaneComparison::dice() const {
-    const double total = volumeAMm3 + volumeBMm3;
-    return total > 0 ? 2 * intersectionMm3 / total : 1;
+    return diceOf(volumeAMm3, volumeBMm3, intersectionMm3);
 }
 
 double PlaneComparison::jaccard() const {
-    const double all = unionMm3();
-    return all > 0 ? intersectionMm3 / all : 1;
+    return jaccardOf(volumeAMm3, volumeBMm3, intersectionMm3);
 }
 
 double lengthOutsideTolerance(const std::vector<Polygon>& test,
