@@ -24,19 +24,32 @@ endif
 # without a usable HOME (as on CI).
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD_DIR)/pocl-cache
 
-.PHONY: setup build test demo bench sanitize-test fuzz format format-check clean
+.PHONY: setup setup-program build build-program test demo bench sanitize-test fuzz format \
+	format-check clean
 
+# Every package: the program's, then the tests', benchmarks' and tools'.
 setup:
 	@bash scripts/setup.sh
 
+# Only what building and running the program needs.
+setup-program:
+	@bash scripts/setup.sh build
+
+# Everything: the program, its libraries, the tests and the benchmarks.
 build: setup
-	@cmake --preset release $(CMAKE_FLAGS) >/dev/null
+	@cmake --preset release -DDFRECON_TESTS=ON -DDFRECON_BENCH=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The program alone (and the libraries it links), in the same build folder:
+# no test, benchmark or fixture.
+build-program: setup-program
+	@cmake --preset release -DDFRECON_TESTS=OFF -DDFRECON_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target dfrecon
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-demo: build
+demo: build-program
 	@bash scripts/demo.sh $(BUILD_DIR)/bin/dfrecon
 
 bench: build

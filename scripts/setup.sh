@@ -1,42 +1,68 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages dfrecon needs (docs/building.md), only those
-# that are missing, and says which; then makes the RTSTRUCT test fixtures in
-# build/fixtures (scripts/fixtures.sh). Idempotent: a second run installs and
-# regenerates nothing.
+# that are missing, and says which.
+#
+#   scripts/setup.sh build   what building and running the program needs
+#                            (make demo, make build-program)
+#   scripts/setup.sh         that, and what the tests, benchmarks, fuzzing
+#                            and format check need; then makes the RTSTRUCT
+#                            test fixtures in build/fixtures
+#                            (scripts/fixtures.sh) (make setup, make test)
+#
+# Idempotent: a second run installs and regenerates nothing.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+mode=${1:-all}
+case "$mode" in
+  build | all) ;;
+  *) echo "setup.sh: unknown mode '$mode' (build or all)" >&2; exit 1 ;;
+esac
 
-# Packages installed with their recommends.
-packages=(
+# To build and run the program, installed with their recommends.
+build_packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libopenmesh-dev
-  libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenvdb-tools
+  libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libdcmtk-dev
   libnifti2-dev libteem-dev zlib1g-dev
   libcgal-dev
-  libgtest-dev
   libcli11-dev nlohmann-json3-dev
-  clang libclang-rt-14-dev clang-format
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
 # imgcodecs only. python3 makes the man page and bash completion at build
-# time (scripts/help_pages.py); python3-vtk9 reads our .vtk and .vtp files
-# with VTK's own readers in the tests (tests/VtkRead.hpp; its recommends are
-# Qt and MPI tooling). The rest make the RTSTRUCT test fixtures
-# (scripts/fixtures.sh) and need none of theirs (pydicom's would add
-# python3-pil, dicom3tools' ghostscript and netpbm). The Slurm daemons,
-# client and munge run the array-job test (tests/app/slurm_array_test.sh) on
-# a single-node Slurm; their recommends are the plugin development headers.
-# mricron-data holds the atlases the truth benchmark cuts (scripts/truth_sets.sh,
-# dfrecon-bench truth); its recommends are mricron itself.
-packages_no_recommends=(
-  libopencv-dev python3 python3-vtk9
+# time (scripts/help_pages.py).
+build_packages_no_recommends=(
+  libopencv-dev python3
+)
+# For the tests, benchmarks, fuzzing and format check, with recommends:
+# GoogleTest, OpenVDB's tools, clang and its runtime (fuzzing), clang-format.
+test_packages=(
+  libgtest-dev libopenvdb-tools
+  clang libclang-rt-14-dev clang-format
+)
+# python3-vtk9 reads our .vtk and .vtp files with VTK's own readers in the
+# tests (tests/VtkRead.hpp; its recommends are Qt and MPI tooling). The rest
+# make the RTSTRUCT test fixtures (scripts/fixtures.sh) and need none of
+# theirs (pydicom's would add python3-pil, dicom3tools' ghostscript and
+# netpbm). The Slurm daemons, client and munge run the array-job test
+# (tests/app/slurm_array_test.sh) on a single-node Slurm; their recommends
+# are the plugin development headers. mricron-data holds the atlases the
+# truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
+# compare tests read; its recommends are mricron itself.
+test_packages_no_recommends=(
+  python3-vtk9
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge
   mricron-data
 )
+packages=("${build_packages[@]}")
+packages_no_recommends=("${build_packages_no_recommends[@]}")
+if [ "$mode" = all ]; then
+  packages+=("${test_packages[@]}")
+  packages_no_recommends+=("${test_packages_no_recommends[@]}")
+fi
 
 missing() {
   local out=()
@@ -72,6 +98,8 @@ install_missing() {
 }
 
 install_missing
-# Fast when they are already there (a stamp check).
-bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/fixtures"
+if [ "$mode" = all ]; then
+  # Fast when they are already there (a stamp check).
+  bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/fixtures"
+fi
 echo "setup: done"
