@@ -7,6 +7,7 @@
 
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
+#include "app/HtmlReport.hpp"
 #include "app/Inputs.hpp"
 #include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
@@ -23,7 +24,7 @@ namespace dfrecon::app {
 namespace {
 
 struct ReconstructArgs {
-    std::string input, output, roi;
+    std::string input, output, roi, reportPath;
     bool all = false, json = false;
     unsigned jobs = 0;  // ROIs at once; 0: defaultJobs()
     ReconstructSettings settings;
@@ -37,6 +38,24 @@ MeshOutput outputFor(const ReconstructArgs& args, const MeshOutput& single, cons
     if (!several) return single;
     const MeshFormat format = args.settings.folderFormat();
     return {(fs::path(args.output) / (stem + meshFormatExtension(format))).string(), format};
+}
+
+// The HTML report's table: one row per ROI, from its --json report.
+const std::vector<std::string> kRoiReportColumns{
+    "roi", "volumeCc", "contourVolumeCc", "validSolid", "triangles", "seconds", "error"};
+
+nlohmann::ordered_json roiReportRow(const nlohmann::ordered_json& report) {
+    nlohmann::ordered_json row;
+    for (const char* key :
+         {"roi", "volumeCc", "contourVolumeCc", "validSolid", "triangles", "error"})
+        row[key] = report.contains(key) ? report[key] : nlohmann::ordered_json();
+    row["seconds"] = report.contains("seconds") ? report["seconds"].value("total", 0.0) : 0.0;
+    return row;
+}
+
+// The colour an ROI is drawn in: its own, else the categorical palette's.
+Rgb displayColour(const Roi& roi, std::size_t position) {
+    return roi.colour ? *roi.colour : categoricalColour(std::int64_t(position) + 1);
 }
 
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
@@ -58,6 +77,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     nlohmann::ordered_json reports = nlohmann::ordered_json::array();
     std::string invalid, failed;
     int firstFailure = 0;
+    HtmlReport page;
     // With several workers each ROI's own bar would fight for the line, so
     // the bar counts ROIs instead.
     const std::size_t jobs =
@@ -71,9 +91,12 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             // With several ROIs one that fails is reported and the rest go on.
             try {
                 if (rois[i]->defect) throw *rois[i]->defect;
-                return reconstructRoi(runtimes[worker], *rois[i],
-                                      outputFor(args, single, stems[i], several), load,
-                                      args.settings, global, jobs <= 1);
+                const Stopwatch roiWatch;
+                RoiOutcome outcome = reconstructRoi(runtimes[worker], *rois[i],
+                                                    outputFor(args, single, stems[i], several),
+                                                    load, args.settings, global, jobs <= 1);
+                outcome.report["seconds"]["total"] = roiWatch.total();
+                return outcome;
             } catch (...) {
                 if (!several) throw;
                 return failedRoi(*rois[i], std::current_exception());
@@ -89,10 +112,20 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             } else if (outcome.invalid) {
                 invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
             }
+            if (!args.reportPath.empty() && outcome.failure == 0)
+                page.surfaces.push_back(
+                    {rois[i]->name, displayColour(*rois[i], i), std::move(outcome.surface), {}});
             reports.push_back(std::move(outcome.report));
             overall.update(double(i + 1) / double(rois.size()));
         });
     overall.finish();
+    if (!args.reportPath.empty()) {
+        page.title = "dfrecon reconstruct " + fs::path(args.input).filename().string();
+        page.columns = kRoiReportColumns;
+        for (const nlohmann::ordered_json& report : reports)
+            page.rows.push_back(roiReportRow(report));
+        writeHtmlReport(args.reportPath, page);
+    }
     const ocl::Runtime& runtime = runtimes.first();
     nlohmann::ordered_json empty = nlohmann::ordered_json::array();
     if (args.all)
@@ -164,6 +197,11 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "progress bar). Results and reports come in ROI order either way")
         ->capture_default_str()
         ->check(CLI::Range(0, 256));
+    cmd->add_option("--report", args->reportPath,
+                    "Also write REPORT.html: one self-contained page (no network needed to "
+                    "open it) with the ROI table (volume, contour volume, validity, "
+                    "triangles, seconds) beside an interactive 3D view of the surfaces in "
+                    "their ROI colours (three.js, embedded)");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runReconstruct(*args, global); });
 }

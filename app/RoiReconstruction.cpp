@@ -152,6 +152,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
                    {"write", writeSeconds}}}});
     outcome.invalid = !valid;
     outcome.report = std::move(report);
+    outcome.surface = std::move(result.surface);
     outcome.out = out.str();
     outcome.err = err.str();
     return outcome;

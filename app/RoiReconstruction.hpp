@@ -12,6 +12,7 @@
 #include "app/ReconstructSettings.hpp"
 #include "app/StandardStreams.hpp"
 #include "cl/Runtime.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon::app {
 
@@ -22,6 +23,9 @@ struct RoiOutcome {
     std::string out, err;  // for stdout (a summary line) and stderr
     int failure = 0;       // exit code of the error that stopped this ROI, 0 if none
     bool invalid = false;  // done, but not a valid closed solid (and open ends not asked for)
+    /// The surface as written (patient mm), for reports that show it; empty
+    /// when the ROI failed.
+    TriangleSoup surface;
 };
 
 /// The name and colour of `roi` as mesh files carry them (io/StructureTag).

@@ -24,7 +24,7 @@
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
-#include "recon/MarchingCubesBaselines.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "shapes/SurfaceReference.hpp"

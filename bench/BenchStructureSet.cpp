@@ -20,7 +20,7 @@
 #include "geometry/MeshCheck.hpp"
 #include "io/MaskContours.hpp"
 #include "io/RtStruct.hpp"
-#include "recon/MarchingCubesBaselines.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 

@@ -30,7 +30,7 @@
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
-#include "recon/MarchingCubesBaselines.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/SurfaceDistance.hpp"
 

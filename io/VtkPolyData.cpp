@@ -5,6 +5,8 @@
 #include <cstring>
 #include <ostream>
 
+#include "io/Base64.hpp"
+
 namespace dfrecon {
 
 namespace {
@@ -148,22 +150,6 @@ std::string xmlEscaped(const std::string& text) {
     return out;
 }
 
-void writeBase64(std::ostream& out, const unsigned char* bytes, std::size_t size) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string text;
-    text.reserve((size + 2) / 3 * 4);
-    for (std::size_t k = 0; k < size; k += 3) {
-        const std::uint32_t a = bytes[k], b = k + 1 < size ? bytes[k + 1] : 0,
-                            c = k + 2 < size ? bytes[k + 2] : 0;
-        const std::uint32_t triple = (a << 16) | (b << 8) | c;
-        text += table[(triple >> 18) & 63];
-        text += table[(triple >> 12) & 63];
-        text += k + 1 < size ? table[(triple >> 6) & 63] : '=';
-        text += k + 2 < size ? table[triple & 63] : '=';
-    }
-    out << text;
-}
-
 // An inline binary DataArray: the byte count (UInt64) and the values, each
 // base64-encoded on its own, as VTK's writer does (vtkXMLWriter).
 template <class T>
@@ -172,8 +158,8 @@ void writeXmlArray(std::ostream& out, const char* type, const std::string& name,
     out << "        <DataArray type=\"" << type << "\" Name=\"" << xmlEscaped(name)
         << "\" NumberOfComponents=\"" << components << "\" format=\"binary\">\n          ";
     const std::uint64_t bytes = values.size() * sizeof(T);
-    writeBase64(out, reinterpret_cast<const unsigned char*>(&bytes), sizeof bytes);
-    writeBase64(out, reinterpret_cast<const unsigned char*>(values.data()), bytes);
+    writeBase64(out, &bytes, sizeof bytes);
+    writeBase64(out, values.data(), bytes);
     out << "\n        </DataArray>\n";
 }
 

@@ -33,15 +33,19 @@ build_packages=(
 # imgcodecs only. python3 makes the man page and bash completion at build
 # time (scripts/help_pages.py).
 build_packages_no_recommends=(
-  libopencv-dev python3
+  libopencv-dev python3 openssl
 )
+# npm fetches the 3D viewer HTML reports embed (scripts/vendor_viewer.sh);
+# Debian's where the machine has none of its own.
+if ! command -v npm >/dev/null; then build_packages_no_recommends+=(npm); fi
 # For the tests, benchmarks, fuzzing and format check, with recommends:
 # GoogleTest, OpenVDB's tools, clang and its runtime (fuzzing), clang-format.
 test_packages=(
   libgtest-dev libopenvdb-tools
   clang libclang-rt-14-dev clang-format
 )
-# python3-vtk9 reads our .vtk and .vtp files with VTK's own readers in the
+# Chromium opens the HTML reports headless in their tests. python3-vtk9
+# reads our .vtk and .vtp files with VTK's own readers in the
 # tests (tests/VtkRead.hpp; its recommends are Qt and MPI tooling). The rest
 # make the RTSTRUCT test fixtures (scripts/fixtures.sh) and need none of
 # theirs (pydicom's would add python3-pil, dicom3tools' ghostscript and
@@ -51,7 +55,7 @@ test_packages=(
 # truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
 # compare tests read; its recommends are mricron itself.
 test_packages_no_recommends=(
-  python3-vtk9
+  chromium python3-vtk9
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge
@@ -98,6 +102,7 @@ install_missing() {
 }
 
 install_missing
+bash "$repo_root/scripts/vendor_viewer.sh" "$repo_root/build/vendor/three"
 if [ "$mode" = all ]; then
   # Fast when they are already there (a stamp check).
   bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/fixtures"

@@ -1,4 +1,4 @@
-#include "recon/MarchingCubesBaselines.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/SignedFloodFill.h>

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "geometry/MeshCheck.hpp"
-#include "recon/MarchingCubesBaselines.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;

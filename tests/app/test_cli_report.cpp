@@ -1,0 +1,141 @@
+// HTML reports opened as a user opens them: in a browser (headless
+// Chromium, `make setup` installs it), from a file:// URL, with no network
+// (a network namespace of its own where the machine allows one). The page
+// says what it drew (data-surfaces, data-webgl on its body) and a
+// screenshot shows each ROI in its colour.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "tests/CliRun.hpp"
+
+namespace fs = std::filesystem;
+using dfrecon::testing::CliResult;
+
+namespace {
+
+const char* const kChromium = "/usr/bin/chromium";
+
+fs::path scratch() {
+    static const fs::path dir = [] {
+        const fs::path d = fs::temp_directory_path() / "dfrecon-test-report";
+        fs::remove_all(d);
+        fs::create_directories(d);
+        return d;
+    }();
+    return dir;
+}
+
+CliResult runDfrecon(const std::string& args) {
+    return dfrecon::testing::runCli(scratch().string(), args);
+}
+
+// Chromium headless on `page` with `action` (--dump-dom, --screenshot=...):
+// no network (unshare -n when it may make a namespace; the background
+// services off in any case), software WebGL, a fresh profile.
+CliResult browse(const fs::path& page, const std::string& action) {
+    const std::string flags =
+        " --headless --no-sandbox --disable-gpu --disable-background-networking "
+        "--disable-component-update --disable-sync --no-first-run --use-angle=swiftshader "
+        "--enable-unsafe-swiftshader --window-size=1200,800 --virtual-time-budget=20000 "
+        "--user-data-dir=" +
+        (scratch() / "profile").string() + " " + action + " file://" + page.string();
+    const std::string chromium = kChromium + flags;
+    return dfrecon::testing::runShell(
+        scratch().string(), "if unshare -n true 2>/dev/null; then exec unshare -n " + chromium +
+                                "; else exec " + chromium + "; fi");
+}
+
+// The body's data-NAME in the dumped DOM, or "".
+std::string bodyData(const std::string& dom, const std::string& name) {
+    std::smatch m;
+    const std::regex pattern("<body[^>]*data-" + name + "=\"([^\"]*)\"");
+    return std::regex_search(dom, m, pattern) ? m[1].str() : "";
+}
+
+// Pixels of the screenshot whose colour is `rgb` lit by some amount: the
+// same direction in colour space (shading scales all three), within 0.06.
+std::size_t pixelsLike(const cv::Mat& image, cv::Vec3d rgb) {
+    std::size_t count = 0;
+    const cv::Vec3d want = rgb / cv::norm(rgb);
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = image.cols / 2; x < image.cols; ++x) {  // the 3D view's half
+            const cv::Vec3b bgr = image.at<cv::Vec3b>(y, x);
+            const cv::Vec3d got(bgr[2], bgr[1], bgr[0]);
+            if (cv::norm(got) < 60) continue;  // background and deep shade
+            if (cv::norm(got / cv::norm(got) - want) < 0.06) ++count;
+        }
+    return count;
+}
+
+}  // namespace
+
+TEST(HtmlReport, IsOneSelfContainedFile) {
+    const fs::path page = scratch() / "two.html";
+    const CliResult run = runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                                     "/two-rois.slices --all -o " + (scratch() / "two").string() +
+                                     " --report " + page.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string html = dfrecon::testing::slurp(page.string());
+    // Nothing it loads from elsewhere: every script inline, no link.
+    EXPECT_EQ(html.find("<script src"), std::string::npos);
+    EXPECT_EQ(html.find("<link"), std::string::npos);
+    EXPECT_NE(html.find("\"Left Kidney\""), std::string::npos);
+    EXPECT_NE(html.find("WebGLRenderer"), std::string::npos);  // three.js, inlined
+    // A report that cannot be written is an error, and leaves nothing.
+    const CliResult bad = runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                                     "/two-rois.slices --all -o " + (scratch() / "two-b").string() +
+                                     " --report /nonexistent-dir/r.html");
+    EXPECT_EQ(bad.exitCode, 3) << bad.err;
+    EXPECT_NE(bad.err.find("/nonexistent-dir/r.html"), std::string::npos) << bad.err;
+}
+
+TEST(HtmlReport, ChromiumDrawsEveryRoiInItsColour) {
+    if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " missing (make setup installs it)";
+    const fs::path page = scratch() / "shown.html";
+    ASSERT_EQ(runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                         "/two-rois.slices --all -o " + (scratch() / "shown").string() +
+                         " --report " + page.string())
+                  .exitCode,
+              0);
+    const CliResult dom = browse(page, "--dump-dom");
+    ASSERT_EQ(dom.exitCode, 0) << dom.err;
+    EXPECT_EQ(bodyData(dom.out, "webgl"), "1") << dom.out.substr(0, 2000);
+    EXPECT_EQ(bodyData(dom.out, "surfaces"), "2");
+    const fs::path shot = scratch() / "shown.png";
+    const CliResult screenshot = browse(page, "--screenshot=" + shot.string());
+    ASSERT_EQ(screenshot.exitCode, 0) << screenshot.err;
+    const cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty());
+    // examples/two-rois.slices: Left Kidney 230 120 40; PTV has none and is
+    // drawn in the palette's colour the page names.
+    EXPECT_GT(pixelsLike(image, {230, 120, 40}), 500u);
+    const std::string html = dfrecon::testing::slurp(page.string());
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(
+        html, m, std::regex("\"name\":\"PTV\",\"colour\":\\[(\\d+),(\\d+),(\\d+)\\]")));
+    EXPECT_GT(pixelsLike(image, {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])}), 50u);
+}
+
+TEST(HtmlReport, AWholeAtlasOpensWithEveryRoi) {
+    // 41 Brodmann areas from mricron-data's atlas: a 40 MB page.
+#ifdef DFRECON_SANITIZE_BUILD
+    GTEST_SKIP() << "41 reconstructions take minutes under the sanitizers; the two-ROI tests run";
+#endif
+    const std::string atlas = "/usr/share/mricron/templates/brodmann.nii.gz";
+    if (!fs::exists(kChromium) || !fs::exists(atlas))
+        GTEST_SKIP() << "needs " << kChromium << " and " << atlas << " (make setup)";
+    const fs::path page = scratch() / "atlas.html";
+    const CliResult run = runDfrecon("-q reconstruct " + atlas + " --all -o " +
+                                     (scratch() / "atlas").string() + " --report " + page.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const CliResult dom = browse(page, "--dump-dom");
+    ASSERT_EQ(dom.exitCode, 0) << dom.err;
+    EXPECT_EQ(bodyData(dom.out, "webgl"), "1");
+    EXPECT_EQ(bodyData(dom.out, "surfaces"), "41");
+    EXPECT_NE(dom.out.find("label_48"), std::string::npos);  // the table's last row
+}
