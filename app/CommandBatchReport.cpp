@@ -9,18 +9,49 @@
 
 #include "app/BatchReport.hpp"
 #include "app/Commands.hpp"
+#include "app/HtmlReport.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputError.hpp"
 #include "io/JsonText.hpp"
+#include "io/MeshIO.hpp"
 
 namespace dfrecon::app {
 
 namespace {
 
 struct BatchReportArgs {
-    std::string folder, output;
+    std::string folder, output, htmlPath;
     bool noSeconds = false, json = false;
 };
+
+// The HTML report: the table beside every written mesh (OUT/ID/FILE), each
+// in the palette's colour of its row. A mesh that cannot be read is named
+// under the table, not drawn.
+void writeBatchPage(const BatchReportArgs& args, const nlohmann::ordered_json& rows,
+                    bool withSeconds) {
+    namespace fs = std::filesystem;
+    HtmlReport page;
+    page.title = "dfrecon batch-report " + fs::path(args.folder).filename().string();
+    for (const std::string& column : kBatchReportColumns)
+        if (withSeconds || column != "seconds") page.columns.push_back(column);
+    page.rows = rows;
+    std::string leftOut;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!rows[i]["mesh"].is_string()) continue;
+        const std::string mesh = rows[i]["mesh"].get<std::string>();
+        try {
+            ReportSurface s{mesh,
+                            categoricalColour(std::int64_t(i) + 1),
+                            readTriangleSoup((fs::path(args.folder) / mesh).string()),
+                            {}};
+            if (!addSurface(page, std::move(s))) leftOut += (leftOut.empty() ? "" : ", ") + mesh;
+        } catch (const std::exception& e) {
+            leftOut += (leftOut.empty() ? "" : ", ") + mesh + " (" + e.what() + ")";
+        }
+    }
+    if (!leftOut.empty()) page.note = "Not drawn: " + leftOut + ".";
+    writeHtmlReport(args.htmlPath, page);
+}
 
 void runBatchReport(const BatchReportArgs& args) {
     namespace fs = std::filesystem;
@@ -43,6 +74,7 @@ void runBatchReport(const BatchReportArgs& args) {
                           [&](std::ostream& out) { out << batchReportCsv(rows, withSeconds); });
     writeStreamAtomically(base + ".json",
                           [&](std::ostream& out) { out << jsonText(report, 2) << "\n"; });
+    if (!args.htmlPath.empty()) writeBatchPage(args, rows, withSeconds);
     std::size_t failed = 0, invalid = 0;
     for (const auto& row : rows) {
         const int code = row["exitCode"].is_number() ? row["exitCode"].get<int>() : 0;
@@ -86,6 +118,9 @@ void addBatchReportCommand(CLI::App& root, const GlobalOptions&) {
                     "CSV table (with --json the JSON table) to standard output instead, no files");
     cmd->add_flag("--no-seconds", args->noSeconds,
                   "Leave the seconds column out (the rest does not depend on the run)");
+    cmd->add_option("--html", args->htmlPath,
+                    "Also write FILE.html: the table beside an interactive 3D view of every "
+                    "written mesh (one self-contained page, no network needed to open it)");
     cmd->add_flag("--json", args->json, "Print a JSON summary instead of a line");
     cmd->callback([args] { runBatchReport(*args); });
 }

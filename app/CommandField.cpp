@@ -49,10 +49,13 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     propagateAlongZ(runtime, field);
     const double propagateSeconds = watch.lap();
 
-    // Uneven gaps cannot be a scale map: resample at the smallest one.
+    // Half the smallest gap, as --help and docs/distance-field.md say: the
+    // samples start at the cap layer half a gap before the first slice, so
+    // a whole gap put them halfway between the slices and missed every one.
+    // (Uneven gaps cannot be a scale map: the smallest one sets the step.)
     const double zStep = args.isotropic      ? fields.grid.pixelMm
-                         : spacing.minMm > 0 ? spacing.minMm
-                                             : 1.0;
+                         : spacing.minMm > 0 ? spacing.minMm / 2
+                                             : 0.5;
     watch.restartLap();
     const DenseDistanceVolume volume = resampleAlongZ(field, zStep);
     LevelSetWriteOptions options;
@@ -115,10 +118,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "axes, in patient LPS mm (the axes are x, y, z for axial stacks); metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input,
-                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
-                    "(.dcm)")
-        ->required();
+    cmd->add_option("file", args->input, kContourInputHelp)->required();
     cmd->add_option("-o,--output", args->output, "Output .vdb file")
         ->required()
         ->check(kNotStandardStream);

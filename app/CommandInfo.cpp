@@ -80,6 +80,25 @@ std::string counted(std::size_t n, const std::string& noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
+// One line per ROI: what a user checks first (planes, contours, the volume
+// the planning system shows, where it lies).
+void printRoiSummary(const Roi& roi) {
+    std::cout << "  ";
+    if (roi.number) std::cout << std::setw(3) << *roi.number << " ";
+    std::cout << "\"" << roi.name << "\": " << counted(roi.slices.size(), "plane") << ", "
+              << counted(roi.contourCount(), "contour") << ", " << std::setprecision(6)
+              << contourVolumeMm3(roi) / 1000 << " cc";
+    const Extent3 extent = patientExtentOf(roi);
+    if (!extent.empty) std::cout << ", z " << extent.min[2] << " .. " << extent.max[2] << " mm";
+    if (roi.slices.size() > 1) {
+        const SpacingStats spacing = spacingOf(roi);
+        std::cout << ", spacing " << spacing.minMm
+                  << (spacing.uniform ? "" : " .. " + std::to_string(spacing.maxMm)) << " mm";
+    }
+    if (!roi.frame.isIdentity()) std::cout << ", " << roi.frame.orientationName() << " planes";
+    std::cout << "\n";
+}
+
 void printRoi(const Roi& roi, const RtStructRoiInfo* dicom) {
     const Extent3 extent = patientExtentOf(roi);
     const SpacingStats spacing = spacingOf(roi);
@@ -136,7 +155,7 @@ void reportDefects(const ContourSet& contours) {
                           kExitBadInput);
 }
 
-void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
+void runInfo(const GlobalOptions& global, const std::string& path, bool json, bool perPlane) {
     const ContourInput load = loadContours(path, global);
     if (json) {
         nlohmann::ordered_json rois = nlohmann::ordered_json::array();
@@ -160,8 +179,19 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
     std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI");
     if (!load.labelTable.empty()) std::cout << ", names from " << load.labelTable;
     std::cout << "\n";
+    std::size_t contours = 0, planes = 0;
     for (const Roi& roi : load.contours.rois) {
-        printRoi(roi, load.dicomInfo(roi));
+        contours += roi.contourCount();
+        planes += roi.slices.size();
+    }
+    if (!perPlane)
+        std::cout << counted(planes, "plane") << " and " << counted(contours, "contour")
+                  << " in all (--slices lists every plane)\n";
+    for (const Roi& roi : load.contours.rois) {
+        if (perPlane)
+            printRoi(roi, load.dicomInfo(roi));
+        else
+            printRoiSummary(roi);
         if (roi.defect) std::cout << "  NOT READ: " << roi.defect->problem() << "\n";
     }
     reportDefects(load.contours);
@@ -172,17 +202,17 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json) {
 void addInfoCommand(CLI::App& root, const GlobalOptions& global) {
     struct Args {
         std::string path;
-        bool json = false;
+        bool json = false, slices = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = root.add_subcommand(
         "info", "Validate a contour file and summarise it: ROIs, slices, contours, holes, extent");
-    cmd->add_option("file", args->path,
-                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
-                    "(.dcm)")
-        ->required();
-    cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
-    cmd->callback([&global, args] { runInfo(global, args->path, args->json); });
+    cmd->add_option("file", args->path, kContourInputHelp)->required();
+    cmd->add_flag("--slices", args->slices,
+                  "Every ROI in full (colour, holes, extent, spacing) and every plane with its "
+                  "contours and holes; by default one line per ROI");
+    cmd->add_flag("--json", args->json, "Print a JSON report instead of text (always in full)");
+    cmd->callback([&global, args] { runInfo(global, args->path, args->json, args->slices); });
 }
 
 }  // namespace dfrecon::app

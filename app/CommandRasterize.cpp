@@ -229,11 +229,15 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         const std::size_t kept =
             std::size_t(std::count_if(inside[r].begin(), inside[r].end(),
                                       [&](std::size_t v) { return owner[v] == std::int32_t(r); }));
+        // volumeCc is the ROI's own, before overlaps go to the smaller ROI;
+        // labelledVolumeCc what the map holds under its label.
         roiReports.push_back({{"roi", rois[r]->name},
                               {"label", labels[r]},
                               {"insideVoxels", inside[r].size()},
                               {"volumeCc", double(inside[r].size()) * voxelMm3 / 1000},
-                              {"voxelsGivenToSmallerRois", inside[r].size() - kept}});
+                              {"voxelsGivenToSmallerRois", inside[r].size() - kept},
+                              {"labelledVoxels", kept},
+                              {"labelledVolumeCc", double(kept) * voxelMm3 / 1000}});
         if (!args.json)
             std::cout << rois[r]->name << ": label " << labels[r] << ", " << inside[r].size()
                       << " voxels inside (" << double(inside[r].size()) * voxelMm3 / 1000 << " cc)"
@@ -286,10 +290,7 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         "(ITK-SNAP format, names and colours) is written beside it as STEM.txt, which dfrecon "
         "and ITK-SNAP read back. Exit codes: 0 done, 1 usage, 2 bad input (with --all: some "
         "ROIs could not be read; the others are in the map), 3 runtime failure.");
-    cmd->add_option("file", args->input,
-                    "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT "
-                    "(.dcm) or a label volume")
-        ->required();
+    cmd->add_option("file", args->input, kContourInputHelp)->required();
     cmd->add_option("-o,--output", args->output,
                     "Output label map: .nrrd, .seg.nrrd, .nii or .nii.gz")
         ->required()

@@ -78,6 +78,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     std::string invalid, failed;
     int firstFailure = 0;
     HtmlReport page;
+    std::string leftOut;  // surfaces past the report's triangle budget
     // With several workers each ROI's own bar would fight for the line, so
     // the bar counts ROIs instead.
     const std::size_t jobs =
@@ -112,9 +113,11 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             } else if (outcome.invalid) {
                 invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
             }
-            if (!args.reportPath.empty() && outcome.failure == 0)
-                page.surfaces.push_back(
-                    {rois[i]->name, displayColour(*rois[i], i), std::move(outcome.surface), {}});
+            if (!args.reportPath.empty() && outcome.failure == 0 &&
+                !addSurface(
+                    page,
+                    {rois[i]->name, displayColour(*rois[i], i), std::move(outcome.surface), {}}))
+                leftOut += (leftOut.empty() ? "" : ", ") + rois[i]->name;
             reports.push_back(std::move(outcome.report));
             overall.update(double(i + 1) / double(rois.size()));
         });
@@ -122,6 +125,9 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     if (!args.reportPath.empty()) {
         page.title = "dfrecon reconstruct " + fs::path(args.input).filename().string();
         page.columns = kRoiReportColumns;
+        if (!leftOut.empty())
+            page.note = "Not drawn (more than " + std::to_string(kMaxReportTriangles) +
+                        " triangles in all): " + leftOut + ".";
         for (const nlohmann::ordered_json& report : reports)
             page.rows.push_back(roiReportRow(report));
         writeHtmlReport(args.reportPath, page);
@@ -179,10 +185,7 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         "solid is reported with the slabs where it fails and not written (unless "
         "--allow-invalid). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure, 4 a "
         "surface is not a valid closed solid. See docs/reconstruction.md.");
-    cmd->add_option("file", args->input,
-                    "Input contours: .slices (- reads it from standard input) or DICOM RTSTRUCT "
-                    "(.dcm)")
-        ->required();
+    cmd->add_option("file", args->input, kContourInputHelp)->required();
     cmd->add_option("-o,--output", args->output,
                     "Output mesh file, - for standard output (with --format), or folder with "
                     "--all")

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/HtmlReport.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
@@ -37,6 +38,7 @@ struct SdmArgs {
     double maxErrorMm = 0;
     double maxDistanceMm = 0;
     bool json = false, noImages = false, noPairs = false;
+    std::string reportPath;
     std::vector<std::string> meshFormats{"ply", "vtk"};
 };
 
@@ -107,6 +109,28 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
     for (std::size_t k = 0; k < n.size(); ++k)
         labels[k] = n[k] < 0 ? 0xffffffffu : std::uint32_t(n[k]);
     writeLabelPng((dir / (name + "_nearest.png")).string(), labels.data(), frame, {});
+}
+
+// The HTML report: the objects' table beside the meshes coloured by their
+// vertices' signed distance to the nearest other mesh.
+void writeSdmPage(const std::string& path, const SurfaceScene& scene,
+                  const std::vector<std::string>& names, const std::vector<ObjectDistanceMap>& maps,
+                  const nlohmann::ordered_json& objects, double colourFarMm) {
+    HtmlReport page;
+    page.title = "dfrecon sdm";
+    page.columns = {"name", "triangles", "closed", "minDistanceMm", "texelsInsideOthers"};
+    page.rows = objects;
+    page.valueName = "signed distance to the nearest other mesh, mm (negative inside it)";
+    page.valueScaleMm = colourFarMm;
+    std::string leftOut;
+    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
+        ReportSurface s{names[o], categoricalColour(std::int64_t(o) + 1), scene.object(o), {}};
+        for (const ClosestPrimitive& c : maps[o].vertices)
+            s.valuesMm.push_back(c.object < 0 ? INFINITY : float(c.distanceMm));
+        if (!addSurface(page, std::move(s))) leftOut += (leftOut.empty() ? "" : ", ") + names[o];
+    }
+    if (!leftOut.empty()) page.note = "Not drawn (too many triangles in all): " + leftOut + ".";
+    writeHtmlReport(path, page);
 }
 
 void runSdm(const SdmArgs& args, const GlobalOptions& global) {
@@ -206,6 +230,8 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
         {"totalSeconds", watch.total()}};
     writeStreamAtomically((dir / "report.json").string(),
                           [&](std::ostream& out) { out << jsonText(report, 2) << "\n"; });
+    if (!args.reportPath.empty())
+        writeSdmPage(args.reportPath, scene, names, maps, objects, colourFarMm);
     if (args.json) {
         std::cout << jsonText(report, 2) << "\n";
         return;
@@ -280,6 +306,11 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::IsMember({"ply", "vtk", "vtp"}));
     cmd->add_flag("--no-images", args->noImages, "Skip the atlas TIFF and PNG maps");
     cmd->add_flag("--no-pairs", args->noPairs, "Skip the pairwise proximity queries");
+    cmd->add_option("--report", args->reportPath,
+                    "Also write FILE.html: one self-contained page (no network needed) with the "
+                    "objects' table beside an interactive 3D view of the meshes coloured by each "
+                    "vertex's signed distance to the nearest other mesh (blue inside it, white "
+                    "touching, red away)");
     cmd->add_flag("--json", args->json, "Print the JSON report to stdout too");
     cmd->callback([args, &global] { runSdm(*args, global); });
 }

@@ -52,12 +52,21 @@ std::string scriptSafe(std::string text) {
 
 }  // namespace
 
+bool addSurface(HtmlReport& report, ReportSurface surface) {
+    std::size_t triangles = surface.surface.triangles.size();
+    for (const ReportSurface& s : report.surfaces) triangles += s.surface.triangles.size();
+    if (triangles > kMaxReportTriangles) return false;
+    report.surfaces.push_back(std::move(surface));
+    return true;
+}
+
 void writeHtmlReport(const std::string& path, const HtmlReport& report) {
     nlohmann::ordered_json data{{"title", report.title},
                                 {"columns", report.columns},
                                 {"rows", report.rows},
                                 {"valueName", report.valueName},
                                 {"valueScaleMm", report.valueScaleMm},
+                                {"note", report.note},
                                 {"surfaces", nlohmann::ordered_json::array()}};
     for (const ReportSurface& s : report.surfaces)
         data["surfaces"].push_back(surfaceJson(s, report.valueScaleMm));

@@ -34,7 +34,18 @@ struct HtmlReport {
     /// mm") and the magnitude the colour scale saturates at.
     std::string valueName;
     double valueScaleMm = 1;
+    /// A line under the table (e.g. which surfaces were left out).
+    std::string note;
 };
+
+/// Most triangles a report shows in all (about 130 MB of page): a command
+/// adds surfaces while addSurface() says there is room, and names the rest
+/// in HtmlReport::note.
+inline constexpr std::size_t kMaxReportTriangles = std::size_t(8) << 20;
+
+/// Adds `surface` to `report` unless that would take it past
+/// kMaxReportTriangles; returns whether it did. O(1) (the surface is moved).
+bool addSurface(HtmlReport& report, ReportSurface surface);
 
 /// Writes `report` as one HTML file, atomically (io/AtomicWrite). The page
 /// builds the table and the 3D view from data embedded in it: positions as

@@ -23,6 +23,13 @@ struct ContourInput {
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
 };
 
+/// The help text of every command's contour input, from what loadContours
+/// reads.
+inline constexpr const char* kContourInputHelp =
+    "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT (.dcm), a label "
+    "volume (.nrrd .nhdr .nii .nii.gz: one ROI per label) or a mask stack (a folder with "
+    "stack.json)";
+
 /// How messages name standard input ("-").
 inline constexpr const char* kStandardInputName = "<stdin>";
 

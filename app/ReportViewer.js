@@ -49,6 +49,11 @@
     });
   }
   document.getElementById('table').appendChild(table);
+  if (data.note) {
+    const p = document.createElement('p');
+    p.textContent = data.note;
+    document.getElementById('table').appendChild(p);
+  }
   if (data.valueName) {
     document.getElementById('legend').textContent = 'Colours: ' + data.valueName +
         ', blue (−' + data.valueScaleMm.toPrecision(3) + ') to white (0) to red (+' +

@@ -19,12 +19,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "bench/SlabErrors.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
-#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "shapes/SurfaceReference.hpp"

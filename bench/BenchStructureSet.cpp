@@ -16,11 +16,11 @@
 #include <nlohmann/json.hpp>
 
 #include "app/OrderedParallel.hpp"
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/MaskContours.hpp"
 #include "io/RtStruct.hpp"
-#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 

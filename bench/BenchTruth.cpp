@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "bench/SlabErrors.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -30,7 +31,6 @@
 #include "geometry/TriangleBvh.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
-#include "baselines/MarchingCubesBaselines.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/SurfaceDistance.hpp"
 

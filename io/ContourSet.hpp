@@ -69,6 +69,11 @@ struct ContourRepairOptions {
     bool selfCrossings = false;
 };
 
+/// What errors about a contour crossing itself add: the option that
+/// resolves it.
+inline constexpr const char* kRepairHint =
+    " (--repair-contours replaces such a contour by the simple contours of its region)";
+
 /// At most this many cuts resolve one self-crossing contour; more is not a
 /// drawing slip but noise, and stays an error.
 inline constexpr std::size_t kMaxSelfCrossingCuts = 10'000;

@@ -602,7 +602,7 @@ class Reader {
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(plane +
                  "self-intersecting contour: " + segment(defect->contourA, defect->segmentA) + how +
-                 "its segment " + std::to_string(defect->segmentB + 1));
+                 "its segment " + std::to_string(defect->segmentB + 1) + kRepairHint);
         fail(plane + "contours cross: " + segment(defect->contourA, defect->segmentA) + how +
              segment(defect->contourB, defect->segmentB));
     }

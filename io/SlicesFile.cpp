@@ -453,7 +453,7 @@ class Parser {
         const int line = a.pointLines[defect->segmentA];
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(line, "self-intersecting contour (line " + std::to_string(a.keywordLine) +
-                           "): " + segA + how + segB);
+                           "): " + segA + how + segB + kRepairHint);
         fail(line, "contours of ROI '" + name + "' cross on slice z=" + formatNumber(slice.zMm) +
                        ": contour at line " + std::to_string(a.keywordLine) + " " + segA + how +
                        "contour at line " + std::to_string(b.keywordLine) + " " + segB);

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -600,6 +601,24 @@ TEST(Cli, CompareTouchingNeighboursOfAnAtlas) {
     ASSERT_TRUE(report["onPlanes"]["compared"].get<bool>());
     EXPECT_EQ(report["onPlanes"]["intersectionMm3"].get<double>(), 0);
     EXPECT_GT(report["onPlanes"]["addedPathLengthMm"].get<double>(), 0);
+}
+
+TEST(Cli, InfoSummarisesByDefaultAndListsPlanesOnRequest) {
+    // One line per ROI with its contour volume (100 mm² × 2 mm × 4 planes),
+    // every plane only with --slices.
+    const fs::path file = scratch() / "info-summary.slices";
+    std::ofstream(file) << "dfrecon-slices 1\nunits mm\n"
+                        << squareRoi("PTV", 0, 10) << squareRoi("Cord", 30, 4);
+    const Result summary = runDfrecon("info " + file.string());
+    ASSERT_EQ(summary.exitCode, 0) << summary.err;
+    EXPECT_NE(summary.out.find("\"PTV\": 4 planes, 4 contours, 0.8 cc"), std::string::npos)
+        << summary.out;
+    EXPECT_EQ(summary.out.find("z         0: 1 contour"), std::string::npos) << summary.out;
+    const Result full = runDfrecon("info --slices " + file.string());
+    ASSERT_EQ(full.exitCode, 0) << full.err;
+    EXPECT_NE(full.out.find("z         6: 1 contour"), std::string::npos) << full.out;
+    EXPECT_GT(std::count(full.out.begin(), full.out.end(), '\n'),
+              std::count(summary.out.begin(), summary.out.end(), '\n') + 6);
 }
 
 TEST(Cli, OneBadRoiInAnRtStructDoesNotBlockTheOthers) {

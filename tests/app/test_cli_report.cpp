@@ -20,13 +20,17 @@ namespace {
 
 const char* const kChromium = "/usr/bin/chromium";
 
+// A folder per test: ctest runs the tests of this file as processes side
+// by side, and each browser needs a profile of its own.
 fs::path scratch() {
-    static const fs::path dir = [] {
-        const fs::path d = fs::temp_directory_path() / "dfrecon-test-report";
-        fs::remove_all(d);
-        fs::create_directories(d);
-        return d;
-    }();
+    const fs::path dir = fs::temp_directory_path() / "dfrecon-test-report" /
+                         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    static std::string made;
+    if (made != dir.string()) {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        made = dir.string();
+    }
     return dir;
 }
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "geometry/MeshCheck.hpp"
 #include "baselines/MarchingCubesBaselines.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 using namespace dfrecon;
