@@ -143,3 +143,42 @@ TEST(HtmlReport, AWholeAtlasOpensWithEveryRoi) {
     EXPECT_EQ(bodyData(dom.out, "surfaces"), "41");
     EXPECT_NE(dom.out.find("label_48"), std::string::npos);  // the table's last row
 }
+
+TEST(HtmlReport, SdmAndBatchReportPagesOpenWithTheirSurfaces) {
+    if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " missing (make setup installs it)";
+    const std::string examples = DFRECON_EXAMPLES;
+    // sdm: the two ROIs' meshes, each vertex coloured by its distance.
+    const fs::path meshes = scratch() / "rois";
+    ASSERT_EQ(
+        runDfrecon("-q reconstruct " + examples + "/two-rois.slices --all -o " + meshes.string())
+            .exitCode,
+        0);
+    const fs::path sdmPage = scratch() / "sdm.html";
+    const CliResult sdm =
+        runDfrecon("-q sdm " + (meshes / "Left_Kidney.ply").string() + " " +
+                   (meshes / "PTV.ply").string() + " -o " + (scratch() / "sdm").string() +
+                   " --size 64 --no-images --report " + sdmPage.string());
+    ASSERT_EQ(sdm.exitCode, 0) << sdm.err;
+    const CliResult sdmDom = browse(sdmPage, "--dump-dom");
+    EXPECT_EQ(bodyData(sdmDom.out, "webgl"), "1");
+    EXPECT_EQ(bodyData(sdmDom.out, "surfaces"), "2");
+    EXPECT_NE(sdmDom.out.find("signed distance to the nearest other mesh"), std::string::npos);
+    // batch-report: a two-entry batch, every written mesh drawn.
+    const fs::path archive = scratch() / "archive";
+    fs::create_directories(archive);
+    fs::copy_file(examples + "/two-rois.slices", archive / "two-rois.slices");
+    fs::copy_file(examples + "/torus.slices", archive / "torus.slices");
+    std::ofstream(archive / "manifest.csv")
+        << "input,id\ntwo-rois.slices,both\ntorus.slices,torus\n";
+    const fs::path out = scratch() / "batch";
+    ASSERT_EQ(runDfrecon("-q batch " + (archive / "manifest.csv").string() + " -o " + out.string())
+                  .exitCode,
+              0);
+    const fs::path batchPage = scratch() / "batch.html";
+    const CliResult report =
+        runDfrecon("batch-report " + out.string() + " --html " + batchPage.string());
+    ASSERT_EQ(report.exitCode, 0) << report.err;
+    const CliResult batchDom = browse(batchPage, "--dump-dom");
+    EXPECT_EQ(bodyData(batchDom.out, "webgl"), "1");
+    EXPECT_EQ(bodyData(batchDom.out, "surfaces"), "3");  // two ROIs and the torus
+}
