@@ -101,7 +101,7 @@ TEST(PlaneComparison, HolesAndIdenticalContours) {
     // A ring (r 10 with a hole of r 5) against the full disc of r 10: the
     // intersection is the ring; the hole's contour is all added path for A
     // (5 from the disc's edge, beyond any tolerance under 5).
-    const Polygon outer = circle({0, 0}, 10, 256), hole = circle({0, 0}, 5, 256, true);
+    const Polygon outer = circle({0, 0}, 10, 64), hole = circle({0, 0}, 5, 64, true);
     const Roi ring = stack({outer, hole}, {0, 3, 6});
     const Roi disc = stack({outer}, {0, 3, 6});
     const PlaneComparison c = comparePlanes(ring, disc, {2.0});
