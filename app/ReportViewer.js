@@ -40,10 +40,14 @@
         box.checked = true;
         box.onchange = () => { if (meshes[text]) { meshes[text].visible = box.checked; draw(); } };
         const s = data.surfaces.find((x) => x.name === text);
-        const swatch = document.createElement('span');
-        swatch.className = 'swatch';
-        swatch.style.background = 'rgb(' + s.colour.join(',') + ')';
-        td.append(box, swatch);
+        td.append(box);
+        // A surface coloured by its values has no one colour to show.
+        if (!s.pointColours) {
+          const swatch = document.createElement('span');
+          swatch.className = 'swatch';
+          swatch.style.background = 'rgb(' + s.colour.join(',') + ')';
+          td.append(swatch);
+        }
       }
       td.append(text);
     });
