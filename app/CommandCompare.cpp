@@ -47,28 +47,34 @@ struct CompareArgs {
     bool json = false;
 };
 
-/// One side of a pair: its surface, and its contours where it came from a
-/// contour file (the per-plane comparison needs them).
+/// One side of a pair: its surface with its check (validity, volume, area:
+/// the overlap's inputs, checked once), and its contours where it came from
+/// a contour file (the per-plane comparison needs them).
 struct Structure {
     TriangleSoup surface;
+    MeshCheckReport check;
     const Roi* roi = nullptr;
 };
 
-/// The surface of an ROI, reconstructed with reconstruct's defaults.
+/// The surface of an ROI, reconstructed with reconstruct's defaults, in
+/// patient coordinates as compared.
 Structure reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
     if (roi.defect) throw *roi.defect;
     Reconstruction result = reconstructSurface(runtime, roi);
-    if (!result.check.validSolid())
-        throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
     toPatient(result.surface, roi.frame);
-    return {std::move(result.surface), &roi};
+    Structure s{std::move(result.surface), {}, &roi};
+    s.check = checkMesh(s.surface);
+    if (!s.check.validSolid())
+        throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
+    return s;
 }
 
-TriangleSoup readSolid(const std::string& path) {
-    TriangleSoup soup = readTriangleSoup(path);
-    if (!checkMesh(soup).validSolid())
+Structure readSolid(const std::string& path) {
+    Structure s{readTriangleSoup(path), {}, nullptr};
+    s.check = checkMesh(s.surface);
+    if (!s.check.validSolid())
         throw InputError(path, 0, "not a valid closed solid (dfrecon check says where)");
-    return soup;
+    return s;
 }
 
 struct PairResult {
@@ -83,7 +89,7 @@ PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs
                        ocl::Runtime& runtime) {
     Stopwatch watch;
     PairResult r;
-    r.overlap = overlapOf(a.surface, b.surface);
+    r.overlap = overlapOf(a.surface, b.surface, a.check, b.check);
     r.overlapSeconds = watch.lap();
     r.distances = surfaceDistances(runtime, a.surface, b.surface, args.spacingMm, args.toleranceMm);
     r.centroidDistanceMm =
@@ -235,7 +241,7 @@ bool isStructureSetRun(const CompareArgs& args, const ContourInput* a, const Con
     if (!a || !b || !args.roiA.empty() || !args.roiB.empty()) return false;
     auto several = [](const ContourInput& in) {
         std::size_t n = 0;
-        for (const Roi& roi : in.contours.rois) n += !roi.slices.empty() || roi.defect.has_value();
+        for (const Roi& roi : in.contours.rois) n += isComparable(roi);
         return n > 1;
     };
     return !args.matches.empty() || several(*a) || several(*b);
@@ -247,7 +253,7 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
     ocl::Runtime runtime(global.device);
     auto structure = [&](const std::string& path, const ContourInput* input,
                          const std::string& roi) {
-        if (!input) return Structure{readSolid(path), nullptr};
+        if (!input) return readSolid(path);
         return reconstructed(runtime, path, *selectRois(input->contours, roi, false).front());
     };
     const Structure a = structure(args.a, inputA, args.roiA);

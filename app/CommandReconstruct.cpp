@@ -18,6 +18,7 @@
 #include "app/WorkerRuntimes.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "io/RtStruct.hpp"
 
 namespace dfrecon::app {
 
@@ -53,9 +54,10 @@ nlohmann::ordered_json roiReportRow(const nlohmann::ordered_json& report) {
     return row;
 }
 
-// The colour an ROI is drawn in: its own, else the categorical palette's.
+// The colour an ROI is drawn in: its own, else the one `convert` gives it
+// in an RTSTRUCT (io/RtStruct.hpp's palette, by position).
 Rgb displayColour(const Roi& roi, std::size_t position) {
-    return roi.colour ? *roi.colour : categoricalColour(std::int64_t(position) + 1);
+    return roi.colour.value_or(kDefaultRoiColours[position % kDefaultRoiColours.size()]);
 }
 
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {

@@ -9,20 +9,16 @@ namespace dfrecon::app {
 
 namespace {
 
-bool usable(const Roi& roi) {
-    return !roi.slices.empty() || roi.defect.has_value();
-}
-
 std::vector<const Roi*> usableRois(const ContourSet& set) {
     std::vector<const Roi*> rois;
     for (const Roi& roi : set.rois)
-        if (usable(roi)) rois.push_back(&roi);
+        if (isComparable(roi)) rois.push_back(&roi);
     return rois;
 }
 
 const Roi& namedRoi(const ContourSet& set, const std::string& name, const char* side) {
     const Roi* roi = set.findRoi(name);
-    if (!roi || !usable(*roi))
+    if (!roi || !isComparable(*roi))
         throw std::invalid_argument(std::string("--match: ") + side + " has no ROI '" + name +
                                     "' with contours");
     return *roi;
@@ -56,6 +52,10 @@ void pairByKey(std::vector<const Roi*>& onlyA, std::vector<const Roi*>& onlyB, K
 }
 
 }  // namespace
+
+bool isComparable(const Roi& roi) {
+    return !roi.slices.empty() || roi.defect.has_value();
+}
 
 std::string foldedRoiName(const std::string& name) {
     std::string folded;

@@ -23,6 +23,10 @@ struct RoiMatching {
     std::vector<const Roi*> onlyA, onlyB;  // unmatched, in their sets' order
 };
 
+/// Whether `roi` takes part in a comparison: it has contours, or a defect
+/// to report (what selectRois(all) takes). O(1).
+bool isComparable(const Roi& roi);
+
 /// `name` with ASCII letters lower-cased and every byte that is not an
 /// ASCII letter or digit dropped. O(length).
 std::string foldedRoiName(const std::string& name);

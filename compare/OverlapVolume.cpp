@@ -120,18 +120,20 @@ double Overlap::jaccard() const {
 }
 
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b) {
+    return overlapOf(a, b, checkMesh(a), checkMesh(b));
+}
+
+Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckReport& checkA,
+                  const MeshCheckReport& checkB) {
     // The check measures what the overlap needs of each solid alone.
-    MeshCheckReport checks[2];
-    for (int k = 0; k < 2; ++k) {
-        checks[k] = checkMesh(k == 0 ? a : b);
-        if (!checks[k].validSolid())
-            throw std::invalid_argument(std::string("surface ") + (k == 0 ? "A" : "B") +
+    for (const MeshCheckReport* check : {&checkA, &checkB})
+        if (!check->validSolid())
+            throw std::invalid_argument(std::string("surface ") + (check == &checkA ? "A" : "B") +
                                         " is not a valid closed solid (dfrecon check says where)");
-    }
-    const double areaB = checks[1].areaMm2;
+    const double areaB = checkB.areaMm2;
     Overlap overlap;
-    overlap.volumeAMm3 = checks[0].volumeMm3;
-    overlap.volumeBMm3 = checks[1].volumeMm3;
+    overlap.volumeAMm3 = checkA.volumeMm3;
+    overlap.volumeBMm3 = checkB.volumeMm3;
     // The same surface twice: the intersection is the solid itself.
     if (a.points == b.points && a.triangles == b.triangles) {
         overlap.intersectionMm3 = overlap.volumeAMm3;

@@ -5,6 +5,7 @@
 // compute on label maps is off by the partial voxels along both surfaces).
 #include <optional>
 
+#include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
@@ -47,5 +48,10 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 /// once. Work: O((n + k) log n) for n triangles and k intersecting
 /// pairs, with exact arithmetic's constant, up to four times over.
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b);
+
+/// The same where the caller has checked both solids already (checkA =
+/// checkMesh(a), checkB = checkMesh(b)): they are not checked again.
+Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckReport& checkA,
+                  const MeshCheckReport& checkB);
 
 }  // namespace dfrecon

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "field/ClosestPrimitives.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleBvh.hpp"
 
 namespace dfrecon {
@@ -134,14 +135,6 @@ DirectedDistances summarise(std::vector<WeightedDistance>& samples, double toler
     return d;
 }
 
-double areaOf(const TriangleSoup& soup) {
-    double area = 0;
-    for (const auto& t : soup.triangles)
-        area += 0.5 * length(cross(soup.points[t[1]] - soup.points[t[0]],
-                                   soup.points[t[2]] - soup.points[t[0]]));
-    return area;
-}
-
 // The distances from every cell centroid of `from` to `to` over its
 // hierarchy, each query starting from the last one's triangle.
 std::vector<WeightedDistance> hostDistances(const TriangleSoup& from, const TriangleBvh& to,
@@ -196,8 +189,8 @@ SurfaceDistances combine(const TriangleSoup& a, const TriangleSoup& b, double sp
     SurfaceDistances d;
     d.spacingMm = spacingMm;
     d.toleranceMm = toleranceMm;
-    d.areaAMm2 = areaOf(a);
-    d.areaBMm2 = areaOf(b);
+    d.areaAMm2 = measureSurface(a).areaMm2;
+    d.areaBMm2 = measureSurface(b).areaMm2;
     d.aToB = summarise(fromA, toleranceMm);
     d.bToA = summarise(fromB, toleranceMm);
     d.hd95PooledMm = weightedPercentile95(fromA, fromB);
