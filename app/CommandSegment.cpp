@@ -1,7 +1,8 @@
 // dfrecon segment MESH -k N -o OUT.ply: compact, near-equal-area regions
 // whose borders follow sharp creases (geodesic centroidal Voronoi
 // tessellation; docs/segmentation.md), with per-face region ids and colours
-// in the PLY and a report of each region.
+// in the PLY, a report of each region and, with --report, an HTML page
+// that draws the regions in their colours.
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -12,10 +13,12 @@
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
+#include "app/HtmlReport.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
+#include "io/Colours.hpp"
 #include "io/JsonText.hpp"
 #include "segment/Segmentation.hpp"
 
@@ -24,11 +27,46 @@ namespace dfrecon::app {
 namespace {
 
 struct SegmentArgs {
-    std::string input, output, speed = nameOf(kSpeedKindNames, SpeedKind::EdgeAttractive);
+    std::string input, output, reportPath,
+        speed = nameOf(kSpeedKindNames, SpeedKind::EdgeAttractive);
     int regions = 10;
     bool json = false, ascii = false, noDisks = false;
     SegmentOptions options;
 };
+
+// One row per region, and one surface per region in the colour the output
+// mesh gives it (the same categorical colour), so the page shows what a
+// viewer of the PLY shows and each region can be hidden on its own.
+void writeSegmentPage(const std::string& path, const TriMesh& mesh,
+                      const std::vector<int>& faceRegion, const nlohmann::ordered_json& regions) {
+    HtmlReport page;
+    page.title = "dfrecon segment";
+    page.columns = {"region", "areaMm2", "perimeterMm", "compactness", "faces", "disk"};
+    page.rows = regions;
+    const TriangleSoup whole = toTriangleSoup(mesh);
+    std::vector<TriangleSoup> parts(regions.size());
+    for (std::size_t f = 0; f < whole.triangles.size(); ++f) {
+        // -1: a face no front reached (a component without a seed).
+        if (faceRegion[f] < 0 || std::size_t(faceRegion[f]) >= parts.size()) continue;
+        TriangleSoup& part = parts[std::size_t(faceRegion[f])];
+        std::array<std::uint32_t, 3> t{};
+        for (int c = 0; c < 3; ++c) {
+            t[std::size_t(c)] = std::uint32_t(part.points.size());
+            part.points.push_back(whole.points[whole.triangles[f][std::size_t(c)]]);
+        }
+        part.triangles.push_back(t);
+    }
+    std::size_t notDrawn = 0;
+    for (std::size_t r = 0; r < parts.size(); ++r) {
+        // Named as its row, so the table shows its swatch and a box to hide it.
+        ReportSurface s{
+            std::to_string(r), categoricalColour(std::int64_t(r)), std::move(parts[r]), {}};
+        if (!addSurface(page, std::move(s))) ++notDrawn;
+    }
+    if (notDrawn > 0)
+        page.note = std::to_string(notDrawn) + " regions not drawn (too many triangles in all).";
+    writeHtmlReport(path, page);
+}
 
 void runSegment(SegmentArgs args, const GlobalOptions& global) {
     const Stopwatch watch;
@@ -45,20 +83,12 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
     args.options.progress = [&progress](double done) { progress.update(done); };
     const Segmentation s = segmentMesh(input.graph, args.options);
     progress.finish();
-    writeRegions(std::move(input.mesh), s.faceRegion, args.output, !args.ascii);
 
     std::vector<double> areas;
     for (const RegionReport& r : s.regions) areas.push_back(r.areaMm2);
     const double mean = std::accumulate(areas.begin(), areas.end(), 0.0) / double(areas.size());
     double variance = 0;
     for (double a : areas) variance += (a - mean) * (a - mean) / double(areas.size());
-    if (!args.json) {
-        std::cout << args.input << ": " << s.regions.size() << " regions (" << s.seedsAdded
-                  << " added for disks), area " << mean << " ± " << std::sqrt(variance) << " mm², "
-                  << s.iterations << " Lloyd iterations" << (s.converged ? "" : " (not converged)")
-                  << " -> " << args.output << "\n";
-        return;
-    }
     nlohmann::ordered_json regions = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < s.regions.size(); ++i) {
         const RegionReport& r = s.regions[i];
@@ -69,6 +99,16 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
                            {"compactness", r.compactness},
                            {"faces", r.faces},
                            {"disk", r.disk}});
+    }
+    if (!args.reportPath.empty())
+        writeSegmentPage(args.reportPath, input.mesh, s.faceRegion, regions);
+    writeRegions(std::move(input.mesh), s.faceRegion, args.output, !args.ascii);
+    if (!args.json) {
+        std::cout << args.input << ": " << s.regions.size() << " regions (" << s.seedsAdded
+                  << " added for disks), area " << mean << " ± " << std::sqrt(variance) << " mm², "
+                  << s.iterations << " Lloyd iterations" << (s.converged ? "" : " (not converged)")
+                  << " -> " << args.output << "\n";
+        return;
     }
     const nlohmann::ordered_json out{{"command", "segment"},
                                      {"input", args.input},
@@ -131,6 +171,11 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(kPositive);
     cmd->add_flag("--no-disk-constraint", args->noDisks,
                   "Do not add seeds where a region is not a topological disk");
+    cmd->add_option("--report", args->reportPath,
+                    "Also write FILE.html: one self-contained page (no network needed) with the "
+                    "regions' table beside an interactive 3D view of the surface, each region in "
+                    "its colour")
+        ->check(kNotStandardStream);
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runSegment(*args, global); });

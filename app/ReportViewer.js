@@ -111,7 +111,9 @@
   }
   const centre = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
   const radius = box.isEmpty() ? 100 : Math.max(1, box.getSize(new THREE.Vector3()).length() / 2);
-  const eye = new THREE.Vector3(-0.45, -1, 0.55).normalize().multiplyScalar(3.2 * radius);
+  // The bounding sphere fits a 35° view at 3.2 radii; 4 leaves a margin and
+  // room for a view narrower than it is high.
+  const eye = new THREE.Vector3(-0.45, -1, 0.55).normalize().multiplyScalar(4 * radius);
   camera.position.copy(centre).add(eye);
   camera.near = radius / 100;
   camera.far = radius * 100;

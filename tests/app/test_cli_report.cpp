@@ -5,6 +5,7 @@
 // screenshot shows each ROI in its colour.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
@@ -181,4 +182,44 @@ TEST(HtmlReport, SdmAndBatchReportPagesOpenWithTheirSurfaces) {
     const CliResult batchDom = browse(batchPage, "--dump-dom");
     EXPECT_EQ(bodyData(batchDom.out, "webgl"), "1");
     EXPECT_EQ(bodyData(batchDom.out, "surfaces"), "3");  // two ROIs and the torus
+}
+
+TEST(HtmlReport, SegmentPageDrawsEachRegionInItsColour) {
+    if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " missing (make setup installs it)";
+    const fs::path mesh = scratch() / "kidney.ply";
+    ASSERT_EQ(runDfrecon("-q reconstruct " + std::string(DFRECON_EXAMPLES) +
+                         "/two-rois.slices --roi \"Left Kidney\" -o " + mesh.string())
+                  .exitCode,
+              0);
+    const fs::path page = scratch() / "segment.html";
+    const CliResult run =
+        runDfrecon("-q segment " + mesh.string() + " -k 5 --json -o " +
+                   (scratch() / "regions.ply").string() + " --report " + page.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json json = nlohmann::json::parse(run.out);
+    const CliResult dom = browse(page, "--dump-dom");
+    ASSERT_EQ(dom.exitCode, 0) << dom.err;
+    EXPECT_EQ(bodyData(dom.out, "webgl"), "1");
+    // One surface per region, as many as the JSON report counts.
+    EXPECT_EQ(bodyData(dom.out, "surfaces"), std::to_string(json["regionCount"].get<int>()));
+    // Each region's colour is the one the output PLY gives its faces; the
+    // page names it beside the region (surfaces are named as their rows).
+    const std::string html = dfrecon::testing::slurp(page.string());
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(
+        html, m, std::regex("\"name\":\"0\",\"colour\":\\[(\\d+),(\\d+),(\\d+)\\]")));
+    const fs::path shot = scratch() / "segment.png";
+    ASSERT_EQ(browse(page, "--screenshot=" + shot.string()).exitCode, 0);
+    const cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty());
+    std::size_t coloured = 0;
+    for (int r = 0; r < json["regionCount"].get<int>(); ++r) {
+        std::smatch c;
+        ASSERT_TRUE(std::regex_search(html, c,
+                                      std::regex("\"name\":\"" + std::to_string(r) +
+                                                 "\",\"colour\":\\[(\\d+),(\\d+),(\\d+)\\]")));
+        if (pixelsLike(image, {std::stod(c[1]), std::stod(c[2]), std::stod(c[3])}) > 50) ++coloured;
+    }
+    // A view from one side shows at least two of the regions.
+    EXPECT_GE(coloured, 2u);
 }
