@@ -39,10 +39,11 @@ build_packages_no_recommends=(
 # Debian's where the machine has none of its own.
 if ! command -v npm >/dev/null; then build_packages_no_recommends+=(npm); fi
 # For the tests, benchmarks, fuzzing and format check, with recommends:
-# GoogleTest, OpenVDB's tools, clang and its runtime (fuzzing), clang-format.
+# GoogleTest, OpenVDB's tools, clang and its runtime (the sanitizer build and
+# fuzzing), Ninja (the sanitizer build), clang-format.
 test_packages=(
   libgtest-dev libopenvdb-tools
-  clang libclang-rt-14-dev clang-format
+  clang libclang-rt-14-dev clang-format ninja-build
 )
 # Chromium opens the HTML reports headless in their tests. python3-vtk9
 # reads our .vtk and .vtp files with VTK's own readers in the

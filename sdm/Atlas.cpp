@@ -1,6 +1,7 @@
 #include "sdm/Atlas.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -55,9 +56,16 @@ struct ChartSize {
     int width = 1, height = 1;
 };
 
+// Texels along `lengthMm`, at least 1; a count past int's range (a texel
+// far smaller than the triangle, as a search for the texel size may try) is
+// clamped, not converted: that conversion is undefined.
+int texelsAlong(double lengthMm, double texelMm) {
+    const double texels = std::ceil(lengthMm / texelMm);
+    return texels < double(INT_MAX) ? std::max(1, int(texels)) : INT_MAX;
+}
+
 ChartSize chartSize(const ChartFrame& f, double texelMm) {
-    return {std::max(1, int(std::ceil(f.length / texelMm))),
-            std::max(1, int(std::ceil(f.heightMm / texelMm)))};
+    return {texelsAlong(f.length, texelMm), texelsAlong(f.heightMm, texelMm)};
 }
 
 // Shelf packing: charts in `order` (tallest first) left to right in rows of
@@ -173,7 +181,10 @@ Atlas buildAtlas(const TriangleSoup& soup, const AtlasOptions& options) {
         };
         // Below the area bound nothing fits; at the largest side every chart
         // is one texel, which fits as count <= size².
-        double lo = std::sqrt(areaMm2) / size, hi = std::max(largestSide, 1e-9) * 1.0001;
+        // (A surface of no area has no area bound: lo then starts just above
+        // 0, where the search cannot reach a texel of 0 mm.)
+        double hi = std::max(largestSide, 1e-9) * 1.0001;
+        double lo = std::max(std::sqrt(areaMm2) / size, hi * 1e-12);
         for (int step = 0; step < 50 && hi > lo * (1 + 1e-6); ++step) {
             const double mid = std::sqrt(lo * hi);
             (fits(mid) ? hi : lo) = mid;
