@@ -130,7 +130,7 @@ void addConvertCommand(CLI::App& root, const GlobalOptions& global) {
         "Type; those without get a fixed palette of 12 colours in turn and --roi-type. Exit "
         "codes: 0 done, 1 usage, 2 bad input (also an unreadable --like series), 3 runtime "
         "failure.");
-    cmd->add_option("file", args->input, kContourInputHelp)->required();
+    cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->output, "Output file: .dcm or .slices")
         ->required()
         ->check(kNotStandardStream);

@@ -118,7 +118,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
         "axes, in patient LPS mm (the axes are x, y, z for axial stacks); metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
         "OpenVDB tools (vdb_print). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure.");
-    cmd->add_option("file", args->input, kContourInputHelp)->required();
+    cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->output, "Output .vdb file")
         ->required()
         ->check(kNotStandardStream);

@@ -234,7 +234,7 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
         "Writes, per ROI, NAME-distance.nhdr/.raw (float32 mm, negative inside) and "
         "NAME-ids.nhdr/.raw (uint32 nearest primitive), which 3D Slicer and ParaView open, and "
         "NAME-fields.json describing the layout (docs/fields.md).");
-    cmd->add_option("file", args->input, kContourInputHelp)->required();
+    cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->outputDir, "Output folder (created if missing)")
         ->required()
         ->check(kNotStandardStream);

@@ -166,7 +166,7 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json, bo
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
         nlohmann::ordered_json report{{"command", "info"}, {"file", path}, {"format", load.format}};
-        if (load.format == "label volume")
+        if (load.kind == ContourFormat::LabelVolume || load.kind == ContourFormat::MaskStack)
             report["labelTable"] = load.labelTable.empty()
                                        ? nlohmann::ordered_json(nullptr)
                                        : nlohmann::ordered_json(load.labelTable);
@@ -207,7 +207,7 @@ void addInfoCommand(CLI::App& root, const GlobalOptions& global) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = root.add_subcommand(
         "info", "Validate a contour file and summarise it: ROIs, slices, contours, holes, extent");
-    cmd->add_option("file", args->path, kContourInputHelp)->required();
+    cmd->add_option("file", args->path, contourInputHelp())->required();
     cmd->add_flag("--slices", args->slices,
                   "Every ROI in full (colour, holes, extent, spacing) and every plane with its "
                   "contours and holes; by default one line per ROI");

@@ -21,6 +21,7 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "field/DistanceField3D.hpp"
+#include "io/ContourFormat.hpp"
 #include "io/DicomImageSeries.hpp"
 #include "io/FileNames.hpp"
 #include "io/JsonText.hpp"
@@ -290,7 +291,7 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         "(ITK-SNAP format, names and colours) is written beside it as STEM.txt, which dfrecon "
         "and ITK-SNAP read back. Exit codes: 0 done, 1 usage, 2 bad input (with --all: some "
         "ROIs could not be read; the others are in the map), 3 runtime failure.");
-    cmd->add_option("file", args->input, kContourInputHelp)->required();
+    cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->output,
                     "Output label map: .nrrd, .seg.nrrd, .nii or .nii.gz")
         ->required()

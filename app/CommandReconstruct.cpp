@@ -187,7 +187,7 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
         "solid is reported with the slabs where it fails and not written (unless "
         "--allow-invalid). Exit codes: 0 done, 1 usage, 2 bad input, 3 runtime failure, 4 a "
         "surface is not a valid closed solid. See docs/reconstruction.md.");
-    cmd->add_option("file", args->input, kContourInputHelp)->required();
+    cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->output,
                     "Output mesh file, - for standard output (with --format), or folder with "
                     "--all")

@@ -20,27 +20,26 @@ const RtStructRoiInfo* ContourInput::dicomInfo(const Roi& roi) const {
 
 ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
     ContourInput input;
+    input.kind = contourFormatOf(path);
+    input.format = contourFormatName(input.kind);
     if (isStandardStream(path)) {
         // Only .slices streams (app/StandardStreams.hpp); the parser's limits
         // bound what a pipe can make it hold, as they bound a file.
         const ReadingInput reading(kStandardInputName);
         SlicesLoad load = parseSlices(std::cin, kStandardInputName);
-        input.format = "dfrecon-slices 1";
         input.contours = std::move(load.contours);
         input.warnings = std::move(load.warnings);
-    } else if (isLabelInputPath(path)) {
+    } else if (input.kind == ContourFormat::LabelVolume || input.kind == ContourFormat::MaskStack) {
         Progress progress("reading " + path, !global.quiet);
-        input.format = "label volume";
         input.contours =
             readLabelContours(path, LabelInputOptions{global.labelTable, global.acceptIntensity});
         input.labelTable = labelTableSource(path, {global.labelTable});
-    } else if (isDicomFile(path)) {
+    } else if (input.kind == ContourFormat::RtStruct) {
         RtStructLoad load;
         {
             Progress progress("reading " + path, !global.quiet);
             load = readRtStruct(path, {}, ContourRepairOptions{global.repairContours});
         }
-        input.format = "DICOM RTSTRUCT";
         input.contours = std::move(load.contours);
         input.warnings = std::move(load.warnings);
         input.dicomRois = std::move(load.rois);
@@ -52,7 +51,6 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global) 
                 path, {}, [&](double f) { progress.update(f); },
                 ContourRepairOptions{global.repairContours});
         }
-        input.format = "dfrecon-slices 1";
         input.contours = std::move(load.contours);
         input.warnings = std::move(load.warnings);
     }

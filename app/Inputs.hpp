@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/Commands.hpp"
+#include "io/ContourFormat.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -13,7 +14,8 @@ namespace dfrecon::app {
 
 /// Contours from any supported file, with what the format adds.
 struct ContourInput {
-    std::string format;  // "dfrecon-slices 1", "DICOM RTSTRUCT" or "label volume"
+    ContourFormat kind = ContourFormat::Slices;
+    std::string format;  // contourFormatName(kind): what reports call it
     ContourSet contours;
     std::vector<InputWarning> warnings;
     std::vector<RtStructRoiInfo> dicomRois;  // per ROI, DICOM input only
@@ -23,21 +25,14 @@ struct ContourInput {
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
 };
 
-/// The help text of every command's contour input, from what loadContours
-/// reads.
-inline constexpr const char* kContourInputHelp =
-    "Input contours: .slices (- reads it from standard input), DICOM RTSTRUCT (.dcm), a label "
-    "volume (.nrrd .nhdr .nii .nii.gz: one ROI per label) or a mask stack (a folder with "
-    "stack.json)";
-
 /// How messages name standard input ("-").
 inline constexpr const char* kStandardInputName = "<stdin>";
 
-/// Loads and validates `path`: "-", .slices text from standard input
-/// (app/StandardStreams.hpp); a label volume (.nrrd .nhdr .nii .nii.gz) or
-/// mask stack (folder with stack.json, or the .json itself), contoured per
-/// label; a DICOM RT Structure Set (by extension or magic); or a .slices
-/// file. Throws InputError (exit 2) on bad input.
+/// Loads and validates `path` in the format contourFormatOf() finds (content
+/// first, then name): "-", .slices text from standard input
+/// (app/StandardStreams.hpp); a label volume or mask stack, contoured per
+/// label; a DICOM RT Structure Set; or a .slices file. Throws InputError
+/// (exit 2) on bad input.
 ContourInput loadContours(const std::string& path, const GlobalOptions& global);
 
 /// The ROIs a command works on: `all` → every ROI with slices or a

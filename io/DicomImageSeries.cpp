@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 
+#include "io/ContourFormat.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/InputError.hpp"

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "io/ContourFormat.hpp"
 #include "io/FileNames.hpp"
 #include "io/InputError.hpp"
 #include "io/LabelInput.hpp"
@@ -64,7 +65,8 @@ std::vector<InputFile> inputFiles(const std::string& path) {
     } else {
         addFile(files, path, fs::path(path).filename().string(), path);
         // The table beside a label volume names its ROIs and so the outputs.
-        if (isLabelInputPath(path))
+        if (const ContourFormat format = contourFormatOf(path);
+            format == ContourFormat::LabelVolume || format == ContourFormat::MaskStack)
             if (const auto table = labelTableBeside(path))
                 addFile(files, *table, fs::path(*table).filename().string(), path);
     }

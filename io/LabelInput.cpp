@@ -4,6 +4,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "io/ContourFormat.hpp"
 #include "io/FileNames.hpp"
 #include "io/LabelTable.hpp"
 #include "io/MaskContours.hpp"
@@ -12,12 +13,6 @@
 namespace dfrecon {
 
 namespace {
-
-bool isLabelVolumeName(const std::string& path) {
-    for (const char* end : {".nrrd", ".nhdr", ".nii", ".nii.gz"})
-        if (endsWithIgnoringCase(path, end)) return true;
-    return false;
-}
 
 bool hasSegments(const LabelVolume& volume) {
     return std::any_of(volume.keyValues.begin(), volume.keyValues.end(),
@@ -33,10 +28,6 @@ void applyTable(const LabelTable& table, MaskContourOptions& options) {
 }
 
 }  // namespace
-
-bool isLabelInputPath(const std::string& path) {
-    return isLabelVolumeName(path) || isMaskStackPath(path);
-}
 
 std::optional<std::string> intensityImageEvidence(const LabelVolume& volume) {
     const auto& g = volume.geometry;
@@ -80,7 +71,7 @@ std::string labelTableSource(const std::string& path, const LabelInputOptions& o
 ContourSet readLabelContours(const std::string& path, const LabelInputOptions& options) {
     MaskContourOptions contouring;
     contouring.sourceName = path;
-    if (!isLabelVolumeName(path)) {
+    if (contourFormatOf(path) == ContourFormat::MaskStack) {
         MaskStack stack = readMaskStack(path);
         contouring.names = std::move(stack.labelNames);
         contouring.planePositionsMm = std::move(stack.slicePositionsMm);

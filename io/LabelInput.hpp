@@ -11,11 +11,6 @@
 
 namespace dfrecon {
 
-/// True when `path` names label input by its form: a name ending in .nrrd,
-/// .nhdr, .nii or .nii.gz (case-insensitive), or a mask stack
-/// (isMaskStackPath). Reads no file contents. O(1).
-bool isLabelInputPath(const std::string& path);
-
 struct LabelInputOptions {
     /// A label table file naming and colouring the labels; empty: the
     /// volume's own (a .seg.nrrd's segments) or the one beside it

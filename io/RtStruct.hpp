@@ -85,10 +85,6 @@ inline constexpr double kSamePlaneToleranceMm = 0.01;
 RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {},
                           const ContourRepairOptions& repair = {});
 
-/// True if `path` looks like a DICOM file (".dcm" extension or the "DICM"
-/// magic at byte 128).
-bool isDicomFile(const std::string& path);
-
 /// The defined terms of RTROIInterpretedType (3006,00A4), PS3.3 C.8.8.8.
 inline constexpr std::array<const char*, 24> kRoiInterpretedTypes{"EXTERNAL",
                                                                   "PTV",

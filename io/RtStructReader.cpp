@@ -29,14 +29,6 @@ const char* holeConventionName(HoleConvention convention) {
     return "?";
 }
 
-bool isDicomFile(const std::string& path) {
-    if (endsWithIgnoringCase(path, ".dcm")) return true;
-    if (!isRegularFile(path)) return false;  // never open a pipe or a device to sniff it
-    std::ifstream in(path, std::ios::binary);
-    char magic[4] = {};
-    return in.seekg(128) && in.read(magic, 4) && std::string(magic, 4) == "DICM";
-}
-
 namespace {
 
 std::string tagName(const DcmTagKey& key) {

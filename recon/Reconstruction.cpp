@@ -496,10 +496,6 @@ class SurfaceReconstructor {
         for (std::uint32_t c : end.contours) contourEdges += end.layer->contours[c].size();
         if (cap.intersectingPairs > 0 || cap.nonManifoldEdges > 0 || cap.misorientedEdges > 0 ||
             cap.degenerateTriangles > 0 || cap.boundaryEdges != contourEdges) {
-            if (getenv("DFRECON_DEBUG_CAP"))
-                fprintf(stderr, "dome cap rejected: si %zu nm %zu b %zu/%zu deg %zu\n",
-                        cap.intersectingPairs, cap.nonManifoldEdges, cap.boundaryEdges,
-                        contourEdges, cap.degenerateTriangles);
             builder_.truncateTriangles(before);
             prismCap(end, up, heightMm);
         }
