@@ -48,6 +48,8 @@ build-program: setup-program
 
 # ctest runs one test more than there are cores: a test that waits on a
 # browser's timer or on Slurm's daemons leaves its core idle otherwise.
+# (Not under the sanitizers, where no test waits: there a third test only
+# slowed the other two.)
 TEST_JOBS      ?= $(shell echo $$(( $(JOBS) + 1 )))
 
 test: build
@@ -77,7 +79,7 @@ sanitize-test: setup
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
 	@cd $(SANITIZE_DIR) && POCL_CACHE_DIR=$(CURDIR)/$(SANITIZE_DIR)/pocl-cache \
 	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:use_tls=0:print_suppressions=0 \
-	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tests/ubsan.supp ctest --output-on-failure -j $(TEST_JOBS)
+	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tests/ubsan.supp ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer on the .slices parser, the RTSTRUCT reader, the mesh readers,
 # the label-volume readers and the batch manifest, batch record and label
