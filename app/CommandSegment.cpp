@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -44,17 +45,24 @@ void writeSegmentPage(const std::string& path, const TriMesh& mesh,
     page.columns = {"region", "areaMm2", "perimeterMm", "compactness", "faces", "disk"};
     page.rows = regions;
     const TriangleSoup whole = toTriangleSoup(mesh);
+    // Each region keeps its points shared between its triangles (a smaller
+    // page, and smooth shading as in the other reports): one map per region
+    // from the mesh's point to the region's, O(F) in all.
     std::vector<TriangleSoup> parts(regions.size());
+    std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> localPoint(regions.size());
     for (std::size_t f = 0; f < whole.triangles.size(); ++f) {
         // -1: a face no front reached (a component without a seed).
         if (faceRegion[f] < 0 || std::size_t(faceRegion[f]) >= parts.size()) continue;
-        TriangleSoup& part = parts[std::size_t(faceRegion[f])];
+        const std::size_t r = std::size_t(faceRegion[f]);
         std::array<std::uint32_t, 3> t{};
-        for (int c = 0; c < 3; ++c) {
-            t[std::size_t(c)] = std::uint32_t(part.points.size());
-            part.points.push_back(whole.points[whole.triangles[f][std::size_t(c)]]);
+        for (std::size_t c = 0; c < 3; ++c) {
+            const std::uint32_t p = whole.triangles[f][c];
+            const auto [it, added] =
+                localPoint[r].try_emplace(p, std::uint32_t(parts[r].points.size()));
+            if (added) parts[r].points.push_back(whole.points[p]);
+            t[c] = it->second;
         }
-        part.triangles.push_back(t);
+        parts[r].triangles.push_back(t);
     }
     std::size_t notDrawn = 0;
     for (std::size_t r = 0; r < parts.size(); ++r) {

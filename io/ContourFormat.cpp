@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 
 #include "io/FileNames.hpp"
