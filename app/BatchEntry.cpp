@@ -16,7 +16,7 @@
 #include "app/Stopwatch.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputDigest.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Inputs.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
 #include "io/TextEncoding.hpp"

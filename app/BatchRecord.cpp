@@ -1,7 +1,7 @@
 #include "app/BatchRecord.hpp"
 
 #include "app/ExitCodes.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon::app {
 

@@ -8,7 +8,7 @@
 #include "app/BatchRecord.hpp"
 #include "app/CsvTable.hpp"
 #include "app/ExitCodes.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
 

@@ -11,9 +11,10 @@
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
 #include "io/AtomicWrite.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "io/Colours.hpp"
 
 namespace dfrecon::app {
 

@@ -10,7 +10,7 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "geometry/MeshCheck.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 

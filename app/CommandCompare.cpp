@@ -28,7 +28,7 @@
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "io/AtomicWrite.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"

@@ -22,7 +22,7 @@
 #include "io/AttributedMesh.hpp"
 #include "io/Colours.hpp"
 #include "io/FieldImages.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 #include "sdm/ProximityQueries.hpp"

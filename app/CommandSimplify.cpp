@@ -15,7 +15,7 @@
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 

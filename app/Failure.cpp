@@ -7,7 +7,7 @@
 #include "app/ExitCodes.hpp"
 #include "cl/ClError.hpp"
 #include "field/PrimitiveId.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputsInUse.hpp"
 
 namespace dfrecon::app {

@@ -6,7 +6,7 @@
 
 #include "io/AttributedMesh.hpp"
 #include "io/Colours.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/MeshIO.hpp"
 
 namespace dfrecon::app {

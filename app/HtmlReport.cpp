@@ -5,6 +5,7 @@
 #include "io/AtomicWrite.hpp"
 #include "io/Base64.hpp"
 #include "io/JsonText.hpp"
+#include "io/Colours.hpp"
 
 namespace dfrecon::app {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon::app {
 

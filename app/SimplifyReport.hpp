@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 #include "io/LevelSetVdb.hpp"
 #include "simplify/Simplification.hpp"
 

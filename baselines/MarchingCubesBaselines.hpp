@@ -10,7 +10,7 @@
 #include "field/SliceFields.hpp"
 #include "geometry/TriMesh.hpp"
 #include "geometry/TriangleSoup.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -11,7 +11,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(DFRECON_LIBRARY_FOLDERS kernels cl geometry io field shapes recon simplify sdm segment compare)
+set(DFRECON_LIBRARY_FOLDERS kernels cl geometry contours io field shapes recon simplify sdm segment compare)
 set(dfrecon_libraries "")
 foreach(folder IN LISTS DFRECON_LIBRARY_FOLDERS)
   # dfrecon_recon is dfrecon::recon to package users, and to projects that

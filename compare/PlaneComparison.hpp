@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <string>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -10,7 +10,7 @@
 #include "cl/Runtime.hpp"
 #include "field/PrimitiveId.hpp"
 #include "field/SliceGrid.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -13,12 +13,11 @@
 //   categoricalColour  an id (region, nearest primitive): neighbouring ids
 //                      far apart in hue.
 // Every function is O(1).
-#include <array>
 #include <cstdint>
 
-namespace dfrecon {
+#include "contours/Rgb.hpp"
 
-using Rgb = std::array<std::uint8_t, 3>;
+namespace dfrecon {
 
 /// Where there is no value (unreached, beyond a band, no id).
 inline constexpr Rgb kNoValueColour{128, 128, 128};

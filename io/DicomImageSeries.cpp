@@ -15,7 +15,7 @@
 #include "io/ContourFormat.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "io/FileScanner.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/RegularFile.hpp"
 
 namespace dfrecon {

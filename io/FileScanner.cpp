@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/RegularFile.hpp"
 
 namespace dfrecon {

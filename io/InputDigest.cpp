@@ -6,7 +6,7 @@
 
 #include "io/ContourFormat.hpp"
 #include "io/FileNames.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelInput.hpp"
 #include "io/LabelTable.hpp"
 #include "io/RegularFile.hpp"

@@ -4,7 +4,7 @@
 #include <set>
 #include <vector>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/RegularFile.hpp"
 #include "io/TextEncoding.hpp"
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 #include "io/LabelVolume.hpp"
 
 namespace dfrecon {

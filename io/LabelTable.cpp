@@ -12,9 +12,10 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/FileNames.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/RegularFile.hpp"
 #include "io/TextEncoding.hpp"
+#include "io/Colours.hpp"
 
 namespace dfrecon {
 

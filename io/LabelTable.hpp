@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

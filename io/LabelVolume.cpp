@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "io/FileNames.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "io/AtomicWrite.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon::labelvolume {

@@ -28,7 +28,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon::labelvolume {

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputsInUse.hpp"
 
 namespace dfrecon {

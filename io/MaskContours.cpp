@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "geometry/IsoLines.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 #include "io/LabelVolume.hpp"
 
 namespace dfrecon {

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/JsonText.hpp"

@@ -16,7 +16,7 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/MeshFileCheck.hpp"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "io/FileScanner.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/MeshFileCheck.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <memory>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon {
 

@@ -9,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomImageSeries.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 
 namespace dfrecon {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <vector>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/ContourSet.hpp"
-#include "io/InputError.hpp"
+#include "contours/ContourSet.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon {
 

@@ -15,7 +15,7 @@
 #include "field/SliceFields.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "geometry/TriangleSoup.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

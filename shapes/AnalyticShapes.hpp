@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geometry/Vec3.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

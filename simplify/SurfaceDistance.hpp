@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geometry/TriangleSoup.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "app/BatchManifest.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "app/BatchRecord.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 using namespace dfrecon;
 using namespace dfrecon::app;

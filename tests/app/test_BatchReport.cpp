@@ -7,7 +7,7 @@
 
 #include "app/BatchRecord.hpp"
 #include "app/BatchReport.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -37,7 +37,7 @@
 #include "app/BatchRecord.hpp"
 #include "app/Inputs.hpp"
 #include "io/Colours.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/LabelTable.hpp"
 #include "io/TextEncoding.hpp"

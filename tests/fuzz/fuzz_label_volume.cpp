@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/LabelVolume.hpp"
 #include "tests/fuzz/ScratchInput.hpp"

@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/MeshIO.hpp"
 #include "tests/fuzz/ScratchInput.hpp"

@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "io/DicomImageSeries.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelVolume.hpp"
 #include "tests/TempDir.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <fstream>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

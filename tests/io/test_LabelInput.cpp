@@ -8,8 +8,9 @@
 #include <fstream>
 #include <random>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelTable.hpp"
+#include "io/Colours.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/TempDir.hpp"
 

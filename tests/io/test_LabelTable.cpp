@@ -7,7 +7,8 @@
 
 #include <fstream>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
+#include "io/Colours.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

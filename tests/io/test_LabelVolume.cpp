@@ -15,7 +15,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/LabelVolume.hpp"
 #include "tests/TempDir.hpp"
 

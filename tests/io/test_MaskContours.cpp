@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/MaskContours.hpp"
 #include "shapes/AnalyticShapes.hpp"
 

@@ -11,7 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/MaskContours.hpp"
 #include "io/MaskStack.hpp"
 #include "shapes/AnalyticShapes.hpp"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/MeshFileCheck.hpp"
 #include "io/MeshIO.hpp"
 #include "tests/TempDir.hpp"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/MeshIO.hpp"
 #include "tests/VtkRead.hpp"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "io/InputDigest.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 #include "io/Sha256.hpp"
 #include "tests/TempDir.hpp"
 

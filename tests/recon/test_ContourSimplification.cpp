@@ -8,7 +8,7 @@
 #include <random>
 
 #include "geometry/ContourValidation.hpp"
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 #include "recon/ContourSimplification.hpp"
 
 using namespace dfrecon;

@@ -8,8 +8,8 @@
 
 #include "geometry/PlaneFrame.hpp"
 #include "geometry/Polygon.hpp"
-#include "io/Colours.hpp"
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
+#include "contours/Rgb.hpp"
 
 namespace dfrecon {
 

@@ -1,4 +1,4 @@
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 #include <algorithm>
 #include <cmath>

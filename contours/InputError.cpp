@@ -1,4 +1,4 @@
-#include "io/InputError.hpp"
+#include "contours/InputError.hpp"
 
 namespace dfrecon {
 

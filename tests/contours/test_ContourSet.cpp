@@ -1,7 +1,7 @@
 // Nesting depth, orientation normalisation, extent and spacing.
 #include <gtest/gtest.h>
 
-#include "io/ContourSet.hpp"
+#include "contours/ContourSet.hpp"
 
 using namespace dfrecon;
 
