@@ -14,9 +14,9 @@
 #include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/Stopwatch.hpp"
+#include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputDigest.hpp"
-#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
 

@@ -10,11 +10,11 @@
 #include "app/BatchReport.hpp"
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
-#include "io/AtomicWrite.hpp"
 #include "contours/InputError.hpp"
+#include "io/AtomicWrite.hpp"
+#include "io/Colours.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
-#include "io/Colours.hpp"
 
 namespace dfrecon::app {
 

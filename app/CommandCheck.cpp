@@ -9,8 +9,8 @@
 #include "app/ExitCodes.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "geometry/MeshCheck.hpp"
 #include "contours/InputError.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 

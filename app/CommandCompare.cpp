@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
+#include "app/CompareReport.hpp"
 #include "app/CsvTable.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
@@ -22,16 +23,14 @@
 #include "app/RoiMatching.hpp"
 #include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
-#include "compare/OverlapVolume.hpp"
-#include "compare/PlaneComparison.hpp"
-#include "compare/SurfaceDistances.hpp"
+#include "contours/InputError.hpp"
+#include "dfrecon/Compare.hpp"
+#include "dfrecon/Reconstruct.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "io/AtomicWrite.hpp"
-#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
-#include "recon/Reconstruction.hpp"
 
 namespace dfrecon::app {
 
@@ -47,26 +46,15 @@ struct CompareArgs {
     bool json = false;
 };
 
-/// One side of a pair: its surface with its check (validity, volume, area:
-/// the overlap's inputs, checked once), and its contours where it came from
-/// a contour file (the per-plane comparison needs them).
-struct Structure {
-    TriangleSoup surface;
-    MeshCheckReport check;
-    const Roi* roi = nullptr;
-};
+using Structure = ComparedSolid;
 
 /// The surface of an ROI, reconstructed with reconstruct's defaults, in
 /// patient coordinates as compared.
 Structure reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
-    if (roi.defect) throw *roi.defect;
-    Reconstruction result = reconstructSurface(runtime, roi);
-    toPatient(result.surface, roi.frame);
-    Structure s{std::move(result.surface), {}, &roi};
-    s.check = checkMesh(s.surface);
-    if (!s.check.validSolid())
+    RoiSurface result = dfrecon::reconstructRoi(runtime, roi);
+    if (!result.check.validSolid())
         throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
-    return s;
+    return Structure{std::move(result.surface), result.check, &roi};
 }
 
 Structure readSolid(const std::string& path) {
@@ -77,31 +65,11 @@ Structure readSolid(const std::string& path) {
     return s;
 }
 
-struct PairResult {
-    Overlap overlap;
-    SurfaceDistances distances;
-    double centroidDistanceMm = 0;
-    std::optional<PlaneComparison> planes;  // both from contours
-    double overlapSeconds = 0, distanceSeconds = 0, planeSeconds = 0;
-};
+using PairResult = Comparison;
 
 PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args,
                        ocl::Runtime& runtime) {
-    Stopwatch watch;
-    PairResult r;
-    r.overlap = overlapOf(a.surface, b.surface, a.check, b.check);
-    r.overlapSeconds = watch.lap();
-    r.distances = surfaceDistances(runtime, a.surface, b.surface, args.spacingMm, args.toleranceMm);
-    r.centroidDistanceMm =
-        length(measureSurface(b.surface).centroidMm - measureSurface(a.surface).centroidMm);
-    r.distanceSeconds = watch.lap();
-    if (a.roi && b.roi) {
-        PlaneComparisonOptions options;
-        options.toleranceMm = args.toleranceMm;
-        r.planes = comparePlanes(*a.roi, *b.roi, options);
-        r.planeSeconds = watch.lap();
-    }
-    return r;
+    return compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm});
 }
 
 void warnIfCoarsened(double usedMm, const CompareArgs& args, const GlobalOptions& global) {
@@ -109,61 +77,6 @@ void warnIfCoarsened(double usedMm, const CompareArgs& args, const GlobalOptions
         std::cerr << "dfrecon: warning: --spacing " << args.spacingMm << " mm would take more than "
                   << kMaxDistanceSamples << " samples on a surface; distances sampled every "
                   << usedMm << " mm, each within that of its exact value\n";
-}
-
-nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes) {
-    if (!planes) return nullptr;
-    if (!planes->samePlanes) return {{"compared", false}, {"why", planes->whyNot}};
-    return {{"compared", true},
-            {"planes", planes->planes},
-            {"volumeAMm3", planes->volumeAMm3},
-            {"volumeBMm3", planes->volumeBMm3},
-            {"intersectionMm3", planes->intersectionMm3},
-            {"dice", planes->dice()},
-            {"jaccard", planes->jaccard()},
-            {"pathLengthAMm", planes->pathLengthAMm},
-            {"pathLengthBMm", planes->pathLengthBMm},
-            {"addedPathLengthMm", planes->addedPathLengthMm},
-            {"addedPathLengthAMm", planes->addedPathLengthAMm},
-            {"toleranceMm", planes->toleranceMm}};
-}
-
-// The report of one pair: docs/cli.md, "compare", lists every key.
-nlohmann::ordered_json pairJson(const PairResult& r) {
-    const Overlap& o = r.overlap;
-    const SurfaceDistances& d = r.distances;
-    auto directed = [](const DirectedDistances& x) {
-        return nlohmann::ordered_json{{"hausdorffMm", x.maxMm},
-                                      {"hd95Mm", x.p95Mm},
-                                      {"meanMm", x.meanMm},
-                                      {"areaWithinToleranceMm2", x.areaWithinToleranceMm2},
-                                      {"samples", x.samples}};
-    };
-    return {{"volumeAMm3", o.volumeAMm3},
-            {"volumeBMm3", o.volumeBMm3},
-            {"volumeDifferenceMm3", o.volumeBMm3 - o.volumeAMm3},
-            {"intersectionMm3", o.intersectionMm3},
-            {"unionMm3", o.unionMm3()},
-            {"dice", o.dice()},
-            {"jaccard", o.jaccard()},
-            {"overlapMethod", o.method},
-            {"overlapShiftMm", o.shiftMm},
-            {"intersectionBoundMm3", o.intersectionBoundMm3},
-            {"hausdorffMm", d.hausdorffMm()},
-            {"hd95Mm", d.hd95Mm()},
-            {"hd95PooledMm", d.hd95PooledMm},
-            {"meanSurfaceDistanceMm", d.meanMm()},
-            {"surfaceDice", d.surfaceDice()},
-            {"toleranceMm", d.toleranceMm},
-            {"centroidDistanceMm", r.centroidDistanceMm},
-            {"distanceBoundMm", d.spacingMm},
-            {"aToB", directed(d.aToB)},
-            {"bToA", directed(d.bToA)},
-            {"onPlanes", planesJson(r.planes)},
-            {"seconds",
-             {{"overlap", r.overlapSeconds},
-              {"distances", r.distanceSeconds},
-              {"planes", r.planeSeconds}}}};
 }
 
 void printPair(const PairResult& r, std::ostream& out) {
@@ -262,9 +175,9 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
     const PairResult r = comparePair(a, b, args, runtime);
     warnIfCoarsened(r.distances.spacingMm, args, global);
     nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
-    if (a.roi) report["roiA"] = a.roi->name;
-    if (b.roi) report["roiB"] = b.roi->name;
-    report.update(pairJson(r));
+    if (a.contours) report["roiA"] = a.contours->name;
+    if (b.contours) report["roiB"] = b.contours->name;
+    report.update(comparisonJson(r));
     report["seconds"]["load"] = loadSeconds;
     if (!args.csvPath.empty()) writeCsv(args.csvPath, nlohmann::ordered_json::array({report}));
     if (args.json)
@@ -284,7 +197,7 @@ nlohmann::ordered_json pairRow(const RoiPair& pair, const CompareArgs& args,
         const Structure a = reconstructed(runtime, args.a, *pair.a);
         const Structure b = reconstructed(runtime, args.b, *pair.b);
         const double loadSeconds = watch.lap();
-        row.update(pairJson(comparePair(a, b, args, runtime)));
+        row.update(comparisonJson(comparePair(a, b, args, runtime)));
         row["seconds"]["load"] = loadSeconds;
         row["exitCode"] = 0;
         row["error"] = nullptr;

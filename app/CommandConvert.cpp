@@ -81,7 +81,7 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
         nlohmann::ordered_json report{
             {"command", "convert"},
             {"input", args.input},
-            {"inputFormat", input.format},
+            {"inputFormat", contourFormatName(input.format)},
             {"output", args.output},
             {"outputFormat", toDicom ? "DICOM RTSTRUCT" : "dfrecon-slices 1"},
             {"rois", chosen.rois.size()},

@@ -11,7 +11,7 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
-#include "field/FieldVolume.hpp"
+#include "dfrecon/Field.hpp"
 #include "io/JsonText.hpp"
 #include "io/LevelSetVdb.hpp"
 
@@ -29,35 +29,20 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const Roi& roi = *selectRois(load.contours, args.roi, false).front();
-    std::vector<Slice> slices;
-    for (const Slice& s : roi.slices)
-        if (!s.contours.empty()) slices.push_back(s);
-    if (slices.empty()) throw std::invalid_argument("ROI '" + roi.name + "' has no contours");
     const SpacingStats spacing = spacingOf(roi);
 
     ocl::Runtime runtime(global.device);
-    watch.restartLap();
-    SliceFields fields;
+    RoiDistanceVolume field;
     {
         Progress progress("fields of " + roi.name, !global.quiet);
-        fields = computeSliceFields(runtime, slices, gridForSlices(slices, args.pixelMm),
-                                    [&](double f) { progress.update(f); });
+        RoiFieldOptions options;
+        options.pixelMm = args.pixelMm;
+        options.isotropic = args.isotropic;
+        options.progress = [&](double f) { progress.update(f); };
+        field = roiDistanceVolume(runtime, roi, options);
     }
-    const double fieldsSeconds = watch.lap();
-    // A single slice has no spacing: its virtual neighbours sit 1 mm away.
-    DistanceField3D field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
-    propagateAlongZ(runtime, field);
-    const double propagateSeconds = watch.lap();
-
-    // Half the smallest gap, as --help and docs/distance-field.md say: the
-    // samples start at the cap layer half a gap before the first slice, so
-    // a whole gap put them halfway between the slices and missed every one.
-    // (Uneven gaps cannot be a scale map: the smallest one sets the step.)
-    const double zStep = args.isotropic      ? fields.grid.pixelMm
-                         : spacing.minMm > 0 ? spacing.minMm / 2
-                                             : 0.5;
+    const DenseDistanceVolume& volume = field.volume;
     watch.restartLap();
-    const DenseDistanceVolume volume = resampleAlongZ(field, zStep);
     LevelSetWriteOptions options;
     options.gridName = roi.name;
     options.frame = roi.frame;
@@ -92,8 +77,8 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                                                      {"device", runtime.device().deviceName},
                                                      {"seconds",
                                                       {{"total", watch.total()},
-                                                       {"fields", fieldsSeconds},
-                                                       {"propagate", propagateSeconds},
+                                                       {"fields", field.fieldsSeconds},
+                                                       {"propagate", field.propagateSeconds},
                                                        {"write", writeSeconds}}}},
                               2)
                   << "\n";

@@ -165,8 +165,9 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json, bo
         }
         nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
         for (const InputWarning& w : load.warnings) warnings.push_back(w.toString());
-        nlohmann::ordered_json report{{"command", "info"}, {"file", path}, {"format", load.format}};
-        if (load.kind == ContourFormat::LabelVolume || load.kind == ContourFormat::MaskStack)
+        nlohmann::ordered_json report{
+            {"command", "info"}, {"file", path}, {"format", contourFormatName(load.format)}};
+        if (load.format == ContourFormat::LabelVolume || load.format == ContourFormat::MaskStack)
             report["labelTable"] = load.labelTable.empty()
                                        ? nlohmann::ordered_json(nullptr)
                                        : nlohmann::ordered_json(load.labelTable);
@@ -176,7 +177,8 @@ void runInfo(const GlobalOptions& global, const std::string& path, bool json, bo
         reportDefects(load.contours);
         return;
     }
-    std::cout << path << " (" << load.format << "): " << counted(load.contours.rois.size(), "ROI");
+    std::cout << path << " (" << contourFormatName(load.format)
+              << "): " << counted(load.contours.rois.size(), "ROI");
     if (!load.labelTable.empty()) std::cout << ", names from " << load.labelTable;
     std::cout << "\n";
     std::size_t contours = 0, planes = 0;

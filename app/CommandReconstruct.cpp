@@ -142,7 +142,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     if (args.json)
         std::cout << jsonText(nlohmann::ordered_json{{"command", "reconstruct"},
                                                      {"input", args.input},
-                                                     {"format", load.format},
+                                                     {"format", contourFormatName(load.format)},
                                                      {"device", runtime.device().deviceName},
                                                      {"maxDepth", args.settings.options.maxDepth},
                                                      {"contourErrorMm",

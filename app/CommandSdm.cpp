@@ -18,14 +18,14 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
+#include "contours/InputError.hpp"
+#include "dfrecon/SurfaceDistanceMaps.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
 #include "io/Colours.hpp"
 #include "io/FieldImages.hpp"
-#include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
-#include "sdm/ProximityQueries.hpp"
 
 namespace dfrecon::app {
 
@@ -146,32 +146,21 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
     }
     const SurfaceScene scene(std::move(soups), names);
 
-    AtlasOptions atlasOptions;
-    atlasOptions.sizeTexels = args.sizeTexels;
-    atlasOptions.maxErrorMm = args.maxErrorMm;
-    std::vector<ObjectSamples> samples;
-    for (std::size_t o = 0; o < scene.objectCount(); ++o) {
-        try {
-            samples.push_back(sampleObject(scene, o, atlasOptions));
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(args.inputs[o] + ": " + e.what());
-        }
-    }
+    SceneMapsOptions options;
+    options.atlas.sizeTexels = args.sizeTexels;
+    options.atlas.maxErrorMm = args.maxErrorMm;
+    if (args.maxDistanceMm > 0) options.query.maxDistanceMm = args.maxDistanceMm;
+    options.proximity = !args.noPairs;
+    options.labels = args.inputs;
 
     ocl::Runtime runtime(global.device);
-    ClosestPrimitiveKernel kernel(runtime, scene);
-    const ClosestPrimitivesFn closest = [&](const std::vector<SurfaceSample>& s,
-                                            const DistanceQuery& q) { return kernel.run(s, q); };
-    DistanceQuery query;
-    if (args.maxDistanceMm > 0) query.maxDistanceMm = args.maxDistanceMm;
     Progress progress("distance maps", !global.quiet);
-    watch.restartLap();
-    const std::vector<ObjectDistanceMap> maps = surfaceDistanceMaps(scene, samples, closest, query);
-    const double mapSeconds = watch.lap();
-    progress.update(0.5);
-    std::vector<PairProximity> pairs;
-    if (!args.noPairs) pairs = proximityQueries(scene, samples, closest);
+    const SceneMaps computed = sceneDistanceMaps(runtime, scene, options);
     progress.finish();
+    const std::vector<ObjectSamples>& samples = computed.samples;
+    const std::vector<ObjectDistanceMap>& maps = computed.maps;
+    const std::vector<PairProximity>& pairs = computed.pairs;
+    const double mapSeconds = computed.mapSeconds;
 
     std::filesystem::create_directories(args.outputDir);
     const std::filesystem::path dir(args.outputDir);

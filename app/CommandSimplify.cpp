@@ -14,8 +14,8 @@
 #include "app/SimplifyReport.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
-#include "geometry/MeshCheck.hpp"
 #include "contours/InputError.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 

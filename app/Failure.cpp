@@ -6,8 +6,8 @@
 
 #include "app/ExitCodes.hpp"
 #include "cl/ClError.hpp"
-#include "field/PrimitiveId.hpp"
 #include "contours/InputError.hpp"
+#include "field/PrimitiveId.hpp"
 #include "io/InputsInUse.hpp"
 
 namespace dfrecon::app {

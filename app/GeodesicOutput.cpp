@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "contours/InputError.hpp"
 #include "io/AttributedMesh.hpp"
 #include "io/Colours.hpp"
-#include "contours/InputError.hpp"
 #include "io/MeshIO.hpp"
 
 namespace dfrecon::app {

@@ -4,8 +4,8 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/Base64.hpp"
-#include "io/JsonText.hpp"
 #include "io/Colours.hpp"
+#include "io/JsonText.hpp"
 
 namespace dfrecon::app {
 

@@ -8,51 +8,22 @@
 
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
-#include "io/InputsInUse.hpp"
-#include "io/LabelInput.hpp"
 
 namespace dfrecon::app {
 
-const RtStructRoiInfo* ContourInput::dicomInfo(const Roi& roi) const {
-    const std::size_t i = std::size_t(&roi - contours.rois.data());
-    return i < dicomRois.size() ? &dicomRois[i] : nullptr;
-}
-
 ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
+    ReadContoursOptions options;
+    options.repairSelfCrossings = global.repairContours;
+    options.labelTable = global.labelTable;
+    options.acceptIntensity = global.acceptIntensity;
     ContourInput input;
-    input.kind = contourFormatOf(path);
-    input.format = contourFormatName(input.kind);
     if (isStandardStream(path)) {
-        // Only .slices streams (app/StandardStreams.hpp); the parser's limits
-        // bound what a pipe can make it hold, as they bound a file.
-        const ReadingInput reading(kStandardInputName);
-        SlicesLoad load = parseSlices(std::cin, kStandardInputName);
-        input.contours = std::move(load.contours);
-        input.warnings = std::move(load.warnings);
-    } else if (input.kind == ContourFormat::LabelVolume || input.kind == ContourFormat::MaskStack) {
-        Progress progress("reading " + path, !global.quiet);
-        input.contours =
-            readLabelContours(path, LabelInputOptions{global.labelTable, global.acceptIntensity});
-        input.labelTable = labelTableSource(path, {global.labelTable});
-    } else if (input.kind == ContourFormat::RtStruct) {
-        RtStructLoad load;
-        {
-            Progress progress("reading " + path, !global.quiet);
-            load = readRtStruct(path, {}, ContourRepairOptions{global.repairContours});
-        }
-        input.contours = std::move(load.contours);
-        input.warnings = std::move(load.warnings);
-        input.dicomRois = std::move(load.rois);
+        // Only .slices streams (app/StandardStreams.hpp).
+        input = readSlicesStream(std::cin, kStandardInputName, options);
     } else {
-        SlicesLoad load;
-        {
-            Progress progress("reading " + path, !global.quiet);
-            load = readSlicesFile(
-                path, {}, [&](double f) { progress.update(f); },
-                ContourRepairOptions{global.repairContours});
-        }
-        input.contours = std::move(load.contours);
-        input.warnings = std::move(load.warnings);
+        Progress progress("reading " + path, !global.quiet);
+        options.progress = [&](double f) { progress.update(f); };
+        input = readContours(path, options);
     }
     if (!global.quiet)
         for (const InputWarning& w : input.warnings) std::cerr << w.toString() << "\n";

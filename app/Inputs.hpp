@@ -6,33 +6,21 @@
 #include <vector>
 
 #include "app/Commands.hpp"
-#include "io/ContourFormat.hpp"
-#include "io/RtStruct.hpp"
-#include "io/SlicesFile.hpp"
+#include "dfrecon/Contours.hpp"
 
 namespace dfrecon::app {
 
-/// Contours from any supported file, with what the format adds.
-struct ContourInput {
-    ContourFormat kind = ContourFormat::Slices;
-    std::string format;  // contourFormatName(kind): what reports call it
-    ContourSet contours;
-    std::vector<InputWarning> warnings;
-    std::vector<RtStructRoiInfo> dicomRois;  // per ROI, DICOM input only
-    std::string labelTable;                  // label volumes: where ROI names came from ("" none)
-
-    /// What DICOM reading found about `roi` (one of contours.rois), or nullptr.
-    const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
-};
+/// Contours from any supported file, with what the format adds: the public
+/// API's (dfrecon/Contours.hpp).
+using ContourInput = ContoursRead;
 
 /// How messages name standard input ("-").
 inline constexpr const char* kStandardInputName = "<stdin>";
 
-/// Loads and validates `path` in the format contourFormatOf() finds (content
-/// first, then name): "-", .slices text from standard input
-/// (app/StandardStreams.hpp); a label volume or mask stack, contoured per
-/// label; a DICOM RT Structure Set; or a .slices file. Throws InputError
-/// (exit 2) on bad input.
+/// Loads and validates `path` by readContours (dfrecon/Contours.hpp), or "-",
+/// .slices text from standard input (app/StandardStreams.hpp), with progress
+/// on a TTY and the repairs' warnings on stderr unless quiet. Throws
+/// InputError (exit 2) on bad input.
 ContourInput loadContours(const std::string& path, const GlobalOptions& global);
 
 /// The ROIs a command works on: `all` → every ROI with slices or a

@@ -43,78 +43,21 @@ RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
     return outcome;
 }
 
-RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
-                          const ContourInput& input, const ReconstructSettings& settings,
-                          const GlobalOptions& global, bool showProgress) {
-    RoiOutcome outcome;
-    std::ostringstream out, err;
-    Reconstruction result;
-    {
-        Progress progress("reconstructing " + roi.name, showProgress && !global.quiet);
-        result = reconstructSurface(runtime, roi, settings.options,
-                                    [&](double f) { progress.update(f); });
-    }
-    // Sagittal, coronal and oblique stacks were reconstructed in their planes.
-    toPatient(result.surface, roi.frame);
-    nlohmann::ordered_json simplification = nullptr;
-    if (settings.maxErrorMm > 0) {
-        SimplifyRequest request;
-        request.options.maxErrorMm = settings.maxErrorMm;
-        request.contours = &roi;
-        request.label = "simplifying " + roi.name;
-        GlobalOptions options = global;
-        options.quiet = global.quiet || !showProgress;  // simplifyAndVerify says nothing else
-        simplification = simplifyAndVerify(runtime, result.surface, request, options);
-    }
-    // The reconstruction checked its surface as floats in the plane frame;
-    // a rotated frame or a simplified surface is checked again as written.
-    roundPointsToFloat(result.surface);
-    Stopwatch watch;
-    const MeshCheckReport check = simplification.is_null() && roi.frame.isIdentity()
-                                      ? result.check
-                                      : checkMesh(result.surface);
-    const double checkSeconds = watch.lap() + result.stats.checkSeconds;
-    // Open ends are what --cap none asks for; anything else broken is not a
-    // result (exit 4), and is written only when the user allows it.
-    const bool valid = check.validSolid() || settings.options.cap == CapMode::None;
-    const bool written = valid || settings.allowInvalid;
-    std::size_t refused = 0;
-    if (written) {
-        const TriMesh mesh = toTriMesh(result.surface, &refused);
-        MeshWriteOptions write;
-        write.binary = !settings.ascii;
-        write.structure = structureTagOf(roi);
-        const std::lock_guard<std::mutex> lock(meshWriting);
-        writeMeshOutput(mesh, output, write);
-    }
-    const double writeSeconds = watch.lap();
-
+nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
+                                 const RtStructRoiInfo* dicom, const ReconstructSettings& settings,
+                                 const RoiWriting& writing,
+                                 const nlohmann::ordered_json& simplification) {
     const ReconstructionStats& s = result.stats;
-    const double contourVolume = contourVolumeMm3(roi);
-    {
-        out << roi.name << ": " << check.vertices << " vertices, " << check.triangles
-            << " triangles, volume " << check.volumeMm3 / 1000 << " cc (contours "
-            << contourVolume / 1000 << " cc), "
-            << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
-        if (check.genus >= 0) out << ", genus " << check.genus;
-        out << (written ? " -> " + output.label() : std::string(", not written")) << "\n";
-    }
-    if (!valid && !global.quiet) {
-        err << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
-        for (const auto& [below, above] : result.brokenPieces)
-            err << " [" << below << ", " << above << "]";
-        err << " mm (plane frame)"
-            << (written ? "; written anyway (--allow-invalid)" : "; not written") << "\n";
-    }
-    const RtStructRoiInfo* dicom = input.dicomInfo(roi);
+    const MeshCheckReport& check = result.check;
+    const double contourVolume = result.contourVolumeMm3;
     const std::optional<const char*> holes =
         dicom ? std::optional(nameOf(kHoleConventionNames, dicom->holes)) : std::nullopt;
     nlohmann::ordered_json broken = nlohmann::ordered_json::array();
     for (const auto& [below, above] : result.brokenPieces) broken.push_back({below, above});
     nlohmann::ordered_json report{{"roi", roi.name},
                                   {"roiNumber", valueOrNull(roi.number)},
-                                  {"output", valueOrNull(written, output.path)},
-                                  {"written", written}};
+                                  {"output", valueOrNull(writing.written, writing.path)},
+                                  {"written", writing.written}};
     appendItems(report, meshCheckJson(check));
     appendItems(report,
                 {{"contourVolumeMm3", contourVolume},
@@ -122,7 +65,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
                  {"brokenSlabsMm", broken},
                  {"touchesOpened", s.touchesOpened},
                  {"piecesClosedAgain", s.repairedPieces},
-                 {"facesRefusedByOpenMesh", refused},
+                 {"facesRefusedByOpenMesh", writing.refusedFaces},
                  {"slices", s.slices},
                  {"planes", roi.frame.orientationName()},
                  {"holeConvention", valueOrNull(holes)},
@@ -148,8 +91,73 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
                    {"fields", s.fieldsSeconds},
                    {"medialAxes", s.medialSeconds},
                    {"triangulation", s.triangulationSeconds},
-                   {"check", checkSeconds},
-                   {"write", writeSeconds}}}});
+                   {"check", result.checkSeconds},
+                   {"write", writing.seconds}}}});
+    return report;
+}
+
+RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
+                          const ContourInput& input, const ReconstructSettings& settings,
+                          const GlobalOptions& global, bool showProgress) {
+    RoiOutcome outcome;
+    std::ostringstream out, err;
+    RoiSurface result;
+    {
+        // One progress line per stage: reconstructing, then simplifying.
+        std::optional<Progress> progress;
+        std::string stage;
+        RoiReconstructOptions options{settings.options, settings.maxErrorMm};
+        result = dfrecon::reconstructRoi(
+            runtime, roi, options, [&](const std::string& now, double fraction) {
+                if (now != stage) {
+                    progress.reset();
+                    progress.emplace(now + " " + roi.name, showProgress && !global.quiet);
+                    stage = now;
+                }
+                if (fraction >= 0) progress->update(fraction);
+            });
+    }
+    const nlohmann::ordered_json simplification =
+        result.simplification
+            ? simplificationJson(*result.simplification, SimplifyOptions{settings.maxErrorMm}, true)
+            : nlohmann::ordered_json(nullptr);
+    const MeshCheckReport& check = result.check;
+    // Open ends are what --cap none asks for; anything else broken is not a
+    // result (exit 4), and is written only when the user allows it.
+    const bool valid = result.usable(settings.options.cap);
+    const bool written = valid || settings.allowInvalid;
+    Stopwatch watch;
+    std::size_t refused = 0;
+    if (written) {
+        const TriMesh mesh = toTriMesh(result.surface, &refused);
+        MeshWriteOptions write;
+        write.binary = !settings.ascii;
+        write.structure = structureTagOf(roi);
+        const std::lock_guard<std::mutex> lock(meshWriting);
+        writeMeshOutput(mesh, output, write);
+    }
+    const double writeSeconds = watch.lap();
+
+    const ReconstructionStats& s = result.stats;
+    const double contourVolume = result.contourVolumeMm3;
+    {
+        out << roi.name << ": " << check.vertices << " vertices, " << check.triangles
+            << " triangles, volume " << check.volumeMm3 / 1000 << " cc (contours "
+            << contourVolume / 1000 << " cc), "
+            << (check.validSolid() ? "closed valid solid" : "NOT a valid closed solid");
+        if (check.genus >= 0) out << ", genus " << check.genus;
+        out << (written ? " -> " + output.label() : std::string(", not written")) << "\n";
+    }
+    if (!valid && !global.quiet) {
+        err << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
+        for (const auto& [below, above] : result.brokenPieces)
+            err << " [" << below << ", " << above << "]";
+        err << " mm (plane frame)"
+            << (written ? "; written anyway (--allow-invalid)" : "; not written") << "\n";
+    }
+    RoiWriting writing{output.path, written, refused, writeSeconds};
+    nlohmann::ordered_json report =
+        roiReport(roi, result, input.dicomInfo(roi), settings, writing, simplification);
     outcome.invalid = !valid;
     outcome.report = std::move(report);
     outcome.surface = std::move(result.surface);

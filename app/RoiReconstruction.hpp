@@ -12,6 +12,7 @@
 #include "app/ReconstructSettings.hpp"
 #include "app/StandardStreams.hpp"
 #include "cl/Runtime.hpp"
+#include "dfrecon/Reconstruct.hpp"
 #include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon::app {
@@ -31,6 +32,24 @@ struct RoiOutcome {
 /// The name and colour of `roi` as mesh files carry them (io/StructureTag).
 /// O(name length).
 StructureTag structureTagOf(const Roi& roi);
+
+/// Where a reconstructed ROI went: its file (when written), the faces
+/// OpenMesh refused on the way, the seconds writing took.
+struct RoiWriting {
+    std::string path;
+    bool written = false;
+    std::size_t refusedFaces = 0;
+    double seconds = 0;
+};
+
+/// The report `reconstruct --json` gives per ROI for `result` of `roi`
+/// (docs/cli.md lists every key); `dicom` what DICOM reading found about it
+/// (or nullptr), `simplification` simplificationJson's report or null. The
+/// Python module's reconstruct() returns it too. O(broken pieces).
+nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
+                                 const RtStructRoiInfo* dicom, const ReconstructSettings& settings,
+                                 const RoiWriting& writing,
+                                 const nlohmann::ordered_json& simplification);
 
 /// Reconstructs `roi` (one of input.contours.rois) into `output` as described
 /// in docs/reconstruction.md and returns the report `reconstruct --json`

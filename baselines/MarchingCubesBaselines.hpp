@@ -7,10 +7,10 @@
 //   rasterise + marching cubes (plastimatch or Slicer, then VTK or OpenVDB):
 //     each plane's contours filled on a pixel grid, stacked at the planes'
 //     spacing, iso-surfaced at the half level.
+#include "contours/ContourSet.hpp"
 #include "field/SliceFields.hpp"
 #include "geometry/TriMesh.hpp"
 #include "geometry/TriangleSoup.hpp"
-#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

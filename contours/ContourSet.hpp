@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/PlaneFrame.hpp"
-#include "geometry/Polygon.hpp"
 #include "contours/InputError.hpp"
 #include "contours/Rgb.hpp"
+#include "geometry/PlaneFrame.hpp"
+#include "geometry/Polygon.hpp"
 
 namespace dfrecon {
 

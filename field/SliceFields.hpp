@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
+#include "contours/ContourSet.hpp"
 #include "field/PrimitiveId.hpp"
 #include "field/SliceGrid.hpp"
-#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

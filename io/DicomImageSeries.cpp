@@ -12,10 +12,10 @@
 #include <optional>
 #include <sstream>
 
+#include "contours/InputError.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
-#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "io/FileScanner.hpp"
 #include "contours/InputError.hpp"
+#include "io/FileScanner.hpp"
 #include "io/RegularFile.hpp"
 
 namespace dfrecon {

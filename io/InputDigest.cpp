@@ -4,9 +4,9 @@
 #include <cctype>
 #include <filesystem>
 
+#include "contours/InputError.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/FileNames.hpp"
-#include "contours/InputError.hpp"
 #include "io/LabelInput.hpp"
 #include "io/LabelTable.hpp"
 #include "io/RegularFile.hpp"

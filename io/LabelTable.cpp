@@ -10,12 +10,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/AtomicWrite.hpp"
-#include "io/FileNames.hpp"
 #include "contours/InputError.hpp"
+#include "io/AtomicWrite.hpp"
+#include "io/Colours.hpp"
+#include "io/FileNames.hpp"
 #include "io/RegularFile.hpp"
 #include "io/TextEncoding.hpp"
-#include "io/Colours.hpp"
 
 namespace dfrecon {
 

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "io/FileNames.hpp"
 #include "contours/InputError.hpp"
+#include "io/FileNames.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelVolumeDetail.hpp"

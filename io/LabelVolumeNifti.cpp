@@ -20,8 +20,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/AtomicWrite.hpp"
 #include "contours/InputError.hpp"
+#include "io/AtomicWrite.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon::labelvolume {

@@ -27,8 +27,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "io/AtomicWrite.hpp"
 #include "contours/InputError.hpp"
+#include "io/AtomicWrite.hpp"
 #include "io/LabelVolumeDetail.hpp"
 
 namespace dfrecon::labelvolume {

@@ -9,8 +9,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "io/AtomicWrite.hpp"
 #include "contours/InputError.hpp"
+#include "io/AtomicWrite.hpp"
 #include "io/InputsInUse.hpp"
 
 namespace dfrecon {

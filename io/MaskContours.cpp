@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/IsoLines.hpp"
 #include "contours/InputError.hpp"
+#include "geometry/IsoLines.hpp"
 
 namespace dfrecon {
 

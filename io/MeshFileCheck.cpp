@@ -7,8 +7,8 @@
 #include <sstream>
 #include <vector>
 
-#include "io/FileScanner.hpp"
 #include "contours/InputError.hpp"
+#include "io/FileScanner.hpp"
 #include "io/InputLimits.hpp"
 #include "io/MeshIO.hpp"
 

@@ -14,9 +14,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
-#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/MeshFileCheck.hpp"

@@ -13,8 +13,8 @@
 #include <sstream>
 #include <vector>
 
-#include "io/FileScanner.hpp"
 #include "contours/InputError.hpp"
+#include "io/FileScanner.hpp"
 #include "io/InputLimits.hpp"
 #include "io/MeshFileCheck.hpp"
 

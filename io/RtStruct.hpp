@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "contours/ContourSet.hpp"
+#include "contours/InputError.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomImageSeries.hpp"
-#include "contours/InputError.hpp"
 #include "io/InputLimits.hpp"
 
 namespace dfrecon {

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
+#include "contours/ContourSet.hpp"
 #include "field/SliceFields.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
-#include "contours/ContourSet.hpp"
 
 namespace dfrecon {
 

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/TriangleSoup.hpp"
 #include "contours/ContourSet.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

@@ -31,9 +31,11 @@ build_packages=(
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
 # imgcodecs only. python3 makes the man page and bash completion at build
-# time (scripts/help_pages.py).
+# time (scripts/help_pages.py); python3-dev, pybind11-dev and python3-numpy
+# build the Python module (python/, docs/python.md).
 build_packages_no_recommends=(
   libopencv-dev python3 openssl
+  python3-dev pybind11-dev python3-numpy
 )
 # npm fetches the 3D viewer HTML reports embed (scripts/vendor_viewer.sh);
 # Debian's where the machine has none of its own.
@@ -56,7 +58,7 @@ test_packages=(
 # truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
 # compare tests read; its recommends are mricron itself.
 test_packages_no_recommends=(
-  chromium python3-vtk9
+  chromium python3-vtk9 python3-pytest
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge

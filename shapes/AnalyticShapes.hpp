@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/Vec3.hpp"
 #include "contours/ContourSet.hpp"
+#include "geometry/Vec3.hpp"
 
 namespace dfrecon {
 

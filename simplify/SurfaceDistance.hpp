@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "geometry/TriangleSoup.hpp"
 #include "contours/ContourSet.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
 

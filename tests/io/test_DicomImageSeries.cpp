@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/DicomImageSeries.hpp"
 #include "contours/InputError.hpp"
+#include "io/DicomImageSeries.hpp"
 #include "io/LabelVolume.hpp"
 #include "tests/TempDir.hpp"
 

@@ -9,8 +9,8 @@
 #include <random>
 
 #include "contours/InputError.hpp"
-#include "io/LabelTable.hpp"
 #include "io/Colours.hpp"
+#include "io/LabelTable.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/TempDir.hpp"
 

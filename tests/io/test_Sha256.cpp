@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/InputDigest.hpp"
 #include "contours/InputError.hpp"
+#include "io/InputDigest.hpp"
 #include "io/Sha256.hpp"
 #include "tests/TempDir.hpp"
 

@@ -7,8 +7,8 @@
 #include <iostream>
 #include <random>
 
-#include "geometry/ContourValidation.hpp"
 #include "contours/ContourSet.hpp"
+#include "geometry/ContourValidation.hpp"
 #include "recon/ContourSimplification.hpp"
 
 using namespace dfrecon;

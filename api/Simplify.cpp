@@ -1,0 +1,34 @@
+#include "dfrecon/Simplify.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace dfrecon {
+
+namespace {
+
+// Enough samples that the sampled maximum is close to the true one; every
+// vertex of both surfaces is added on top.
+std::size_t verifySamples(const TriangleSoup& a, const TriangleSoup& b) {
+    return std::max<std::size_t>(50000, 4 * std::max(a.triangles.size(), b.triangles.size()));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+VerifiedSimplification simplifyVerified(ocl::Runtime* runtime, const TriangleSoup& surface,
+                                        const SimplifyOptions& options, const Roi* contours) {
+    VerifiedSimplification out;
+    out.result = simplifySurface(runtime, surface, options);
+    const auto start = std::chrono::steady_clock::now();
+    out.verified =
+        verifySimplification(surface, out.result.surface, contours, options.maxErrorMm / 8,
+                             verifySamples(surface, out.result.surface));
+    out.verifySeconds = secondsSince(start);
+    return out;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,9 @@
+#include "dfrecon/Version.hpp"
+
+namespace dfrecon {
+
+const char* version() {
+    return DFRECON_VERSION;
+}
+
+}  // namespace dfrecon

@@ -1,0 +1,76 @@
+#pragma once
+// Contours in: every contour input dfrecon reads (.slices, DICOM RT
+// Structure Sets, label volumes, mask stacks: io/ContourFormat decides which
+// by content, then by name), and structure sets built from points in memory.
+// The command line's inputs go through readContours, so both read alike.
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contours/ContourSet.hpp"
+#include "geometry/Vec3.hpp"
+#include "io/ContourFormat.hpp"
+#include "io/RtStruct.hpp"
+
+namespace dfrecon {
+
+struct ReadContoursOptions {
+    /// A contour crossing itself becomes the simple contours of its even-odd
+    /// region, with a warning, instead of making its ROI a defect.
+    bool repairSelfCrossings = false;
+    /// Label volumes: a label table (.txt/.csv/.ctbl/.lut) naming the labels;
+    /// "" looks beside the volume.
+    std::string labelTable;
+    /// Label volumes: contour every value even of a volume that looks like a
+    /// scan's intensities.
+    bool acceptIntensity = false;
+    /// Receives the fraction of the file read (not every format reports it).
+    std::function<void(double)> progress;
+};
+
+/// A contour input as read, with what its format adds.
+struct ContoursRead {
+    ContourFormat format = ContourFormat::Slices;
+    ContourSet contours;
+    std::vector<InputWarning> warnings;      // repairs made, in file order
+    std::vector<RtStructRoiInfo> dicomRois;  // per ROI of `contours`, DICOM input only
+    std::string labelTable;                  // label volumes: where ROI names came from ("" none)
+
+    /// What DICOM reading found about `roi` (one of contours.rois), or nullptr. O(1).
+    const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
+};
+
+/// Reads `path` in the format contourFormatOf() finds. An ROI whose contours
+/// cannot be used (too few points, crossing contours) is kept with its
+/// `defect` and no slices, so the file's other ROIs load. Throws InputError
+/// naming the file (and line or tag) for bad input. O(input).
+ContoursRead readContours(const std::string& path, const ReadContoursOptions& options = {});
+
+/// Reads .slices text from `in`; `name` labels messages. As readContours.
+ContoursRead readSlicesStream(std::istream& in, const std::string& name,
+                              const ReadContoursOptions& options = {});
+
+/// One ROI given as points: each contour a closed polygon of at least three
+/// points on one axial plane (constant z), in patient mm; the last point
+/// need not repeat the first.
+struct RoiPoints {
+    std::string name;
+    std::vector<std::vector<Vec3>> contours;
+    std::optional<Rgb> colour;  // none: readers and viewers pick one
+};
+
+/// A structure set from points in memory, validated, repaired and oriented
+/// exactly as a .slices file with these contours would be (repeated points
+/// dropped, contours on one plane grouped, outer contours counter-clockwise,
+/// holes clockwise). Throws InputError naming `source`, the ROI and the
+/// contour's index for a contour with a non-finite coordinate, fewer than
+/// three points or points off one axial plane (1e-6 mm); an ROI whose
+/// contours cross keeps it as its `defect`, as readContours does. O(points).
+ContoursRead structureSetFromPoints(const std::vector<RoiPoints>& rois,
+                                    const std::string& source = "<points>",
+                                    const ReadContoursOptions& options = {});
+
+}  // namespace dfrecon

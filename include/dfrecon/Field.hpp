@@ -1,0 +1,50 @@
+#pragma once
+// An ROI's distance fields (reconstruction paper §2.1, §6.1): the exact
+// signed 2D field of every plane with each pixel's nearest contour
+// primitive, and the 3D field those fields make when propagated along z
+// (in-plane Euclidean distance + |dz|: never below the Euclidean distance),
+// resampled to a regular volume. What `dfrecon fields` and `dfrecon field`
+// compute, without the files.
+#include <functional>
+
+#include "cl/Runtime.hpp"
+#include "contours/ContourSet.hpp"
+#include "field/SliceFields.hpp"
+#include "io/LevelSetVdb.hpp"
+
+namespace dfrecon {
+
+struct RoiFieldOptions {
+    /// Pixel (and x/y voxel) size, mm; <= 0: the ROI's extent plus margin
+    /// fits field/SliceGrid's default grid.
+    double pixelMm = 0;
+    /// The volume's z step: false: half the smallest slice gap (slices and
+    /// cap planes are then voxel layers); true: the pixel size (cubic voxels).
+    bool isotropic = false;
+    std::function<void(double)> progress;  // fraction of the 2D fields done
+};
+
+/// The exact signed field of every plane of `roi` that has contours, on one
+/// grid around them (plane coordinates, mm; negative inside), with each
+/// pixel's nearest primitive. Throws std::invalid_argument for an ROI
+/// without contours or a grid beyond field/SliceGrid's limits, ClError on
+/// device failure. O(pixels · log segments).
+SliceFields roiSliceFields(ocl::Runtime& runtime, const Roi& roi,
+                           const RoiFieldOptions& options = {});
+
+struct RoiDistanceVolume {
+    /// Values x fastest, then y, then z; origin and voxel in the ROI's plane
+    /// frame (the identity for axial stacks; roi.frame maps to patient LPS).
+    DenseDistanceVolume volume;
+    double zStepMm = 0, sliceSpacingMm = 0;
+    double fieldsSeconds = 0, propagateSeconds = 0;
+};
+
+/// The ROI's 3D distance volume: roiSliceFields, propagated along z
+/// (field/DistanceField3D, ends closing half a spacing beyond the end
+/// slices as flat caps do) and resampled (field/FieldVolume). Throws as
+/// roiSliceFields. O(voxels).
+RoiDistanceVolume roiDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
+                                    const RoiFieldOptions& options = {});
+
+}  // namespace dfrecon

@@ -1,0 +1,57 @@
+#pragma once
+// An ROI's closed surface from its contours, in patient coordinates, checked
+// as written (points rounded to float as mesh files hold them), simplified
+// within a bound when asked: what `dfrecon reconstruct` and `batch` write
+// per ROI, without the file and the report.
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cl/Runtime.hpp"
+#include "contours/ContourSet.hpp"
+#include "dfrecon/Simplify.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "geometry/TriangleSoup.hpp"
+#include "recon/Reconstruction.hpp"
+
+namespace dfrecon {
+
+struct RoiReconstructOptions {
+    ReconstructionOptions reconstruction;  // pixel, caps, interpolation, depth (recon/)
+    double maxErrorMm = 0;                 // > 0: simplify within this bound (dfrecon/Simplify)
+};
+
+struct RoiSurface {
+    TriangleSoup surface;   // patient mm, outward, points as floats
+    MeshCheckReport check;  // of `surface` as it is
+    ReconstructionStats stats;
+    double contourVolumeMm3 = 0;  // Σ area × thickness, as planning systems report it
+    /// z ranges (mm, plane frame) of the slabs and caps that are not valid.
+    std::vector<std::pair<double, double>> brokenPieces;
+    /// When maxErrorMm > 0: its statistics and measured distances (its
+    /// result.surface is moved into `surface`).
+    std::optional<VerifiedSimplification> simplification;
+    double checkSeconds = 0;  // the check of the result
+
+    /// A valid closed solid, or open only where CapMode::None asked. O(1).
+    bool usable(CapMode cap) const { return check.validSolid() || cap == CapMode::None; }
+};
+
+/// Progress of one ROI: the stage ("reconstructing", "simplifying") and the
+/// fraction of it done (< 0 when unknown).
+using RoiProgress = std::function<void(const std::string& stage, double fraction)>;
+
+/// Reconstructs `roi` (recon/Reconstruction: valid by construction with flat
+/// or dome caps), maps it to patient coordinates, simplifies it when
+/// options.maxErrorMm > 0, rounds its points to float and checks it. Never
+/// throws for an invalid result: `check` says so. Throws InputError for an
+/// ROI with a defect, std::invalid_argument for one without contours,
+/// ClError on device failure. Safe for several ROIs at once, one runtime
+/// each. O(the reconstruction).
+RoiSurface reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
+                          const RoiReconstructOptions& options = {},
+                          const RoiProgress& progress = {});
+
+}  // namespace dfrecon

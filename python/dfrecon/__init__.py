@@ -1,0 +1,440 @@
+"""dfrecon: watertight, error-bounded surfaces from planar contours.
+
+Contours in (RTSTRUCT, .slices, label volumes, mask stacks, or NumPy arrays),
+closed triangle surfaces out as NumPy arrays, with exact distance fields,
+error-bounded simplification, surface distance maps and comparisons. The
+same C++ library as the ``dfrecon`` program, so the numbers are the same as
+its ``--json`` reports. See docs/python.md.
+
+    >>> import dfrecon
+    >>> rs = dfrecon.read_contours("RS.dcm")
+    >>> mesh = dfrecon.reconstruct(rs, roi="PTV")
+    >>> mesh.volume_cc, mesh.vertices.shape, mesh.faces.shape
+"""
+
+import os as _os
+import sys as _sys
+
+# NumPy from Debian's package where this interpreter has none of its own: the
+# module is built against Debian's python3 (make setup installs NumPy for
+# it), and another CPython of the same minor version (a pyenv build) can use
+# the same NumPy. Appended, so an interpreter's own NumPy always wins.
+try:
+    import numpy as _np
+except ImportError:  # pragma: no cover - depends on the interpreter
+    _debian = "/usr/lib/python3/dist-packages"
+    _tag = "cpython-%d%d" % _sys.version_info[:2]
+    _core = _os.path.join(_debian, "numpy", "core")
+    if _os.path.isdir(_core) and any(_tag in f for f in _os.listdir(_core)):
+        _sys.path.append(_debian)
+    import numpy as _np
+
+from . import _dfrecon as _core_module
+from ._dfrecon import DeviceError, InputError, InvalidResultError
+
+__version__ = _core_module.__version__
+
+__all__ = [
+    "__version__",
+    "InputError",
+    "InvalidResultError",
+    "DeviceError",
+    "Roi",
+    "StructureSet",
+    "Mesh",
+    "read_contours",
+    "read_mesh",
+    "reconstruct",
+    "slice_fields",
+    "distance_field",
+    "simplify",
+    "surface_distance_maps",
+    "compare",
+    "check",
+    "set_device",
+    "device_name",
+]
+
+InputError.__doc__ = (
+    "Bad input (a file, its line or tag, or an array): a ValueError whose "
+    "message names the file and what is wrong, as the program's exit code 2."
+)
+InvalidResultError.__doc__ = "A result that is not a valid closed solid where one is needed."
+DeviceError.__doc__ = "The OpenCL device failed or none matches the device asked for."
+
+
+def set_device(spec):
+    """Use the OpenCL device `spec` (as the program's --device: 'cpu', 'gpu',
+    an index or a name part) from now on. The default is $DFRECON_DEVICE, else
+    PoCL's CPU device."""
+    _core_module._set_device(str(spec))
+
+
+def device_name():
+    """The name of the OpenCL device computations run on."""
+    return _core_module._device_name()
+
+
+# ---- contours ----------------------------------------------------------------
+
+
+class Roi:
+    """One structure of a structure set.
+
+    Attributes: ``name`` (str), ``number`` (DICOM ROI Number or None),
+    ``colour`` ((r, g, b) 0-255 or None), ``interpreted_type`` (str, DICOM
+    RTROIInterpretedType or ''), ``planes`` (float64 array: each plane's
+    position along the stack's normal, mm), ``contours`` (list of (n, 3)
+    float64 arrays, one closed contour each, patient mm), ``orientation``
+    ('axial', 'sagittal', 'coronal' or 'oblique'), ``contour_volume_cc``
+    (the planning system's sum of area x thickness), ``defect`` (why its
+    contours cannot be used, or None).
+    """
+
+    __slots__ = ("name", "number", "colour", "interpreted_type", "planes", "contours",
+                 "orientation", "contour_volume_cc", "defect")
+
+    def __init__(self, d):
+        for key in self.__slots__:
+            setattr(self, key, d[key])
+
+    def __repr__(self):
+        return "Roi(%r, number=%r, %d planes, %d contours)" % (
+            self.name, self.number, len(self.planes), len(self.contours))
+
+
+class StructureSet:
+    """ROIs of contours, as read by :func:`read_contours` or built by
+    :meth:`from_contours`. ``rois`` lists them in file order; index by name or
+    DICOM number: ``ss["PTV"]``, ``ss[3]``."""
+
+    def __init__(self, core):
+        self._core = core
+        self.rois = [Roi(d) for d in core._rois()]
+
+    @classmethod
+    def from_contours(cls, rois, colours=None, repair_contours=False):
+        """A structure set from NumPy arrays: ``{"NAME": [array (n, 3), ...]}``,
+        each array one closed contour on one axial plane (constant z), in
+        patient mm. Contours are checked, repaired and oriented exactly as a
+        .slices file's are; ``colours`` maps names to (r, g, b)."""
+        if not isinstance(rois, dict):
+            raise TypeError("from_contours: expected a dict of ROI name -> list of (n, 3) arrays")
+        return cls(_core_module._from_contours(rois, dict(colours or {}), bool(repair_contours)))
+
+    @property
+    def format(self):
+        """The input's format: 'slices', 'RTSTRUCT', 'label volume' or 'mask stack'."""
+        return self._core.format
+
+    @property
+    def source(self):
+        return self._core.source
+
+    @property
+    def warnings(self):
+        """The repairs made while reading, as the program prints them."""
+        return self._core.warnings
+
+    @property
+    def names(self):
+        return [r.name for r in self.rois]
+
+    def __len__(self):
+        return len(self.rois)
+
+    def __iter__(self):
+        return iter(self.rois)
+
+    def __getitem__(self, key):
+        for r in self.rois:
+            if (isinstance(key, str) and r.name == key) or (
+                    isinstance(key, int) and not isinstance(key, bool) and r.number == key):
+                return r
+        raise KeyError(key)
+
+    def __contains__(self, key):
+        try:
+            self[key]
+            return True
+        except KeyError:
+            return False
+
+    def write_slices(self, path):
+        """Writes the contours as a .slices file (exact: every number reads back the same)."""
+        self._core._write_slices(_os.fspath(path))
+
+    def __repr__(self):
+        return "StructureSet(%s, %d ROIs: %s)" % (
+            self.format, len(self.rois), ", ".join(self.names))
+
+
+def read_contours(path, *, repair_contours=False, label_table=None, accept_intensity=False):
+    """Reads contours from `path`: a DICOM RT Structure Set, a .slices file, a
+    label volume (.nii, .nii.gz, .nrrd, .nhdr, .seg.nrrd) or a mask stack
+    (folder or .json), the format found by content first, then by name.
+    Returns a :class:`StructureSet`. Raises :class:`InputError` (a ValueError)
+    naming the file for bad input."""
+    return StructureSet(_core_module._read_contours(
+        _os.fspath(path), bool(repair_contours), _os.fspath(label_table) if label_table else "",
+        bool(accept_intensity)))
+
+
+def _structure_set(src):
+    if isinstance(src, StructureSet):
+        return src
+    if isinstance(src, (str, bytes, _os.PathLike)):
+        return read_contours(src)
+    raise TypeError("expected a StructureSet or a path, got %s" % type(src).__name__)
+
+
+def _roi_key(roi):
+    if roi is None or isinstance(roi, (str, int)) and not isinstance(roi, bool):
+        return roi
+    if isinstance(roi, Roi):
+        return roi.name
+    raise TypeError("roi: expected a name, a DICOM ROI number or a Roi, got %s"
+                    % type(roi).__name__)
+
+
+# ---- meshes ------------------------------------------------------------------
+
+
+class Mesh:
+    """A triangle surface: ``vertices`` (n, 3) float64 in patient mm and
+    ``faces`` (m, 3) int32 indices, outward-oriented.
+
+    ``Mesh(vertices, faces)`` makes one from arrays; :func:`reconstruct`,
+    :func:`simplify` and :func:`read_mesh` return them. Reconstructed meshes
+    carry ``name``, ``colour``, ``contour_volume_cc`` and ``report`` (the dict
+    ``dfrecon reconstruct --json`` gives for the ROI). Hand the arrays to
+    trimesh (``trimesh.Trimesh(m.vertices, m.faces)``) or pyvista
+    (``pv.PolyData.from_regular_faces(m.vertices, m.faces)``)."""
+
+    def __init__(self, vertices=None, faces=None, *, _core=None):
+        if _core is None:
+            if vertices is None or faces is None:
+                raise TypeError("Mesh(vertices, faces): both arrays are needed")
+            _core = _core_module._Mesh(vertices, faces)
+        self._core = _core
+        self._check = None
+
+    @property
+    def vertices(self):
+        return self._core.vertices
+
+    @property
+    def faces(self):
+        return self._core.faces
+
+    @property
+    def name(self):
+        return self._core.name
+
+    @property
+    def colour(self):
+        return self._core.colour
+
+    @property
+    def report(self):
+        """The program's JSON report as a dict (reconstruct, simplify), or None."""
+        return self._core.report
+
+    @property
+    def contour_volume_cc(self):
+        """The planning system's volume of the contours it was made from, or None."""
+        return self._core.contour_volume_cc
+
+    def check(self):
+        """As :func:`check`."""
+        if self._check is None:
+            self._check = self._core._check()
+        return dict(self._check)
+
+    @property
+    def volume_cc(self):
+        """The enclosed volume, cm³ (of a closed surface)."""
+        return self.check()["volumeCc"]
+
+    @property
+    def area_mm2(self):
+        return self.check()["areaMm2"]
+
+    @property
+    def valid_solid(self):
+        """Closed, manifold, oriented, without self-intersection: a valid solid."""
+        return self.check()["validSolid"]
+
+    def write(self, path, binary=True):
+        """Writes .ply, .stl, .obj, .off, .vtk or .vtp (by extension), atomically."""
+        self._core._write(_os.fspath(path), bool(binary))
+
+    def __repr__(self):
+        return "Mesh(%s%d vertices, %d faces)" % (
+            (repr(self.name) + ", ") if self.name else "", len(self.vertices), len(self.faces))
+
+
+def read_mesh(path):
+    """Reads a mesh file (.ply, .stl, .obj, .off)."""
+    return Mesh(_core=_core_module._read_mesh(_os.fspath(path)))
+
+
+def _mesh(m, what):
+    if isinstance(m, Mesh):
+        return m
+    if isinstance(m, (str, bytes, _os.PathLike)):
+        return read_mesh(m)
+    raise TypeError("%s: expected a Mesh or a mesh file path, got %s" % (what, type(m).__name__))
+
+
+# ---- reconstruct -------------------------------------------------------------
+
+# Python names of the program's reconstruct options; the _mm forms name the unit.
+_OPTION_ALIASES = {
+    "pixel_mm": "pixel-mm",
+    "contour_error": "contour-error",
+    "contour_error_mm": "contour-error",
+    "max_depth": "max-depth",
+    "cap": "cap",
+    "interpolation": "interpolation",
+    "smooth_tolerance": "smooth-tolerance",
+    "smooth_tolerance_mm": "smooth-tolerance",
+    "cap_offset": "cap-offset",
+    "cap_offset_mm": "cap-offset",
+    "max_error": "max-error",
+    "max_error_mm": "max-error",
+}
+
+
+def _option_text(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def reconstruct(src, roi=None, **options):
+    """Reconstructs ROI `roi` of `src` (a :class:`StructureSet` or a path to
+    contours) into a closed :class:`Mesh`, as ``dfrecon reconstruct`` does:
+    same surface, same triangles, same report.
+
+    `roi` is a name, a DICOM ROI number, or a :class:`Roi`; None takes the only
+    ROI, or, when the set holds several, reconstructs every ROI with contours
+    and returns ``{name: Mesh}`` in file order. Options, as the program's
+    (units mm): ``pixel_mm`` (0: automatic), ``contour_error_mm`` (0),
+    ``max_depth`` (4), ``cap`` ('flat', 'dome', 'none'), ``cap_offset_mm``
+    (automatic), ``interpolation`` ('smooth', 'linear'),
+    ``smooth_tolerance_mm`` (0.05), ``max_error_mm`` (0: no simplification).
+    """
+    given = []
+    for key, value in options.items():
+        if key not in _OPTION_ALIASES:
+            raise TypeError("reconstruct() got an unexpected option %r (options: %s)"
+                            % (key, ", ".join(sorted(_OPTION_ALIASES))))
+        if value is None:
+            continue
+        given.append((_OPTION_ALIASES[key], _option_text(value)))
+    ss = _structure_set(src)
+    if roi is None and len(ss.rois) > 1:
+        return {r.name: Mesh(_core=_core_module._reconstruct(ss._core, r.name, given))
+                for r in ss.rois if len(r.contours) > 0 or r.defect}
+    return Mesh(_core=_core_module._reconstruct(ss._core, _roi_key(roi), given))
+
+
+# ---- fields ------------------------------------------------------------------
+
+
+class Field:
+    """Distances on a regular grid: ``values`` (float32, mm, negative inside),
+    ``origin`` (the centre of the first sample), ``spacing`` (mm per index
+    step, in the order of ``values``' last axes reversed: x, y[, z]), and for
+    slice fields ``planes`` (each plane's position)."""
+
+    def __init__(self, d):
+        self.__dict__.update(d)
+
+    def __repr__(self):
+        return "Field(shape=%s, origin=%s, spacing=%s)" % (
+            self.values.shape, self.origin, self.spacing)
+
+
+def slice_fields(src, roi=None, *, pixel_mm=0.0):
+    """The exact signed 2D distance field of every plane of the ROI (reconstruction
+    paper §2.1): ``values`` of shape (planes, height, width), pixel (i, j) of
+    plane k centred at (origin[0] + i·spacing[0], origin[1] + j·spacing[1]) in
+    the plane's coordinates at position ``planes[k]``."""
+    ss = _structure_set(src)
+    return Field(_core_module._slice_fields(ss._core, _roi_key(roi), float(pixel_mm)))
+
+
+def distance_field(src, roi=None, *, pixel_mm=0.0, isotropic=False):
+    """The ROI's 3D signed distance volume as ``dfrecon field`` computes it
+    (in-plane Euclidean distance + |dz|: never below the Euclidean distance):
+    ``values`` of shape (nz, ny, nx), voxel (i, j, k) centred at origin +
+    i·spacing[0]·axes[0] + j·spacing[1]·axes[1] + k·spacing[2]·axes[2]
+    (patient mm; the axes are x, y, z for axial stacks)."""
+    ss = _structure_set(src)
+    return Field(_core_module._distance_field(ss._core, _roi_key(roi), float(pixel_mm),
+                                              bool(isotropic)))
+
+
+# ---- meshes: simplify, maps, compare, check ---------------------------------------
+
+
+def simplify(mesh, max_error_mm):
+    """The mesh simplified by edge collapses within `max_error_mm` of it in both
+    directions (reconstruction paper §6.2), verified independently; the
+    result's ``report`` is ``dfrecon simplify --json``'s simplification."""
+    m = _mesh(mesh, "simplify")
+    return Mesh(_core=_core_module._simplify(m._core, float(max_error_mm)))
+
+
+def surface_distance_maps(meshes, *, names=None, max_distance_mm=None, texels=512,
+                          sampling_mm=0.0):
+    """Per mesh, at every vertex, the signed distance to the nearest other mesh
+    (negative inside it), which mesh that is and its closest point (surface
+    distance maps paper); and each pair's separation and collision.
+
+    Returns ``(maps, pairs)``: ``maps[i]`` a dict with ``name``,
+    ``distance_mm`` (n,), ``nearest`` (n,) int32 (index of the nearest mesh,
+    -1 beyond ``max_distance_mm``), ``closest_point`` (n, 3) and
+    ``sampling_bound_mm``; ``pairs`` a list of dicts."""
+    ms = [_mesh(m, "surface_distance_maps") for m in meshes]
+    if len(ms) < 2:
+        raise ValueError("surface_distance_maps needs at least two meshes")
+    if names is None:
+        names = [m.name or ("mesh%d" % i) for i, m in enumerate(ms)]
+    return _core_module._surface_distance_maps(
+        [m._core for m in ms], list(names), float(max_distance_mm or 0), int(texels),
+        float(sampling_mm))
+
+
+def compare(a, b, *, roi_a=None, roi_b=None, spacing_mm=0.2, tolerance_mm=1.0):
+    """How two structures agree, with ``dfrecon compare --json``'s keys: volumes,
+    Dice, Jaccard (exact), Hausdorff, HD95, mean surface distance, surface Dice
+    (each within spacing_mm), centroid distance, and for two contour inputs
+    ``onPlanes``, the planning system's per-plane overlap and added path
+    length. `a` and `b` are Meshes or mesh files, or StructureSets / contour
+    files with ``roi_a``, ``roi_b`` (reconstructed as the program does)."""
+    def contours(x):
+        return isinstance(x, StructureSet) or (
+            isinstance(x, (str, _os.PathLike)) and
+            not _os.fspath(x).lower().endswith((".ply", ".stl", ".obj", ".off")))
+    if contours(a) and contours(b):
+        return _core_module._compare_contours(
+            _structure_set(a)._core, _roi_key(roi_a), _structure_set(b)._core, _roi_key(roi_b),
+            float(spacing_mm), float(tolerance_mm))
+    def solid(x, roi, what):
+        if contours(x):
+            return reconstruct(x, roi if roi is not None else None)
+        return _mesh(x, what)
+    ma, mb = solid(a, roi_a, "compare a"), solid(b, roi_b, "compare b")
+    return _core_module._compare(ma._core, mb._core, float(spacing_mm), float(tolerance_mm))
+
+
+def check(mesh):
+    """Whether the mesh is a valid closed solid, with ``dfrecon check --json``'s
+    keys: validSolid, watertight, volumeMm3, volumeCc, areaMm2, genus, the
+    defects' counts and where they are."""
+    return _mesh(mesh, "check").check()

@@ -1,0 +1,592 @@
+// The Python module dfrecon._dfrecon: the public C++ API (include/dfrecon/)
+// with NumPy arrays in and out, and the command line's reports as dicts, so
+// that a number means the same from Python as from `dfrecon ... --json`.
+// dfrecon/__init__.py wraps it into the documented Python API
+// (docs/python.md); names with a leading underscore are that file's.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+#include "app/CompareReport.hpp"
+#include "app/ExitCodes.hpp"
+#include "app/ReconstructSettings.hpp"
+#include "app/Reports.hpp"
+#include "app/RoiReconstruction.hpp"
+#include "app/SimplifyReport.hpp"
+#include "cl/ClError.hpp"
+#include "dfrecon/dfrecon.hpp"
+#include "io/MeshIO.hpp"
+#include "io/SlicesFile.hpp"
+
+namespace py = pybind11;
+using namespace dfrecon;
+
+namespace {
+
+// ---- the one OpenCL runtime of the process ----------------------------------
+
+// Made on first use from $DFRECON_DEVICE (as the program does without
+// --device), or from set_device(); one at a time, since kernels share its queue.
+std::mutex runtimeMutex;
+std::unique_ptr<ocl::Runtime> sharedRuntime;
+std::string deviceSpec;
+
+ocl::Runtime& runtime() {
+    if (!sharedRuntime) sharedRuntime = std::make_unique<ocl::Runtime>(deviceSpec);
+    return *sharedRuntime;
+}
+
+// ---- JSON to Python ---------------------------------------------------------
+
+py::object toPython(const nlohmann::ordered_json& j) {
+    switch (j.type()) {
+        case nlohmann::ordered_json::value_t::null:
+            return py::none();
+        case nlohmann::ordered_json::value_t::boolean:
+            return py::bool_(j.get<bool>());
+        case nlohmann::ordered_json::value_t::number_integer:
+            return py::int_(j.get<std::int64_t>());
+        case nlohmann::ordered_json::value_t::number_unsigned:
+            return py::int_(j.get<std::uint64_t>());
+        case nlohmann::ordered_json::value_t::number_float:
+            return py::float_(j.get<double>());
+        case nlohmann::ordered_json::value_t::string:
+            return py::str(j.get<std::string>());
+        case nlohmann::ordered_json::value_t::array: {
+            py::list list;
+            for (const auto& item : j) list.append(toPython(item));
+            return std::move(list);
+        }
+        case nlohmann::ordered_json::value_t::object: {
+            py::dict dict;
+            for (const auto& [key, value] : j.items()) dict[py::str(key)] = toPython(value);
+            return std::move(dict);
+        }
+        default:
+            return py::none();
+    }
+}
+
+// ---- arrays -----------------------------------------------------------------
+
+// Points (n, 3) float64 from any array-like, refusing what is not one
+// (wrong shape, non-numbers) with a message naming `what`.
+std::vector<Vec3> pointsOf(const py::handle& object, const std::string& what) {
+    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
+    } catch (const py::error_already_set&) {
+        throw py::value_error(what + ": not an array of numbers");
+    }
+    if (!a || a.ndim() != 2 || a.shape(1) != 3)
+        throw py::value_error(
+            what + ": expected an array of shape (n, 3), got " +
+            (a ? "shape " + std::string(py::str(py::tuple(py::cast(
+                                std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())))))
+               : std::string("no array")));
+    std::vector<Vec3> points(std::size_t(a.shape(0)));
+    const double* data = a.data();
+    for (std::size_t i = 0; i < points.size(); ++i)
+        points[i] = {data[3 * i], data[3 * i + 1], data[3 * i + 2]};
+    return points;
+}
+
+py::array_t<double> pointsArray(const std::vector<Vec3>& points) {
+    py::array_t<double> a({py::ssize_t(points.size()), py::ssize_t(3)});
+    double* out = a.mutable_data();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        out[3 * i] = points[i].x;
+        out[3 * i + 1] = points[i].y;
+        out[3 * i + 2] = points[i].z;
+    }
+    return a;
+}
+
+py::array_t<std::int32_t> facesArray(const TriangleSoup& soup) {
+    py::array_t<std::int32_t> a({py::ssize_t(soup.triangles.size()), py::ssize_t(3)});
+    std::int32_t* out = a.mutable_data();
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) out[3 * t + k] = std::int32_t(soup.triangles[t][k]);
+    return a;
+}
+
+// A surface from vertex and face arrays: faces must be integers (any width)
+// indexing the vertices, vertices finite.
+TriangleSoup soupOf(const py::handle& vertices, const py::handle& faces) {
+    TriangleSoup soup;
+    soup.points = pointsOf(vertices, "vertices");
+    for (std::size_t i = 0; i < soup.points.size(); ++i) {
+        const Vec3& p = soup.points[i];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw py::value_error("vertices: vertex " + std::to_string(i) +
+                                  " has a coordinate that is not a finite number");
+    }
+    py::array f = py::array::ensure(faces);
+    if (!f || f.ndim() != 2 || f.shape(1) != 3)
+        throw py::value_error("faces: expected an integer array of shape (m, 3)");
+    if (f.shape(0) > 0 && !py::isinstance<py::array_t<std::int64_t>>(f) &&
+        f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
+        throw py::value_error("faces: expected integers, got dtype " +
+                              std::string(py::str(f.dtype())));
+    const auto indices =
+        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f);
+    const std::int64_t* data = indices.data();
+    soup.triangles.resize(std::size_t(f.shape(0)));
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t v = data[3 * t + k];
+            if (v < 0 || std::uint64_t(v) >= soup.points.size())
+                throw py::value_error("faces: face " + std::to_string(t) + " refers to vertex " +
+                                      std::to_string(v) + ", but there are " +
+                                      std::to_string(soup.points.size()) + " vertices");
+            soup.triangles[t][k] = std::uint32_t(v);
+        }
+    return soup;
+}
+
+// ---- structure sets ---------------------------------------------------------
+
+py::dict roiDict(const Roi& roi) {
+    py::dict d;
+    d["name"] = roi.name;
+    d["number"] = roi.number ? py::object(py::int_(*roi.number)) : py::none();
+    d["colour"] = roi.colour
+                      ? py::object(py::make_tuple(int((*roi.colour)[0]), int((*roi.colour)[1]),
+                                                  int((*roi.colour)[2])))
+                      : py::none();
+    d["interpreted_type"] = roi.interpretedType;
+    d["defect"] = roi.defect ? py::object(py::str(roi.defect->what())) : py::none();
+    py::array_t<double> planes(py::ssize_t(roi.slices.size()));
+    py::list contours;
+    for (std::size_t k = 0; k < roi.slices.size(); ++k) {
+        const Slice& slice = roi.slices[k];
+        // Plane positions along the stack's normal; points in patient mm.
+        planes.mutable_data()[k] = slice.zMm;
+        for (const Polygon& polygon : slice.contours) {
+            std::vector<Vec3> points;
+            points.reserve(polygon.size());
+            for (Point2 p : polygon) points.push_back(roi.frame.toPatient({p.x, p.y, slice.zMm}));
+            contours.append(pointsArray(points));
+        }
+    }
+    d["planes"] = planes;
+    d["contours"] = contours;
+    d["contour_volume_cc"] = roi.slices.empty() ? 0.0 : contourVolumeMm3(roi) / 1000;
+    d["orientation"] = roi.frame.orientationName();
+    return d;
+}
+
+// The structure set as Python sees it: the C++ object kept opaque (for
+// reconstruct and the fields), its ROIs described by roiDict.
+struct PyStructureSet {
+    ContoursRead read;
+    std::string source;
+};
+
+PyStructureSet readSet(const std::string& path, bool repair, const std::string& labelTable,
+                       bool acceptIntensity) {
+    ReadContoursOptions options;
+    options.repairSelfCrossings = repair;
+    options.labelTable = labelTable;
+    options.acceptIntensity = acceptIntensity;
+    PyStructureSet set;
+    {
+        py::gil_scoped_release release;
+        set.read = readContours(path, options);
+    }
+    set.source = path;
+    return set;
+}
+
+PyStructureSet setFromContours(const py::dict& rois, const py::dict& colours, bool repair) {
+    std::vector<RoiPoints> points;
+    for (const auto& [key, value] : rois) {
+        RoiPoints roi;
+        if (!py::isinstance<py::str>(key))
+            throw py::type_error("from_contours: ROI names must be str, got " +
+                                 std::string(py::str(py::type::of(key))));
+        roi.name = py::cast<std::string>(key);
+        if (py::isinstance<py::array>(value) || !py::isinstance<py::sequence>(value))
+            throw py::type_error("from_contours: ROI '" + roi.name +
+                                 "': expected a list of (n, 3) arrays, one per contour");
+        std::size_t index = 0;
+        for (const py::handle& contour : value)
+            roi.contours.push_back(
+                pointsOf(contour, "ROI '" + roi.name + "', contour " + std::to_string(index++)));
+        if (colours.contains(key)) {
+            const auto c = py::cast<std::vector<int>>(colours[key]);
+            if (c.size() != 3 ||
+                std::any_of(c.begin(), c.end(), [](int v) { return v < 0 || v > 255; }))
+                throw py::value_error("from_contours: colour of ROI '" + roi.name +
+                                      "' must be three integers 0-255");
+            roi.colour = Rgb{std::uint8_t(c[0]), std::uint8_t(c[1]), std::uint8_t(c[2])};
+        }
+        points.push_back(std::move(roi));
+    }
+    ReadContoursOptions options;
+    options.repairSelfCrossings = repair;
+    PyStructureSet set;
+    set.read = structureSetFromPoints(points, "StructureSet.from_contours", options);
+    set.source = "StructureSet.from_contours";
+    return set;
+}
+
+// ---- reconstruct ------------------------------------------------------------
+
+struct PyMesh {
+    TriangleSoup surface;
+    std::string name;
+    std::optional<Rgb> colour;
+    double contourVolumeMm3 = NAN;
+    py::object report = py::none();
+};
+
+const Roi& chooseRoi(const ContoursRead& read, const py::object& roi) {
+    const ContourSet& set = read.contours;
+    const Roi* chosen = nullptr;
+    if (roi.is_none()) {
+        if (set.rois.size() != 1)
+            throw py::value_error("the structure set holds " + std::to_string(set.rois.size()) +
+                                  " ROIs: name one (roi=...)");
+        chosen = &set.rois.front();
+    } else if (py::isinstance<py::int_>(roi)) {
+        chosen = set.findRoiNumber(py::cast<int>(roi));
+        if (!chosen) throw py::key_error("no ROI numbered " + std::string(py::str(roi)));
+    } else {
+        const std::string name = py::cast<std::string>(roi);
+        chosen = set.findRoi(name);
+        if (!chosen) throw py::key_error("no ROI named '" + name + "'");
+    }
+    if (chosen->defect) throw *chosen->defect;
+    if (chosen->slices.empty())
+        throw py::value_error("ROI '" + chosen->name + "' has no closed planar contours");
+    return *chosen;
+}
+
+app::ReconstructSettings settingsOf(const std::vector<std::pair<std::string, std::string>>& given) {
+    std::vector<app::GivenOption> options;
+    for (const auto& [name, value] : given) options.push_back({name, value, "reconstruct()"});
+    return app::withGivenOptions({}, options);
+}
+
+PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
+                      const std::vector<std::pair<std::string, std::string>>& given) {
+    const Roi& roi = chooseRoi(set.read, roiChoice);
+    const app::ReconstructSettings settings = settingsOf(given);
+    RoiSurface result;
+    {
+        py::gil_scoped_release release;
+        const std::lock_guard<std::mutex> lock(runtimeMutex);
+        result = reconstructRoi(runtime(), roi,
+                                RoiReconstructOptions{settings.options, settings.maxErrorMm});
+    }
+    const nlohmann::ordered_json simplification =
+        result.simplification ? app::simplificationJson(*result.simplification,
+                                                        SimplifyOptions{settings.maxErrorMm}, true)
+                              : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json report =
+        app::roiReport(roi, result, set.read.dicomInfo(roi), settings, {}, simplification);
+    // Nothing is written from Python: the file keys would only mislead.
+    report.erase("output");
+    report.erase("written");
+    report.erase("facesRefusedByOpenMesh");
+    PyMesh mesh;
+    mesh.surface = std::move(result.surface);
+    mesh.name = roi.name;
+    mesh.colour = roi.colour;
+    mesh.contourVolumeMm3 = result.contourVolumeMm3;
+    mesh.report = toPython(report);
+    return mesh;
+}
+
+// ---- meshes -----------------------------------------------------------------
+
+nlohmann::ordered_json checkJson(const TriangleSoup& soup) {
+    const MeshCheckReport check = checkMesh(soup);
+    nlohmann::ordered_json report = app::meshCheckJson(check);
+    app::appendItems(report, app::defectLocationsJson(check, soup));
+    return report;
+}
+
+ComparedSolid solidOf(const PyMesh& mesh, const char* side) {
+    ComparedSolid solid{mesh.surface, checkMesh(mesh.surface), nullptr};
+    if (!solid.check.validSolid())
+        throw py::value_error(std::string("compare: ") + side +
+                              " is not a valid closed solid (dfrecon.check says where)");
+    return solid;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_dfrecon, m) {
+    m.doc() = "dfrecon's C++ core; use the documented API of the dfrecon package";
+    m.attr("__version__") = version();
+
+    // Exceptions: bad input is a ValueError naming the file; a result that
+    // is not one, and device failures, are RuntimeErrors.
+    static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
+    static py::exception<app::InvalidResult> invalidResult(m, "InvalidResultError",
+                                                           PyExc_RuntimeError);
+    static py::exception<ocl::ClError> deviceError(m, "DeviceError", PyExc_RuntimeError);
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const InputError& e) {
+            PyErr_SetObject(inputError.ptr(), py::make_tuple(e.what(), e.file(), e.line()).ptr());
+        } catch (const app::InvalidResult& e) {
+            invalidResult(e.what());
+        } catch (const ocl::ClError& e) {
+            deviceError((std::string("OpenCL: ") + e.what()).c_str());
+        } catch (const std::invalid_argument& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const std::bad_alloc&) {
+            PyErr_SetString(PyExc_MemoryError, "out of memory");
+        }
+    });
+
+    m.def("_set_device", [](const std::string& spec) {
+        const std::lock_guard<std::mutex> lock(runtimeMutex);
+        auto next = std::make_unique<ocl::Runtime>(spec);
+        sharedRuntime = std::move(next);
+        deviceSpec = spec;
+    });
+    m.def("_device_name", [] {
+        const std::lock_guard<std::mutex> lock(runtimeMutex);
+        return runtime().device().deviceName;
+    });
+
+    py::class_<PyStructureSet>(m, "_StructureSet")
+        .def_property_readonly(
+            "format", [](const PyStructureSet& s) { return contourFormatName(s.read.format); })
+        .def_property_readonly("source", [](const PyStructureSet& s) { return s.source; })
+        .def_property_readonly("warnings",
+                               [](const PyStructureSet& s) {
+                                   std::vector<std::string> out;
+                                   for (const InputWarning& w : s.read.warnings)
+                                       out.push_back(w.toString());
+                                   return out;
+                               })
+        .def("_rois",
+             [](const PyStructureSet& s) {
+                 py::list rois;
+                 for (const Roi& roi : s.read.contours.rois) rois.append(roiDict(roi));
+                 return rois;
+             })
+        .def("_write_slices", [](const PyStructureSet& s, const std::string& path) {
+            writeSlicesFile(s.read.contours, path);
+        });
+
+    m.def("_read_contours", &readSet, py::arg("path"), py::arg("repair_contours"),
+          py::arg("label_table"), py::arg("accept_intensity"));
+    m.def("_from_contours", &setFromContours, py::arg("rois"), py::arg("colours"),
+          py::arg("repair_contours"));
+
+    py::class_<PyMesh>(m, "_Mesh")
+        .def(py::init([](const py::object& vertices, const py::object& faces) {
+            PyMesh made;
+            made.surface = soupOf(vertices, faces);
+            return made;
+        }))
+        .def_property_readonly("vertices",
+                               [](const PyMesh& mesh) { return pointsArray(mesh.surface.points); })
+        .def_property_readonly("faces", [](const PyMesh& mesh) { return facesArray(mesh.surface); })
+        .def_property_readonly("name", [](const PyMesh& mesh) { return mesh.name; })
+        .def_property_readonly("colour",
+                               [](const PyMesh& mesh) -> py::object {
+                                   if (!mesh.colour) return py::none();
+                                   return py::make_tuple(int((*mesh.colour)[0]),
+                                                         int((*mesh.colour)[1]),
+                                                         int((*mesh.colour)[2]));
+                               })
+        .def_property_readonly("contour_volume_cc",
+                               [](const PyMesh& mesh) -> py::object {
+                                   if (std::isnan(mesh.contourVolumeMm3)) return py::none();
+                                   return py::float_(mesh.contourVolumeMm3 / 1000);
+                               })
+        .def_property_readonly("report", [](const PyMesh& mesh) { return mesh.report; })
+        .def("_check", [](const PyMesh& mesh) { return toPython(checkJson(mesh.surface)); })
+        .def("_write", [](const PyMesh& mesh, const std::string& path, bool binary) {
+            MeshWriteOptions options;
+            options.binary = binary;
+            if (!mesh.name.empty()) options.structure = StructureTag{mesh.name, mesh.colour};
+            writeMesh(toTriMesh(mesh.surface), path, options);
+        });
+    m.def("_read_mesh", [](const std::string& path) {
+        PyMesh mesh;
+        {
+            py::gil_scoped_release release;
+            mesh.surface = readTriangleSoup(path);
+        }
+        return mesh;
+    });
+
+    m.def("_reconstruct", &reconstructOne, py::arg("structure_set"), py::arg("roi"),
+          py::arg("options"));
+    m.def("_reconstruct_option_names", &app::reconstructSettingsNames);
+
+    m.def("_simplify", [](const PyMesh& mesh, double maxErrorMm) {
+        SimplifyOptions options;
+        options.maxErrorMm = maxErrorMm;
+        VerifiedSimplification simplified;
+        {
+            py::gil_scoped_release release;
+            const std::lock_guard<std::mutex> lock(runtimeMutex);
+            simplified = simplifyVerified(&runtime(), mesh.surface, options);
+        }
+        PyMesh out;
+        out.report = toPython(app::simplificationJson(simplified, options, false));
+        out.surface = std::move(simplified.result.surface);
+        out.name = mesh.name;
+        out.colour = mesh.colour;
+        return out;
+    });
+
+    m.def("_slice_fields", [](const PyStructureSet& set, const py::object& roiChoice,
+                              double pixelMm) {
+        const Roi& roi = chooseRoi(set.read, roiChoice);
+        RoiFieldOptions options;
+        options.pixelMm = pixelMm;
+        SliceFields fields;
+        {
+            py::gil_scoped_release release;
+            const std::lock_guard<std::mutex> lock(runtimeMutex);
+            fields = roiSliceFields(runtime(), roi, options);
+        }
+        const SliceGrid& g = fields.grid;
+        py::array_t<float> distance(
+            {py::ssize_t(fields.sliceCount()), py::ssize_t(g.height), py::ssize_t(g.width)});
+        std::copy(fields.distanceMm.begin(), fields.distanceMm.end(), distance.mutable_data());
+        py::dict out;
+        out["values"] = distance;
+        out["planes"] = py::array_t<double>(py::ssize_t(fields.zMm.size()), fields.zMm.data());
+        // Pixel (i, j) is centred half a pixel inside the grid's corner.
+        out["origin"] = py::make_tuple(g.originMm.x + g.pixelMm / 2, g.originMm.y + g.pixelMm / 2);
+        out["spacing"] = py::make_tuple(g.pixelMm, g.pixelMm);
+        out["orientation"] = roi.frame.orientationName();
+        return out;
+    });
+
+    m.def("_distance_field", [](const PyStructureSet& set, const py::object& roiChoice,
+                                double pixelMm, bool isotropic) {
+        const Roi& roi = chooseRoi(set.read, roiChoice);
+        RoiFieldOptions options;
+        options.pixelMm = pixelMm;
+        options.isotropic = isotropic;
+        RoiDistanceVolume field;
+        {
+            py::gil_scoped_release release;
+            const std::lock_guard<std::mutex> lock(runtimeMutex);
+            field = roiDistanceVolume(runtime(), roi, options);
+        }
+        const DenseDistanceVolume& v = field.volume;
+        py::array_t<float> values({py::ssize_t(v.nz), py::ssize_t(v.ny), py::ssize_t(v.nx)});
+        std::copy(v.valuesMm.begin(), v.valuesMm.end(), values.mutable_data());
+        const Vec3 origin = roi.frame.toPatient({v.originMm[0], v.originMm[1], v.originMm[2]});
+        py::dict out;
+        out["values"] = values;
+        out["origin"] = py::make_tuple(origin.x, origin.y, origin.z);
+        out["spacing"] = py::make_tuple(v.voxelMm[0], v.voxelMm[1], v.voxelMm[2]);
+        out["axes"] = py::make_tuple(py::make_tuple(roi.frame.u.x, roi.frame.u.y, roi.frame.u.z),
+                                     py::make_tuple(roi.frame.v.x, roi.frame.v.y, roi.frame.v.z),
+                                     py::make_tuple(roi.frame.n.x, roi.frame.n.y, roi.frame.n.z));
+        return out;
+    });
+
+    m.def("_surface_distance_maps",
+          [](const std::vector<PyMesh*>& meshes, const std::vector<std::string>& names,
+             double maxDistanceMm, int texels, double samplingMm) {
+              std::vector<TriangleSoup> soups;
+              for (const PyMesh* mesh : meshes) {
+                  if (mesh->surface.triangles.empty())
+                      throw py::value_error("a mesh has no triangles");
+                  soups.push_back(mesh->surface);
+              }
+              SceneMapsOptions options;
+              options.atlas.sizeTexels = texels;
+              options.atlas.maxErrorMm = samplingMm;
+              if (maxDistanceMm > 0) options.query.maxDistanceMm = maxDistanceMm;
+              options.proximity = true;
+              std::unique_ptr<SurfaceScene> scene;
+              SceneMaps maps;
+              {
+                  py::gil_scoped_release release;
+                  scene = std::make_unique<SurfaceScene>(std::move(soups), names);
+                  const std::lock_guard<std::mutex> lock(runtimeMutex);
+                  maps = sceneDistanceMaps(runtime(), *scene, options);
+              }
+              py::list perMesh;
+              for (std::size_t o = 0; o < maps.maps.size(); ++o) {
+                  const std::vector<ClosestPrimitive>& vertices = maps.maps[o].vertices;
+                  py::array_t<double> distance(py::ssize_t(vertices.size()));
+                  py::array_t<std::int32_t> nearest(py::ssize_t(vertices.size()));
+                  std::vector<Vec3> points(vertices.size());
+                  for (std::size_t i = 0; i < vertices.size(); ++i) {
+                      distance.mutable_data()[i] =
+                          vertices[i].object < 0 ? INFINITY : vertices[i].distanceMm;
+                      nearest.mutable_data()[i] = vertices[i].object;
+                      points[i] = vertices[i].object < 0 ? Vec3{NAN, NAN, NAN} : vertices[i].point;
+                  }
+                  py::dict map;
+                  map["name"] = scene->name(o);
+                  map["distance_mm"] = distance;
+                  map["nearest"] = nearest;
+                  map["closest_point"] = pointsArray(points);
+                  map["sampling_bound_mm"] = maps.samples[o].samplingBoundMm();
+                  perMesh.append(map);
+              }
+              py::list pairs;
+              for (const PairProximity& p : maps.pairs) {
+                  py::dict pair;
+                  pair["a"] = scene->name(p.first);
+                  pair["b"] = scene->name(p.second);
+                  pair["separation_mm"] = p.separationMm;
+                  pair["separation_bound_mm"] = p.boundMm;
+                  pair["surfaces_intersect"] = p.surfacesIntersect;
+                  pair["a_inside_b"] = p.firstInsideSecond;
+                  pair["b_inside_a"] = p.secondInsideFirst;
+                  pair["colliding"] = p.colliding();
+                  pair["penetration_mm"] = p.deepestPointMm;
+                  pairs.append(pair);
+              }
+              return py::make_tuple(perMesh, pairs);
+          });
+
+    m.def("_compare", [](const PyMesh& a, const PyMesh& b, double spacingMm, double toleranceMm) {
+        const ComparedSolid solidA = solidOf(a, "a"), solidB = solidOf(b, "b");
+        Comparison comparison;
+        {
+            py::gil_scoped_release release;
+            const std::lock_guard<std::mutex> lock(runtimeMutex);
+            comparison =
+                compareSolids(runtime(), solidA, solidB, CompareOptions{spacingMm, toleranceMm});
+        }
+        return toPython(app::comparisonJson(comparison));
+    });
+    m.def("_compare_contours",
+          [](const PyStructureSet& setA, const py::object& roiA, const PyStructureSet& setB,
+             const py::object& roiB, double spacingMm, double toleranceMm) {
+              const Roi& a = chooseRoi(setA.read, roiA);
+              const Roi& b = chooseRoi(setB.read, roiB);
+              Comparison comparison;
+              {
+                  py::gil_scoped_release release;
+                  const std::lock_guard<std::mutex> lock(runtimeMutex);
+                  RoiSurface surfaceA = reconstructRoi(runtime(), a);
+                  RoiSurface surfaceB = reconstructRoi(runtime(), b);
+                  for (const auto* s : {&surfaceA, &surfaceB})
+                      if (!s->check.validSolid())
+                          throw app::InvalidResult("ROI '" + (s == &surfaceA ? a.name : b.name) +
+                                                   "' gives no valid closed solid");
+                  comparison = compareSolids(
+                      runtime(), ComparedSolid{std::move(surfaceA.surface), surfaceA.check, &a},
+                      ComparedSolid{std::move(surfaceB.surface), surfaceB.check, &b},
+                      CompareOptions{spacingMm, toleranceMm});
+              }
+              return toPython(app::comparisonJson(comparison));
+          });
+}
