@@ -138,7 +138,6 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
     }
     const double writeSeconds = watch.lap();
 
-    const ReconstructionStats& s = result.stats;
     const double contourVolume = result.contourVolumeMm3;
     {
         out << roi.name << ": " << check.vertices << " vertices, " << check.triangles

@@ -1,6 +1,8 @@
 # What `cmake --install build --prefix P` puts under P (docs/building.md):
 #   bin/dfrecon
 #   lib/libdfrecon_FOLDER.a            one static library per stage folder
+#   lib/libdfrecon_api.a, include/dfrecon/*.hpp   the public API
+#   lib/python3.X/site-packages/dfrecon  the Python module (python/CMakeLists.txt)
 #   include/dfrecon/FOLDER/*.hpp       their headers (and kernels/*.cl, which
 #                                      geometry/ and segment/ headers include)
 #   lib/cmake/dfrecon/                 the package: dfreconConfig.cmake,
@@ -22,6 +24,13 @@ foreach(folder IN LISTS DFRECON_LIBRARY_FOLDERS)
   install(DIRECTORY ${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfrecon/${folder}
           FILES_MATCHING PATTERN "*.hpp" PATTERN "*.cl")
 endforeach()
+
+# The public API: its library, and its headers straight under include/dfrecon/.
+set_target_properties(dfrecon_api PROPERTIES EXPORT_NAME api)
+add_library(dfrecon::api ALIAS dfrecon_api)
+list(APPEND dfrecon_libraries dfrecon_api)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/dfrecon/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfrecon
+        FILES_MATCHING PATTERN "*.hpp")
 
 install(TARGETS dfrecon RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS ${dfrecon_libraries} EXPORT dfreconTargets

@@ -124,7 +124,7 @@ class StructureSet:
 
     @property
     def format(self):
-        """The input's format: 'slices', 'RTSTRUCT', 'label volume' or 'mask stack'."""
+        """The input's format as ``dfrecon info`` names it (e.g. 'DICOM RTSTRUCT')."""
         return self._core.format
 
     @property

@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "cl/Runtime.hpp"
-#include "recon/Reconstruction.hpp"
+#include "dfrecon/dfrecon.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 int main() {
@@ -15,8 +15,8 @@ int main() {
         slicing.spacingMm = 2.0;
         const dfrecon::ContourSet contours = dfrecon::sliceShape(*sphere, slicing);
         dfrecon::ocl::Runtime runtime;
-        const dfrecon::Reconstruction result =
-            dfrecon::reconstructSurface(runtime, contours.rois.front());
+        // The public API (include/dfrecon/), as the program and Python use it.
+        const dfrecon::RoiSurface result = dfrecon::reconstructRoi(runtime, contours.rois.front());
         std::printf("volumeMm3 %.6f exactMm3 %.6f validSolid %d\n", result.check.volumeMm3,
                     sphere->volumeMm3(), result.check.validSolid() ? 1 : 0);
         return 0;

@@ -27,6 +27,17 @@ if grep -l -e dfrecon_warnings -e -Wshadow "$prefix"/lib/cmake/dfrecon/*.cmake; 
   fail "the exported targets carry dfrecon_warnings"
 fi
 "$prefix/bin/dfrecon" --version >/dev/null || fail "the installed program does not run"
+[ -f "$prefix/lib/libdfrecon_api.a" ] || fail "lib/libdfrecon_api.a not installed"
+[ -f "$prefix/include/dfrecon/dfrecon.hpp" ] || fail "include/dfrecon/dfrecon.hpp not installed"
+# The Python module, where it was built: imported from the prefix alone.
+if [ -n "${DFRECON_PYTHON_EXECUTABLE:-}" ]; then
+  init=$(find "$prefix/lib" -maxdepth 4 -path '*-packages/dfrecon/__init__.py' | head -n 1)
+  [ -n "$init" ] || fail "the Python package is not installed under $prefix/lib"
+  site=$(dirname "$(dirname "$init")")
+  (cd "$scratch" && PYTHONPATH="$site" "$DFRECON_PYTHON_EXECUTABLE" -c \
+    "import dfrecon, sys; assert dfrecon.__file__.startswith('$site'), dfrecon.__file__; print('python', dfrecon.__version__)") ||
+    fail "the installed Python module does not import"
+fi
 
 cmake -S "$source/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_PREFIX_PATH="$prefix" >"$scratch/configure.log" 2>&1 ||
