@@ -156,12 +156,13 @@ def test_several_rois_give_a_dict(examples):
 
 
 def same_as_cli(path, rois, cli, tmp_path):
-    report = cli("reconstruct", path, "--all", "-o", tmp_path, "--json")
-    by_name = {r["roi"]: r for r in report["rois"]}
+    tmp_path.mkdir(parents=True, exist_ok=True)
     ss = dfrecon.read_contours(path)
     for name in rois:
+        report = cli("reconstruct", path, "--roi", name, "-o", tmp_path / ("%s.ply" % name),
+                     "--json")
         mesh = dfrecon.reconstruct(ss, name)
-        expected = by_name[name]
+        expected = report["rois"][0]
         assert mesh.faces.shape[0] == expected["triangles"], name
         assert mesh.vertices.shape[0] == expected["vertices"], name
         assert mesh.volume_cc == expected["volumeCc"], name
@@ -185,7 +186,9 @@ def test_same_surfaces_as_the_program_on_brodmann_areas(cli, shared, tmp_path):
     path = shared / "brodmann-rtstruct.dcm"
     if not path.exists():
         pytest.skip("no shared data beside the clone")
-    same_as_cli(path, ["BA6", "BA17", "BA44", "BA48"], cli, tmp_path)
+    # Two areas here (every one of the 41 was checked by hand: the note of
+    # issue 38); CI's time is better spent elsewhere.
+    same_as_cli(path, ["BA17", "BA44"], cli, tmp_path)
 
 
 # ---- fields ------------------------------------------------------------------
