@@ -20,7 +20,7 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
-#include "field/DistanceField3D.hpp"
+#include "dfrecon/Field.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/DicomImageSeries.hpp"
 #include "io/FileNames.hpp"
@@ -39,96 +39,6 @@ struct RasterizeArgs {
     double voxelMm = 0, pixelMm = 0;
     bool json = false;
 };
-
-// The frame every selected ROI shares, or patient LPS where they differ.
-PlaneFrame sharedFrame(const std::vector<const Roi*>& rois) {
-    for (const Roi* roi : rois)
-        if (!(roi->frame.u == rois.front()->frame.u && roi->frame.v == rois.front()->frame.v &&
-              roi->frame.n == rois.front()->frame.n))
-            return PlaneFrame{};
-    return rois.front()->frame;
-}
-
-// A grid with cubic voxels of `voxelMm` on the ROIs' shared axes (patient
-// LPS where they have none), covering their contours plus half a slice
-// spacing beyond the ends.
-VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelMm) {
-    const PlaneFrame frame = sharedFrame(rois);
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (const Roi* roi : rois) {
-        // sharedFrame gives the ROI's own frame or, where frames differ, LPS.
-        const bool ownFrame = roi->frame.u == frame.u && roi->frame.v == frame.v;
-        const Extent3 extent = ownFrame ? extentOf(*roi) : patientExtentOf(*roi);
-        const SpacingStats spacing = spacingOf(*roi);
-        const double reach = 0.5 * (spacing.maxMm > 0 ? spacing.maxMm : 1.0);
-        // The caps reach half a spacing out along the ROI's own normal.
-        const bool alongZ = std::abs(dot(roi->frame.n, frame.n)) > 0.5;
-        for (int a = 0; a < 3; ++a) {
-            const double margin = voxelMm + (alongZ ? (a == 2 ? reach : 0) : reach);
-            lo[a] = std::min(lo[a], extent.min[a] - margin);
-            hi[a] = std::max(hi[a], extent.max[a] + margin);
-        }
-    }
-    VolumeGeometry g;
-    for (int a = 0; a < 3; ++a) {
-        const double span = hi[a] - lo[a];
-        if (span / voxelMm > 4096)
-            throw std::invalid_argument("--voxel-mm gives over 4096 voxels a side");
-        g.size[a] = int(std::ceil(span / voxelMm)) + 1;
-        g.spacingMm[a] = voxelMm;
-    }
-    const Vec3 origin = frame.toPatient({lo[0], lo[1], lo[2]});
-    g.originMm = {origin.x, origin.y, origin.z};
-    const Vec3 axes[3] = {frame.u, frame.v, frame.n};
-    for (int a = 0; a < 3; ++a) g.direction[a] = {axes[a].x, axes[a].y, axes[a].z};
-    return g;
-}
-
-// The voxels of `grid` whose centres lie inside `roi`: where its 3D distance
-// field (as `dfrecon field` computes it) is negative. Only the voxels of the
-// field's box are visited. O(field + voxels in that box).
-std::vector<std::size_t> voxelsInside(ocl::Runtime& runtime, const Roi& roi,
-                                      const VolumeGeometry& grid, double pixelMm, bool quiet) {
-    const SpacingStats spacing = spacingOf(roi);
-    DistanceField3D field;
-    {
-        Progress progress("field of " + roi.name, !quiet);
-        const SliceFields fields =
-            computeSliceFields(runtime, roi.slices, gridForSlices(roi.slices, pixelMm),
-                               [&](double f) { progress.update(f); });
-        field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
-        propagateAlongZ(runtime, field);
-    }
-    // Beyond the field's layers and pixels everything is outside; within,
-    // the interpolated field decides (its zero set is the surface the
-    // reconstruction follows, the flat caps included).
-    const SliceGrid& g = field.grid;
-    const double lo[3] = {g.originMm.x, g.originMm.y, field.zMm.front()};
-    const double hi[3] = {lo[0] + g.width * g.pixelMm, lo[1] + g.height * g.pixelMm,
-                          field.zMm.back()};
-    int first[3] = {grid.size[0], grid.size[1], grid.size[2]}, last[3] = {-1, -1, -1};
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 p = roi.frame.toPatient(
-            {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]});
-        const std::array<double, 3> index = grid.indexOfWorld(p);
-        for (int a = 0; a < 3; ++a) {
-            first[a] = std::min(first[a], int(std::max(std::floor(index[a]), 0.0)));
-            last[a] = std::max(last[a], int(std::min(std::ceil(index[a]), grid.size[a] - 1.0)));
-        }
-    }
-    std::vector<std::size_t> inside;
-    for (int k = first[2]; k <= last[2]; ++k)
-        for (int j = first[1]; j <= last[1]; ++j)
-            for (int i = first[0]; i <= last[0]; ++i) {
-                const Vec3 p = roi.frame.fromPatient(grid.worldOfIndex(i, j, k));
-                if (p.z < lo[2] || p.z > hi[2] || p.x < lo[0] || p.x > hi[0] || p.y < lo[1] ||
-                    p.y > hi[1])
-                    continue;
-                if (sampleField(field, p.x, p.y, p.z) < 0)
-                    inside.push_back(grid.linearIndex(i, j, k));
-            }
-    return inside;
-}
 
 // Each ROI's label: its number where every selected ROI has a distinct
 // positive one (DICOM ROI numbers, a label volume's values), else its
@@ -198,8 +108,13 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     ocl::Runtime runtime(global.device);
     const std::vector<std::int32_t> labels = labelsOf(rois);
     std::vector<std::vector<std::size_t>> inside(rois.size());
-    for (std::size_t r = 0; r < rois.size(); ++r)
-        inside[r] = voxelsInside(runtime, *rois[r], grid, args.pixelMm, global.quiet);
+    for (std::size_t r = 0; r < rois.size(); ++r) {
+        Progress progress("field of " + rois[r]->name, !global.quiet);
+        RoiFieldOptions options;
+        options.pixelMm = args.pixelMm;
+        options.progress = [&](double f) { progress.update(f); };
+        inside[r] = roiVoxelsInside(runtime, *rois[r], grid, options);
+    }
     std::vector<std::size_t> order(rois.size());
     std::iota(order.begin(), order.end(), std::size_t(0));
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {

@@ -7,7 +7,6 @@
 
 #include "io/AtomicWrite.hpp"
 #include "io/MeshFormat.hpp"
-#include "io/MeshIO.hpp"
 #include "io/VtkPolyData.hpp"
 
 namespace dfrecon {

@@ -11,6 +11,11 @@ class DcmTagKey;
 
 namespace dfrecon {
 
+/// Two planes closer than this are one (contour planes, image planes):
+/// positions are decimal strings, and planning systems write 2.4991 and
+/// 2.4992 for one plane.
+inline constexpr double kSamePlaneToleranceMm = 0.01;
+
 /// "(gggg,eeee) Name", e.g. "(0020,0032) ImagePositionPatient", as messages
 /// name a tag. O(1).
 std::string dicomTagName(const DcmTagKey& key);

@@ -18,7 +18,6 @@
 #include "io/DicomNesting.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
-#include "io/RtStruct.hpp"
 
 namespace fs = std::filesystem;
 

@@ -10,7 +10,7 @@
 #include "contours/InputError.hpp"
 #include "io/FileScanner.hpp"
 #include "io/InputLimits.hpp"
-#include "io/MeshIO.hpp"
+#include "io/MeshFormat.hpp"
 
 namespace dfrecon {
 

@@ -15,6 +15,12 @@
 
 namespace dfrecon {
 
+/// Significant digits of coordinates in ASCII mesh files: enough to give
+/// back every double (and so every float) exactly. OpenMesh's default of 6
+/// moves points by up to a micrometre at patient coordinates, which can
+/// make a checked valid surface intersect itself in the file.
+inline constexpr int kAsciiMeshDigits = 17;
+
 enum class MeshFormat { Ply, Obj, Off, Stl, Vtk, Vtp };
 
 /// The file name's extension in lower case, dot included ("" for none).

@@ -14,12 +14,6 @@
 
 namespace dfrecon {
 
-/// Significant digits of coordinates in ASCII mesh files: enough to give
-/// back every double (and so every float) exactly. OpenMesh's default of 6
-/// moves points by up to a micrometre at patient coordinates, which can
-/// make a checked valid surface intersect itself in the file.
-inline constexpr int kAsciiMeshDigits = 17;
-
 struct MeshWriteOptions {
     bool binary = true;         // PLY and STL: binary (smaller, exact floats)
     bool vertexNormals = true;  // PLY, OBJ, OFF: per-vertex normals

@@ -68,10 +68,6 @@ struct RtStructLoad {
     std::string frameOfReferenceUid, studyInstanceUid, seriesInstanceUid, patientId, patientName;
 };
 
-/// Two contour planes closer than this are one slice: z values are decimal
-/// strings and planning systems write 2.4991 and 2.4992 for one plane.
-inline constexpr double kSamePlaneToleranceMm = 0.01;
-
 /// Reads an RTSTRUCT file (Part 10 or raw dataset). ROIs come from
 /// StructureSetROISequence joined to ROIContourSequence by ROI number;
 /// CLOSED_PLANAR and CLOSEDPLANAR_XOR contours are grouped into planes

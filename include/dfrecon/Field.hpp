@@ -9,6 +9,8 @@
 
 #include "cl/Runtime.hpp"
 #include "contours/ContourSet.hpp"
+#include "field/DistanceField3D.hpp"
+#include "field/Rasterization.hpp"
 #include "field/SliceFields.hpp"
 #include "io/LevelSetVdb.hpp"
 
@@ -31,6 +33,23 @@ struct RoiFieldOptions {
 /// device failure. O(pixels · log segments).
 SliceFields roiSliceFields(ocl::Runtime& runtime, const Roi& roi,
                            const RoiFieldOptions& options = {});
+
+/// The ROI's 3D field before resampling: roiSliceFields as layers,
+/// propagated along z (ends closing half a spacing beyond the end slices,
+/// as flat caps do). `seconds`, when given, receive the 2D fields' and the
+/// propagation's times. Throws as roiSliceFields. O(layers · pixels).
+DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,
+                                   const RoiFieldOptions& options = {},
+                                   double* fieldsSeconds = nullptr,
+                                   double* propagateSeconds = nullptr);
+
+/// The voxels of `grid` (any reference grid: a CT's, a NIfTI's; or
+/// gridAroundRois) whose centres lie inside `roi`, where its 3D field is
+/// negative (field/Rasterization), as increasing linear indices. Throws as
+/// roiSliceFields. O(field + voxels in its box).
+std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
+                                         const VolumeGeometry& grid,
+                                         const RoiFieldOptions& options = {});
 
 struct RoiDistanceVolume {
     /// Values x fastest, then y, then z; origin and voxel in the ROI's plane
