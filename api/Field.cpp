@@ -1,22 +1,15 @@
 #include "dfrecon/Field.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
 #include "field/FieldVolume.hpp"
+#include "recon/ContourSimplification.hpp"
 
 namespace dfrecon {
 
 namespace {
-
-std::vector<Slice> planesWithContours(const Roi& roi) {
-    if (roi.defect) throw *roi.defect;
-    std::vector<Slice> slices;
-    for (const Slice& s : roi.slices)
-        if (!s.contours.empty()) slices.push_back(s);
-    if (slices.empty()) throw std::invalid_argument("ROI '" + roi.name + "' has no contours");
-    return slices;
-}
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -24,10 +17,39 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-SliceFields roiSliceFields(ocl::Runtime& runtime, const Roi& roi, const RoiFieldOptions& options) {
-    const std::vector<Slice> slices = planesWithContours(roi);
-    return computeSliceFields(runtime, slices, gridForSlices(slices, options.pixelMm),
+std::vector<Slice> fieldPlanes(const Roi& roi, double contourErrorMm,
+                               ContourSimplificationSummary* summary) {
+    if (roi.defect) throw *roi.defect;
+    std::vector<Slice> planes;
+    for (const Slice& s : roi.slices)
+        if (!s.contours.empty()) planes.push_back(s);
+    if (planes.empty()) throw std::invalid_argument("ROI '" + roi.name + "' has no contours");
+    if (contourErrorMm <= 0) return planes;
+    ContourSimplificationSummary done;
+    done.contourErrorMm = contourErrorMm;
+    for (Slice& plane : planes) {
+        const std::vector<SimplifiedContour> simplified =
+            simplifySlice(plane.contours, contourErrorMm);
+        for (std::size_t c = 0; c < plane.contours.size(); ++c) {
+            done.pointsBefore += plane.contours[c].size();
+            done.pointsAfter += simplified[c].points.size();
+            for (double d : simplified[c].edgeDeviationMm)
+                done.maxDeviationMm = std::max(done.maxDeviationMm, d);
+            plane.contours[c] = simplified[c].points;
+        }
+    }
+    if (summary) *summary = done;
+    return planes;
+}
+
+SliceFields sliceFieldsOf(ocl::Runtime& runtime, const std::vector<Slice>& planes,
+                          const RoiFieldOptions& options) {
+    return computeSliceFields(runtime, planes, gridForSlices(planes, options.pixelMm),
                               options.progress);
+}
+
+SliceFields roiSliceFields(ocl::Runtime& runtime, const Roi& roi, const RoiFieldOptions& options) {
+    return sliceFieldsOf(runtime, fieldPlanes(roi, options.contourErrorMm), options);
 }
 
 DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,

@@ -14,12 +14,11 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "app/Stopwatch.hpp"
-#include "field/SliceFields.hpp"
+#include "dfrecon/Field.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"
 #include "io/JsonText.hpp"
 #include "io/RawVolume.hpp"
-#include "recon/ContourSimplification.hpp"
 #include "recon/MedialAxis.hpp"
 
 namespace dfrecon::app {
@@ -37,27 +36,6 @@ struct FieldsArgs {
 // The ROI's slices with every contour simplified to within `epsilonMm`
 // (recon/ContourSimplification); the report gets point counts and the
 // largest edge deviation.
-std::vector<Slice> simplifiedSlices(const Roi& roi, double epsilonMm,
-                                    nlohmann::ordered_json& report) {
-    std::vector<Slice> slices = roi.slices;
-    std::size_t before = 0, after = 0;
-    double worst = 0;
-    for (Slice& slice : slices) {
-        const std::vector<SimplifiedContour> simplified = simplifySlice(slice.contours, epsilonMm);
-        for (std::size_t c = 0; c < slice.contours.size(); ++c) {
-            before += slice.contours[c].size();
-            after += simplified[c].points.size();
-            for (double d : simplified[c].edgeDeviationMm) worst = std::max(worst, d);
-            slice.contours[c] = simplified[c].points;
-        }
-    }
-    report = {{"contourErrorMm", epsilonMm},
-              {"pointsBefore", before},
-              {"pointsAfter", after},
-              {"maxDeviationMm", worst}};
-    return slices;
-}
-
 nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileStem,
                                       const std::vector<Slice>& slices, const SliceFields& fields,
                                       const FieldsArgs& args, const GlobalOptions& global) {
@@ -184,17 +162,23 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
         if (roi->slices.empty())
             throw std::invalid_argument("ROI '" + roi->name + "' has no slices");
         watch.restartLap();
-        nlohmann::ordered_json simplification = nullptr;
-        const std::vector<Slice> slices =
-            args.contourErrorMm > 0 ? simplifiedSlices(*roi, args.contourErrorMm, simplification)
-                                    : roi->slices;
-        const SliceGrid grid = gridForSlices(slices, args.pixelMm);
+        ContourSimplificationSummary simplified;
+        const std::vector<Slice> slices = fieldPlanes(*roi, args.contourErrorMm, &simplified);
+        const nlohmann::ordered_json simplification =
+            args.contourErrorMm > 0
+                ? nlohmann::ordered_json{{"contourErrorMm", simplified.contourErrorMm},
+                                         {"pointsBefore", simplified.pointsBefore},
+                                         {"pointsAfter", simplified.pointsAfter},
+                                         {"maxDeviationMm", simplified.maxDeviationMm}}
+                : nlohmann::ordered_json(nullptr);
         const double simplifySeconds = watch.lap();
         SliceFields fields;
         {
             Progress progress("fields of " + roi->name, !global.quiet);
-            fields =
-                computeSliceFields(runtime, slices, grid, [&](double f) { progress.update(f); });
+            RoiFieldOptions options;
+            options.pixelMm = args.pixelMm;
+            options.progress = [&](double f) { progress.update(f); };
+            fields = sliceFieldsOf(runtime, slices, options);
         }
         const double fieldSeconds = watch.lap();
         const nlohmann::ordered_json files =
@@ -203,17 +187,21 @@ void runFields(const FieldsArgs& args, const GlobalOptions& global) {
         reports.push_back(
             {{"roi", roi->name},
              {"slices", fields.sliceCount()},
-             {"grid", {{"width", grid.width}, {"height", grid.height}, {"pixelMm", grid.pixelMm}}},
+             {"grid",
+              {{"width", fields.grid.width},
+               {"height", fields.grid.height},
+               {"pixelMm", fields.grid.pixelMm}}},
              {"device", runtime.device().deviceName},
              {"simplification", simplification},
              {"seconds",
               {{"simplify", simplifySeconds}, {"fields", fieldSeconds}, {"write", writeSeconds}}},
              {"files", files}});
         if (!args.json)
-            std::cout << roi->name << ": " << fields.sliceCount() << " slices on a " << grid.width
-                      << " x " << grid.height << " grid of " << grid.pixelMm << " mm pixels, "
-                      << fieldSeconds << " s on " << runtime.device().deviceName << "; wrote "
-                      << files.size() << " files to " << args.outputDir << "\n";
+            std::cout << roi->name << ": " << fields.sliceCount() << " slices on a "
+                      << fields.grid.width << " x " << fields.grid.height << " grid of "
+                      << fields.grid.pixelMm << " mm pixels, " << fieldSeconds << " s on "
+                      << runtime.device().deviceName << "; wrote " << files.size() << " files to "
+                      << args.outputDir << "\n";
     }
     if (args.json)
         std::cout << jsonText(nlohmann::ordered_json{{"command", "fields"},

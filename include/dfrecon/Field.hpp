@@ -23,16 +23,38 @@ struct RoiFieldOptions {
     /// The volume's z step: false: half the smallest slice gap (slices and
     /// cap planes are then voxel layers); true: the pixel size (cubic voxels).
     bool isotropic = false;
+    /// > 0: each contour is first simplified within this bound (reconstruction
+    /// paper §2.3, recon/ContourSimplification): fewer segments, a field
+    /// within the bound of the contours' own.
+    double contourErrorMm = 0;
     std::function<void(double)> progress;  // fraction of the 2D fields done
 };
 
-/// The exact signed field of every plane of `roi` that has contours, on one
-/// grid around them (plane coordinates, mm; negative inside), with each
-/// pixel's nearest primitive. Throws std::invalid_argument for an ROI
-/// without contours or a grid beyond field/SliceGrid's limits, ClError on
-/// device failure. O(pixels · log segments).
+/// What simplifying the contours first did.
+struct ContourSimplificationSummary {
+    double contourErrorMm = 0;
+    std::size_t pointsBefore = 0, pointsAfter = 0;
+    double maxDeviationMm = 0;  // the largest distance of a dropped point to its new edge
+};
+
+/// The planes a field is computed on: `roi`'s planes with contours, their
+/// contours simplified within contourErrorMm when > 0 (`summary`, when
+/// given, says how). Throws InputError for an ROI with a defect,
+/// std::invalid_argument for one without contours. O(points).
+std::vector<Slice> fieldPlanes(const Roi& roi, double contourErrorMm,
+                               ContourSimplificationSummary* summary = nullptr);
+
+/// The exact signed field of every plane of fieldPlanes(roi), on one grid
+/// around them (plane coordinates, mm; negative inside), with each pixel's
+/// nearest primitive. Throws as fieldPlanes, std::invalid_argument for a
+/// grid beyond field/SliceGrid's limits, ClError on device failure.
+/// O(pixels · log segments).
 SliceFields roiSliceFields(ocl::Runtime& runtime, const Roi& roi,
                            const RoiFieldOptions& options = {});
+
+/// The same for planes already chosen (fieldPlanes). O(pixels · log segments).
+SliceFields sliceFieldsOf(ocl::Runtime& runtime, const std::vector<Slice>& planes,
+                          const RoiFieldOptions& options = {});
 
 /// The ROI's 3D field before resampling: roiSliceFields as layers,
 /// propagated along z (ends closing half a spacing beyond the end slices,
