@@ -499,7 +499,7 @@ PYBIND11_MODULE(_dfrecon, m) {
 
     m.def("_surface_distance_maps",
           [](const std::vector<PyMesh*>& meshes, const std::vector<std::string>& names,
-             double maxDistanceMm, int texels, double samplingMm) {
+             double maxDistanceMm, int texels, double samplingMm, bool withPairs) {
               std::vector<TriangleSoup> soups;
               for (const PyMesh* mesh : meshes) {
                   if (mesh->surface.triangles.empty())
@@ -510,7 +510,7 @@ PYBIND11_MODULE(_dfrecon, m) {
               options.atlas.sizeTexels = texels;
               options.atlas.maxErrorMm = samplingMm;
               if (maxDistanceMm > 0) options.query.maxDistanceMm = maxDistanceMm;
-              options.proximity = true;
+              options.proximity = withPairs;
               std::unique_ptr<SurfaceScene> scene;
               SceneMaps maps;
               {

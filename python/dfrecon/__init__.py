@@ -391,23 +391,28 @@ def simplify(mesh, max_error_mm):
 
 
 def surface_distance_maps(meshes, *, names=None, max_distance_mm=None, texels=512,
-                          sampling_mm=0.0):
+                          sampling_mm=0.0, pairs=False):
     """Per mesh, at every vertex, the signed distance to the nearest other mesh
     (negative inside it), which mesh that is and its closest point (surface
-    distance maps paper); and each pair's separation and collision.
+    distance maps paper; what ``dfrecon sdm`` writes).
 
-    Returns ``(maps, pairs)``: ``maps[i]`` a dict with ``name``,
-    ``distance_mm`` (n,), ``nearest`` (n,) int32 (index of the nearest mesh,
-    -1 beyond ``max_distance_mm``), ``closest_point`` (n, 3) and
-    ``sampling_bound_mm``; ``pairs`` a list of dicts."""
+    Returns one dict per mesh, in order: ``name``, ``distance_mm`` (n,)
+    float64 (inf beyond ``max_distance_mm``), ``nearest`` (n,) int32 (the
+    index of the nearest mesh, -1 beyond the band), ``closest_point`` (n, 3)
+    and ``sampling_bound_mm``. With ``pairs=True``, returns ``(maps, pairs)``,
+    ``pairs`` a dict per pair of meshes: separation (sampled, with its bound),
+    whether their surfaces intersect or one is inside the other, penetration.
+    ``sampling_mm`` > 0 sizes the atlas for that sampling bound instead of
+    ``texels`` a side."""
     ms = [_mesh(m, "surface_distance_maps") for m in meshes]
     if len(ms) < 2:
         raise ValueError("surface_distance_maps needs at least two meshes")
     if names is None:
         names = [m.name or ("mesh%d" % i) for i, m in enumerate(ms)]
-    return _core_module._surface_distance_maps(
+    maps, pair_list = _core_module._surface_distance_maps(
         [m._core for m in ms], list(names), float(max_distance_mm or 0), int(texels),
-        float(sampling_mm))
+        float(sampling_mm), bool(pairs))
+    return (maps, pair_list) if pairs else maps
 
 
 def compare(a, b, *, roi_a=None, roi_b=None, spacing_mm=0.2, tolerance_mm=1.0):

@@ -111,7 +111,8 @@ def surface_distance_maps(
     max_distance_mm: Optional[float] = ...,
     texels: int = ...,
     sampling_mm: float = ...,
-) -> Tuple[List[Dict[str, Any]], List[Dict[str, Any]]]: ...
+    pairs: bool = ...,
+) -> Union[List[Dict[str, Any]], Tuple[List[Dict[str, Any]], List[Dict[str, Any]]]]: ...
 def compare(
     a: Union[Mesh, StructureSet, _Path],
     b: Union[Mesh, StructureSet, _Path],

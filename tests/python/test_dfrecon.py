@@ -267,7 +267,8 @@ def test_distance_maps_between_two_boxes():
         **box_set(side=10.0, name="A", centre=(0.0, 0.0)),
         **box_set(side=10.0, name="B", centre=(25.0, 0.0))})
     a, b = dfrecon.reconstruct(ss, "A"), dfrecon.reconstruct(ss, "B")
-    maps, pairs = dfrecon.surface_distance_maps([a, b])
+    assert len(dfrecon.surface_distance_maps([a, b])) == 2
+    maps, pairs = dfrecon.surface_distance_maps([a, b], pairs=True)
     assert [m["name"] for m in maps] == ["A", "B"]
     for m, mine, other in zip(maps, (a, b), (b, a)):
         assert m["distance_mm"].shape == (len(mine.vertices),)
