@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -287,6 +289,33 @@ std::vector<ClosestPrimitive> closestPrimitivesBruteForce(const SurfaceScene& sc
 
 namespace {
 
+// The kernels' QueryParams (kernels/surface_distance.cl), member for
+// member: the kernels read these bytes as they are, so the layout is
+// asserted below for both of REAL's types.
+template <class Real>
+struct QueryParams {
+    Real maxDistance2, maxDistance, slack;
+    cl_uint objectCount;
+    cl_int target;
+    cl_uint capacity, sourceFirst, sourceCount, sampleFirst, sampleEnd;
+    cl_uint padding = 0;
+};
+
+template <class Real>
+constexpr bool laidOutAsTheKernels() {
+    using P = QueryParams<Real>;
+    constexpr std::size_t r = sizeof(Real), u = sizeof(cl_uint);
+    return std::is_standard_layout_v<P> && std::is_trivially_copyable_v<P> &&
+           offsetof(P, maxDistance2) == 0 && offsetof(P, maxDistance) == r &&
+           offsetof(P, slack) == 2 * r && offsetof(P, objectCount) == 3 * r &&
+           offsetof(P, target) == 3 * r + u && offsetof(P, capacity) == 3 * r + 2 * u &&
+           offsetof(P, sourceFirst) == 3 * r + 3 * u && offsetof(P, sourceCount) == 3 * r + 4 * u &&
+           offsetof(P, sampleFirst) == 3 * r + 5 * u && offsetof(P, sampleEnd) == 3 * r + 6 * u &&
+           offsetof(P, padding) == 3 * r + 7 * u && sizeof(P) == 3 * r + 8 * u;
+}
+static_assert(laidOutAsTheKernels<cl_double>() && sizeof(QueryParams<cl_double>) == 56);
+static_assert(laidOutAsTheKernels<cl_float>() && sizeof(QueryParams<cl_float>) == 44);
+
 // The interface both precisions implement.
 struct DeviceScene {
     virtual ~DeviceScene() = default;
@@ -379,44 +408,46 @@ class DeviceSceneT final : public DeviceScene {
             cl::Kernel cull(*program_, "source_candidates");
             cl::Kernel kernel(*program_, "closest_primitive");
             // The leading arguments both kernels share, then each one's own;
-            // the chunk's arguments follow, set per chunk.
+            // the query and the chunk follow, set per chunk.
             const auto setShared = [&](cl::Kernel& k) {
                 cl_uint a = 0;
                 k.setArg(a++, dCorners.get());
                 k.setArg(a++, dSourceObject.get());
                 a = surface_.setArgs(k, a);
                 k.setArg(a++, objectRoot_.get());
-                k.setArg(a++, cl_uint(roots_.size()));
-                k.setArg(a++, cl_int(query.target));
-                k.setArg(a++, Real(bandSquared(query)));
-                k.setArg(a++, Real(slackMm_));
-                k.setArg(a++, capacity);
                 k.setArg(a++, dCandidates.get());
                 k.setArg(a++, dBounds.get());
                 k.setArg(a++, dCandidateCount.get());
                 k.setArg(a++, dCentreNearest.get());
                 return a;
             };
-            cl_uint cullChunk = setShared(cull);
-            cull.setArg(cullChunk++, Real(query.maxDistanceMm));
-            cl_uint sampleChunk = setShared(kernel);
+            const cl_uint cullQuery = setShared(cull);
+            cl_uint sampleQuery = setShared(kernel);
             for (const cl::Buffer* buffer :
                  {&normals_.get(), &closed_.get(), &dPoints.get(), &dSampleSource.get(),
                   &dDistance.get(), &dNearest.get(), &dFeature.get(), &dClosest.get()})
-                kernel.setArg(sampleChunk++, *buffer);
+                kernel.setArg(sampleQuery++, *buffer);
+            QueryParams<Real> params{};
+            params.maxDistance2 = Real(bandSquared(query));
+            params.maxDistance = Real(query.maxDistanceMm);
+            params.slack = Real(slackMm_);
+            params.objectCount = cl_uint(roots_.size());
+            params.target = cl_int(query.target);
+            params.capacity = capacity;
             for (std::size_t first = 0; first < sources; first += chunk) {
                 const std::size_t last = std::min(sources, first + chunk);
+                params.sourceFirst = cl_uint(first);
+                params.sourceCount = cl_uint(last - first);
+                params.sampleFirst = cl_uint(sampleFirst[first]);
+                params.sampleEnd = cl_uint(sampleFirst[last]);
                 // Pass 1: per source triangle, the candidates of all its samples.
-                cull.setArg(cullChunk, cl_uint(first));
-                cull.setArg(cullChunk + 1, cl_uint(last - first));
+                cull.setArg(cullQuery, params);
                 runtime_.queue().enqueueNDRangeKernel(
                     cull, cl::NullRange, cl::NDRange(ocl::roundUp(last - first, ocl::kGroupSize1D)),
                     cl::NDRange(ocl::kGroupSize1D));
                 // Pass 2: per sample of these sources (every source holds
                 // one), their candidates or the hierarchies.
-                kernel.setArg(sampleChunk, cl_uint(first));
-                kernel.setArg(sampleChunk + 1, cl_uint(sampleFirst[first]));
-                kernel.setArg(sampleChunk + 2, cl_uint(sampleFirst[last]));
+                kernel.setArg(sampleQuery, params);
                 runtime_.queue().enqueueNDRangeKernel(
                     kernel, cl::NullRange,
                     cl::NDRange(

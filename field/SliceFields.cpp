@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <future>
 #include <limits>
 #include <stdexcept>
@@ -164,6 +165,31 @@ struct FramedTable {
     const ocl::DeviceBuffer<T> xyBuffer, yxBuffer;
 };
 
+// The kernels' TileParams (kernels/closest_segment_2d.cl), member for
+// member: the kernels read these bytes as they are, so the layout is
+// asserted below for both of REAL's types.
+template <class Real>
+struct TileParams {
+    Real pixelMm, slackMm, marginMm2;
+    cl_uint width, height, capacity, leafListsFrom, lanesAlong;
+    cl_uint padding = 0;
+};
+
+template <class Real>
+constexpr bool laidOutAsTheKernels() {
+    using P = TileParams<Real>;
+    constexpr std::size_t r = sizeof(Real), u = sizeof(cl_uint);
+    return std::is_standard_layout_v<P> && std::is_trivially_copyable_v<P> &&
+           offsetof(P, pixelMm) == 0 && offsetof(P, slackMm) == r &&
+           offsetof(P, marginMm2) == 2 * r && offsetof(P, width) == 3 * r &&
+           offsetof(P, height) == 3 * r + u && offsetof(P, capacity) == 3 * r + 2 * u &&
+           offsetof(P, leafListsFrom) == 3 * r + 3 * u &&
+           offsetof(P, lanesAlong) == 3 * r + 4 * u && offsetof(P, padding) == 3 * r + 5 * u &&
+           sizeof(P) == 3 * r + 6 * u;
+}
+static_assert(laidOutAsTheKernels<cl_double>() && sizeof(TileParams<cl_double>) == 48);
+static_assert(laidOutAsTheKernels<cl_float>() && sizeof(TileParams<cl_float>) == 36);
+
 // The tree of segments[first, first + count): O(count). Capsules are
 // computed in double from the coordinates the kernel reads; its b - a
 // rounded once (originAndStep) and a dev rounded down to float are covered
@@ -287,6 +313,51 @@ FlatSegments<Real4> flatten(const std::vector<Slice>& slices, std::size_t begin,
     return flat;
 }
 
+// The tables of a batch's geometry that both kernels take first
+// (SLICE_GEOMETRY in kernels/closest_segment_2d.cl), made from `flat`, which
+// must outlive them: on CPU devices the buffers are host vectors themselves
+// (DeviceBuffer::reading), flat's among them.
+template <class Real, class Real4>
+struct SliceGeometry {
+    using Real2 = std::conditional_t<std::is_same_v<Real, cl_double>, cl_double2, cl_float2>;
+
+    SliceGeometry(ocl::Runtime& runtime, FlatSegments<Real4>& flat)
+        : segments(runtime, originAndStep(flat.segments)),
+          projectors(runtime, projectorsOf<Real2>(flat.segments)),
+          boxes(runtime, std::move(flat.boxes)),
+          chords(runtime, originAndStep(flat.chords)),
+          chordProjectors(runtime, projectorsOf<Real2>(flat.chords)),
+          devTable(flat.devs.begin(), flat.devs.end()),
+          devs(ocl::DeviceBuffer<Real>::reading(runtime, devTable)),
+          ids(ocl::DeviceBuffer<cl_uint2>::reading(runtime, flat.ids)),
+          sliceFirst(ocl::DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst)),
+          sliceCount(ocl::DeviceBuffer<cl_uint>::reading(runtime, flat.sliceCount)),
+          treeFirst(ocl::DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst)),
+          leafBase(ocl::DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase)) {}
+
+    // Sets the kernel's SLICE_GEOMETRY arguments from argument `first` on;
+    // returns the index of the argument after them.
+    cl_uint setArgs(cl::Kernel& kernel, cl_uint first) const {
+        for (const cl::Buffer* buffer :
+             {&segments.xyBuffer.get(), &segments.yxBuffer.get(), &projectors.xyBuffer.get(),
+              &projectors.yxBuffer.get(), &ids.get(), &boxes.xyBuffer.get(), &boxes.yxBuffer.get(),
+              &chords.xyBuffer.get(), &chords.yxBuffer.get(), &chordProjectors.xyBuffer.get(),
+              &chordProjectors.yxBuffer.get(), &devs.get(), &sliceFirst.get(), &sliceCount.get(),
+              &treeFirst.get(), &leafBase.get()})
+            kernel.setArg(first++, *buffer);
+        return first;
+    }
+
+    const FramedTable<Real4> segments;
+    const FramedTable<Real2> projectors;
+    const FramedTable<Real4> boxes, chords;
+    const FramedTable<Real2> chordProjectors;
+    const ScratchVector<Real> devTable;
+    const ocl::DeviceBuffer<Real> devs;
+    const ocl::DeviceBuffer<cl_uint2> ids;
+    const ocl::DeviceBuffer<cl_uint> sliceFirst, sliceCount, treeFirst, leafBase;
+};
+
 // Where the contours cross each pixel row, as the kernel reads them: per row
 // sorted by k, each (k, w) with windingCrossing() counting the edge for
 // pixels i < k exactly (the same double arithmetic as windingNumber() at
@@ -362,23 +433,9 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     FlatSegments<Real4> flat = flatten<Real4>(slices, begin, end, grid);
     const std::size_t batch = end - begin;
 
-    // The tables the kernels read, kept here while they run: on CPU devices
-    // the buffers are these host vectors themselves (DeviceBuffer::reading).
-    using Real2 = std::conditional_t<std::is_same_v<Real, cl_double>, cl_double2, cl_float2>;
+    // The tables the kernels read, kept here while they run.
     using ocl::DeviceBuffer;
-    const FramedTable<Real4> segments(runtime, originAndStep(flat.segments));
-    const FramedTable<Real2> projectors(runtime, projectorsOf<Real2>(flat.segments));
-    const FramedTable<Real4> boxes(runtime, std::move(flat.boxes));
-    const FramedTable<Real4> chords(runtime, originAndStep(flat.chords));
-    const FramedTable<Real2> chordProjectors(runtime, projectorsOf<Real2>(flat.chords));
-    const ScratchVector<Real> devTable(flat.devs.begin(), flat.devs.end());
-    const auto devs = DeviceBuffer<Real>::reading(runtime, devTable);
-    const auto ids = DeviceBuffer<cl_uint2>::reading(runtime, flat.ids);
-    const auto sliceFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceFirst);
-    const auto sliceCount = DeviceBuffer<cl_uint>::reading(runtime, flat.sliceCount);
-
-    const auto treeFirst = DeviceBuffer<cl_uint>::reading(runtime, flat.treeFirst);
-    const auto leafBase = DeviceBuffer<cl_uint>::reading(runtime, flat.leafBase);
+    const SliceGeometry<Real, Real4> geometry(runtime, flat);
     if (tile == 0) {
         const double meanLengthPx =
             flat.lengthMm / double(std::max<std::size_t>(1, flat.segments.size())) / grid.pixelMm;
@@ -411,39 +468,26 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
                                 " -DLEAF_LISTED=" + std::to_string(kLeafListed) + "u" +
                                 " -DCOLUMNS=" + std::to_string(kColumns) + "u";
     const cl::Program& program = runtime.program({"real.cl", "closest_segment_2d.cl"}, options);
+    TileParams<Real> params{};
+    params.pixelMm = Real(grid.pixelMm);
     // Far above the rounding of coordinates of this size (kernel header).
-    const Real slackMm =
+    params.slackMm =
         Real(64 * double(std::numeric_limits<Real>::epsilon()) * (flat.magnitudeMm + grid.pixelMm));
     // Squared distances round by a few ulps of the squared magnitude; this
     // margin is far above (kernel header, tile_candidates).
-    const Real marginMm2 =
-        Real(256 * double(std::numeric_limits<Real>::epsilon()) *
-             (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
+    params.marginMm2 = Real(256 * double(std::numeric_limits<Real>::epsilon()) *
+                            (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
+    params.width = cl_uint(grid.width), params.height = cl_uint(grid.height);
+    params.capacity = capacity, params.leafListsFrom = leafListsFrom;
+    params.lanesAlong = lanesAlong;
     RowCrossings rows;  // kept until the kernels finish
     try {
         // Kernels read the host memory of the tables above on CPU devices:
         // whatever is thrown after a launch, they finish before it is freed.
         const ocl::QueueDrain drain(runtime.queue());
         cl::Kernel cull(program, "tile_candidates");
-        int a = 0;
-        cull.setArg(a++, segments.xyBuffer.get());
-        cull.setArg(a++, projectors.xyBuffer.get());
-        cull.setArg(a++, sliceFirst.get());
-        cull.setArg(a++, sliceCount.get());
-        cull.setArg(a++, boxes.xyBuffer.get());
-        cull.setArg(a++, chords.xyBuffer.get());
-        cull.setArg(a++, chordProjectors.xyBuffer.get());
-        cull.setArg(a++, devs.get());
-        cull.setArg(a++, treeFirst.get());
-        cull.setArg(a++, leafBase.get());
-        cull.setArg(a++, cl_uint(grid.width));
-        cull.setArg(a++, cl_uint(grid.height));
-        cull.setArg(a++, Real(grid.pixelMm));
-        cull.setArg(a++, slackMm);
-        cull.setArg(a++, marginMm2);
-        cull.setArg(a++, capacity);
-        cull.setArg(a++, leafListsFrom);
-        cull.setArg(a++, lanesAlong);
+        cl_uint a = geometry.setArgs(cull, 0);
+        cull.setArg(a++, params);
         cull.setArg(a++, candidates.get());
         cull.setArg(a++, candidateCount.get());
         // Work-groups of a fixed 4 × 4 tiles (padding tiles return at once):
@@ -459,33 +503,12 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
         const auto crossings = DeviceBuffer<cl_int2>::reading(runtime, rows.crossings);
 
         cl::Kernel field(program, "signed_distance_2d");
-        a = 0;
-        field.setArg(a++, segments.xyBuffer.get());
-        field.setArg(a++, segments.yxBuffer.get());
-        field.setArg(a++, projectors.xyBuffer.get());
-        field.setArg(a++, projectors.yxBuffer.get());
-        field.setArg(a++, ids.get());
-        field.setArg(a++, sliceFirst.get());
-        field.setArg(a++, sliceCount.get());
-        field.setArg(a++, boxes.xyBuffer.get());
-        field.setArg(a++, boxes.yxBuffer.get());
-        field.setArg(a++, chords.xyBuffer.get());
-        field.setArg(a++, chords.yxBuffer.get());
-        field.setArg(a++, chordProjectors.xyBuffer.get());
-        field.setArg(a++, chordProjectors.yxBuffer.get());
-        field.setArg(a++, devs.get());
-        field.setArg(a++, treeFirst.get());
-        field.setArg(a++, leafBase.get());
-        field.setArg(a++, rowFirst.get());
-        field.setArg(a++, crossings.get());
-        field.setArg(a++, cl_uint(grid.width));
-        field.setArg(a++, cl_uint(grid.height));
-        field.setArg(a++, Real(grid.pixelMm));
-        field.setArg(a++, slackMm);
-        field.setArg(a++, marginMm2);
-        field.setArg(a++, capacity);
+        a = geometry.setArgs(field, 0);
+        field.setArg(a++, params);
         field.setArg(a++, candidates.get());
         field.setArg(a++, candidateCount.get());
+        field.setArg(a++, rowFirst.get());
+        field.setArg(a++, crossings.get());
         field.setArg(a++, distance.get());
         field.setArg(a++, nearest.get());
         // A work-item computes `lanes` pixels of a tile's rows, row after row.

@@ -385,6 +385,50 @@ inline void listLeafSegments(const Corners* corners, REAL4 beaten2, __global con
         }
 }
 
+// The arguments both kernels take first, in this order; field/SliceFields.cpp
+// sets them (SliceGeometry::setArgs, TileParams) in one call each.
+//
+// The geometry of the batch's slices, their segments in (slice, contour,
+// index) order and per slice the heap of its tree: per segment, (a, b - a)
+// and its projector, and its ids (segment id, id of its end vertex); per
+// node, its box, its chord as (a, b - a) with its projector, and its dev.
+// The segment and node tables come twice, as they are (XY) and with x and y
+// swapped (YX, the frame of lanes down a column; devs and ids do not
+// change). Per slice s of the batch: its segments sliceFirst[s] ..
+// sliceFirst[s] + sliceCount[s], its heap's node 0 at treeFirst[s] and its
+// first leaf node leafBase[s] (its number of leaves). OpenCL C 1.2 allows no
+// pointers in a kernel's struct arguments, hence a list; tile_candidates
+// reads the XY tables only.
+// (Left as written: clang-format would lay the list out as expressions.)
+// clang-format off
+#define SLICE_GEOMETRY                                                        \
+    __global const REAL4* segmentsXY, __global const REAL4* segmentsYX,       \
+    __global const REAL2* projectorsXY, __global const REAL2* projectorsYX,   \
+    __global const uint2* ids,                                                \
+    __global const REAL4* boxesXY, __global const REAL4* boxesYX,             \
+    __global const REAL4* chordsXY, __global const REAL4* chordsYX,           \
+    __global const REAL2* chordProjectorsXY,                                  \
+    __global const REAL2* chordProjectorsYX,                                  \
+    __global const REAL* devs,                                                \
+    __global const uint* sliceFirst, __global const uint* sliceCount,         \
+    __global const uint* treeFirst, __global const uint* leafBase
+// clang-format on
+//
+// The scalars, one argument: the host's twin (TileParams in
+// field/SliceFields.cpp) must lay them out alike with REAL double or float,
+// so the REALs come first and the uints after them, padded to a multiple of
+// 8 bytes, leaving neither compiler any padding to add.
+typedef struct {
+    REAL pixelMm;        // pixel (i, j) has its centre at ((i + 0.5) pixelMm, (j + 0.5) pixelMm)
+    REAL slackMm;        // above the rounding of distances at these coordinates (`reach`)
+    REAL marginMm2;      // above the rounding of squared distances (tile_candidates)
+    uint width, height;  // of the grid, in pixels
+    uint capacity;       // entries of a tile's list
+    uint leafListsFrom;  // tile_candidates: leaves listed above this many segments
+    uint lanesAlong;     // tile_candidates: LANES_ALONG_CONTOUR, LANES_ALONG_COLUMNS or rows
+    uint padding;
+} TileParams;
+
 // One work-item per (tile x, tile y, slice of the batch): the segments that
 // can be nearest to a pixel of the TILE x TILE tile, when there are at most
 // `capacity`. A segment s is left out when some point q of the contour is
@@ -403,15 +447,18 @@ inline void listLeafSegments(const Corners* corners, REAL4 beaten2, __global con
 // test are. Writes the count, or capacity + 1 when there are more: the
 // field kernel then walks the tree for each pixel instead. O(depth +
 // capacity) nodes per tile for contours no denser than its pixels.
-__kernel void tile_candidates(__global const REAL4* segments, __global const REAL2* projectors,
-                              __global const uint* sliceFirst, __global const uint* sliceCount,
-                              __global const REAL4* boxes, __global const REAL4* chords,
-                              __global const REAL2* chordProjectors, __global const REAL* devs,
-                              __global const uint* treeFirst, __global const uint* leafBase,
-                              const uint width, const uint height, const REAL pixelMm,
-                              const REAL slackMm, const REAL marginMm2, const uint capacity,
-                              const uint leafListsFrom, const uint lanesAlong,
-                              __global uint* candidates, __global uint* candidateCount) {
+__kernel void tile_candidates(SLICE_GEOMETRY, const TileParams params, __global uint* candidates,
+                              __global uint* candidateCount) {
+    // Tiles are listed in the rows' frame (x and y as they are).
+    __global const REAL4* segments = segmentsXY;
+    __global const REAL2* projectors = projectorsXY;
+    __global const REAL4* boxes = boxesXY;
+    __global const REAL4* chords = chordsXY;
+    __global const REAL2* chordProjectors = chordProjectorsXY;
+    const uint width = params.width, height = params.height;
+    const REAL pixelMm = params.pixelMm, slackMm = params.slackMm, marginMm2 = params.marginMm2;
+    const uint capacity = params.capacity, leafListsFrom = params.leafListsFrom,
+               lanesAlong = params.lanesAlong;
     const uint tx = get_global_id(0), ty = get_global_id(1), s = get_global_id(2);
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;
     if (tx >= tilesX || ty >= tilesY) return;
@@ -829,16 +876,12 @@ __attribute__((always_inline)) inline void writeColumn(
 // with k > i (0 if none): writeRow finds it by binary search, writeColumn
 // by moving on from the column before.
 __kernel __attribute__((reqd_work_group_size(TILE / LANES, 1, 1))) void signed_distance_2d(
-    __global const REAL4* segmentsXY, __global const REAL4* segmentsYX,
-    __global const REAL2* projectorsXY, __global const REAL2* projectorsYX,
-    __global const uint2* ids, __global const uint* sliceFirst, __global const uint* sliceCount,
-    __global const REAL4* boxesXY, __global const REAL4* boxesYX, __global const REAL4* chordsXY,
-    __global const REAL4* chordsYX, __global const REAL2* chordProjectorsXY,
-    __global const REAL2* chordProjectorsYX, __global const REAL* devs,
-    __global const uint* treeFirst, __global const uint* leafBase, __global const uint* rowFirst,
-    __global const int2* crossings, const uint width, const uint height, const REAL pixelMm,
-    const REAL slackMm, const REAL marginMm2, const uint capacity, __global const uint* candidates,
-    __global const uint* candidateCount, __global float* distance, __global uint* nearestId) {
+    SLICE_GEOMETRY, const TileParams params, __global const uint* candidates,
+    __global const uint* candidateCount, __global const uint* rowFirst,
+    __global const int2* crossings, __global float* distance, __global uint* nearestId) {
+    const uint width = params.width, height = params.height;
+    const REAL pixelMm = params.pixelMm, slackMm = params.slackMm, marginMm2 = params.marginMm2;
+    const uint capacity = params.capacity;
     const uint tx = get_global_id(0) * LANES / TILE, ty = get_global_id(1), s = get_global_id(2);
     const uint within = get_global_id(0) * LANES % TILE;  // the work-item's lanes in the tile
     const uint tilesX = (width + TILE - 1) / TILE, tilesY = (height + TILE - 1) / TILE;

@@ -15,7 +15,8 @@
 // off its triangle, searches the hierarchies instead.
 //
 // Both kernels take the same leading arguments (the source triangles, the
-// scene, the query, the lists), then their own, then the chunk they run.
+// scene, the lists), then their own, then the query and the chunk they run
+// as one QueryParams.
 //
 // The scene's objects share the Surface arrays; object o's hierarchy starts
 // at node object_root[o] (< 0: empty), and triangles[t].w is t's object.
@@ -27,6 +28,24 @@
 inline bool is_candidate(uint object, uint own, int target) {
     return object != own && (target < 0 || object == (uint)target);
 }
+
+// The scalars of both kernels, one argument: the host's twin (of the same
+// name in field/ClosestPrimitives.cpp) must lay them out alike with REAL
+// double or float, so the REALs come first and the 32-bit integers after
+// them, padded to a multiple of 8 bytes, leaving neither compiler any
+// padding to add.
+typedef struct {
+    REAL max_distance2;             // the band, squared
+    REAL max_distance;              // the band (source_candidates)
+    REAL slack;                     // the culling's rounding allowance
+    uint object_count;              // the scene's objects
+    int target;                     // -1: every other object
+    uint capacity;                  // entries of a source's list
+    uint source_first;              // the chunk's first source
+    uint source_count;              // its sources (source_candidates)
+    uint sample_first, sample_end;  // its samples (closest_primitive)
+    uint padding;
+} QueryParams;
 
 // Sources run in chunks (the lists take capacity entries each): work-item i
 // takes source s = source_first + i, with corners source_corners[3 s ..
@@ -41,11 +60,14 @@ __kernel void source_candidates(__global const REAL4* source_corners,
                                 __global const int4* triangles, __global const REAL4* node_lo,
                                 __global const REAL4* node_hi, __global const int4* node_links,
                                 __global const uint* order, __global const REAL4* balls,
-                                __global const int* object_root, uint object_count, int target,
-                                REAL max_distance2, REAL slack, uint capacity,
-                                __global uint* candidates, __global REAL4* bounds,
-                                __global uint* candidate_count, __global uint* centre_nearest,
-                                REAL max_distance, uint source_first, uint source_count) {
+                                __global const int* object_root, __global uint* candidates,
+                                __global REAL4* bounds, __global uint* candidate_count,
+                                __global uint* centre_nearest, const QueryParams query) {
+    const uint object_count = query.object_count, capacity = query.capacity;
+    const int target = query.target;
+    const REAL max_distance2 = query.max_distance2, max_distance = query.max_distance,
+               slack = query.slack;
+    const uint source_first = query.source_first, source_count = query.source_count;
     const uint i = get_global_id(0);
     if (i >= source_count) return;
     const uint s = source_first + i;
@@ -114,14 +136,17 @@ __kernel void closest_primitive(
     __global const REAL4* source_corners, __global const uint* source_object,
     __global const REAL4* points, __global const int4* triangles, __global const REAL4* node_lo,
     __global const REAL4* node_hi, __global const int4* node_links, __global const uint* order,
-    __global const REAL4* balls, __global const int* object_root, uint object_count, int target,
-    REAL max_distance2, REAL slack, uint capacity, __global const uint* candidates,
+    __global const REAL4* balls, __global const int* object_root, __global const uint* candidates,
     __global const REAL4* bounds, __global const uint* candidate_count,
     __global const uint* centre_nearest, __global const REAL4* pseudo_normals,
     __global const uchar* object_closed, __global const REAL4* sample_points,
     __global const uint* sample_source, __global REAL* distance, __global uint* nearest,
-    __global uchar* feature, __global REAL4* closest, uint source_first, uint sample_first,
-    uint sample_end) {
+    __global uchar* feature, __global REAL4* closest, const QueryParams query) {
+    const uint object_count = query.object_count, capacity = query.capacity;
+    const int target = query.target;
+    const REAL max_distance2 = query.max_distance2, slack = query.slack;
+    const uint source_first = query.source_first, sample_first = query.sample_first,
+               sample_end = query.sample_end;
     const uint k = sample_first + get_global_id(0);
     if (k >= sample_end) return;
     const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};

@@ -1,9 +1,7 @@
 #include "recon/PrismClosing.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <set>
+#include <vector>
 
 #include "recon/PlanarRegion.hpp"
 
@@ -105,76 +103,6 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
             builder.addTriangle(lid[tri[0]], lid[tri[1]], lid[tri[2]]);
         else
             builder.addTriangle(lid[tri[0]], lid[tri[2]], lid[tri[1]]);
-    }
-}
-
-void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
-                double roundingMm, const std::vector<Point2>& interiorPoints,
-                const std::function<double(Point2)>& depthMm) {
-    const std::vector<WeightedContour> contours = weighted(part, +1);
-    if (contours.empty()) return;
-    // An edge joining two contour points across the region (a chord) would
-    // lie flat in the contour plane, where a cap from the other side may use
-    // it too: chords get their midpoint as an inner vertex (a few rounds, as
-    // the triangulation changes around new points).
-    std::vector<Point2> inner = interiorPoints;
-    PlanarRegion region = triangulateRegion(contours, inner);
-    for (int round = 0; round < 4 && heightMm > 0; ++round) {
-        std::vector<bool> onContour(region.points.size(), false);
-        std::set<std::pair<std::uint32_t, std::uint32_t>> contourEdges;
-        for (const auto& chains : region.edgeChains)
-            for (const auto& chain : chains)
-                for (std::size_t k = 0; k < chain.size(); ++k) {
-                    onContour[chain[k]] = true;
-                    if (k + 1 < chain.size())
-                        contourEdges.insert(std::minmax(chain[k], chain[k + 1]));
-                }
-        std::set<std::pair<std::uint32_t, std::uint32_t>> chords;
-        for (const auto& t : region.triangles)
-            for (int k = 0; k < 3; ++k) {
-                const auto edge = std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)]);
-                if (onContour[edge.first] && onContour[edge.second] && !contourEdges.count(edge))
-                    chords.insert(edge);
-            }
-        if (chords.empty()) break;
-        for (const auto& [a, b] : chords)
-            inner.push_back(0.5 * (region.points[a] + region.points[b]));
-        region = triangulateRegion(contours, inner);
-    }
-    const double z0 = part.layer->zMm;
-
-    // Contour corners keep their layer vertices; everything else is lifted.
-    constexpr std::uint32_t kUnset = 0xffffffffu;
-    std::vector<std::uint32_t> vertex(region.points.size(), kUnset);
-    std::vector<bool> onContour(region.points.size(), false);
-    for (std::size_t q = 0; q < part.contours.size(); ++q) {
-        const std::vector<std::uint32_t>& ids = part.layer->vertexIds[part.contours[q]];
-        for (std::size_t k = 0; k < ids.size(); ++k) {
-            vertex[region.edgeChains[q][k].front()] = ids[k];
-            for (std::uint32_t p : region.edgeChains[q][k]) onContour[p] = true;
-        }
-    }
-    double deepest = 0;
-    std::vector<double> depth(region.points.size(), 0.0);
-    for (std::size_t p = 0; p < region.points.size(); ++p) {
-        if (onContour[p]) continue;
-        depth[p] = std::max(0.0, depthMm(region.points[p]));
-        deepest = std::max(deepest, depth[p]);
-    }
-    const double direction = up ? 1.0 : -1.0;
-    const double radius = std::min(roundingMm, deepest);
-    for (std::size_t p = 0; p < region.points.size(); ++p) {
-        if (vertex[p] != kUnset) continue;
-        const double r = radius > 0 ? std::min(1.0, depth[p] / radius) : 0.0;
-        const double rise = heightMm * std::sqrt(std::max(0.0, 1 - (1 - r) * (1 - r)));
-        vertex[p] = builder.addVertex(region.points[p], z0 + direction * rise);
-    }
-    for (std::size_t t = 0; t < region.triangles.size(); ++t) {
-        const auto& tri = region.triangles[t];
-        if ((region.sign[t] > 0) == up)
-            builder.addTriangle(vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
-        else
-            builder.addTriangle(vertex[tri[0]], vertex[tri[2]], vertex[tri[1]]);
     }
 }
 

@@ -8,7 +8,6 @@
 // sixteenth of the slice spacing at the default depth), so what remains of
 // a branching region costs a small step, never a hole.
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "recon/SurfaceBuilder.hpp"
@@ -27,17 +26,5 @@ struct LayerPart {
 /// joins watertight to whatever lies beyond those contours.
 void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
                    double middleZMm);
-
-/// A rounded cap over the region of `part`'s contours: it starts at the
-/// contours in their plane and rises (upward when `up`, else downward) to
-/// `heightMm`, along a quarter circle that is vertical at the rim and flat
-/// once `roundingMm` inside (a plateau; with roundingMm at least the region's
-/// depth, a dome). `depthMm(p)` is the distance from p to the contours; the
-/// cap's inner vertices sit at `interiorPoints`, which must lie inside the
-/// region and off the contours. A height field over a planar triangulation,
-/// so it cannot fold onto itself.
-void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
-                double roundingMm, const std::vector<Point2>& interiorPoints,
-                const std::function<double(Point2)>& depthMm);
 
 }  // namespace dfrecon

@@ -21,12 +21,6 @@
 
 namespace dfrecon {
 
-const char* capModeName(CapMode mode) {
-    for (const auto& [name, value] : kCapModeNames)
-        if (value == mode) return name;
-    return "?";
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -80,13 +74,13 @@ std::vector<Component> connectByAxes(const std::vector<MedialAxis>& axes, std::s
 // steps at patient coordinates, so the opening survives a float mesh file.
 constexpr double kTouchGapMm = 2e-3;
 
-class SurfaceReconstructor {
+class SurfaceReconstructor final : public CapSite {
   public:
     SurfaceReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                          const SliceGrid& grid, ReconstructionStats& stats)
         : runtime_(runtime), options_(options), grid_(grid), stats_(stats) {}
 
-    SurfaceBuilder& builder() { return builder_; }
+    SurfaceBuilder& builder() override { return builder_; }
 
     /// The slab between two original slices, whose fields are slices
     /// `lowerSlice` and `upperSlice` of `fields`.
@@ -114,40 +108,18 @@ class SurfaceReconstructor {
                       0.5 * (lower.zMm + upper.zMm));
     }
 
-    /// Caps every contour of `end` (up or down from its plane) by `offsetMm`,
-    /// falling back to a flat prism cap when the chosen cap is not a clean
-    /// piece.
+    /// Caps every contour of `end` (up or down from its plane) by `offsetMm`
+    /// as a piece of its own (recon/Caps).
     void capLayer(const Layer& end, bool up, double offsetMm, const SliceFields& fields,
                   std::size_t slice) {
-        const std::size_t before = builder_.triangleCount();
         const LayerPart whole = part(end, all(end));
-        cap(whole, up, offsetMm, fields, slice);
-        if (options_.cap != CapMode::None && !isCleanPiece(before, {&whole})) {
-            builder_.truncateTriangles(before);
-            prismCap(whole, up, offsetMm);
-        }
+        stats_.caps += whole.contours.size();
+        capEndsAsPiece(*this, options_.cap, whole, up, offsetMm, fields, slice);
     }
 
     /// The guaranteed cap: the end contours extruded under a flat lid.
     void prismCapLayer(const Layer& end, bool up, double offsetMm) {
-        prismCap(part(end, all(end)), up, offsetMm);
-    }
-
-    /// Caps the contours of `part` that end, up or down from its plane.
-    void cap(const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
-             std::size_t slice) {
-        if (end.contours.empty()) return;
-        stats_.caps += end.contours.size();
-        switch (options_.cap) {
-            case CapMode::None:
-                return;
-            case CapMode::Flat:
-                flat(end, up, offsetMm, fields, slice);
-                return;
-            case CapMode::Dome:
-                rounded(end, up, offsetMm, INFINITY, fields, slice);
-                return;
-        }
+        prismCap(builder_, part(end, all(end)), up, offsetMm);
     }
 
   private:
@@ -165,6 +137,31 @@ class SurfaceReconstructor {
         return piece.intersectingPairs == 0 && piece.nonManifoldEdges == 0 &&
                piece.nonManifoldVertices == 0 && piece.misorientedEdges == 0 &&
                piece.degenerateTriangles == 0 && borderRight;
+    }
+
+    // What caps ask of the reconstruction (CapSite).
+    bool isCleanCap(std::size_t before, const LayerPart& end) const override {
+        return isCleanPiece(before, {&end});
+    }
+    const Layer& addIsolineLayer(double zMm, std::vector<Polygon> isolines,
+                                 const LayerPart& of) override {
+        if (emptyIsNegative(of, {of.layer, {}}))
+            for (Polygon& p : isolines) std::reverse(p.begin(), p.end());
+        layers_.push_back(makeLayer(builder_, zMm, std::move(isolines)));
+        return layers_.back();
+    }
+    void joinLayers(const LayerPart& lower, const SliceFields& lowerField, const LayerPart& upper,
+                    const SliceFields& upperField) override {
+        slab(lower, upper, pairOf(lowerField, 0, upperField, 0), 0, 1, 1);
+    }
+
+    /// Caps the contours of `end` that end inside a slab, up or down from
+    /// its plane (the slab is checked as one piece).
+    void cap(const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
+             std::size_t slice) {
+        if (end.contours.empty()) return;
+        stats_.caps += end.contours.size();
+        capEnds(*this, options_.cap, end, up, offsetMm, fields, slice);
     }
 
     static std::vector<std::uint32_t> all(const Layer& layer) {
@@ -209,10 +206,10 @@ class SurfaceReconstructor {
         return windowOf(grid_, box, kGridMarginPx);
     }
 
-    /// The fields of `parts`, one slice each, in order, on `grid` (by
-    /// default the window around them).
+    /// The fields of `parts`, one slice each, in order, on `grid` (nullopt:
+    /// the window around them).
     SliceFields fieldsOf(const std::vector<LayerPart>& parts,
-                         std::optional<SliceGrid> grid = std::nullopt) {
+                         std::optional<SliceGrid> grid) override {
         std::vector<Slice> slices;
         for (const LayerPart& p : parts) {
             Slice& slice = slices.emplace_back(Slice{p.layer->zMm, {}});
@@ -282,24 +279,20 @@ class SurfaceReconstructor {
                     if (whole)
                         recurse(x, y, depth, pairOf(fields, a, fields, b), &sum);
                     else
-                        recurse(x, y, depth, fieldsOf({x, y}), nullptr);
+                        recurse(x, y, depth, fieldsOf({x, y}, std::nullopt), nullptr);
                 }
             }
         }
         if (depth == 0) {
             // Ends of the stack proper: capped as the user chose.
-            cap(endingLower, true, capOffset(upper.layer->zMm - lower.layer->zMm), fields, a);
-            cap(endingUpper, false, capOffset(upper.layer->zMm - lower.layer->zMm), fields, b);
+            const double offsetMm =
+                capOffsetMm(options_.capOffsetMm, upper.layer->zMm - lower.layer->zMm, true);
+            cap(endingLower, true, offsetMm, fields, a);
+            cap(endingUpper, false, offsetMm, fields, b);
         } else {
             closeByPrisms(builder_, endingLower, {}, middle);
             closeByPrisms(builder_, {}, endingUpper, middle);
         }
-    }
-
-    double capOffset(double spacingMm) const {
-        // Never past the middle of the slab, where the other side's caps end.
-        const double half = 0.5 * spacingMm;
-        return options_.capOffsetMm < 0 ? half : std::min(options_.capOffsetMm, half);
     }
 
     bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,
@@ -358,147 +351,6 @@ class SurfaceReconstructor {
         const SliceFields middleField = fieldsOf({m}, fields.grid);
         slab(x, m, pairOf(fields, 0, middleField, 0), 0, 1, depth + 1);
         slab(m, y, pairOf(middleField, 0, fields, 1), 0, 1, depth + 1);
-    }
-
-    /// How fast the contours of `end` (slice `slice` of `fields`) move inward
-    /// per mm of z, judged from the slice on the other side: the mean of its
-    /// field at their vertices over the gap. 0 when there is no such slice or
-    /// the contours grow.
-    double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields,
-                       std::size_t slice) const {
-        if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return 0;
-        const std::size_t other = up ? slice - 1 : slice + 1;
-        const SliceGrid& grid = fields.grid;
-        double sum = 0;
-        std::size_t count = 0;
-        for (std::uint32_t c : end.contours)
-            for (Point2 p : end.layer->contours[c]) {
-                const int i =
-                    std::clamp(int((p.x - grid.originMm.x) / grid.pixelMm), 0, grid.width - 1);
-                const int j =
-                    std::clamp(int((p.y - grid.originMm.y) / grid.pixelMm), 0, grid.height - 1);
-                const double d = fields.distanceMm[fields.index(other, i, j)];
-                if (!std::isfinite(d)) return 0;
-                sum += d;
-                ++count;
-            }
-        const double gap = std::fabs(fields.zMm[slice] - fields.zMm[other]);
-        return count > 0 && gap > 0 ? std::max(0.0, -(sum / double(count)) / gap) : 0.0;
-    }
-
-    /// The end contours extruded by `offsetMm` (up or down) under a flat lid.
-    void prismCap(const LayerPart& end, bool up, double offsetMm) {
-        if (up)
-            closeByPrisms(builder_, end, {}, end.layer->zMm + offsetMm);
-        else
-            closeByPrisms(builder_, {}, end, end.layer->zMm - offsetMm);
-    }
-
-    /// The flat cap: a lid at the offset. Its rim continues the side's slope
-    /// from the last slab (a vertical wall where the side is vertical or
-    /// widening), so ends that were narrowing keep narrowing to the lid
-    /// instead of stepping; the lid is the end contours inset by that much
-    /// (an isoline of their field), joined to them like any slab.
-    void flat(const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
-              std::size_t slice) {
-        const double z = end.layer->zMm + (up ? offsetMm : -offsetMm);
-        const double insetMm = inwardSlope(end, up, fields, slice) * offsetMm;
-        if (insetMm < grid_.pixelMm) {
-            prismCap(end, up, offsetMm);
-            return;
-        }
-        const SliceFields own = fieldsOf({end});
-        std::vector<float> shifted(own.distanceMm.begin(),
-                                   own.distanceMm.begin() + std::ptrdiff_t(own.grid.pixelCount()));
-        for (float& d : shifted) d += float(insetMm);
-        Slice lid{z, {}};
-        for (SimplifiedContour& c :
-             simplifySlice(zeroIsolines(shifted, own.grid), 0.25 * own.grid.pixelMm))
-            if (c.points.size() >= 3) lid.contours.push_back(std::move(c.points));
-        if (lid.contours.empty()) {
-            // The end would narrow to nothing before the lid: round it off.
-            rounded(end, up, offsetMm, INFINITY, fields, slice);
-            return;
-        }
-        if (emptyIsNegative(end, {end.layer, {}}))
-            for (Polygon& p : lid.contours) std::reverse(p.begin(), p.end());
-        layers_.push_back(makeLayer(builder_, lid.zMm, std::move(lid.contours)));
-        const Layer& top = layers_.back();
-        const LayerPart lidPart = part(top, all(top));
-        if (up) {
-            slab(end, lidPart, pairOf(own, 0, fieldsOf({lidPart}, own.grid), 0), 0, 1, 1);
-        } else {
-            slab(lidPart, end, pairOf(fieldsOf({lidPart}, own.grid), 0, own, 0), 0, 1, 1);
-        }
-        roundedCap(builder_, lidPart, up, 0.0, 0.0, {}, [](Point2) { return 0.0; });
-    }
-
-    void rounded(const LayerPart& end, bool up, double heightMm, double roundingMm,
-                 const SliceFields& fields, std::size_t slice) {
-        // Inner vertices on a lattice a third of the cap height apart (so the
-        // rounding gets a few steps), at least a pixel and a half inside,
-        // where the slice's field is exact.
-        const SliceGrid& grid = fields.grid;
-        const double pixel = grid.pixelMm;
-        const int step = std::max(2, int(std::lround(heightMm / 3 / pixel)));
-        auto depthAt = [&](int i, int j) { return -fields.distanceMm[fields.index(slice, i, j)]; };
-        std::vector<Point2> inner;
-        for (int j = step / 2; j < grid.height; j += step) {
-            for (int i = step / 2; i < grid.width; i += step) {
-                if (depthAt(i, j) < 1.5 * pixel) continue;
-                const Point2 p = grid.pixelCentre(i, j);
-                int winding = 0;
-                for (std::uint32_t c : end.contours)
-                    winding += windingNumber(p, end.layer->contours[c]);
-                if (winding != 0) inner.push_back(p);
-            }
-        }
-        // Every outer contour needs an inner vertex, or its dome would be
-        // flat in the contour plane (and coincide with a cap from the other
-        // side): the lattice can miss small ones, so take their deepest
-        // pixel; contours too small for any get a flat cap instead.
-        for (std::uint32_t c : end.contours) {
-            const Polygon& contour = end.layer->contours[c];
-            if (signedArea(contour) <= 0) continue;
-            auto inside = [&](Point2 p) { return windingNumber(p, contour) != 0; };
-            if (std::any_of(inner.begin(), inner.end(), inside)) continue;
-            const Box2 box = boundingBox(contour);
-            double best = 0.5 * pixel;
-            std::optional<Point2> deepest;
-            const int i0 = std::max(0, int((box.min.x - grid.originMm.x) / pixel));
-            const int i1 = std::min(grid.width - 1, int((box.max.x - grid.originMm.x) / pixel));
-            const int j0 = std::max(0, int((box.min.y - grid.originMm.y) / pixel));
-            const int j1 = std::min(grid.height - 1, int((box.max.y - grid.originMm.y) / pixel));
-            for (int j = j0; j <= j1; ++j)
-                for (int i = i0; i <= i1; ++i)
-                    if (depthAt(i, j) > best && inside(grid.pixelCentre(i, j))) {
-                        best = depthAt(i, j);
-                        deepest = grid.pixelCentre(i, j);
-                    }
-            if (!deepest) {
-                prismCap(end, up, heightMm);
-                return;
-            }
-            inner.push_back(*deepest);
-        }
-        auto depthMm = [&](Point2 p) {
-            double d = INFINITY;
-            for (std::uint32_t c : end.contours)
-                d = std::min(d, distanceToBoundary(p, end.layer->contours[c]));
-            return d;
-        };
-        const std::size_t before = builder_.triangleCount();
-        roundedCap(builder_, end, up, heightMm, roundingMm, inner, depthMm);
-        // The cap alone must be a clean sheet whose only border is the end
-        // contours; otherwise (contours touching inside it) a flat prism cap.
-        const MeshCheckReport cap = checkMesh(builder_.trianglesSince(before));
-        std::size_t contourEdges = 0;
-        for (std::uint32_t c : end.contours) contourEdges += end.layer->contours[c].size();
-        if (cap.intersectingPairs > 0 || cap.nonManifoldEdges > 0 || cap.misorientedEdges > 0 ||
-            cap.degenerateTriangles > 0 || cap.boundaryEdges != contourEdges) {
-            builder_.truncateTriangles(before);
-            prismCap(end, up, heightMm);
-        }
     }
 
     ocl::Runtime& runtime_;
@@ -567,7 +419,7 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         const std::size_t neighbour = up ? s - 1 : s + 1;
         const double gap =
             slices.size() > 1 ? std::fabs(slices[s].zMm - slices[neighbour].zMm) : endSpacing;
-        return options.capOffsetMm < 0 ? 0.5 * gap : options.capOffsetMm;
+        return capOffsetMm(options.capOffsetMm, gap, false);
     };
     // Pieces: 0 the bottom cap, s + 1 the slab above slice s, the last the
     // top cap. Each lies between its planes and meets them only in their

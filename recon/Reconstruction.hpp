@@ -16,27 +16,9 @@
 #include "field/SliceFields.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "recon/Caps.hpp"
 
 namespace dfrecon {
-
-/// How ends are closed: contours with no partner beyond them (first and last
-/// slice, a branch that stops).
-enum class CapMode {
-    Flat,  // a flat lid at the cap offset, its rim rounded with the offset as radius
-    Dome,  // a dome from the contour rising to the cap offset at its deepest point
-    None,  // left open (the surface has boundary loops there)
-};
-
-/// The one list of the cap modes' names, which the command line parses and
-/// reports print (app/EnumNames.hpp reads it); capModeName reads it too.
-inline constexpr std::array<std::pair<const char*, CapMode>, 3> kCapModeNames{{
-    {"flat", CapMode::Flat},
-    {"dome", CapMode::Dome},
-    {"none", CapMode::None},
-}};
-
-/// The name of `mode` in kCapModeNames. O(1).
-const char* capModeName(CapMode mode);
 
 /// How the surface runs between two planes.
 enum class Interpolation {
