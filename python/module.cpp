@@ -41,6 +41,15 @@ ocl::Runtime& runtime() {
     return *sharedRuntime;
 }
 
+// Runs `work(runtime)` without the GIL, so that other Python threads go on
+// while the device works, and with the runtime to itself.
+template <class Work>
+auto onDevice(Work&& work) {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(runtimeMutex);
+    return work(runtime());
+}
+
 // ---- JSON to Python ---------------------------------------------------------
 
 py::object toPython(const nlohmann::ordered_json& j) {
@@ -278,13 +287,10 @@ PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
                       const std::vector<std::pair<std::string, std::string>>& given) {
     const Roi& roi = chooseRoi(set.read, roiChoice);
     const app::ReconstructSettings settings = settingsOf(given);
-    RoiSurface result;
-    {
-        py::gil_scoped_release release;
-        const std::lock_guard<std::mutex> lock(runtimeMutex);
-        result = reconstructRoi(runtime(), roi,
-                                RoiReconstructOptions{settings.options, settings.maxErrorMm});
-    }
+    RoiSurface result = onDevice([&](ocl::Runtime& device) {
+        return reconstructRoi(device, roi,
+                              RoiReconstructOptions{settings.options, settings.maxErrorMm});
+    });
     const nlohmann::ordered_json simplification =
         result.simplification ? app::simplificationJson(*result.simplification,
                                                         SimplifyOptions{settings.maxErrorMm}, true)
@@ -432,12 +438,8 @@ PYBIND11_MODULE(_dfrecon, m) {
     m.def("_simplify", [](const PyMesh& mesh, double maxErrorMm) {
         SimplifyOptions options;
         options.maxErrorMm = maxErrorMm;
-        VerifiedSimplification simplified;
-        {
-            py::gil_scoped_release release;
-            const std::lock_guard<std::mutex> lock(runtimeMutex);
-            simplified = simplifyVerified(&runtime(), mesh.surface, options);
-        }
+        VerifiedSimplification simplified = onDevice(
+            [&](ocl::Runtime& device) { return simplifyVerified(&device, mesh.surface, options); });
         PyMesh out;
         out.report = toPython(app::simplificationJson(simplified, options, false));
         out.surface = std::move(simplified.result.surface);
@@ -451,12 +453,8 @@ PYBIND11_MODULE(_dfrecon, m) {
         const Roi& roi = chooseRoi(set.read, roiChoice);
         RoiFieldOptions options;
         options.pixelMm = pixelMm;
-        SliceFields fields;
-        {
-            py::gil_scoped_release release;
-            const std::lock_guard<std::mutex> lock(runtimeMutex);
-            fields = roiSliceFields(runtime(), roi, options);
-        }
+        const SliceFields fields =
+            onDevice([&](ocl::Runtime& device) { return roiSliceFields(device, roi, options); });
         const SliceGrid& g = fields.grid;
         py::array_t<float> distance(
             {py::ssize_t(fields.sliceCount()), py::ssize_t(g.height), py::ssize_t(g.width)});
@@ -477,12 +475,8 @@ PYBIND11_MODULE(_dfrecon, m) {
         RoiFieldOptions options;
         options.pixelMm = pixelMm;
         options.isotropic = isotropic;
-        RoiDistanceVolume field;
-        {
-            py::gil_scoped_release release;
-            const std::lock_guard<std::mutex> lock(runtimeMutex);
-            field = roiDistanceVolume(runtime(), roi, options);
-        }
+        const RoiDistanceVolume field =
+            onDevice([&](ocl::Runtime& device) { return roiDistanceVolume(device, roi, options); });
         const DenseDistanceVolume& v = field.volume;
         py::array_t<float> values({py::ssize_t(v.nz), py::ssize_t(v.ny), py::ssize_t(v.nx)});
         std::copy(v.valuesMm.begin(), v.valuesMm.end(), values.mutable_data());
@@ -511,14 +505,9 @@ PYBIND11_MODULE(_dfrecon, m) {
               options.atlas.maxErrorMm = samplingMm;
               if (maxDistanceMm > 0) options.query.maxDistanceMm = maxDistanceMm;
               options.proximity = withPairs;
-              std::unique_ptr<SurfaceScene> scene;
-              SceneMaps maps;
-              {
-                  py::gil_scoped_release release;
-                  scene = std::make_unique<SurfaceScene>(std::move(soups), names);
-                  const std::lock_guard<std::mutex> lock(runtimeMutex);
-                  maps = sceneDistanceMaps(runtime(), *scene, options);
-              }
+              const SurfaceScene scene(std::move(soups), names);
+              const SceneMaps maps = onDevice(
+                  [&](ocl::Runtime& device) { return sceneDistanceMaps(device, scene, options); });
               py::list perMesh;
               for (std::size_t o = 0; o < maps.maps.size(); ++o) {
                   const std::vector<ClosestPrimitive>& vertices = maps.maps[o].vertices;
@@ -532,7 +521,7 @@ PYBIND11_MODULE(_dfrecon, m) {
                       points[i] = vertices[i].object < 0 ? Vec3{NAN, NAN, NAN} : vertices[i].point;
                   }
                   py::dict map;
-                  map["name"] = scene->name(o);
+                  map["name"] = scene.name(o);
                   map["distance_mm"] = distance;
                   map["nearest"] = nearest;
                   map["closest_point"] = pointsArray(points);
@@ -542,8 +531,8 @@ PYBIND11_MODULE(_dfrecon, m) {
               py::list pairs;
               for (const PairProximity& p : maps.pairs) {
                   py::dict pair;
-                  pair["a"] = scene->name(p.first);
-                  pair["b"] = scene->name(p.second);
+                  pair["a"] = scene.name(p.first);
+                  pair["b"] = scene.name(p.second);
                   pair["separation_mm"] = p.separationMm;
                   pair["separation_bound_mm"] = p.boundMm;
                   pair["surfaces_intersect"] = p.surfacesIntersect;
@@ -558,35 +547,28 @@ PYBIND11_MODULE(_dfrecon, m) {
 
     m.def("_compare", [](const PyMesh& a, const PyMesh& b, double spacingMm, double toleranceMm) {
         const ComparedSolid solidA = solidOf(a, "a"), solidB = solidOf(b, "b");
-        Comparison comparison;
-        {
-            py::gil_scoped_release release;
-            const std::lock_guard<std::mutex> lock(runtimeMutex);
-            comparison =
-                compareSolids(runtime(), solidA, solidB, CompareOptions{spacingMm, toleranceMm});
-        }
+        const Comparison comparison = onDevice([&](ocl::Runtime& device) {
+            return compareSolids(device, solidA, solidB, CompareOptions{spacingMm, toleranceMm});
+        });
         return toPython(app::comparisonJson(comparison));
     });
-    m.def("_compare_contours",
-          [](const PyStructureSet& setA, const py::object& roiA, const PyStructureSet& setB,
-             const py::object& roiB, double spacingMm, double toleranceMm) {
-              const Roi& a = chooseRoi(setA.read, roiA);
-              const Roi& b = chooseRoi(setB.read, roiB);
-              Comparison comparison;
-              {
-                  py::gil_scoped_release release;
-                  const std::lock_guard<std::mutex> lock(runtimeMutex);
-                  RoiSurface surfaceA = reconstructRoi(runtime(), a);
-                  RoiSurface surfaceB = reconstructRoi(runtime(), b);
-                  for (const auto* s : {&surfaceA, &surfaceB})
-                      if (!s->check.validSolid())
-                          throw app::InvalidResult("ROI '" + (s == &surfaceA ? a.name : b.name) +
-                                                   "' gives no valid closed solid");
-                  comparison = compareSolids(
-                      runtime(), ComparedSolid{std::move(surfaceA.surface), surfaceA.check, &a},
-                      ComparedSolid{std::move(surfaceB.surface), surfaceB.check, &b},
-                      CompareOptions{spacingMm, toleranceMm});
-              }
-              return toPython(app::comparisonJson(comparison));
-          });
+    m.def("_compare_contours", [](const PyStructureSet& setA, const py::object& roiA,
+                                  const PyStructureSet& setB, const py::object& roiB,
+                                  double spacingMm, double toleranceMm) {
+        const Roi& a = chooseRoi(setA.read, roiA);
+        const Roi& b = chooseRoi(setB.read, roiB);
+        const Comparison comparison = onDevice([&](ocl::Runtime& device) {
+            RoiSurface surfaceA = reconstructRoi(device, a);
+            RoiSurface surfaceB = reconstructRoi(device, b);
+            for (const auto* s : {&surfaceA, &surfaceB})
+                if (!s->check.validSolid())
+                    throw app::InvalidResult("ROI '" + (s == &surfaceA ? a.name : b.name) +
+                                             "' gives no valid closed solid");
+            return compareSolids(device,
+                                 ComparedSolid{std::move(surfaceA.surface), surfaceA.check, &a},
+                                 ComparedSolid{std::move(surfaceB.surface), surfaceB.check, &b},
+                                 CompareOptions{spacingMm, toleranceMm});
+        });
+        return toPython(app::comparisonJson(comparison));
+    });
 }
