@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "io/InputsInUse.hpp"
@@ -46,22 +47,90 @@ void checkPoints(const RoiPoints& roi, const std::string& source) {
     }
 }
 
-// Contours grouped by plane (their first point's z), in increasing z.
-Roi asSlices(const RoiPoints& points) {
-    std::map<double, Slice> planes;
-    for (const std::vector<Vec3>& contour : points.contours) {
-        Slice& slice = planes[contour[0].z];
+// Contours grouped by plane (their first point's z), in increasing z;
+// `arrayOf[s][c]` is the index in points.contours of slice s's contour c.
+Roi asSlices(const RoiPoints& points, std::vector<std::vector<std::size_t>>& arrayOf) {
+    std::map<double, std::pair<Slice, std::vector<std::size_t>>> planes;
+    for (std::size_t a = 0; a < points.contours.size(); ++a) {
+        const std::vector<Vec3>& contour = points.contours[a];
+        auto& [slice, arrays] = planes[contour[0].z];
         slice.zMm = contour[0].z;
         Polygon polygon;
         polygon.reserve(contour.size());
         for (const Vec3& p : contour) polygon.push_back({p.x, p.y});
         slice.contours.push_back(std::move(polygon));
+        arrays.push_back(a);
     }
     Roi roi;
     roi.name = points.name;
     roi.colour = points.colour;
-    for (auto& [z, slice] : planes) roi.slices.push_back(std::move(slice));
+    arrayOf.clear();
+    for (auto& [z, plane] : planes) {
+        roi.slices.push_back(std::move(plane.first));
+        arrayOf.push_back(std::move(plane.second));
+    }
     return roi;
+}
+
+// What each line of formatSlices' text stands for among the arrays given
+// (its layout: two header lines; per ROI a line, per plane a line, per
+// contour a line and then one per point), so that the reader's messages can
+// name the ROI, the contour's index and the point instead of a line of text
+// the user never saw. Index 0 is unused (lines count from 1).
+std::vector<std::string> lineOrigins(
+    const ContourSet& set, const std::vector<std::vector<std::vector<std::size_t>>>& arrayOf) {
+    std::vector<std::string> origins(3, "");
+    for (std::size_t r = 0; r < set.rois.size(); ++r) {
+        const Roi& roi = set.rois[r];
+        const std::string name = "ROI '" + roi.name + "'";
+        origins.push_back(name);
+        for (std::size_t s = 0; s < roi.slices.size(); ++s) {
+            std::ostringstream plane;
+            plane << name << ", plane z = " << roi.slices[s].zMm << " mm";
+            origins.push_back(plane.str());
+            for (std::size_t c = 0; c < roi.slices[s].contours.size(); ++c) {
+                const std::string contour = name + ", contour " + std::to_string(arrayOf[r][s][c]);
+                origins.push_back(contour);
+                for (std::size_t k = 0; k < roi.slices[s].contours[c].size(); ++k)
+                    origins.push_back(contour + ", point " + std::to_string(k));
+            }
+        }
+    }
+    return origins;
+}
+
+// The point a line stands for ("point 7" of "ROI 'A', contour 2, point 7"),
+// or the line itself where it is no point.
+std::string pointOf(const std::string& lineNumber, const std::vector<std::string>& origins) {
+    const std::size_t n = std::stoul(lineNumber);
+    const std::string& origin = n < origins.size() ? origins[n] : std::string();
+    const std::size_t at = origin.rfind(", point ");
+    return at == std::string::npos ? "line " + lineNumber : origin.substr(at + 8);
+}
+
+// `text` with every "line N" replaced by what line N stands for, and a
+// segment's "(lines A-B)" by its points.
+std::string relocated(std::string text, const std::vector<std::string>& origins) {
+    static const std::regex segment("\\(lines ([0-9]+)-([0-9]+)\\)");
+    std::smatch m;
+    while (std::regex_search(text, m, segment))
+        text = m.prefix().str() + "(points " + pointOf(m[1].str(), origins) + "-" +
+               pointOf(m[2].str(), origins) + ")" + m.suffix().str();
+    static const std::regex line("line ([0-9]+)");
+    std::string out;
+    std::size_t from = 0;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), line);
+         it != std::sregex_iterator(); ++it) {
+        const std::size_t n = std::stoul((*it)[1].str());
+        out += text.substr(from, std::size_t(it->position()) - from);
+        out += n < origins.size() && !origins[n].empty() ? origins[n] : it->str();
+        from = std::size_t(it->position() + it->length());
+    }
+    return out + text.substr(from);
+}
+
+std::string originOf(int line, const std::vector<std::string>& origins) {
+    return line > 0 && std::size_t(line) < origins.size() ? origins[std::size_t(line)] : "";
 }
 
 ContoursRead fromSlicesLoad(SlicesLoad load) {
@@ -116,16 +185,36 @@ ContoursRead readSlicesStream(std::istream& in, const std::string& name,
 ContoursRead structureSetFromPoints(const std::vector<RoiPoints>& rois, const std::string& source,
                                     const ReadContoursOptions& options) {
     ContourSet set;
-    for (const RoiPoints& roi : rois) {
-        checkPoints(roi, source);
-        set.rois.push_back(asSlices(roi));
+    std::vector<std::vector<std::vector<std::size_t>>> arrayOf(rois.size());
+    for (std::size_t r = 0; r < rois.size(); ++r) {
+        checkPoints(rois[r], source);
+        set.rois.push_back(asSlices(rois[r], arrayOf[r]));
     }
     // Through the .slices reader, so that points in memory are repaired,
     // validated and oriented by the very rules a file is (formatSlices
-    // writes every double exactly): one set of rules, one set of messages.
+    // writes every double exactly): one set of rules, one set of messages,
+    // which then name the arrays instead of lines of that text.
     std::stringstream text;
     formatSlices(set, text);
-    return readSlicesStream(text, source, options);
+    const std::vector<std::string> origins = lineOrigins(set, arrayOf);
+    auto located = [&](int line, const std::string& problem) {
+        const std::string origin = originOf(line, origins);
+        return (origin.empty() ? "" : origin + ": ") + relocated(problem, origins);
+    };
+    ContoursRead read;
+    try {
+        read = readSlicesStream(text, source, options);
+    } catch (const InputError& e) {
+        throw InputError(source, 0, located(e.line(), e.problem()));
+    }
+    for (InputWarning& w : read.warnings) {
+        w.message = located(w.line, w.message);
+        w.line = 0;
+    }
+    for (Roi& roi : read.contours.rois)
+        if (roi.defect)
+            roi.defect = InputError(source, 0, located(roi.defect->line(), roi.defect->problem()));
+    return read;
 }
 
 }  // namespace dfrecon

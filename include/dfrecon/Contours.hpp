@@ -65,10 +65,11 @@ struct RoiPoints {
 /// A structure set from points in memory, validated, repaired and oriented
 /// exactly as a .slices file with these contours would be (repeated points
 /// dropped, contours on one plane grouped, outer contours counter-clockwise,
-/// holes clockwise). Throws InputError naming `source`, the ROI and the
-/// contour's index for a contour with a non-finite coordinate, fewer than
-/// three points or points off one axial plane (1e-6 mm); an ROI whose
-/// contours cross keeps it as its `defect`, as readContours does. O(points).
+/// holes clockwise). Messages name `source`, the ROI, the contour's index in
+/// its list and the point, never a line of text. Throws InputError for a
+/// contour with a non-finite coordinate, fewer than three points or points
+/// off one axial plane (1e-6 mm); an ROI whose contours cross keeps it as
+/// its `defect`, as readContours does. O(points).
 ContoursRead structureSetFromPoints(const std::vector<RoiPoints>& rois,
                                     const std::string& source = "<points>",
                                     const ReadContoursOptions& options = {});

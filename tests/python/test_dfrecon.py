@@ -65,6 +65,14 @@ def test_from_contours_round_trips_through_a_file(tmp_path):
     np.testing.assert_array_equal(again["Box"].planes, [0.0, 2.0, 4.0])
 
 
+def test_repairs_are_reported_by_array():
+    repeated = np.vstack([square(10, 0), square(10, 0)[:1]])
+    ss = dfrecon.StructureSet.from_contours({"A": [square(10, 2), repeated]})
+    assert ss.warnings == ["StructureSet.from_contours: warning: ROI 'A', contour 1: "
+                           "dropped 1 repeated consecutive point(s)"]
+    assert len(ss["A"].contours[0]) == 4
+
+
 def test_from_contours_orients_and_groups_like_a_file():
     clockwise = square(10, 0)[::-1]
     ss = dfrecon.StructureSet.from_contours({"A": [clockwise, square(10, 2)]})
@@ -98,7 +106,9 @@ def test_wrong_arrays_are_value_errors(contour):
 def test_crossing_contours_make_the_roi_a_defect():
     bowtie = np.array([[0, 0, 0], [10, 10, 0], [10, 0, 0], [0, 10, 0]], dtype=float)
     ss = dfrecon.StructureSet.from_contours({"Tie": [bowtie], "Box": [square(5, 0)]})
-    assert ss["Tie"].defect and "self-intersecting" in ss["Tie"].defect
+    # Named by the arrays given, not by lines of a file the user never saw.
+    assert ss["Tie"].defect.startswith("StructureSet.from_contours: ROI 'Tie', contour 0")
+    assert "self-intersecting" in ss["Tie"].defect and "line" not in ss["Tie"].defect
     with pytest.raises(dfrecon.InputError):
         dfrecon.reconstruct(ss, "Tie")
     assert dfrecon.reconstruct(ss, "Box").valid_solid
