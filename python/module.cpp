@@ -85,19 +85,39 @@ py::object toPython(const nlohmann::ordered_json& j) {
 
 // Points (n, 3) float64 from any array-like, refusing what is not one
 // (wrong shape, non-numbers) with a message naming `what`.
-std::vector<Vec3> pointsOf(const py::handle& object, const std::string& what) {
-    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+// An array of the kinds NumPy calls numbers and dfrecon takes as
+// coordinates or indices: integers and reals (not booleans, complex
+// numbers, strings or objects, which a cast would turn into numbers
+// silently). Anything that is not such an array is refused, naming `what`.
+py::array numericArray(const py::handle& object, const std::string& what, const char* kinds) {
+    py::array a;
     try {
-        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
+        a = py::array::ensure(object);
     } catch (const py::error_already_set&) {
-        throw py::value_error(what + ": not an array of numbers");
+        a = py::array();
     }
-    if (!a || a.ndim() != 2 || a.shape(1) != 3)
-        throw py::value_error(
-            what + ": expected an array of shape (n, 3), got " +
-            (a ? "shape " + std::string(py::str(py::tuple(py::cast(
-                                std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())))))
-               : std::string("no array")));
+    if (!a) throw py::value_error(what + ": not an array of numbers");
+    const char kind = a.dtype().kind();
+    if (std::string(kinds).find(kind) == std::string::npos)
+        throw py::value_error(what + ": expected " +
+                              (std::string(kinds) == "iu" ? "integers" : "numbers") +
+                              ", got dtype " + std::string(py::str(a.dtype())));
+    return a;
+}
+
+std::string shapeText(const py::array& a) {
+    std::string text = "(";
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) text += (d ? ", " : "") + std::to_string(a.shape(d));
+    return text + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// Points (n, 3) as float64 from any array of integers or reals.
+std::vector<Vec3> pointsOf(const py::handle& object, const std::string& what) {
+    const py::array given = numericArray(object, what, "iuf");
+    if (given.ndim() != 2 || given.shape(1) != 3)
+        throw py::value_error(what + ": expected an array of shape (n, 3), got shape " +
+                              shapeText(given));
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
     std::vector<Vec3> points(std::size_t(a.shape(0)));
     const double* data = a.data();
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -135,13 +155,10 @@ TriangleSoup soupOf(const py::handle& vertices, const py::handle& faces) {
             throw py::value_error("vertices: vertex " + std::to_string(i) +
                                   " has a coordinate that is not a finite number");
     }
-    py::array f = py::array::ensure(faces);
-    if (!f || f.ndim() != 2 || f.shape(1) != 3)
-        throw py::value_error("faces: expected an integer array of shape (m, 3)");
-    if (f.shape(0) > 0 && !py::isinstance<py::array_t<std::int64_t>>(f) &&
-        f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
-        throw py::value_error("faces: expected integers, got dtype " +
-                              std::string(py::str(f.dtype())));
+    const py::array f = numericArray(faces, "faces", "iu");
+    if (f.ndim() != 2 || f.shape(1) != 3)
+        throw py::value_error("faces: expected an integer array of shape (m, 3), got shape " +
+                              shapeText(f));
     const auto indices =
         py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f);
     const std::int64_t* data = indices.data();

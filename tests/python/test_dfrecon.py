@@ -97,6 +97,9 @@ def test_bad_contours_are_refused_naming_roi_and_contour(contour, message):
     np.zeros((4, 3, 1)),                   # wrong rank
     np.array([["a", "b", "c"]] * 3),       # not numbers
     [[0, 0, 0], [1, 0], [1, 1, 0]],        # ragged
+    np.ones((4, 3), dtype=bool),           # booleans are no coordinates
+    np.ones((4, 3), dtype=complex),        # nor are complex numbers
+    None,
 ])
 def test_wrong_arrays_are_value_errors(contour):
     with pytest.raises(ValueError, match="contour 0"):
