@@ -242,8 +242,8 @@ PyStructureSet setFromContours(const py::dict& rois, const py::dict& colours, bo
                                  "': expected a list of (n, 3) arrays, one per contour");
         std::size_t index = 0;
         for (const py::handle& contour : value)
-            roi.contours.push_back(
-                pointsOf(contour, "ROI '" + roi.name + "', contour " + std::to_string(index++)));
+            roi.contours.push_back(pointsOf(contour, "from_contours: ROI '" + roi.name +
+                                                         "', contour " + std::to_string(index++)));
         if (colours.contains(key)) {
             const auto c = py::cast<std::vector<int>>(colours[key]);
             if (c.size() != 3 ||
