@@ -136,13 +136,21 @@ py::array_t<double> pointsArray(const std::vector<Vec3>& points) {
     return a;
 }
 
-py::array_t<std::int32_t> facesArray(const TriangleSoup& soup) {
-    py::array_t<std::int32_t> a({py::ssize_t(soup.triangles.size()), py::ssize_t(3)});
-    std::int32_t* out = a.mutable_data();
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) out[3 * t + k] = std::int32_t(soup.triangles[t][k]);
-    return a;
+// Rows of three values at `data` as an (n, 3) array that views them (no
+// copy), kept alive by `owner`, read-only.
+template <class T>
+py::array_t<T> readOnlyView(const T* data, std::size_t rows, const py::object& owner) {
+    py::array_t<T> view({py::ssize_t(rows), py::ssize_t(3)},
+                        {py::ssize_t(3 * sizeof(T)), py::ssize_t(sizeof(T))}, data, owner);
+    py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    return view;
 }
+// The views rely on these layouts: a point is three doubles, a triangle
+// three 32-bit indices (below 2^31, as int32 reads them: more vertices
+// would take 48 GB for their points alone).
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
+static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::int32_t),
+              "a triangle is three packed indices");
 
 // A surface from vertex and face arrays: faces must be integers (any width)
 // indexing the vertices, vertices finite.
@@ -415,9 +423,22 @@ PYBIND11_MODULE(_dfrecon, m) {
             made.surface = soupOf(vertices, faces);
             return made;
         }))
+        // Views of the mesh's own arrays, not copies: read-only, since a
+        // mesh's checks and reports describe the surface as it was made.
         .def_property_readonly("vertices",
-                               [](const PyMesh& mesh) { return pointsArray(mesh.surface.points); })
-        .def_property_readonly("faces", [](const PyMesh& mesh) { return facesArray(mesh.surface); })
+                               [](py::object self) {
+                                   const TriangleSoup& soup = self.cast<const PyMesh&>().surface;
+                                   return readOnlyView<double>(
+                                       reinterpret_cast<const double*>(soup.points.data()),
+                                       soup.points.size(), self);
+                               })
+        .def_property_readonly("faces",
+                               [](py::object self) {
+                                   const TriangleSoup& soup = self.cast<const PyMesh&>().surface;
+                                   return readOnlyView<std::int32_t>(
+                                       reinterpret_cast<const std::int32_t*>(soup.triangles.data()),
+                                       soup.triangles.size(), self);
+                               })
         .def_property_readonly("name", [](const PyMesh& mesh) { return mesh.name; })
         .def_property_readonly("colour",
                                [](const PyMesh& mesh) -> py::object {

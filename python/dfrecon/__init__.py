@@ -202,7 +202,8 @@ def _roi_key(roi):
 
 class Mesh:
     """A triangle surface: ``vertices`` (n, 3) float64 in patient mm and
-    ``faces`` (m, 3) int32 indices, outward-oriented.
+    ``faces`` (m, 3) int32 indices, outward-oriented. Both are read-only views
+    of the mesh's own arrays, not copies (``np.array(m.vertices)`` copies).
 
     ``Mesh(vertices, faces)`` makes one from arrays; :func:`reconstruct`,
     :func:`simplify` and :func:`read_mesh` return them. Reconstructed meshes

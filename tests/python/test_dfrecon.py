@@ -315,6 +315,19 @@ def test_compare_refuses_an_open_surface():
         dfrecon.compare(dfrecon.Mesh(mesh.vertices, mesh.faces[1:]), mesh)
 
 
+def test_mesh_arrays_are_views_that_outlive_their_mesh():
+    mesh = dfrecon.reconstruct(dfrecon.StructureSet.from_contours(box_set()))
+    v, f = mesh.vertices, mesh.faces
+    assert v.base is not None and not v.flags.writeable and not f.flags.writeable
+    expected = v.copy()
+    del mesh
+    import gc
+    gc.collect()
+    np.testing.assert_array_equal(v, expected)
+    with pytest.raises(ValueError):
+        v[0, 0] = 1.0
+
+
 def test_meshes_write_and_read_back(tmp_path):
     mesh = dfrecon.reconstruct(dfrecon.StructureSet.from_contours(box_set()))
     mesh.write(tmp_path / "box.ply")
