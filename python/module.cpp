@@ -14,10 +14,12 @@
 
 #include "app/CompareReport.hpp"
 #include "app/ExitCodes.hpp"
+#include "app/OrderedParallel.hpp"
 #include "app/ReconstructSettings.hpp"
 #include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/SimplifyReport.hpp"
+#include "app/WorkerRuntimes.hpp"
 #include "cl/ClError.hpp"
 #include "dfrecon/dfrecon.hpp"
 #include "io/MeshIO.hpp"
@@ -308,14 +310,10 @@ app::ReconstructSettings settingsOf(const std::vector<std::pair<std::string, std
     return app::withGivenOptions({}, options);
 }
 
-PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
-                      const std::vector<std::pair<std::string, std::string>>& given) {
-    const Roi& roi = chooseRoi(set.read, roiChoice);
-    const app::ReconstructSettings settings = settingsOf(given);
-    RoiSurface result = onDevice([&](ocl::Runtime& device) {
-        return reconstructRoi(device, roi,
-                              RoiReconstructOptions{settings.options, settings.maxErrorMm});
-    });
+// The mesh Python gets for `result` of `roi`, with reconstruct --json's
+// per-ROI report.
+PyMesh meshOf(const PyStructureSet& set, const Roi& roi, RoiSurface result,
+              const app::ReconstructSettings& settings) {
     const nlohmann::ordered_json simplification =
         result.simplification ? app::simplificationJson(*result.simplification,
                                                         SimplifyOptions{settings.maxErrorMm}, true)
@@ -333,6 +331,47 @@ PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
     mesh.contourVolumeMm3 = result.contourVolumeMm3;
     mesh.report = toPython(report);
     return mesh;
+}
+
+PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
+                      const std::vector<std::pair<std::string, std::string>>& given) {
+    const Roi& roi = chooseRoi(set.read, roiChoice);
+    const app::ReconstructSettings settings = settingsOf(given);
+    RoiSurface result = onDevice([&](ocl::Runtime& device) {
+        return reconstructRoi(device, roi,
+                              RoiReconstructOptions{settings.options, settings.maxErrorMm});
+    });
+    return meshOf(set, roi, std::move(result), settings);
+}
+
+// Several ROIs at once, as `reconstruct --all --jobs` runs them: `jobs`
+// workers (0: one per core), each with its own OpenCL queue, results in the
+// given order. The first ROI that fails raises its error.
+std::vector<PyMesh> reconstructMany(const PyStructureSet& set,
+                                    const std::vector<std::string>& names,
+                                    const std::vector<std::pair<std::string, std::string>>& given,
+                                    unsigned jobs) {
+    std::vector<const Roi*> rois;
+    for (const std::string& name : names) rois.push_back(&chooseRoi(set.read, py::str(name)));
+    const app::ReconstructSettings settings = settingsOf(given);
+    const std::size_t workers =
+        jobs > 0 ? std::min<std::size_t>(jobs, rois.size()) : app::defaultJobs(rois.size());
+    std::vector<RoiSurface> results(rois.size());
+    {
+        py::gil_scoped_release release;
+        app::WorkerRuntimes runtimes(deviceSpec, workers);
+        app::forEachInOrder(
+            rois.size(), workers,
+            [&](std::size_t i, std::size_t worker) {
+                return reconstructRoi(runtimes[worker], *rois[i],
+                                      RoiReconstructOptions{settings.options, settings.maxErrorMm});
+            },
+            [&](std::size_t i, RoiSurface result) { results[i] = std::move(result); });
+    }
+    std::vector<PyMesh> meshes;
+    for (std::size_t i = 0; i < rois.size(); ++i)
+        meshes.push_back(meshOf(set, *rois[i], std::move(results[i]), settings));
+    return meshes;
 }
 
 // ---- meshes -----------------------------------------------------------------
@@ -471,6 +510,8 @@ PYBIND11_MODULE(_dfrecon, m) {
 
     m.def("_reconstruct", &reconstructOne, py::arg("structure_set"), py::arg("roi"),
           py::arg("options"));
+    m.def("_reconstruct_many", &reconstructMany, py::arg("structure_set"), py::arg("rois"),
+          py::arg("options"), py::arg("jobs"));
     m.def("_reconstruct_option_names", &app::reconstructSettingsNames);
 
     m.def("_simplify", [](const PyMesh& mesh, double maxErrorMm) {

@@ -315,7 +315,7 @@ def _option_text(value):
     return str(value)
 
 
-def reconstruct(src, roi=None, **options):
+def reconstruct(src, roi=None, *, jobs=0, **options):
     """Reconstructs ROI `roi` of `src` (a :class:`StructureSet` or a path to
     contours) into a closed :class:`Mesh`, as ``dfrecon reconstruct`` does:
     same surface, same triangles, same report.
@@ -327,6 +327,9 @@ def reconstruct(src, roi=None, **options):
     ``max_depth`` (4), ``cap`` ('flat', 'dome', 'none'), ``cap_offset_mm``
     (automatic), ``interpolation`` ('smooth', 'linear'),
     ``smooth_tolerance_mm`` (0.05), ``max_error_mm`` (0: no simplification).
+    Several ROIs are reconstructed ``jobs`` at a time (0: one per core), each
+    worker with its own OpenCL queue, as ``reconstruct --all --jobs``; an ROI
+    that cannot be reconstructed (its ``defect``) raises its error.
     """
     given = []
     for key, value in options.items():
@@ -338,8 +341,11 @@ def reconstruct(src, roi=None, **options):
         given.append((_OPTION_ALIASES[key], _option_text(value)))
     ss = _structure_set(src)
     if roi is None and len(ss.rois) > 1:
-        return {r.name: Mesh(_core=_core_module._reconstruct(ss._core, r.name, given))
-                for r in ss.rois if len(r.contours) > 0 or r.defect}
+        names = [r.name for r in ss.rois if len(r.contours) > 0 or r.defect]
+        if len(set(names)) != len(names):
+            raise ValueError("the structure set has ROIs of one name; reconstruct them by number")
+        cores = _core_module._reconstruct_many(ss._core, names, given, int(jobs))
+        return {name: Mesh(_core=core) for name, core in zip(names, cores)}
     return Mesh(_core=_core_module._reconstruct(ss._core, _roi_key(roi), given))
 
 

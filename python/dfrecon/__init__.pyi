@@ -85,10 +85,12 @@ class Mesh:
 
 def read_mesh(path: _Path) -> Mesh: ...
 @overload
-def reconstruct(src: Union[StructureSet, _Path], roi: Union[str, int, Roi], **options: Any) -> Mesh: ...
+def reconstruct(
+    src: Union[StructureSet, _Path], roi: Union[str, int, Roi], *, jobs: int = ..., **options: Any
+) -> Mesh: ...
 @overload
 def reconstruct(
-    src: Union[StructureSet, _Path], roi: None = ..., **options: Any
+    src: Union[StructureSet, _Path], roi: None = ..., *, jobs: int = ..., **options: Any
 ) -> Union[Mesh, Dict[str, Mesh]]: ...
 
 class Field:

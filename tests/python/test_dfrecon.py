@@ -166,6 +166,12 @@ def test_several_rois_give_a_dict(examples):
     meshes = dfrecon.reconstruct(examples / "two-rois.slices")
     assert list(meshes) == ["Left Kidney", "PTV"]
     assert all(m.valid_solid for m in meshes.values())
+    # Two workers, each with its own queue, give what one gives, in order.
+    one = dfrecon.reconstruct(examples / "two-rois.slices", jobs=1)
+    for name in meshes:
+        np.testing.assert_array_equal(one[name].vertices, meshes[name].vertices)
+        np.testing.assert_array_equal(one[name].faces, meshes[name].faces)
+        assert one[name].report["volumeMm3"] == meshes[name].report["volumeMm3"]
 
 
 def same_as_cli(path, rois, cli, tmp_path):
