@@ -3,7 +3,7 @@
 // z resampled to even steps (linear between layers), covering the virtual
 // end layers so caps are inside.
 #include "field/DistanceField3D.hpp"
-#include "io/LevelSetVdb.hpp"
+#include "geometry/VolumeGrid.hpp"
 
 namespace dfrecon {
 

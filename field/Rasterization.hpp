@@ -9,7 +9,7 @@
 
 #include "contours/ContourSet.hpp"
 #include "field/DistanceField3D.hpp"
-#include "io/LabelVolume.hpp"
+#include "geometry/VolumeGrid.hpp"
 
 namespace dfrecon {
 

@@ -12,37 +12,13 @@
 #include <vector>
 
 #include "geometry/Vec3.hpp"
+#include "geometry/VolumeGrid.hpp"
 
 namespace dfrecon {
 
 /// The most voxels a volume may have (2^31): a file claiming more is
 /// rejected before anything is allocated.
 inline constexpr std::uint64_t kMaxLabelVolumeVoxels = std::uint64_t(1) << 31;
-
-/// A voxel grid in patient space. Voxel (i, j, k) is centred at
-/// originMm + i·spacingMm[0]·direction[0] + j·spacingMm[1]·direction[1]
-///          + k·spacingMm[2]·direction[2]
-/// (the convention of DICOM, NRRD and ITK: positions are voxel centres).
-struct VolumeGeometry {
-    std::array<int, 3> size{{0, 0, 0}};            // voxels along axes 0 (fastest), 1, 2
-    std::array<double, 3> spacingMm{{1, 1, 1}};    // centre-to-centre distance along each axis
-    std::array<double, 3> originMm{{0, 0, 0}};     // LPS position of the CENTRE of voxel (0,0,0)
-    std::array<std::array<double, 3>, 3> direction{// direction[a]: unit vector of axis a, LPS
-                                                   {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}}};
-
-    /// size[0]·size[1]·size[2] (0 when a size is not positive). O(1).
-    std::size_t voxelCount() const;
-    /// Position in labels of voxel (i, j, k): (k·size[1] + j)·size[0] + i. O(1).
-    std::size_t linearIndex(int i, int j, int k) const;
-    /// LPS millimetres of index (i, j, k); fractional indices give points
-    /// between voxel centres, (-0.5, -0.5, -0.5) is the outer corner of the
-    /// first voxel. O(1).
-    Vec3 worldOfIndex(double i, double j, double k) const;
-    /// The inverse of worldOfIndex: fractional (i, j, k) of an LPS point.
-    /// Throws std::domain_error when the axes are degenerate (parallel
-    /// directions or zero spacing). O(1).
-    std::array<double, 3> indexOfWorld(Vec3 pointMm) const;
-};
 
 /// One integer label per voxel; 0 is conventionally background.
 struct LabelVolume {

@@ -8,18 +8,9 @@
 
 #include "geometry/PlaneFrame.hpp"
 #include "geometry/Vec3.hpp"
+#include "geometry/VolumeGrid.hpp"
 
 namespace dfrecon {
-
-/// A dense signed distance volume in mm (negative inside): voxel (i, j, k)
-/// is centred at originMm + (i·voxelMm[0], j·voxelMm[1], k·voxelMm[2]), and
-/// its value is valuesMm[(k·ny + j)·nx + i].
-struct DenseDistanceVolume {
-    int nx = 0, ny = 0, nz = 0;
-    double originMm[3] = {0, 0, 0};
-    double voxelMm[3] = {1, 1, 1};
-    std::vector<float> valuesMm;
-};
 
 struct LevelSetWriteOptions {
     std::string gridName = "surface";
