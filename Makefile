@@ -77,7 +77,7 @@ sanitize-test: setup
 	  rm -rf $(SANITIZE_DIR); fi
 	@cmake --preset sanitize $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
-	@cd $(SANITIZE_DIR) && POCL_CACHE_DIR=$(CURDIR)/$(SANITIZE_DIR)/pocl-cache \
+	@cd $(SANITIZE_DIR) && POCL_CACHE_DIR=$(CURDIR)/$(BUILD_DIR)/pocl-cache \
 	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:use_tls=0:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1:suppressions=$(CURDIR)/tests/ubsan.supp ctest --output-on-failure -j $(JOBS)
 

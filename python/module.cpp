@@ -407,7 +407,11 @@ PYBIND11_MODULE(_dfrecon, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const InputError& e) {
-            PyErr_SetObject(inputError.ptr(), py::make_tuple(e.what(), e.file(), e.line()).ptr());
+            // The message as str(error), the file and line as attributes.
+            py::object error = py::reinterpret_borrow<py::object>(inputError.ptr())(e.what());
+            error.attr("file") = e.file();
+            error.attr("line") = e.line();
+            PyErr_SetObject(inputError.ptr(), error.ptr());
         } catch (const app::InvalidResult& e) {
             invalidResult(e.what());
         } catch (const ocl::ClError& e) {

@@ -57,7 +57,8 @@ __all__ = [
 
 InputError.__doc__ = (
     "Bad input (a file, its line or tag, or an array): a ValueError whose "
-    "message names the file and what is wrong, as the program's exit code 2."
+    "message names the file and what is wrong, as the program's exit code 2; "
+    "``file`` and ``line`` (0 where none applies) say where."
 )
 InvalidResultError.__doc__ = "A result that is not a valid closed solid where one is needed."
 DeviceError.__doc__ = "The OpenCL device failed or none matches the device asked for."

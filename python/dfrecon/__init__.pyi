@@ -11,7 +11,9 @@ _Path = Union[str, PathLike]
 _Colour = Tuple[int, int, int]
 _RoiKey = Union[str, int, "Roi", None]
 
-class InputError(ValueError): ...
+class InputError(ValueError):
+    file: str
+    line: int
 class InvalidResultError(RuntimeError): ...
 class DeviceError(RuntimeError): ...
 

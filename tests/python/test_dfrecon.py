@@ -124,7 +124,8 @@ def test_a_bad_file_names_itself(tmp_path):
     bad.write_text("dfrecon-slices 1\nunits mm\nroi A\nslice zero\n")
     with pytest.raises(dfrecon.InputError, match="bad.slices:4") as error:
         dfrecon.read_contours(bad)
-    assert error.value.args[1] == str(bad) and error.value.args[2] == 4
+    assert str(error.value).startswith(str(bad) + ":4: ")
+    assert error.value.file == str(bad) and error.value.line == 4
     with pytest.raises(dfrecon.InputError, match="missing.dcm"):
         dfrecon.read_contours(tmp_path / "missing.dcm")
 
