@@ -1,21 +1,15 @@
 #include "dfrecon/Field.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <stdexcept>
 
+#include "api/Stopwatch.hpp"
 #include "field/FieldVolume.hpp"
 #include "recon/ContourSimplification.hpp"
 
 namespace dfrecon {
 
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<Slice> fieldPlanes(const Roi& roi, double contourErrorMm,
                                ContourSimplificationSummary* summary) {
@@ -56,13 +50,14 @@ DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,
                                    const RoiFieldOptions& options, double* fieldsSeconds,
                                    double* propagateSeconds) {
     const SpacingStats spacing = spacingOf(roi);
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch watch;
     const SliceFields fields = roiSliceFields(runtime, roi, options);
-    if (fieldsSeconds) *fieldsSeconds = secondsSince(start);
-    start = std::chrono::steady_clock::now();
+    const double fieldsLap = watch.lap();
+    if (fieldsSeconds) *fieldsSeconds = fieldsLap;
     DistanceField3D field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
     propagateAlongZ(runtime, field);
-    if (propagateSeconds) *propagateSeconds = secondsSince(start);
+    const double propagateLap = watch.lap();
+    if (propagateSeconds) *propagateSeconds = propagateLap;
     return field;
 }
 

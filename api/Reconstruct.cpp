@@ -1,7 +1,8 @@
 #include "dfrecon/Reconstruct.hpp"
 
-#include <chrono>
 #include <stdexcept>
+
+#include "api/Stopwatch.hpp"
 
 namespace dfrecon {
 
@@ -26,12 +27,10 @@ RoiSurface reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
     // The reconstruction checked its surface as floats in the plane frame;
     // a rotated frame or a simplified surface is checked again as written.
     roundPointsToFloat(result.surface);
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     out.check =
         !out.simplification && roi.frame.isIdentity() ? result.check : checkMesh(result.surface);
-    out.checkSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() +
-        result.stats.checkSeconds;
+    out.checkSeconds = watch.total() + result.stats.checkSeconds;
     out.surface = std::move(result.surface);
     out.stats = result.stats;
     out.brokenPieces = std::move(result.brokenPieces);

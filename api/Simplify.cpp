@@ -1,7 +1,8 @@
 #include "dfrecon/Simplify.hpp"
 
 #include <algorithm>
-#include <chrono>
+
+#include "api/Stopwatch.hpp"
 
 namespace dfrecon {
 
@@ -13,21 +14,17 @@ std::size_t verifySamples(const TriangleSoup& a, const TriangleSoup& b) {
     return std::max<std::size_t>(50000, 4 * std::max(a.triangles.size(), b.triangles.size()));
 }
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 VerifiedSimplification simplifyVerified(ocl::Runtime* runtime, const TriangleSoup& surface,
                                         const SimplifyOptions& options, const Roi* contours) {
     VerifiedSimplification out;
     out.result = simplifySurface(runtime, surface, options);
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     out.verified =
         verifySimplification(surface, out.result.surface, contours, options.maxErrorMm / 8,
                              verifySamples(surface, out.result.surface));
-    out.verifySeconds = secondsSince(start);
+    out.verifySeconds = watch.total();
     return out;
 }
 

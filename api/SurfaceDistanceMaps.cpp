@@ -1,8 +1,8 @@
 #include "dfrecon/SurfaceDistanceMaps.hpp"
 
-#include <chrono>
 #include <stdexcept>
 
+#include "api/Stopwatch.hpp"
 #include "field/ClosestPrimitives.hpp"
 
 namespace dfrecon {
@@ -26,14 +26,12 @@ SceneMaps sceneDistanceMaps(ocl::Runtime& runtime, const SurfaceScene& scene,
     ClosestPrimitiveKernel kernel(runtime, scene);
     const ClosestPrimitivesFn closest = [&](const std::vector<SurfaceSample>& s,
                                             const DistanceQuery& q) { return kernel.run(s, q); };
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch watch;
     out.maps = surfaceDistanceMaps(scene, out.samples, closest, options.query);
-    auto now = std::chrono::steady_clock::now();
-    out.mapSeconds = std::chrono::duration<double>(now - start).count();
+    out.mapSeconds = watch.lap();
     if (options.proximity) {
         out.pairs = proximityQueries(scene, out.samples, closest);
-        out.proximitySeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
+        out.proximitySeconds = watch.lap();
     }
     return out;
 }

@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/BatchRecord.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
-#include "app/Stopwatch.hpp"
 #include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputDigest.hpp"

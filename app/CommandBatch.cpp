@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/BatchEntry.hpp"
 #include "app/BatchManifest.hpp"
 #include "app/BatchShard.hpp"
@@ -18,7 +19,6 @@
 #include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/ReconstructSettings.hpp"
-#include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
 #include "io/JsonText.hpp"
 

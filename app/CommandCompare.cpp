@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/CompareReport.hpp"
 #include "app/CsvTable.hpp"
@@ -21,7 +22,6 @@
 #include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/RoiMatching.hpp"
-#include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
 #include "contours/InputError.hpp"
 #include "dfrecon/Compare.hpp"
@@ -46,30 +46,21 @@ struct CompareArgs {
     bool json = false;
 };
 
-using Structure = ComparedSolid;
-
 /// The surface of an ROI, reconstructed with reconstruct's defaults, in
 /// patient coordinates as compared.
-Structure reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
+ComparedSolid reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
     RoiSurface result = dfrecon::reconstructRoi(runtime, roi);
     if (!result.check.validSolid())
         throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
-    return Structure{std::move(result.surface), result.check, &roi};
+    return ComparedSolid{std::move(result.surface), result.check, &roi};
 }
 
-Structure readSolid(const std::string& path) {
-    Structure s{readTriangleSoup(path), {}, nullptr};
+ComparedSolid readSolid(const std::string& path) {
+    ComparedSolid s{readTriangleSoup(path), {}, nullptr};
     s.check = checkMesh(s.surface);
     if (!s.check.validSolid())
         throw InputError(path, 0, "not a valid closed solid (dfrecon check says where)");
     return s;
-}
-
-using PairResult = Comparison;
-
-PairResult comparePair(const Structure& a, const Structure& b, const CompareArgs& args,
-                       ocl::Runtime& runtime) {
-    return compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm});
 }
 
 void warnIfCoarsened(double usedMm, const CompareArgs& args, const GlobalOptions& global) {
@@ -79,7 +70,7 @@ void warnIfCoarsened(double usedMm, const CompareArgs& args, const GlobalOptions
                   << usedMm << " mm, each within that of its exact value\n";
 }
 
-void printPair(const PairResult& r, std::ostream& out) {
+void printPair(const Comparison& r, std::ostream& out) {
     const Overlap& o = r.overlap;
     const SurfaceDistances& d = r.distances;
     out << "volume A " << o.volumeAMm3 / 1000 << " cc, B " << o.volumeBMm3 / 1000 << " cc, both "
@@ -169,10 +160,11 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
         if (!input) return readSolid(path);
         return reconstructed(runtime, path, *selectRois(input->contours, roi, false).front());
     };
-    const Structure a = structure(args.a, inputA, args.roiA);
-    const Structure b = structure(args.b, inputB, args.roiB);
+    const ComparedSolid a = structure(args.a, inputA, args.roiA);
+    const ComparedSolid b = structure(args.b, inputB, args.roiB);
     const double loadSeconds = watch.lap();
-    const PairResult r = comparePair(a, b, args, runtime);
+    const Comparison r =
+        compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm});
     warnIfCoarsened(r.distances.spacingMm, args, global);
     nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
     if (a.contours) report["roiA"] = a.contours->name;
@@ -194,10 +186,11 @@ nlohmann::ordered_json pairRow(const RoiPair& pair, const CompareArgs& args,
         {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
     try {
         Stopwatch watch;
-        const Structure a = reconstructed(runtime, args.a, *pair.a);
-        const Structure b = reconstructed(runtime, args.b, *pair.b);
+        const ComparedSolid a = reconstructed(runtime, args.a, *pair.a);
+        const ComparedSolid b = reconstructed(runtime, args.b, *pair.b);
         const double loadSeconds = watch.lap();
-        row.update(comparisonJson(comparePair(a, b, args, runtime)));
+        row.update(comparisonJson(
+            compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm})));
         row["seconds"]["load"] = loadSeconds;
         row["exitCode"] = 0;
         row["error"] = nullptr;

@@ -4,13 +4,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "dfrecon/Field.hpp"
 #include "io/JsonText.hpp"
 #include "io/LevelSetVdb.hpp"
@@ -29,7 +29,6 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const Roi& roi = *selectRois(load.contours, args.roi, false).front();
-    const SpacingStats spacing = spacingOf(roi);
 
     ocl::Runtime runtime(global.device);
     RoiDistanceVolume field;
@@ -52,7 +51,7 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                         {"distance",
                          "in-slice Euclidean + |dz| (reconstruction paper 6.1): never below the "
                          "Euclidean distance; negative inside"},
-                        {"slice_spacing_mm", std::to_string(spacing.meanMm)},
+                        {"slice_spacing_mm", std::to_string(field.sliceSpacingMm)},
                         {"program", std::string("dfrecon ") + DFRECON_VERSION}};
     writeLevelSetVdb(volume, args.output, options);
     const double writeSeconds = watch.lap();

@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "dfrecon/Field.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/FieldImages.hpp"

@@ -8,13 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "io/JsonText.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"

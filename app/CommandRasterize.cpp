@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
@@ -19,7 +20,6 @@
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "dfrecon/Field.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/DicomImageSeries.hpp"

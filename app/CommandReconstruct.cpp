@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/HtmlReport.hpp"
@@ -14,7 +15,6 @@
 #include "app/ReconstructSettings.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "app/WorkerRuntimes.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"

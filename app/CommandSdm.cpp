@@ -11,13 +11,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "contours/InputError.hpp"
 #include "dfrecon/SurfaceDistanceMaps.hpp"
 #include "io/AtomicWrite.hpp"

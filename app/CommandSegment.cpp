@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
@@ -18,7 +19,6 @@
 #include "app/NumberChecks.hpp"
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "io/Colours.hpp"
 #include "io/JsonText.hpp"
 #include "segment/Segmentation.hpp"

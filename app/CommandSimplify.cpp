@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
@@ -13,7 +14,6 @@
 #include "app/RoiReconstruction.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/Stopwatch.hpp"
 #include "contours/InputError.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/JsonText.hpp"

@@ -4,12 +4,12 @@
 #include <optional>
 #include <sstream>
 
+#include "api/Stopwatch.hpp"
 #include "app/EnumNames.hpp"
 #include "app/Failure.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/SimplifyReport.hpp"
-#include "app/Stopwatch.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"

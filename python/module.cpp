@@ -503,6 +503,8 @@ PYBIND11_MODULE(_dfrecon, m) {
             if (!mesh.name.empty()) options.structure = StructureTag{mesh.name, mesh.colour};
             writeMesh(toTriMesh(mesh.surface), path, options);
         });
+    // Whether a path names a mesh file dfrecon reads (io/MeshIO's one list).
+    m.def("_is_mesh_path", &isMeshExtension);
     m.def("_read_mesh", [](const std::string& path) {
         PyMesh mesh;
         {

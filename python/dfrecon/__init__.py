@@ -432,8 +432,7 @@ def compare(a, b, *, roi_a=None, roi_b=None, spacing_mm=0.2, tolerance_mm=1.0):
     files with ``roi_a``, ``roi_b`` (reconstructed as the program does)."""
     def contours(x):
         return isinstance(x, StructureSet) or (
-            isinstance(x, (str, _os.PathLike)) and
-            not _os.fspath(x).lower().endswith((".ply", ".stl", ".obj", ".off")))
+            isinstance(x, (str, _os.PathLike)) and not _core_module._is_mesh_path(_os.fspath(x)))
     if contours(a) and contours(b):
         return _core_module._compare_contours(
             _structure_set(a)._core, _roi_key(roi_a), _structure_set(b)._core, _roi_key(roi_b),

@@ -1,9 +1,9 @@
 #pragma once
-// Timings for the commands' reports, all measured one way: wall-clock
+// Timings for the reports of the API and the commands, all measured one way: wall-clock
 // seconds on the steady clock.
 #include <chrono>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 using Clock = std::chrono::steady_clock;
 
@@ -32,4 +32,4 @@ class Stopwatch {
     Clock::time_point lapStart_ = start_;
 };
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon
