@@ -10,6 +10,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/StandardStreams.hpp"
+#include "io/FileNames.hpp"
 #include "io/JsonText.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
@@ -24,14 +25,9 @@ struct ConvertArgs {
     bool roiTypeGiven = false;
 };
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() &&
-           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
-    const bool toDicom = endsWith(args.output, ".dcm");
-    if (!toDicom && !endsWith(args.output, ".slices"))
+    const bool toDicom = endsWithIgnoringCase(args.output, ".dcm");
+    if (!toDicom && !endsWithIgnoringCase(args.output, ".slices"))
         throw std::invalid_argument("output '" + args.output + "' needs .slices or .dcm");
     if (!args.like.empty() && !toDicom)
         throw std::invalid_argument("--like applies to DICOM output only");

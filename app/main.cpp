@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
     addFieldCommand(root, global);
     addSimplifyCommand(root, global);
     addConvertCommand(root, global);
+    addMarginCommand(root, global);
+    addCombineCommand(root, global);
     addRasterizeCommand(root, global);
     addSdmCommand(root, global);
     addSegmentCommand(root, global);

@@ -38,6 +38,10 @@ constexpr std::size_t kCandidateCapacity = 64;
 // entry, about 38 MB in double precision) on meshes of millions of
 // triangles.
 constexpr std::size_t kSourcesPerLaunch = std::size_t(1) << 14;
+// Free points per launch of closest_primitive_at.
+constexpr std::size_t kPointsPerLaunch = std::size_t(1) << 18;
+// The own object of a point on none: every object is a candidate.
+constexpr std::size_t kNoObject = SIZE_MAX;
 
 bool isCandidate(const DistanceQuery& query, std::size_t own, std::size_t object) {
     return object != own && (query.target < 0 || object == std::size_t(query.target));
@@ -260,6 +264,20 @@ std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& sce
     return answers;
 }
 
+std::vector<ClosestPrimitive> closestPrimitivesAtReference(const SurfaceScene& scene,
+                                                           const std::vector<Vec3>& points,
+                                                           const DistanceQuery& query) {
+    std::vector<ClosestPrimitive> answers(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        Found best;
+        best.distance2 = bandSquared(query);
+        best = searchObjects(scene, points[k], kNoObject, best, query);
+        if (best.object != SIZE_MAX)
+            answers[k] = describe(scene, best.object, best.triangle, points[k]);
+    }
+    return answers;
+}
+
 std::vector<ClosestPrimitive> closestPrimitivesBruteForce(const SurfaceScene& scene,
                                                           const std::vector<SurfaceSample>& samples,
                                                           const DistanceQuery& query) {
@@ -321,6 +339,8 @@ struct DeviceScene {
     virtual ~DeviceScene() = default;
     virtual std::vector<ClosestPrimitive> run(const std::vector<SurfaceSample>& samples,
                                               const DistanceQuery& query) = 0;
+    virtual std::vector<ClosestPrimitive> runAt(const std::vector<Vec3>& points,
+                                                const DistanceQuery& query) = 0;
     CullStats stats;  // of the last run
 };
 
@@ -467,18 +487,74 @@ class DeviceSceneT final : public DeviceScene {
         for (std::size_t k = 0; k < count; ++k) {
             const cl_uint t = nearest[k];
             if (t == CL_UINT_MAX) continue;
-            ClosestPrimitive& answer = answers[sorted[k]];
-            answer.object = std::int32_t(objectOfTriangle_[t]);
-            answer.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
-            answer.distanceMm = double(distance[k]);
-            answer.feature = TriangleFeature(feature[k]);
-            answer.point = {double(closest[k].s[0]), double(closest[k].s[1]),
-                            double(closest[k].s[2])};
+            answers[sorted[k]] = answerOf(t, distance[k], feature[k], closest[k]);
         }
         return answers;
     }
 
+    std::vector<ClosestPrimitive> runAt(const std::vector<Vec3>& queryPoints,
+                                        const DistanceQuery& query) override {
+        const std::size_t count = queryPoints.size();
+        std::vector<ClosestPrimitive> answers(count);
+        if (count == 0) return answers;
+        std::vector<Real4> points(count);
+        for (std::size_t k = 0; k < count; ++k)
+            points[k] = SurfaceArrays<Real4>::real4(queryPoints[k]);
+        ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
+        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
+        ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
+        try {
+            cl::Kernel kernel(*program_, "closest_primitive_at");
+            cl_uint a = surface_.setArgs(kernel, 0);
+            for (const cl::Buffer* buffer :
+                 {&objectRoot_.get(), &normals_.get(), &closed_.get(), &dPoints.get(),
+                  &dDistance.get(), &dNearest.get(), &dFeature.get(), &dClosest.get()})
+                kernel.setArg(a++, *buffer);
+            QueryParams<Real> params{};
+            params.maxDistance2 = Real(bandSquared(query));
+            params.maxDistance = Real(query.maxDistanceMm);
+            params.objectCount = cl_uint(roots_.size());
+            params.target = cl_int(query.target);
+            // Launches of a bounded size, so one launch never holds a
+            // device (and a desktop's display) for long.
+            for (std::size_t first = 0; first < count; first += kPointsPerLaunch) {
+                const std::size_t last = std::min(count, first + kPointsPerLaunch);
+                params.sampleFirst = cl_uint(first);
+                params.sampleEnd = cl_uint(last);
+                kernel.setArg(a, params);
+                runtime_.queue().enqueueNDRangeKernel(
+                    kernel, cl::NullRange,
+                    cl::NDRange(ocl::roundUp(last - first, ocl::kGroupSize1D)),
+                    cl::NDRange(ocl::kGroupSize1D));
+            }
+        } catch (const cl::Error& e) {
+            throw ocl::toClError(e, "surface_distance.cl");
+        }
+        const std::vector<cl_uint> nearest = dNearest.download(runtime_);
+        const std::vector<Real> distance = dDistance.download(runtime_);
+        const std::vector<cl_uchar> feature = dFeature.download(runtime_);
+        const std::vector<Real4> closest = dClosest.download(runtime_);
+        for (std::size_t k = 0; k < count; ++k)
+            if (nearest[k] != CL_UINT_MAX)
+                answers[k] = answerOf(nearest[k], distance[k], feature[k], closest[k]);
+        return answers;
+    }
+
   private:
+    // A kernel's answer for global triangle t, in the scene's numbering.
+    ClosestPrimitive answerOf(cl_uint t, Real distance, cl_uchar feature,
+                              const Real4& closest) const {
+        ClosestPrimitive answer;
+        answer.object = std::int32_t(objectOfTriangle_[t]);
+        answer.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
+        answer.distanceMm = double(distance);
+        answer.feature = TriangleFeature(feature);
+        answer.point = {double(closest.s[0]), double(closest.s[1]), double(closest.s[2])};
+        return answer;
+    }
+
     // Adds a chunk's list lengths to stats (a small read: one count per
     // source triangle).
     void countCandidates(const ocl::DeviceBuffer<cl_uint>& counts, std::size_t sources,
@@ -534,6 +610,11 @@ ClosestPrimitiveKernel::~ClosestPrimitiveKernel() = default;
 std::vector<ClosestPrimitive> ClosestPrimitiveKernel::run(const std::vector<SurfaceSample>& samples,
                                                           const DistanceQuery& query) {
     return impl_->device->run(samples, query);
+}
+
+std::vector<ClosestPrimitive> ClosestPrimitiveKernel::runAt(const std::vector<Vec3>& points,
+                                                            const DistanceQuery& query) {
+    return impl_->device->runAt(points, query);
 }
 
 CullStats ClosestPrimitiveKernel::lastCullStats() const {

@@ -205,3 +205,46 @@ __kernel void closest_primitive(
     feature[k] = (uchar)f;
     closest[k] = q;
 }
+
+// Points anywhere in space (a grid, the planes of a margin), not on an
+// object: work-item i takes point sample_first + i (< sample_end) and
+// searches the hierarchies of the candidate objects (every object, or
+// query.target) for its closest primitive, signed as closest_primitive
+// signs it. The same answers as closestPrimitivesAtReference in
+// field/ClosestPrimitives.cpp. O(log T) per point typically.
+__kernel void closest_primitive_at(__global const REAL4* points, __global const int4* triangles,
+                                   __global const REAL4* node_lo, __global const REAL4* node_hi,
+                                   __global const int4* node_links, __global const uint* order,
+                                   __global const REAL4* balls, __global const int* object_root,
+                                   __global const REAL4* pseudo_normals,
+                                   __global const uchar* object_closed,
+                                   __global const REAL4* query_points, __global REAL* distance,
+                                   __global uint* nearest, __global uchar* feature,
+                                   __global REAL4* closest, const QueryParams query) {
+    const uint k = query.sample_first + get_global_id(0);
+    if (k >= query.sample_end) return;
+    const Surface surface = {points, triangles, node_lo, node_hi, node_links, order, balls};
+    const REAL4 p = query_points[k];
+    REAL best2 = query.max_distance2;
+    uint t = UINT_MAX;
+    for (uint o = 0; o < query.object_count; ++o)
+        if ((query.target < 0 || o == (uint)query.target) && object_root[o] >= 0)
+            search_nearest_triangle(&surface, object_root[o], p, &best2, &t);
+    nearest[k] = t;
+    if (t == UINT_MAX) {
+        distance[k] = INFINITY;
+        feature[k] = FEATURE_FACE;
+        closest[k] = p;
+        return;
+    }
+    const int4 tri = triangles[t];
+    int f;
+    const REAL4 q =
+        closest_point_on_triangle_feature(p, points[tri.x], points[tri.y], points[tri.z], &f);
+    const REAL4 away = p - q;
+    REAL d = sqrt(dot3(away, away));
+    if (object_closed[tri.w] && dot3(away, pseudo_normals[7 * t + f]) < 0) d = -d;
+    distance[k] = d;
+    feature[k] = (uchar)f;
+    closest[k] = q;
+}

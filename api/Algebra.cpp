@@ -1,0 +1,173 @@
+#include "dfrecon/Algebra.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "api/Stopwatch.hpp"
+#include "geometry/SurfaceMeasures.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+// Planes closer than this are one plane (DICOM's DS precision, and the
+// tolerance readers put planes together by).
+constexpr double kSamePlaneMm = 1e-3;
+
+// The planes of `rois`, in `frame` (z along its normal), sorted, merged
+// within kSamePlaneMm.
+std::vector<double> planesOf(const std::vector<const Roi*>& rois, const PlaneFrame& frame) {
+    std::vector<double> zs;
+    for (const Roi* roi : rois) {
+        Roi copy = *roi;
+        changeFrame(copy, frame);
+        for (const Slice& s : copy.slices) zs.push_back(s.zMm);
+    }
+    std::sort(zs.begin(), zs.end());
+    std::vector<double> merged;
+    for (double z : zs)
+        if (merged.empty() || z - merged.back() > kSamePlaneMm) merged.push_back(z);
+    return merged;
+}
+
+// The middle gap between consecutive planes (0 for fewer than two).
+double typicalSpacing(const std::vector<double>& zs) {
+    if (zs.size() < 2) return 0;
+    std::vector<double> gaps;
+    for (std::size_t k = 1; k < zs.size(); ++k) gaps.push_back(zs[k] - zs[k - 1]);
+    std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(gaps.size() / 2), gaps.end());
+    return gaps[gaps.size() / 2];
+}
+
+// `zs` continued by whole spacings below and above, as far as [lo, hi].
+std::vector<double> extendedPlanes(std::vector<double> zs, double lo, double hi, double spacing) {
+    if (zs.empty() || !(spacing > 0)) return zs;
+    std::vector<double> below, above;
+    for (double z = zs.front() - spacing; z >= lo - kSamePlaneMm; z -= spacing) below.push_back(z);
+    for (double z = zs.back() + spacing; z <= hi + kSamePlaneMm; z += spacing) above.push_back(z);
+    std::reverse(below.begin(), below.end());
+    below.insert(below.end(), zs.begin(), zs.end());
+    below.insert(below.end(), above.begin(), above.end());
+    return below;
+}
+
+// The box's extent in `frame`'s coordinates.
+void frameExtent(const Box3& box, const PlaneFrame& frame, Vec3& lo, Vec3& hi) {
+    lo = {INFINITY, INFINITY, INFINITY};
+    hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner{(c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
+                          (c & 4) ? box.hi.z : box.lo.z};
+        const Vec3 p = frame.fromPatient(corner);
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+}
+
+}  // namespace
+
+StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const ContourSet& set,
+                                             const RoiExpression& expression,
+                                             const StructureAlgebraOptions& options) {
+    StructureAlgebraResult out;
+    out.expression = marginsOnRois(expression);
+    std::vector<const Roi*> rois;
+    for (const std::string& name : out.expression.rois()) {
+        const Roi* roi = set.findRoi(name);
+        if (!roi) throw std::invalid_argument("no ROI named '" + name + "' in the structure set");
+        rois.push_back(roi);
+    }
+    const PlaneFrame frame = rois.front()->frame;
+    for (const Roi* roi : rois)
+        if (std::abs(std::abs(dot(roi->frame.n, frame.n)) - 1) > 1e-9)
+            throw std::invalid_argument("ROI '" + roi->name + "' is drawn on planes (" +
+                                        roi->frame.orientationName() + ") not parallel to '" +
+                                        rois.front()->name + "''s (" + frame.orientationName() +
+                                        "); an expression reads ROIs of one plane direction");
+
+    // Each ROI's solid: its reconstructed surface, which must be a valid
+    // closed solid for inside and outside to mean anything.
+    const Stopwatch watch;
+    std::map<std::string, TriangleSoup> surfaces;
+    for (const Roi* roi : rois) {
+        RoiSurface s = reconstructRoi(runtime, *roi, options.surfaces);
+        if (!s.check.validSolid())
+            throw std::invalid_argument("the reconstructed surface of ROI '" + roi->name +
+                                        "' is not a valid closed solid, so its margins are not "
+                                        "defined");
+        out.surfaceVolumesMm3[roi->name] = measureSurface(s.surface).volumeMm3;
+        surfaces.emplace(roi->name, std::move(s.surface));
+    }
+    out.surfacesSeconds = watch.total();
+
+    ExpressionField field(out.expression, surfaces, frame, options.backend, &runtime);
+    Vec3 lo, hi;
+    const Box3 support = field.support();
+    if (support.lo.x > support.hi.x || support.lo.y > support.hi.y || support.lo.z > support.hi.z)
+        throw std::invalid_argument("'" + expression.name + "' = " + expression.text() +
+                                    " is empty: its ROIs do not overlap");
+    frameExtent(support, frame, lo, hi);
+    if (options.planesMm.empty()) {
+        const std::vector<double> own = planesOf(rois, frame);
+        out.planesMm = extendedPlanes(own, lo.z, hi.z, typicalSpacing(own));
+    } else {
+        for (double z : options.planesMm)
+            if (z >= lo.z - kSamePlaneMm && z <= hi.z + kSamePlaneMm) out.planesMm.push_back(z);
+        std::sort(out.planesMm.begin(), out.planesMm.end());
+    }
+
+    const PlaneField inPlanes = [&](const std::vector<Vec3>& planePoints) {
+        std::vector<Vec3> patient(planePoints.size());
+        for (std::size_t k = 0; k < planePoints.size(); ++k)
+            patient[k] = frame.toPatient(planePoints[k]);
+        return field.values(patient);
+    };
+    const Stopwatch sectionWatch;
+    out.roi.slices = planeSections(inPlanes, out.planesMm, {lo.x, hi.x, lo.y, hi.y},
+                                   options.sections, &out.sections);
+    out.sectionsSeconds = sectionWatch.total();
+    if (out.roi.slices.empty())
+        throw std::invalid_argument("'" + expression.name + "' = " + expression.text() +
+                                    " has no section on any plane: it is empty");
+    out.roi.name = expression.name;
+    out.roi.frame = frame;
+    out.roi.colour = options.colour;
+    out.roi.interpretedType = options.interpretedType;
+    return out;
+}
+
+StructureAlgebraResult combineRois(ocl::Runtime& runtime, const ContourSet& set,
+                                   const std::string& definition,
+                                   const StructureAlgebraOptions& options) {
+    std::vector<std::string> names;
+    for (const Roi& roi : set.rois) names.push_back(roi.name);
+    return evaluateRoiExpression(runtime, set, parseRoiExpression(definition, names), options);
+}
+
+StructureAlgebraResult marginRoi(ocl::Runtime& runtime, const ContourSet& set,
+                                 const std::string& roiName, const DirectionalMargin& margin,
+                                 const std::string& newName,
+                                 const StructureAlgebraOptions& options) {
+    if (!set.findRoi(roiName))
+        throw std::invalid_argument("no ROI named '" + roiName + "' in the structure set");
+    if (margin.grows() && margin.shrinks())
+        throw std::invalid_argument("margin " + margin.text() +
+                                    " both grows and shrinks; give all values one sign");
+    RoiExpression e;
+    e.name = newName;
+    ExpressionNode leaf;
+    leaf.roi = roiName;
+    e.nodes.push_back(leaf);
+    if (!margin.isZero()) {
+        ExpressionNode m;
+        m.kind = ExpressionNode::Kind::Margin;
+        m.left = 0;
+        m.margin = margin;
+        e.nodes.push_back(m);
+        e.root = 1;
+    }
+    return evaluateRoiExpression(runtime, set, e, options);
+}
+
+}  // namespace dfrecon

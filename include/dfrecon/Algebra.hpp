@@ -1,0 +1,73 @@
+#pragma once
+// Structure algebra on contours: margins (grow, shrink, per patient
+// direction), unions, intersections, differences and exclusive ors of ROIs,
+// as one expression ("Ring = (PTV + 20) - (PTV + 3)"), evaluated exactly
+// against the ROIs' reconstructed surfaces and written back as contours on
+// planes. What `dfrecon margin` and `dfrecon combine` compute, without the
+// files.
+//
+// The solid of an ROI is its reconstructed surface (dfrecon/Reconstruct,
+// the default reconstruction: it passes through every contour). A margin of
+// M mm is the set of points within M of that solid (Minkowski sum with a
+// ball; with per-axis values, an ellipsoid), a negative margin the points
+// at least |M| inside it; the field of algebra/SolidField combines the
+// exact distances, and algebra/PlaneSections draws its zero set on each
+// plane: every contour vertex lies on the exact boundary (within 1e-6 mm).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algebra/PlaneSections.hpp"
+#include "algebra/RoiExpression.hpp"
+#include "algebra/SolidField.hpp"
+#include "cl/Runtime.hpp"
+#include "contours/ContourSet.hpp"
+#include "dfrecon/Reconstruct.hpp"
+
+namespace dfrecon {
+
+struct StructureAlgebraOptions {
+    RoiReconstructOptions surfaces;  // how each ROI's solid is reconstructed
+    PlaneSectionOptions sections;    // the lattice (stepMm: 0.25 mm)
+    /// The planes of the result, mm along its frame's normal; empty: the
+    /// planes of the ROIs it reads, continued at their spacing as far as
+    /// the result reaches beyond them (a growth).
+    std::vector<double> planesMm;
+    DistanceBackend backend = DistanceBackend::Device;
+    std::optional<Rgb> colour;    // of the new ROI; none: the writer's default
+    std::string interpretedType;  // of the new ROI; empty: the writer's default
+};
+
+struct StructureAlgebraResult {
+    Roi roi;                       // the new ROI, in the frame of the first ROI read
+    RoiExpression expression;      // with its margins on the ROIs (marginsOnRois)
+    std::vector<double> planesMm;  // every plane looked at (those with a section are roi.slices)
+    PlaneSectionStats sections;
+    /// The solids the expression read: each ROI's reconstructed surface's volume (mm³).
+    std::map<std::string, double> surfaceVolumesMm3;
+    double surfacesSeconds = 0, sectionsSeconds = 0;
+};
+
+/// Evaluates a parsed expression (parseRoiExpression) on `set`. Throws
+/// ExpressionError for a margin that is not exact (marginsOnRois),
+/// std::invalid_argument for ROIs whose planes are not parallel, an ROI
+/// whose surface is not a valid closed solid, or an expression empty on
+/// every plane; InputError for an ROI with a defect; ClError on device
+/// failure. O(reconstructions + boundary samples × distance queries).
+StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const ContourSet& set,
+                                             const RoiExpression& expression,
+                                             const StructureAlgebraOptions& options = {});
+
+/// parseRoiExpression(definition, the set's names), then evaluateRoiExpression.
+StructureAlgebraResult combineRois(ocl::Runtime& runtime, const ContourSet& set,
+                                   const std::string& definition,
+                                   const StructureAlgebraOptions& options = {});
+
+/// ROI `roiName` grown (or shrunk) by `margin`, named `newName`.
+StructureAlgebraResult marginRoi(ocl::Runtime& runtime, const ContourSet& set,
+                                 const std::string& roiName, const DirectionalMargin& margin,
+                                 const std::string& newName,
+                                 const StructureAlgebraOptions& options = {});
+
+}  // namespace dfrecon
