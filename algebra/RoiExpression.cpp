@@ -200,7 +200,13 @@ class Parser {
                 best = name.size();
                 found = &name;
             }
-        if (found) {
+        // A name that runs on into letters or digits ("PTVX") is not that
+        // name but an unknown one.
+        const auto continuesWord = [&](std::size_t end) {
+            return end < text_.size() &&
+                   (std::isalnum(static_cast<unsigned char>(text_[end])) || text_[end] == '_');
+        };
+        if (found && !continuesWord(at_ + best)) {
             at_ += best;
             return leaf(*found);
         }

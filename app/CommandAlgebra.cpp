@@ -171,19 +171,27 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                                             " planes, and a .slices file holds axial planes only; "
                                             "write a DICOM RTSTRUCT (.dcm)");
 
-    // The mesh, when asked: the new ROI reconstructed as `reconstruct` would.
-    RoiOutcome mesh;
-    if (!args.mesh.empty()) {
-        ReconstructSettings settings;
-        mesh = reconstructRoi(runtime, made, meshOutput(args.mesh, "", args.json), input, settings,
-                              global, false);
-    }
     RtStructWriteSummary summary;
     if (toDicom) {
         writeOptions.structureSetLabel = "dfrecon";
         summary = writeRtStruct(written, args.output, writeOptions);
     } else {
         writeSlicesFile(written, args.output);
+    }
+    // The mesh, when asked: the new ROI as written, read back and
+    // reconstructed as `reconstruct` would (the file's rounding and the
+    // reader's checks included, so it is the surface a user gets from it).
+    RoiOutcome mesh;
+    if (!args.mesh.empty()) {
+        GlobalOptions quietly = global;
+        quietly.quiet = true;
+        const ContourInput back = loadContours(args.output, quietly);
+        const Roi* read = back.contours.findRoi(made.name);
+        if (!read)
+            throw std::runtime_error(args.output + ": the new ROI '" + made.name +
+                                     "' did not read back");
+        mesh = reconstructRoi(runtime, *read, meshOutput(args.mesh, "", args.json), back,
+                              ReconstructSettings{}, global, false);
     }
 
     const double contourCc = contourVolumeMm3(made) / kCubicMmPerCc;

@@ -165,6 +165,10 @@ struct RtStructWriteSummary {
     /// contours can lie in an image plane), and ROIs with contours off the
     /// images, one line each.
     std::vector<std::string> warnings;
+    /// The longest ContourData value (bytes). Beyond 65 534 (a contour of
+    /// about 1 300 points) the file is written in implicit VR little endian,
+    /// whose 32-bit lengths hold it; else in explicit VR little endian.
+    std::size_t longestValueBytes = 0;
 };
 
 /// Writes `contours` as an RTSTRUCT (through a temporary file and a rename):

@@ -105,6 +105,10 @@ struct RoiToWrite {
     std::string type;
 };
 
+// The longest value explicit VR little endian gives DS (a 16-bit length,
+// even).
+constexpr std::size_t kExplicitValueBytes = 65534;
+
 void addRoi(DRTStructureSetIOD& rt, const RoiToWrite& what, const std::string& frameUid,
             const DicomImageSeries* series, RtStructWriteSummary& summary) {
     const Roi& roi = what.roi;
@@ -150,7 +154,9 @@ void addRoi(DRTStructureSetIOD& rt, const RoiToWrite& what, const std::string& f
                   "NumberOfContourPoints");
             // The value is checked below by the IOD's write; checking here
             // would scan every number twice.
-            check(contour->setContourData(contourData(points).c_str(), OFFalse), "ContourData");
+            const std::string data = contourData(points);
+            summary.longestValueBytes = std::max(summary.longestValueBytes, data.size());
+            check(contour->setContourData(data.c_str(), OFFalse), "ContourData");
             if (roi.slabThicknessMm > 0)
                 check(contour->setContourSlabThickness(
                           formatDecimalString(roi.slabThicknessMm).c_str()),
@@ -316,7 +322,14 @@ RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string
     DcmFileFormat file;
     check(rt.write(*file.getDataset()), "dataset");
     writeAtomically(path, [&](const std::string& temp) {
-        check(file.saveFile(temp.c_str(), EXS_LittleEndianExplicit), path.c_str());
+        // Explicit VR gives a DS value a 16-bit length; a contour of more
+        // than about 1 300 points is longer, and DCMTK would write it as UN,
+        // which readers refuse. Implicit VR (32-bit lengths, the transfer
+        // syntax every reader must accept) holds it as DS.
+        const E_TransferSyntax syntax = summary.longestValueBytes > kExplicitValueBytes
+                                            ? EXS_LittleEndianImplicit
+                                            : EXS_LittleEndianExplicit;
+        check(file.saveFile(temp.c_str(), syntax), path.c_str());
         return true;
     });
     return summary;

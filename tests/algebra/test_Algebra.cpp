@@ -1,0 +1,256 @@
+// Structure algebra against independent references: the free-point
+// closest-primitive kernel against its C++ twin and brute force; the
+// expression parser and the margin lowering; plane sections of analytic
+// fields (vertices on the exact circle); margins and Booleans of boxes,
+// whose reconstructed solids are exact boxes, against the exact distance
+// to a box and exact polygon areas.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "algebra/PlaneSections.hpp"
+#include "algebra/RoiExpression.hpp"
+#include "algebra/SolidField.hpp"
+#include "dfrecon/Algebra.hpp"
+#include "field/ClosestPrimitives.hpp"
+#include "geometry/SurfaceMeasures.hpp"
+#include "shapes/MeshShapes.hpp"
+
+using namespace dfrecon;
+
+namespace {
+
+ocl::Runtime& runtime() {
+    static ocl::Runtime r;
+    return r;
+}
+
+// Exact signed distance to the box [lo, hi].
+double boxDistance(Vec3 p, Vec3 lo, Vec3 hi) {
+    const Vec3 c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+    const Vec3 q{std::abs(p.x - c.x) - h.x, std::abs(p.y - c.y) - h.y, std::abs(p.z - c.z) - h.z};
+    const Vec3 outside{std::max(q.x, 0.0), std::max(q.y, 0.0), std::max(q.z, 0.0)};
+    return length(outside) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
+}
+
+// An ROI of square (x0..x1, y0..y1) contours on planes z0, z0 + step, ... z1.
+Roi boxRoi(const std::string& name, double x0, double x1, double y0, double y1, double z0,
+           double z1, double step) {
+    Roi roi;
+    roi.name = name;
+    for (double z = z0; z <= z1 + 1e-9; z += step)
+        roi.slices.push_back({z, {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}});
+    return roi;
+}
+
+Box3 boundsOf(const TriangleSoup& soup) {
+    Box3 b;
+    for (const Vec3& p : soup.points) b.add(p);
+    return b;
+}
+
+}  // namespace
+
+TEST(FreePointDistances, KernelAgreesWithReferenceAndBruteForce) {
+    std::vector<TriangleSoup> objects{geodesicSphere(6, 8.0, {0, 0, 0}),
+                                      boxMesh({12, -5, -5}, {22, 5, 5}, 3)};
+    const SurfaceScene scene(objects);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> coordinate(-15, 30);
+    std::vector<Vec3> points;
+    for (int k = 0; k < 3000; ++k)
+        points.push_back({coordinate(random), coordinate(random) * 0.6, coordinate(random) * 0.6});
+    std::vector<SurfaceSample> free;
+    for (const Vec3& p : points) free.push_back({p, UINT32_MAX, 0});
+    ClosestPrimitiveKernel kernel(runtime(), scene);
+    for (int target : {-1, 0, 1}) {
+        DistanceQuery query;
+        query.target = target;
+        const auto device = kernel.runAt(points, query);
+        const auto reference = closestPrimitivesAtReference(scene, points, query);
+        const auto brute = closestPrimitivesBruteForce(scene, free, query);
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            ASSERT_NEAR(device[k].distanceMm, reference[k].distanceMm, kernel.toleranceMm() + 1e-9);
+            ASSERT_NEAR(reference[k].distanceMm, brute[k].distanceMm, 1e-9);
+        }
+        if (target == 1) {  // the box is exact: its analytic distance
+            for (std::size_t k = 0; k < points.size(); ++k)
+                ASSERT_NEAR(reference[k].distanceMm,
+                            boxDistance(points[k], {12, -5, -5}, {22, 5, 5}), 1e-9);
+        }
+    }
+}
+
+TEST(RoiExpression, ParsesMarginsBooleansAndNamesWithOperators) {
+    const std::vector<std::string> names{"PTV", "PTV-70", "Rectum", "Lung L", "CTV"};
+    const RoiExpression ring = parseRoiExpression("Ring = (PTV + 20) - (PTV + 3)", names);
+    EXPECT_EQ(ring.name, "Ring");
+    EXPECT_EQ(ring.text(), "(('PTV' + 20 mm) - ('PTV' + 3 mm))");
+    EXPECT_EQ(ring.rois(), std::vector<std::string>{"PTV"});
+    // The longest name wins: PTV-70 is an ROI, not PTV shrunk by 70.
+    EXPECT_EQ(parseRoiExpression("E = PTV-70 - Rectum", names).text(), "('PTV-70' - 'Rectum')");
+    EXPECT_EQ(parseRoiExpression("E = 'Lung L' | CTV & PTV ^ Rectum", names).text(),
+              "(('Lung L' | ('CTV' & 'PTV')) ^ 'Rectum')");
+    EXPECT_EQ(parseRoiExpression("E = CTV + [5,5,7,7,10,10]", names).text(),
+              "('CTV' + [R 5, L 5, A 7, P 7, S 10, I 10] mm)");
+    EXPECT_EQ(parseRoiExpression("E = CTV - 3mm + Rectum", names).text(),
+              "(('CTV' - 3 mm) | 'Rectum')");
+    const auto fails = [&](const std::string& text, const std::string& part) {
+        try {
+            parseRoiExpression(text, names);
+            ADD_FAILURE() << text << " parsed";
+        } catch (const ExpressionError& e) {
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+    };
+    fails("PTV + 3", "NAME = EXPRESSION");
+    fails("E = PTVX", "no ROI named 'PTVX'");
+    fails("E = Rectom", "'Rectum'");
+    fails("E = (PTV + 3", "expected ')'");
+    fails("E = PTV + 300", "beyond the 200 mm");
+    fails("E = PTV + [5,5,5]", "expected ','");
+    fails("E = PTV )", "unexpected ')'");
+    fails(" = PTV", "no name");
+}
+
+TEST(RoiExpression, MarginsMoveOntoRoisOnlyWhereExact) {
+    const std::vector<std::string> names{"A", "B"};
+    const auto lowered = [&](const std::string& e) {
+        return marginsOnRois(parseRoiExpression("X = " + e, names)).text();
+    };
+    EXPECT_EQ(lowered("(A | B) + 5"), "(('A' + 5 mm) | ('B' + 5 mm))");
+    EXPECT_EQ(lowered("(A & B) - 2"), "(('A' - 2 mm) & ('B' - 2 mm))");
+    EXPECT_EQ(lowered("(A + 2) + 3"), "('A' + 5 mm)");
+    EXPECT_EQ(lowered("(A - 2) - 3"), "('A' - 5 mm)");
+    for (const char* refused :
+         {"(A - B) + 5", "(A & B) + 5", "(A | B) - 5", "(A + 2) - 1", "(A ^ B) + 1"})
+        EXPECT_THROW(lowered(refused), ExpressionError) << refused;
+}
+
+TEST(PlaneSections, VerticesLieOnTheExactBoundary) {
+    // A disc of radius 7 with a hole of radius 3 around (1, 2), per plane
+    // radius shrinking with |z| (a 1-Lipschitz field in the plane).
+    const PlaneField annulus = [](const std::vector<Vec3>& points) {
+        std::vector<double> f;
+        for (const Vec3& p : points) {
+            const double r = std::hypot(p.x - 1, p.y - 2);
+            f.push_back(std::max(r - (7 - std::abs(p.z)), 3 - r));
+        }
+        return f;
+    };
+    PlaneSectionStats stats;
+    const std::vector<Slice> slices =
+        planeSections(annulus, {-5, 0, 2, 3.5, 6}, {-8, 10, -7, 11}, {}, &stats);
+    ASSERT_EQ(slices.size(), 3u);  // at |z| ≥ 4 the disc is inside the hole
+    for (const Slice& s : slices) {
+        ASSERT_EQ(s.contours.size(), 2u) << s.zMm;
+        double area = 0;
+        for (const Polygon& p : s.contours) {
+            area += signedArea(p);
+            for (const Point2& v : p) {
+                const double r = std::hypot(v.x - 1, v.y - 2);
+                EXPECT_LT(std::min(std::abs(r - (7 - std::abs(s.zMm))), std::abs(r - 3)), 1e-6);
+            }
+        }
+        const double outer = 7 - std::abs(s.zMm);
+        const double exact = M_PI * (outer * outer - 9);
+        // Chords of a 0.25 mm lattice: relative error under step²/(8 r) · 2/r.
+        EXPECT_NEAR(area, exact, 0.003 * exact) << s.zMm;
+    }
+    // Only cells near the boundary were sampled finely.
+    EXPECT_LT(stats.fineSamples, 5 * std::size_t(72 * 72));
+}
+
+TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
+    ContourSet set;
+    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    StructureAlgebraOptions options;
+    for (DistanceBackend backend : {DistanceBackend::Device, DistanceBackend::Reference}) {
+        options.backend = backend;
+        for (double margin : {5.0, -3.0}) {
+            const StructureAlgebraResult r =
+                marginRoi(runtime(), set, "Box", DirectionalMargin::uniform(margin), "M", options);
+            // The reconstructed box is the exact box between its lids.
+            const RoiSurface solid = reconstructRoi(runtime(), set.rois[0]);
+            const Box3 box = boundsOf(solid.surface);
+            EXPECT_NEAR(box.lo.x, -10, 1e-5);
+            std::size_t vertices = 0;
+            for (const Slice& s : r.roi.slices)
+                for (const Polygon& p : s.contours)
+                    for (const Point2& v : p) {
+                        ASSERT_NEAR(boxDistance({v.x, v.y, s.zMm}, box.lo, box.hi), margin, 2e-5)
+                            << v.x << " " << v.y << " " << s.zMm;
+                        ++vertices;
+                    }
+            EXPECT_GT(vertices, 100u);
+            // Planes continue at 2.5 mm as far as the growth reaches.
+            const double zTop = r.roi.slices.back().zMm;
+            EXPECT_LE(zTop, box.hi.z + std::max(margin, 0.0));
+            EXPECT_GT(zTop,
+                      box.hi.z + std::max(margin, 0.0) - 2.5 - (margin < 0 ? 2.5 - margin : 0));
+            // Section areas in the middle: the rounded rectangle (growth) or
+            // the smaller rectangle (shrink), within the chords' error.
+            for (const Slice& s : r.roi.slices) {
+                if (s.zMm < box.lo.z + std::abs(margin) || s.zMm > box.hi.z - std::abs(margin))
+                    continue;
+                double area = 0;
+                for (const Polygon& p : s.contours) area += signedArea(p);
+                const double a = 20 + 2 * margin, b = 12 + 2 * margin;
+                const double exact = margin > 0 ? a * b - (4 - M_PI) * margin * margin : a * b;
+                // Chords of the rounded corners (4 · arc · step² / (12 r)),
+                // or the shrink's four creases cut (step² / 2 each).
+                const double h = options.sections.stepMm;
+                const double chords = margin > 0 ? 2 * M_PI * h * h / 12 : 4 * h * h / 2;
+                EXPECT_NEAR(area, exact, 1.5 * chords) << s.zMm << " margin " << margin;
+            }
+        }
+    }
+}
+
+TEST(StructureAlgebra, BooleansOfBoxesHaveTheExactAreas) {
+    ContourSet set;
+    set.rois.push_back(boxRoi("A", 0, 40, 0, 40, 0, 20, 2));
+    set.rois.push_back(boxRoi("B", 20, 60, 10, 30, 4, 30, 2));
+    const struct {
+        const char* expression;
+        double area;  // on planes where both are
+    } cases[] = {
+        {"U = A | B", 1600 + 400}, {"I = A & B", 400}, {"D = A - B", 1200}, {"X = A ^ B", 1600}};
+    for (const auto& c : cases) {
+        const StructureAlgebraResult r = combineRois(runtime(), set, c.expression);
+        bool checked = false;
+        for (const Slice& s : r.roi.slices) {
+            if (s.zMm < 6 || s.zMm > 18) continue;
+            double area = 0;
+            for (const Polygon& p : s.contours) area += signedArea(p);
+            // Marching squares cuts the corners where the boundaries cross:
+            // at most step² per corner.
+            EXPECT_NEAR(area, c.area, 8 * 0.25 * 0.25) << c.expression << " z " << s.zMm;
+            checked = true;
+        }
+        EXPECT_TRUE(checked) << c.expression;
+    }
+    EXPECT_THROW(combineRois(runtime(), set, "E = A & (B + 0) - A"), std::invalid_argument);
+}
+
+TEST(StructureAlgebra, EllipsoidalMarginsScaleEachAxis) {
+    ContourSet set;
+    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    DirectionalMargin m;
+    m.mm = {4, 4, 8, 8, 0, 0};  // in the plane only: x by 4, y by 8
+    const StructureAlgebraResult r = marginRoi(runtime(), set, "Box", m, "E");
+    for (const Slice& s : r.roi.slices) {
+        if (s.zMm < 2 || s.zMm > 18) continue;
+        double xMax = -INFINITY, yMax = -INFINITY;
+        for (const Polygon& p : s.contours)
+            for (const Point2& v : p) {
+                xMax = std::max(xMax, v.x);
+                yMax = std::max(yMax, v.y);
+            }
+        EXPECT_NEAR(xMax, 14, 0.01);
+        EXPECT_NEAR(yMax, 14, 0.01);
+    }
+    m.mm = {4, 5, 8, 8, 0, 0};
+    EXPECT_THROW(marginRoi(runtime(), set, "Box", m, "E"), std::invalid_argument);
+}
