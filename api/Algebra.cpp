@@ -65,6 +65,22 @@ void frameExtent(const Box3& box, const PlaneFrame& frame, Vec3& lo, Vec3& hi) {
     }
 }
 
+// The ROI's reconstructed surface, which must be a valid closed solid for
+// inside and outside to mean anything.
+TriangleSoup solidOf(ocl::Runtime& runtime, const Roi& roi, const RoiReconstructOptions& options) {
+    RoiSurface s = reconstructRoi(runtime, roi, options);
+    if (!s.check.validSolid())
+        throw std::invalid_argument("the reconstructed surface of ROI '" + roi.name +
+                                    "' is not a valid closed solid, so its inside is not defined");
+    return std::move(s.surface);
+}
+
+const Roi& roiNamed(const ContourSet& set, const std::string& name) {
+    const Roi* roi = set.findRoi(name);
+    if (!roi) throw std::invalid_argument("no ROI named '" + name + "' in the structure set");
+    return *roi;
+}
+
 }  // namespace
 
 StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const ContourSet& set,
@@ -73,11 +89,7 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
     StructureAlgebraResult out;
     out.expression = marginsOnRois(expression);
     std::vector<const Roi*> rois;
-    for (const std::string& name : out.expression.rois()) {
-        const Roi* roi = set.findRoi(name);
-        if (!roi) throw std::invalid_argument("no ROI named '" + name + "' in the structure set");
-        rois.push_back(roi);
-    }
+    for (const std::string& name : out.expression.rois()) rois.push_back(&roiNamed(set, name));
     const PlaneFrame frame = rois.front()->frame;
     for (const Roi* roi : rois)
         if (std::abs(std::abs(dot(roi->frame.n, frame.n)) - 1) > 1e-9)
@@ -86,18 +98,12 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
                                         rois.front()->name + "''s (" + frame.orientationName() +
                                         "); an expression reads ROIs of one plane direction");
 
-    // Each ROI's solid: its reconstructed surface, which must be a valid
-    // closed solid for inside and outside to mean anything.
     const Stopwatch watch;
     std::map<std::string, TriangleSoup> surfaces;
     for (const Roi* roi : rois) {
-        RoiSurface s = reconstructRoi(runtime, *roi, options.surfaces);
-        if (!s.check.validSolid())
-            throw std::invalid_argument("the reconstructed surface of ROI '" + roi->name +
-                                        "' is not a valid closed solid, so its margins are not "
-                                        "defined");
-        out.surfaceVolumesMm3[roi->name] = measureSurface(s.surface).volumeMm3;
-        surfaces.emplace(roi->name, std::move(s.surface));
+        TriangleSoup s = solidOf(runtime, *roi, options.surfaces);
+        out.surfaceVolumesMm3[roi->name] = measureSurface(s).volumeMm3;
+        surfaces.emplace(roi->name, std::move(s));
     }
     out.surfacesSeconds = watch.total();
 
@@ -149,8 +155,7 @@ StructureAlgebraResult marginRoi(ocl::Runtime& runtime, const ContourSet& set,
                                  const std::string& roiName, const DirectionalMargin& margin,
                                  const std::string& newName,
                                  const StructureAlgebraOptions& options) {
-    if (!set.findRoi(roiName))
-        throw std::invalid_argument("no ROI named '" + roiName + "' in the structure set");
+    roiNamed(set, roiName);
     if (margin.grows() && margin.shrinks())
         throw std::invalid_argument("margin " + margin.text() +
                                     " both grows and shrinks; give all values one sign");
@@ -168,6 +173,16 @@ StructureAlgebraResult marginRoi(ocl::Runtime& runtime, const ContourSet& set,
         e.root = 1;
     }
     return evaluateRoiExpression(runtime, set, e, options);
+}
+
+DistanceHistograms roiDistanceHistograms(ocl::Runtime& runtime, const ContourSet& set,
+                                         const std::string& oar, const std::string& target,
+                                         const RoiReconstructOptions& surfaces,
+                                         const DistanceHistogramOptions& options) {
+    const Roi &oarRoi = roiNamed(set, oar), &targetRoi = roiNamed(set, target);
+    const TriangleSoup oarSolid = solidOf(runtime, oarRoi, surfaces);
+    const TriangleSoup targetSolid = solidOf(runtime, targetRoi, surfaces);
+    return distanceHistograms(oarSolid, targetSolid, options, &runtime);
 }
 
 }  // namespace dfrecon

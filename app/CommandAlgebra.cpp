@@ -13,6 +13,7 @@
 #include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Algebra.hpp"
@@ -24,8 +25,6 @@
 namespace dfrecon::app {
 
 namespace {
-
-constexpr double kCubicMmPerCc = 1000;
 
 struct AlgebraArgs {
     std::string input, output, mesh, like, colour, roiType, name;

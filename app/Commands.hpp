@@ -29,6 +29,7 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global);
 void addConvertCommand(CLI::App& root, const GlobalOptions& global);
 void addMarginCommand(CLI::App& root, const GlobalOptions& global);
 void addCombineCommand(CLI::App& root, const GlobalOptions& global);
+void addHistogramCommand(CLI::App& root, const GlobalOptions& global);
 void addRasterizeCommand(CLI::App& root, const GlobalOptions& global);
 void addSdmCommand(CLI::App& root, const GlobalOptions& global);
 void addSegmentCommand(CLI::App& root, const GlobalOptions& global);

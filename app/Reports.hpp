@@ -11,6 +11,9 @@
 
 namespace dfrecon::app {
 
+/// Reports give volumes in cc (cm³), as planning systems do.
+inline constexpr double kCubicMmPerCc = 1000;
+
 /// The mesh checker's findings as a flat object: validSolid, watertight,
 /// vertices, triangles, edges, components, eulerCharacteristic, genus (null
 /// unless closed and manifold), volumeMm3, volumeCc, areaMm2, boundaryEdges,

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
     addConvertCommand(root, global);
     addMarginCommand(root, global);
     addCombineCommand(root, global);
+    addHistogramCommand(root, global);
     addRasterizeCommand(root, global);
     addSdmCommand(root, global);
     addSegmentCommand(root, global);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "algebra/DistanceHistograms.hpp"
 #include "algebra/PlaneSections.hpp"
 #include "algebra/RoiExpression.hpp"
 #include "algebra/SolidField.hpp"
@@ -69,5 +70,14 @@ StructureAlgebraResult marginRoi(ocl::Runtime& runtime, const ContourSet& set,
                                  const std::string& roiName, const DirectionalMargin& margin,
                                  const std::string& newName,
                                  const StructureAlgebraOptions& options = {});
+
+/// The overlap-volume histogram and distance-to-target histogram
+/// (algebra/DistanceHistograms) of ROI `oar` against ROI `target`, each
+/// reconstructed with `surfaces` and required to be a valid closed solid.
+/// Throws as evaluateRoiExpression. O(reconstructions + cells · log T).
+DistanceHistograms roiDistanceHistograms(ocl::Runtime& runtime, const ContourSet& set,
+                                         const std::string& oar, const std::string& target,
+                                         const RoiReconstructOptions& surfaces = {},
+                                         const DistanceHistogramOptions& options = {});
 
 }  // namespace dfrecon
