@@ -82,8 +82,10 @@ DistanceHistograms distanceHistograms(const TriangleSoup& oar, const TriangleSou
     for (const Vec3& p : oar.points) box.add(p);
     const Vec3 size = box.hi - box.lo;
     double step = options.volumeStepMm;
+    // Cells tiling the box (the midpoint rule): centres half a step in from
+    // its faces, never on them, where the inside test would be a tie.
     const auto cellsAlong = [&](double extent) {
-        return std::size_t(std::ceil(extent / step)) + 1;
+        return std::max<std::size_t>(1, std::size_t(std::ceil(extent / step)));
     };
     while (double(cellsAlong(size.x)) * double(cellsAlong(size.y)) * double(cellsAlong(size.z)) >
            double(options.maxVolumeCells))

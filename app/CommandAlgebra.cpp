@@ -158,7 +158,8 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                 continue;
             }
             written.rois.push_back(roi);
-            if (roi.number) nextNumber = std::max(nextNumber, *roi.number + 1);
+            // The writer numbers an ROI without one by its position.
+            nextNumber = std::max(nextNumber, roi.number.value_or(int(written.rois.size())) + 1);
         }
     if (toDicom) made.number = nextNumber;
     written.rois.push_back(made);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "algebra/DistanceHistograms.hpp"
 #include "algebra/PlaneSections.hpp"
 #include "algebra/RoiExpression.hpp"
 #include "algebra/SolidField.hpp"
@@ -253,4 +254,51 @@ TEST(StructureAlgebra, EllipsoidalMarginsScaleEachAxis) {
     }
     m.mm = {4, 5, 8, 8, 0, 0};
     EXPECT_THROW(marginRoi(runtime(), set, "Box", m, "E"), std::invalid_argument);
+}
+
+TEST(DistanceHistograms, ConcentricSpheresFollowTheAnalyticOvh) {
+    // OAR a ball of 20 mm around a target ball of 8 mm: the fraction of the
+    // OAR within d of the target is ((8 + d) / 20)³ for -8 ≤ d ≤ 12.
+    const TriangleSoup oar = geodesicSphere(40, 20), target = geodesicSphere(40, 8);
+    DistanceHistogramOptions options;
+    const DistanceHistograms h = distanceHistograms(oar, target, options, &runtime());
+    EXPECT_NEAR(h.volume.total, 4.0 / 3 * M_PI * 8000, 0.005 * 4.0 / 3 * M_PI * 8000);
+    for (double d : {-6.0, -2.0, 0.0, 3.0, 7.0, 11.0}) {
+        const double exact = std::pow((8 + d) / 20, 3);
+        EXPECT_NEAR(h.volume.fractionWithin(d), exact, 0.005) << d;
+    }
+    EXPECT_NEAR(h.volume.fractionWithin(0), std::pow(0.4, 3), 0.005);
+    // The OAR's surface lies 12 mm from the target everywhere.
+    EXPECT_EQ(h.surface.fractionWithin(11.95), 0.0);
+    EXPECT_EQ(h.surface.fractionWithin(12.05), 1.0);
+    EXPECT_NEAR(h.surface.total, 4 * M_PI * 400, 0.005 * 4 * M_PI * 400);
+}
+
+TEST(DistanceHistograms, AgreeWithBruteForcePointDistances) {
+    // A box OAR (inside known exactly) beside a target ball; the reference
+    // measures every point to every target triangle on a grid of its own.
+    const Vec3 lo{-4, -10, -6}, hi{18, 10, 6};
+    const TriangleSoup oar = boxMesh(lo, hi, 4), target = geodesicSphere(12, 7, {-6, 0, 0});
+    DistanceHistogramOptions options;
+    options.backend = DistanceBackend::Reference;
+    const DistanceHistograms mine = distanceHistograms(oar, target, options, nullptr);
+    options.backend = DistanceBackend::Device;
+    const DistanceHistograms device = distanceHistograms(oar, target, options, &runtime());
+
+    const double step = 0.5;
+    const SurfaceScene scene({target});
+    std::vector<SurfaceSample> points;
+    for (double z = lo.z + step / 2; z < hi.z; z += step)
+        for (double y = lo.y + step / 2; y < hi.y; y += step)
+            for (double x = lo.x + step / 2; x < hi.x; x += step)
+                points.push_back({{x, y, z}, UINT32_MAX, 0});
+    const std::vector<ClosestPrimitive> brute = closestPrimitivesBruteForce(scene, points);
+    for (double d : {-3.0, -1.0, 0.0, 2.0, 5.0, 10.0, 20.0}) {
+        std::size_t within = 0;
+        for (const ClosestPrimitive& c : brute) within += c.distanceMm <= d;
+        const double reference = double(within) / double(brute.size());
+        EXPECT_NEAR(mine.volume.fractionWithin(d), reference, 0.005) << d;
+        EXPECT_NEAR(device.volume.fractionWithin(d), mine.volume.fractionWithin(d), 1e-9) << d;
+    }
+    EXPECT_NEAR(mine.volume.total, 22 * 20 * 12, 0.005 * 22 * 20 * 12);
 }
