@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "api/Stopwatch.hpp"
+#include "field/ClosestPrimitives.hpp"
 #include "field/FieldVolume.hpp"
 #include "recon/ContourSimplification.hpp"
 
@@ -80,6 +81,37 @@ RoiDistanceVolume roiDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
                   : spacing.minMm > 0 ? spacing.minMm / 2
                                       : 0.5;
     out.volume = resampleAlongZ(field, out.zStepMm);
+    return out;
+}
+
+RoiDistanceVolume roiEuclideanDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
+                                             const RoiFieldOptions& options,
+                                             const RoiReconstructOptions& surface) {
+    RoiDistanceVolume out = roiDistanceVolume(runtime, roi, options);  // its grid
+    const Stopwatch watch;
+    RoiSurface solid = reconstructRoi(runtime, roi, surface);
+    if (!solid.check.validSolid())
+        throw std::invalid_argument("the reconstructed surface of ROI '" + roi.name +
+                                    "' is not a valid closed solid, so its Euclidean distance "
+                                    "has no sign");
+    const SurfaceScene scene({std::move(solid.surface)});
+    ClosestPrimitiveKernel kernel(runtime, scene);
+    DenseDistanceVolume& v = out.volume;
+    // A layer at a time: the points of one layer are a few hundred thousand.
+    const std::size_t layer = std::size_t(v.nx) * std::size_t(v.ny);
+    std::vector<Vec3> points(layer);
+    for (int k = 0; k < v.nz; ++k) {
+        for (int j = 0; j < v.ny; ++j)
+            for (int i = 0; i < v.nx; ++i)
+                points[std::size_t(j) * std::size_t(v.nx) + std::size_t(i)] = roi.frame.toPatient(
+                    {v.originMm[0] + i * v.voxelMm[0], v.originMm[1] + j * v.voxelMm[1],
+                     v.originMm[2] + k * v.voxelMm[2]});
+        const std::vector<ClosestPrimitive> found = kernel.runAt(points);
+        for (std::size_t n = 0; n < layer; ++n)
+            v.valuesMm[std::size_t(k) * layer + n] = float(found[n].distanceMm);
+    }
+    out.fieldsSeconds += watch.total();
+    out.propagateSeconds = 0;
     return out;
 }
 

@@ -19,10 +19,18 @@ namespace dfrecon::app {
 
 namespace {
 
+// What the values are, as the .vdb's metadata says.
+constexpr const char* kPropagatedDistance =
+    "in-slice Euclidean + |dz| (reconstruction paper 6.1): never below the Euclidean distance; "
+    "negative inside";
+constexpr const char* kEuclideanDistance =
+    "exact Euclidean distance to the reconstructed surface (closest triangle, signed by "
+    "pseudo-normals); negative inside";
+
 struct FieldArgs {
     std::string input, output, roi;
     double pixelMm = 0, bandVoxels = 3;
-    bool isotropic = false, json = false;
+    bool isotropic = false, json = false, euclidean = false;
 };
 
 void runField(const FieldArgs& args, const GlobalOptions& global) {
@@ -38,7 +46,8 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
         options.pixelMm = args.pixelMm;
         options.isotropic = args.isotropic;
         options.progress = [&](double f) { progress.update(f); };
-        field = roiDistanceVolume(runtime, roi, options);
+        field = args.euclidean ? roiEuclideanDistanceVolume(runtime, roi, options)
+                               : roiDistanceVolume(runtime, roi, options);
     }
     const DenseDistanceVolume& volume = field.volume;
     watch.restartLap();
@@ -48,9 +57,7 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
     options.bandVoxels = args.bandVoxels;
     options.metadata = {{"source", args.input},
                         {"units", "mm"},
-                        {"distance",
-                         "in-slice Euclidean + |dz| (reconstruction paper 6.1): never below the "
-                         "Euclidean distance; negative inside"},
+                        {"distance", args.euclidean ? kEuclideanDistance : kPropagatedDistance},
                         {"slice_spacing_mm", std::to_string(field.sliceSpacingMm)},
                         {"program", std::string("dfrecon ") + DFRECON_VERSION}};
     writeLevelSetVdb(volume, args.output, options);
@@ -65,6 +72,8 @@ void runField(const FieldArgs& args, const GlobalOptions& global) {
                                                      {"input", args.input},
                                                      {"roi", roi.name},
                                                      {"output", args.output},
+                                                     {"distance",
+                                                      args.euclidean ? "euclidean" : "propagated"},
                                                      {"voxels", {volume.nx, volume.ny, volume.nz}},
                                                      {"voxelMm", xyzJson(volume.voxelMm)},
                                                      {"originMm", xyzJson(originLps)},
@@ -95,9 +104,12 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
     CLI::App* cmd = root.add_subcommand(
         "field", "The ROI's 3D signed distance field as an OpenVDB level set (.vdb)");
     cmd->footer(
-        "The slices' exact 2D fields propagated along z (distance = in-slice Euclidean + |dz|, "
-        "never below the true Euclidean distance; negative inside). Ends close half a slice "
-        "spacing beyond the end slices, as the flat caps do. Grid named after the ROI, voxel "
+        "By default the slices' exact 2D fields propagated along z (distance = in-slice "
+        "Euclidean + |dz|, never below the true Euclidean distance; negative inside; its zero "
+        "set passes through the contours, ends closing half a slice spacing beyond the end "
+        "slices, as the flat caps do). With --euclidean, the exact Euclidean distance to the "
+        "ROI's reconstructed surface (reconstruct's defaults), so every level set is an exact "
+        "margin. Grid named after the ROI, voxel "
         "(i, j, k) centred at the reported origin + i, j, k voxel sizes along the reported "
         "axes, in patient LPS mm (the axes are x, y, z for axial stacks); metadata: "
         "source, units, distance, slice_spacing_mm, program. Opens in Blender, Houdini and "
@@ -120,6 +132,9 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
                     "Narrow band half-width in voxels (of the largest voxel side)")
         ->capture_default_str()
         ->check(kPositive);
+    cmd->add_flag("--euclidean", args->euclidean,
+                  "Exact Euclidean signed distance to the reconstructed surface instead of the "
+                  "propagated field (slower: one nearest-triangle query per voxel)");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] {
         if (args->output.size() < 4 || args->output.substr(args->output.size() - 4) != ".vdb")

@@ -10,7 +10,8 @@ using namespace dfrecon::bench;
 int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
-        "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|all "
+        "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|margin|"
+        "all "
         "[--device SPEC] [--truth-sets DIR] [--truth-set NAME]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
         "distanceTransform\n"
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
         "and libcgal-demo meshes; geodesic Lloyd segmentation\n"
         "  structure-set  whole structure sets (Brodmann atlas, kmeans, many blobs) through "
         "reconstruct --all vs rasterise + marching cubes\n"
+        "  margin     exact margins of spheres and cubes vs the exact offset, voxel EDT margins "
+        "(1, 0.5 mm) and plastimatch's distance map\n"
         "  compare    Dice and Hausdorff of offset balls: surfaces (exact overlap) vs voxels, "
         "against the exact values\n";
     if (argc < 2) {
@@ -53,10 +56,12 @@ int main(int argc, char** argv) {
     if (suite == "segment") return benchSegment(device);
     if (suite == "structure-set") return benchStructureSet(device);
     if (suite == "compare") return benchCompare(device);
+    if (suite == "margin") return benchMargin(device);
     if (suite == "all")
         return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                benchTruth(device, truthSets, truthSet) | benchSimplify(device) | benchSdm(device) |
-               benchSegment(device) | benchStructureSet(device) | benchCompare(device);
+               benchSegment(device) | benchStructureSet(device) | benchCompare(device) |
+               benchMargin(device);
     std::cerr << usage;
     return 1;
 }

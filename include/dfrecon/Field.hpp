@@ -9,6 +9,7 @@
 
 #include "cl/Runtime.hpp"
 #include "contours/ContourSet.hpp"
+#include "dfrecon/Reconstruct.hpp"
 #include "field/DistanceField3D.hpp"
 #include "field/Rasterization.hpp"
 #include "field/SliceFields.hpp"
@@ -87,5 +88,18 @@ struct RoiDistanceVolume {
 /// roiSliceFields. O(voxels).
 RoiDistanceVolume roiDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
                                     const RoiFieldOptions& options = {});
+
+/// The exact Euclidean signed distance (mm, negative inside) from every
+/// voxel centre of roiDistanceVolume's grid to the ROI's reconstructed
+/// surface (dfrecon/Reconstruct with `surface`: a valid closed solid through
+/// every contour), from the closest-primitive kernel at free points
+/// (field/ClosestPrimitives: the nearest triangle, signed by its
+/// pseudo-normal). Unlike roiDistanceVolume's propagated field it is the
+/// true distance everywhere, so its level sets are exact margins. Throws as
+/// roiSliceFields, and std::invalid_argument when the surface is not a
+/// valid closed solid. O(reconstruction + voxels · log triangles).
+RoiDistanceVolume roiEuclideanDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
+                                             const RoiFieldOptions& options = {},
+                                             const RoiReconstructOptions& surface = {});
 
 }  // namespace dfrecon

@@ -14,6 +14,7 @@
 #include "algebra/RoiExpression.hpp"
 #include "algebra/SolidField.hpp"
 #include "dfrecon/Algebra.hpp"
+#include "dfrecon/Field.hpp"
 #include "field/ClosestPrimitives.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "shapes/MeshShapes.hpp"
@@ -301,4 +302,24 @@ TEST(DistanceHistograms, AgreeWithBruteForcePointDistances) {
         EXPECT_NEAR(device.volume.fractionWithin(d), mine.volume.fractionWithin(d), 1e-9) << d;
     }
     EXPECT_NEAR(mine.volume.total, 22 * 20 * 12, 0.005 * 22 * 20 * 12);
+}
+
+TEST(EuclideanDistanceVolume, IsTheExactDistanceToTheReconstructedBox) {
+    const Roi roi = boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5);
+    RoiFieldOptions options;
+    options.pixelMm = 1;
+    const RoiDistanceVolume v = roiEuclideanDistanceVolume(runtime(), roi, options);
+    const Box3 box = boundsOf(reconstructRoi(runtime(), roi).surface);
+    const DenseDistanceVolume& d = v.volume;
+    ASSERT_GT(d.nx * d.ny * d.nz, 1000);
+    double worst = 0;
+    for (int k = 0; k < d.nz; ++k)
+        for (int j = 0; j < d.ny; ++j)
+            for (int i = 0; i < d.nx; ++i) {
+                const Vec3 p{d.originMm[0] + i * d.voxelMm[0], d.originMm[1] + j * d.voxelMm[1],
+                             d.originMm[2] + k * d.voxelMm[2]};
+                const float value = d.valuesMm[(std::size_t(k) * d.ny + j) * d.nx + i];
+                worst = std::max(worst, std::abs(value - boxDistance(p, box.lo, box.hi)));
+            }
+    EXPECT_LT(worst, 1e-4);  // float values, exact distances
 }
