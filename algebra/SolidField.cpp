@@ -198,6 +198,15 @@ std::vector<double> ExpressionField::values(const std::vector<Vec3>& patientPoin
     return std::move(at[expression_.root]);
 }
 
+double ExpressionField::lipschitzInSpace() const {
+    double most = 0;
+    for (const Leaf& leaf : leaves_) {
+        const Vec3 a = shapes_[leaf.shape]->axes;
+        most = std::max(most, leaf.norm / std::min({a.x, a.y, a.z}));
+    }
+    return most;
+}
+
 Box3 ExpressionField::support() const {
     std::vector<Box3> box(expression_.nodes.size());
     for (std::size_t i = 0; i < expression_.nodes.size(); ++i) {

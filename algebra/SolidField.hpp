@@ -62,6 +62,11 @@ class ExpressionField {
     /// intersection).
     Box3 support() const;
 
+    /// A bound on how fast the field changes per mm in any direction (1
+    /// without ellipsoidal margins; an ellipsoid with a flat axis makes it
+    /// large). O(leaves).
+    double lipschitzInSpace() const;
+
     /// Points evaluated so far (each point once per distance query).
     std::size_t distanceQueries() const { return queries_; }
 

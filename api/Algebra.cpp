@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "api/Stopwatch.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 
 namespace dfrecon {
@@ -116,7 +117,22 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
     frameExtent(support, frame, lo, hi);
     if (options.planesMm.empty()) {
         const std::vector<double> own = planesOf(rois, frame);
-        out.planesMm = extendedPlanes(own, lo.z, hi.z, typicalSpacing(own));
+        // ROIs of one plane have no spacing of their own: the set's other
+        // ROIs of this plane direction give it, else a slab thickness.
+        double spacing = typicalSpacing(own);
+        if (!(spacing > 0)) {
+            std::vector<const Roi*> parallel;
+            for (const Roi& roi : set.rois)
+                if (!roi.defect && std::abs(std::abs(dot(roi.frame.n, frame.n)) - 1) <= 1e-9)
+                    parallel.push_back(&roi);
+            for (const Roi* roi : parallel) {
+                const double gap = typicalSpacing(planesOf({roi}, frame));
+                if (gap > 0 && (!(spacing > 0) || gap < spacing)) spacing = gap;
+            }
+            for (const Roi* roi : rois)
+                if (!(spacing > 0) && roi->slabThicknessMm > 0) spacing = roi->slabThicknessMm;
+        }
+        out.planesMm = extendedPlanes(own, lo.z, hi.z, spacing);
     } else {
         for (double z : options.planesMm)
             if (z >= lo.z - kSamePlaneMm && z <= hi.z + kSamePlaneMm) out.planesMm.push_back(z);
@@ -136,6 +152,28 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
     if (out.roi.slices.empty())
         throw std::invalid_argument("'" + expression.name + "' = " + expression.text() +
                                     " has no section on any plane: it is empty");
+    // The exact surface in space, where the field's slope allows sampling
+    // it (a flat ellipsoid axis makes it steep along that axis).
+    constexpr double kSteepestForSurface = 50;
+    if (options.surfaceVoxelMm > 0 && field.lipschitzInSpace() <= kSteepestForSurface) {
+        const Stopwatch surfaceWatch;
+        SolidSurfaceOptions surfaceOptions;
+        surfaceOptions.voxelMm = options.surfaceVoxelMm;
+        const SpaceField inSpace = [&](const std::vector<Vec3>& p) { return field.values(p); };
+        out.surface = solidSurface(inSpace, field.lipschitzInSpace(), support, surfaceOptions,
+                                   &out.surfaceStats);
+        // Moving vertices onto the exact boundary can fold the mesh where two
+        // sheets pass within a voxel; the mesher's own vertices then serve.
+        TriangleSoup asWritten = *out.surface;
+        roundPointsToFloat(asWritten);
+        if (!checkMesh(asWritten).validSolid()) {
+            surfaceOptions.projectVertices = false;
+            out.surface = solidSurface(inSpace, field.lipschitzInSpace(), support, surfaceOptions,
+                                       &out.surfaceStats);
+            out.surfaceStats.projected = false;
+        }
+        out.surfaceSeconds = surfaceWatch.total();
+    }
     out.roi.name = expression.name;
     out.roi.frame = frame;
     out.roi.colour = options.colour;

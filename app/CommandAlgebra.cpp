@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -17,8 +18,10 @@
 #include "app/RoiReconstruction.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Algebra.hpp"
+#include "geometry/MeshCheck.hpp"
 #include "io/FileNames.hpp"
 #include "io/JsonText.hpp"
+#include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -28,7 +31,7 @@ namespace {
 
 struct AlgebraArgs {
     std::string input, output, mesh, like, colour, roiType, name;
-    double stepMm = 0.25;
+    double stepMm = 0.25, meshVoxelMm = 0.5;
     bool json = false, onlyNew = false, replace = false, reference = false;
     // margin
     std::string roi, perDirection;
@@ -77,10 +80,13 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                                     "ply, stl, obj, off, vtk, vtp)");
     if (!(args.stepMm >= 0.01 && args.stepMm <= 5))
         throw std::invalid_argument("--step must be within 0.01 .. 5 mm");
+    if (!(args.meshVoxelMm >= 0.05 && args.meshVoxelMm <= 5))
+        throw std::invalid_argument("--mesh-voxel must be within 0.05 .. 5 mm");
     const ContourInput input = loadContours(args.input, global);
 
     StructureAlgebraOptions options;
     options.sections.stepMm = args.stepMm;
+    if (!args.mesh.empty()) options.surfaceVoxelMm = args.meshVoxelMm;
     options.backend = args.reference ? DistanceBackend::Reference : DistanceBackend::Device;
     if (!args.colour.empty()) {
         const std::vector<double> c = numberList(args.colour, 3, "--colour");
@@ -178,22 +184,53 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
     } else {
         writeSlicesFile(written, args.output);
     }
-    // The mesh, when asked: the new ROI as written, read back and
-    // reconstructed as `reconstruct` would (the file's rounding and the
-    // reader's checks included, so it is the surface a user gets from it).
-    RoiOutcome mesh;
-    if (!args.mesh.empty()) {
-        GlobalOptions quietly = global;
-        quietly.quiet = true;
-        const ContourInput back = loadContours(args.output, quietly);
-        const Roi* read = back.contours.findRoi(made.name);
-        if (!read)
-            throw std::runtime_error(args.output + ": the new ROI '" + made.name +
-                                     "' did not read back");
-        mesh = reconstructRoi(runtime, *read, meshOutput(args.mesh, "", args.json), back,
-                              ReconstructSettings{}, global, false);
-    }
+    // The new ROI as written, read back and reconstructed as `reconstruct`
+    // would (the file's rounding and the reader's checks included): what a
+    // user gets from the file must be a valid closed solid.
+    GlobalOptions quietly = global;
+    quietly.quiet = true;
+    const ContourInput back = loadContours(args.output, quietly);
+    const Roi* read = back.contours.findRoi(made.name);
+    if (!read)
+        throw std::runtime_error(args.output + ": the new ROI '" + made.name +
+                                 "' did not read back");
+    const RoiSurface rebuilt = reconstructRoi(runtime, *read);
+    bool invalid = !rebuilt.check.validSolid();
 
+    // The mesh: the exact surface of the result where the field allows it,
+    // else the reconstruction of its contours.
+    nlohmann::ordered_json meshReport;
+    if (!args.mesh.empty()) {
+        // OpenVDB's mesher can fold where two sheets of the surface pass
+        // within a voxel; the reconstruction of the contours is then the mesh.
+        std::optional<TriangleSoup> exact = result.surface;
+        MeshCheckReport exactCheck;
+        if (exact) {
+            roundPointsToFloat(*exact);
+            exactCheck = checkMesh(*exact);
+        }
+        const bool useExact = exact && exactCheck.validSolid();
+        const TriangleSoup& surface = useExact ? *exact : rebuilt.surface;
+        const MeshCheckReport& check = useExact ? exactCheck : rebuilt.check;
+        const bool valid = check.validSolid();
+        if (valid) {
+            MeshWriteOptions write;
+            write.structure = structureTagOf(made);
+            writeMeshOutput(toTriMesh(surface), meshOutput(args.mesh, "", true), write);
+        }
+        invalid = invalid || !valid;
+        meshReport = {{"path", args.mesh},
+                      {"source", useExact ? "exact surface" : "contours reconstructed"},
+                      {"exactSurface",
+                       exact ? nlohmann::ordered_json{{"validSolid", exactCheck.validSolid()},
+                                                      {"voxelMm", result.surfaceStats.voxelMm},
+                                                      {"verticesOnExactBoundary",
+                                                       result.surfaceStats.projected},
+                                                      {"seconds", result.surfaceSeconds}}
+                             : nlohmann::ordered_json()},
+                      {"written", valid}};
+        appendItems(meshReport, meshCheckJson(check));
+    }
     const double contourCc = contourVolumeMm3(made) / kCubicMmPerCc;
     if (args.json) {
         nlohmann::ordered_json sources = nlohmann::ordered_json::object();
@@ -217,17 +254,32 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                                     result.sections.refinementSamples},
             {"surfacesSeconds", result.surfacesSeconds},
             {"sectionsSeconds", result.sectionsSeconds}};
-        if (!args.mesh.empty()) report["mesh"] = mesh.report;
+        report["contoursReconstructed"] = {{"validSolid", rebuilt.check.validSolid()},
+                                           {"volumeCc", rebuilt.check.volumeMm3 / kCubicMmPerCc}};
+        if (!args.mesh.empty()) report["mesh"] = meshReport;
         report["warnings"] = summary.warnings;
         std::cout << jsonText(report, 2) << "\n";
     } else {
         std::cout << made.name << " = " << result.expression.text() << ": " << made.slices.size()
                   << " planes, " << made.contourCount() << " contours, " << contourCc
                   << " cc (Σ area × spacing) -> " << args.output << "\n";
-        if (!args.mesh.empty()) std::cout << mesh.out;
+        std::cout << "  its contours reconstruct to " << rebuilt.check.volumeMm3 / kCubicMmPerCc
+                  << " cc, "
+                  << (rebuilt.check.validSolid() ? "a valid closed solid"
+                                                 : "NOT a valid closed solid")
+                  << "\n";
+        if (!args.mesh.empty())
+            std::cout << "  " << meshReport["source"].get<std::string>() << ": "
+                      << meshReport["volumeCc"].get<double>() << " cc, "
+                      << (meshReport["written"].get<bool>()
+                              ? "valid -> " + args.mesh
+                              : std::string("NOT a valid closed solid, not written"))
+                      << "\n";
     }
-    if (!args.mesh.empty() && mesh.invalid)
-        throw InvalidResult("the surface of '" + made.name + "' is not a valid closed solid");
+    if (invalid)
+        throw InvalidResult(
+            "the new ROI '" + made.name + "' is not a valid closed solid (" +
+            (rebuilt.check.validSolid() ? "its mesh" : "its contours reconstructed") + ")");
 }
 
 void addOutputOptions(CLI::App* cmd, AlgebraArgs& args) {
@@ -238,9 +290,14 @@ void addOutputOptions(CLI::App* cmd, AlgebraArgs& args) {
         ->required()
         ->check(kNotStandardStream);
     cmd->add_option("--mesh", args.mesh,
-                    "Also reconstruct the new ROI into this mesh file (.ply .stl .obj .off .vtk "
-                    ".vtp), as reconstruct would; exit 4 if it is not a valid closed solid")
+                    "Also write the new ROI's exact surface in space (between the planes too) to "
+                    "this mesh file (.ply .stl .obj .off .vtk .vtp); exit 4 if it is not a valid "
+                    "closed solid")
         ->check(kNotStandardStream);
+    cmd->add_option("--mesh-voxel", args.meshVoxelMm,
+                    "Voxel (mm) on which the exact surface is found; its vertices are then moved "
+                    "onto the exact boundary")
+        ->capture_default_str();
     cmd->add_option("--name", args.name, "Name of the new ROI (margin; default ROI+MM or ROI-MM)");
     cmd->add_option("--like", args.like,
                     "A CT (folder or one image): the output refers to it, and the new ROI's "

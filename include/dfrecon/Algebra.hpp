@@ -22,6 +22,7 @@
 #include "algebra/PlaneSections.hpp"
 #include "algebra/RoiExpression.hpp"
 #include "algebra/SolidField.hpp"
+#include "algebra/SolidSurface.hpp"
 #include "cl/Runtime.hpp"
 #include "contours/ContourSet.hpp"
 #include "dfrecon/Reconstruct.hpp"
@@ -33,9 +34,15 @@ struct StructureAlgebraOptions {
     PlaneSectionOptions sections;    // the lattice (stepMm: 0.25 mm)
     /// The planes of the result, mm along its frame's normal; empty: the
     /// planes of the ROIs it reads, continued at their spacing as far as
-    /// the result reaches beyond them (a growth).
+    /// the result reaches beyond them (a growth). ROIs of a single plane
+    /// take the smallest spacing of the set's ROIs of that plane direction,
+    /// else their slab thickness.
     std::vector<double> planesMm;
     DistanceBackend backend = DistanceBackend::Device;
+    /// > 0: also the result's exact surface in space (algebra/SolidSurface)
+    /// on voxels of this size (mm), where the field allows (no flat
+    /// ellipsoid axis).
+    double surfaceVoxelMm = 0;
     std::optional<Rgb> colour;    // of the new ROI; none: the writer's default
     std::string interpretedType;  // of the new ROI; empty: the writer's default
 };
@@ -47,7 +54,14 @@ struct StructureAlgebraResult {
     PlaneSectionStats sections;
     /// The solids the expression read: each ROI's reconstructed surface's volume (mm³).
     std::map<std::string, double> surfaceVolumesMm3;
-    double surfacesSeconds = 0, sectionsSeconds = 0;
+    /// The exact surface (patient mm, outward), when surfaceVoxelMm > 0
+    /// and the field's Lipschitz bound in space is at most 50; else none.
+    /// Its vertices lie on the exact boundary, unless moving them there
+    /// made the mesh invalid (surfaceStats.projected false: then within a
+    /// voxel of it, as OpenVDB's mesher put them).
+    std::optional<TriangleSoup> surface;
+    SolidSurfaceStats surfaceStats;
+    double surfacesSeconds = 0, sectionsSeconds = 0, surfaceSeconds = 0;
 };
 
 /// Evaluates a parsed expression (parseRoiExpression) on `set`. Throws

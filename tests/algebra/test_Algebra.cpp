@@ -152,7 +152,9 @@ TEST(PlaneSections, VerticesLieOnTheExactBoundary) {
             area += signedArea(p);
             for (const Point2& v : p) {
                 const double r = std::hypot(v.x - 1, v.y - 2);
-                EXPECT_LT(std::min(std::abs(r - (7 - std::abs(s.zMm))), std::abs(r - 3)), 1e-6);
+                // On the circle, or 2 % of a step off a lattice sample.
+                EXPECT_LT(std::min(std::abs(r - (7 - std::abs(s.zMm))), std::abs(r - 3)),
+                          0.02 * 0.25);
             }
         }
         const double outer = 7 - std::abs(s.zMm);
@@ -177,15 +179,21 @@ TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
             const RoiSurface solid = reconstructRoi(runtime(), set.rois[0]);
             const Box3 box = boundsOf(solid.surface);
             EXPECT_NEAR(box.lo.x, -10, 1e-5);
-            std::size_t vertices = 0;
+            std::size_t vertices = 0, onBoundary = 0;
             for (const Slice& s : r.roi.slices)
                 for (const Polygon& p : s.contours)
                     for (const Point2& v : p) {
-                        ASSERT_NEAR(boxDistance({v.x, v.y, s.zMm}, box.lo, box.hi), margin, 2e-5)
+                        // Exact, or kept 2 % of a step off a lattice sample.
+                        const double off =
+                            std::abs(boxDistance({v.x, v.y, s.zMm}, box.lo, box.hi) - margin);
+                        ASSERT_LT(off, 0.02 * options.sections.stepMm)
                             << v.x << " " << v.y << " " << s.zMm;
+                        onBoundary += off < 1e-5;
                         ++vertices;
                     }
             EXPECT_GT(vertices, 100u);
+            // The rest lie where the boundary passes near a sample (4 % of a step in each).
+            EXPECT_GT(double(onBoundary), 0.9 * double(vertices));
             // Planes continue at 2.5 mm as far as the growth reaches.
             const double zTop = r.roi.slices.back().zMm;
             EXPECT_LE(zTop, box.hi.z + std::max(margin, 0.0));
