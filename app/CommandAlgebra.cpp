@@ -330,7 +330,8 @@ const char* kAlgebraFooter =
     "within 1e-6 mm, and between vertices (--step apart) contours are chords. Planes: the "
     "ROIs' own, continued at their spacing as far as a growth reaches, or --like's images. "
     "Exit codes: 0 done, 1 usage (also an expression that does not parse), 2 bad input, "
-    "3 runtime failure, 4 --mesh not a valid closed solid.";
+    "3 runtime failure, 4 the new ROI (read back and reconstructed, or its --mesh) is not a valid "
+    "closed solid.";
 
 }  // namespace
 

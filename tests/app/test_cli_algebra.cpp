@@ -3,6 +3,8 @@
 // that dciodvfy accepts, exit codes and messages for bad expressions and
 // options, and reports that agree with the geometry (a sphere's margin, a
 // ring's volume, an OVH's ends).
+#include "tests/SyntheticDicomSeries.hpp"  // DCMTK first
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -126,4 +128,22 @@ TEST(CliAlgebra, HistogramWritesTableAndPlot) {
     std::string header;
     std::getline(csv, header);
     EXPECT_EQ(header, "distance_mm,overlap_volume_fraction,overlap_volume_cc,surface_fraction");
+}
+
+TEST(CliAlgebra, LikeACtPutsTheNewRoiOnItsImagePlanes) {
+    TempDir dir("cli-margin-like");
+    const std::string in = sphereSlices(dir), ct = dir / "ct";
+    fs::create_directories(ct);
+    // 1.25 mm apart from z = -40: the grown sphere (|z| ≤ 25) spans 40 of them.
+    dfrecon::testing::writeSyntheticSeries(ct, 65, -40, 1.25);
+    const std::string out = dir / "like.dcm";
+    const CliResult r = runCli(dir.str(), "-q margin " + in + " --roi sphere --mm 5 --like " + ct +
+                                              " --only-new --json -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(r.out);
+    EXPECT_EQ(report["planesWithContours"].get<int>(), 39);  // |z| < 25 exactly: -23.75 .. 23.75
+    const CliResult slices = runCli(dir.str(), "info " + out + " --slices");
+    ASSERT_EQ(slices.exitCode, 0) << slices.err;
+    EXPECT_NE(slices.out.find("z    -23.75"), std::string::npos) << slices.out;
+    EXPECT_NE(slices.out.find("spacing uniform 1.25 mm"), std::string::npos) << slices.out;
 }
