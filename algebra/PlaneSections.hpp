@@ -1,9 +1,9 @@
 #pragma once
 // The sections, on given planes, of the solid where a field is negative:
 // closed polygons whose every vertex lies on the field's zero set (to
-// 1e-6 mm; where the boundary passes within 2 % of a step of a lattice
+// 1e-6 mm; where the boundary passes within 5 % of a step of a lattice
 // sample, the vertex stays that far off the sample, so that the parts of a
-// section that pinch there stay a few µm apart, as reconstruction needs), found without sampling
+// section that pinch there stay apart by more than reconstruction needs), found without sampling
 // the whole plane finely.
 //
 // Each plane is sampled on a coarse lattice first (cells coarseFactor steps

@@ -183,17 +183,17 @@ TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
             for (const Slice& s : r.roi.slices)
                 for (const Polygon& p : s.contours)
                     for (const Point2& v : p) {
-                        // Exact, or kept 2 % of a step off a lattice sample.
+                        // Exact, or kept 5 % of a step off a lattice sample.
                         const double off =
                             std::abs(boxDistance({v.x, v.y, s.zMm}, box.lo, box.hi) - margin);
-                        ASSERT_LT(off, 0.02 * options.sections.stepMm)
+                        ASSERT_LT(off, 0.05 * options.sections.stepMm)
                             << v.x << " " << v.y << " " << s.zMm;
                         onBoundary += off < 1e-5;
                         ++vertices;
                     }
             EXPECT_GT(vertices, 100u);
-            // The rest lie where the boundary passes near a sample (4 % of a step in each).
-            EXPECT_GT(double(onBoundary), 0.9 * double(vertices));
+            // The rest lie where the boundary passes near a sample (10 % of each edge).
+            EXPECT_GT(double(onBoundary), 0.8 * double(vertices));
             // Planes continue at 2.5 mm as far as the growth reaches.
             const double zTop = r.roi.slices.back().zMm;
             EXPECT_LE(zTop, box.hi.z + std::max(margin, 0.0));
