@@ -232,9 +232,18 @@ void dropNearRepeats(Polygon& polygon, double gap) {
 
 }  // namespace
 
-std::vector<Slice> planeSections(const PlaneField& field, const std::vector<double>& planeZMm,
+std::vector<Slice> planeSections(const PlaneField& exactField, const std::vector<double>& planeZMm,
                                  const PlaneRect& region, const PlaneSectionOptions& options,
                                  PlaneSectionStats* statsOut) {
+    // Inside is below -tolerance: rounding on a face lying in a plane must
+    // not scatter specks of section over it.
+    const double tolerance = options.zeroToleranceMm;
+    const PlaneField field = [&](const std::vector<Vec3>& points) {
+        std::vector<double> values = exactField(points);
+        for (double& v : values)
+            if (v > -tolerance && v < tolerance) v = tolerance;
+        return values;
+    };
     if (!(options.stepMm > 0) || options.coarseFactor < 1)
         throw std::invalid_argument(
             "planeSections: the step must be > 0 mm and the coarse factor ≥ 1");

@@ -33,6 +33,10 @@ struct PlaneSectionOptions {
     /// Vertices move until the field is within this of zero, or the
     /// bracket is this narrow (mm).
     double toleranceMm = 1e-6;
+    /// Values within this of zero count as outside (mm): a plane through a
+    /// flat face of the solid (a grown lid) sees the field's rounding
+    /// there, not a section. At least the field's own rounding.
+    double zeroToleranceMm = 1e-9;
     /// Samples held at once (bounds memory: planes are done in groups).
     std::size_t maxSamplesPerBatch = std::size_t(1) << 22;
 };

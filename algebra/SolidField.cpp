@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
+#include "algebra/OctantGauge.hpp"
 #include "field/ClosestPrimitives.hpp"
 #include "field/SurfaceScene.hpp"
 
@@ -18,6 +21,7 @@ struct ExpressionField::Shape {
     std::unique_ptr<SurfaceScene> scene;
     std::unique_ptr<ClosestPrimitiveKernel> kernel;        // DistanceBackend::Device
     std::map<std::size_t, std::vector<double>> distances;  // per object, of the last values()
+    std::map<std::size_t, std::vector<Vec3>> closest;      // their closest points (octant leaves)
 
     Vec3 scaled(Vec3 p) const { return {p.x / axes.x, p.y / axes.y, p.z / axes.z}; }
 };
@@ -27,6 +31,11 @@ struct ExpressionField::Shape {
 struct ExpressionField::Leaf {
     std::size_t shape = 0, object = 0;
     double level = 0, norm = 1;
+    double spaceLipschitz = 1;  // of the leaf's value, along any direction
+    /// A margin that differs between the senses of an axis: the gauge of
+    /// this body replaces the distance (algebra/OctantGauge).
+    std::optional<OctantBody> octants;
+    bool shrink = false;
 };
 
 namespace {
@@ -90,17 +99,20 @@ ExpressionField::ExpressionField(const RoiExpression& lowered,
             throw std::invalid_argument("ExpressionField: no surface for ROI '" + roi + "'");
         Leaf leaf;
         Vec3 axes{1, 1, 1};
-        if (n.kind == Kind::Margin && !n.margin.isUniform()) {
-            if (!n.margin.isSymmetric())
-                throw std::invalid_argument(
-                    "margin " + n.margin.text() + " of '" + roi +
-                    "' differs between right and left, anterior and posterior, or superior "
-                    "and inferior; such margins (eight ellipsoid octants) are not supported yet: "
-                    "give each axis one value");
-            const auto axis = [](double mm) { return std::max(std::abs(mm), kFlatMarginAxisMm); };
+        const auto axis = [](double mm) { return std::max(std::abs(mm), kFlatMarginAxisMm); };
+        if (n.kind == Kind::Margin && !n.margin.isSymmetric()) {
+            // Eight octants: distances in the unscaled scene, then gauges.
+            OctantBody body;
+            for (std::size_t k = 0; k < 6; ++k) body.mm[k] = axis(n.margin.mm[k]);
+            leaf.shrink = n.margin.shrinks();
+            leaf.norm = 1 / body.largestInPlane(planes.u, planes.v);
+            leaf.spaceLipschitz = leaf.norm / body.smallest();
+            leaf.octants = body;
+        } else if (n.kind == Kind::Margin && !n.margin.isUniform()) {
             axes = {axis(n.margin.mm[0]), axis(n.margin.mm[2]), axis(n.margin.mm[4])};
             leaf.level = n.margin.grows() ? 1 : -1;
             leaf.norm = 1 / inPlaneStretch(axes, planes);
+            leaf.spaceLipschitz = leaf.norm / std::min({axes.x, axes.y, axes.z});
         } else if (n.kind == Kind::Margin) {
             leaf.level = n.margin.mm[0];
         }
@@ -143,7 +155,10 @@ ExpressionField::~ExpressionField() = default;
 std::vector<double> ExpressionField::values(const std::vector<Vec3>& patientPoints) {
     const std::size_t count = patientPoints.size();
     // The distances every leaf needs, once per shape and ROI.
-    for (auto& shape : shapes_) shape->distances.clear();
+    for (auto& shape : shapes_) {
+        shape->distances.clear();
+        shape->closest.clear();
+    }
     for (const Leaf& leaf : leaves_) {
         Shape& shape = *shapes_[leaf.shape];
         if (shape.distances.count(leaf.object)) continue;
@@ -157,6 +172,13 @@ std::vector<double> ExpressionField::values(const std::vector<Vec3>& patientPoin
         std::vector<double>& d = shape.distances[leaf.object];
         d.resize(count);
         for (std::size_t k = 0; k < count; ++k) d[k] = found[k].distanceMm;
+        if (std::any_of(leaves_.begin(), leaves_.end(), [&](const Leaf& l) {
+                return l.octants && l.shape == leaf.shape && l.object == leaf.object;
+            })) {
+            std::vector<Vec3>& c = shape.closest[leaf.object];
+            c.resize(count);
+            for (std::size_t k = 0; k < count; ++k) c[k] = found[k].point;
+        }
         queries_ += count;
     }
     // The tree, bottom-up over all points at once (children precede
@@ -169,7 +191,10 @@ std::vector<double> ExpressionField::values(const std::vector<Vec3>& patientPoin
             const Leaf& leaf = leaves_[leafOfNode_[i]];
             const std::vector<double>& d = shapes_[leaf.shape]->distances.at(leaf.object);
             v.resize(count);
-            for (std::size_t k = 0; k < count; ++k) v[k] = (d[k] - leaf.level) * leaf.norm;
+            if (leaf.octants)
+                octantValues(leaf, d, patientPoints, v);
+            else
+                for (std::size_t k = 0; k < count; ++k) v[k] = (d[k] - leaf.level) * leaf.norm;
             continue;
         }
         if (n.kind == Kind::Roi) continue;  // under a margin: the margin is the leaf
@@ -198,13 +223,77 @@ std::vector<double> ExpressionField::values(const std::vector<Vec3>& patientPoin
     return std::move(at[expression_.root]);
 }
 
+double ExpressionField::toleranceMm() const {
+    double tolerance = 1e-9;
+    for (const Leaf& leaf : leaves_) {
+        const Shape& shape = *shapes_[leaf.shape];
+        Box3 box;
+        for (std::size_t o = 0; o < shape.scene->objectCount(); ++o)
+            for (const Vec3& p : shape.scene->object(o).points) box.add(p);
+        const double extent = length(box.hi - box.lo);
+        const double distance = shape.kernel ? shape.kernel->toleranceMm() : 1e-12 * extent;
+        tolerance = std::max(tolerance, 4 * distance * leaf.norm);
+    }
+    return tolerance;
+}
+
+bool ExpressionField::hasOctantMargins() const {
+    return std::any_of(leaves_.begin(), leaves_.end(),
+                       [](const Leaf& l) { return bool(l.octants); });
+}
+
 double ExpressionField::lipschitzInSpace() const {
     double most = 0;
-    for (const Leaf& leaf : leaves_) {
-        const Vec3 a = shapes_[leaf.shape]->axes;
-        most = std::max(most, leaf.norm / std::min({a.x, a.y, a.z}));
-    }
+    for (const Leaf& leaf : leaves_) most = std::max(most, leaf.spaceLipschitz);
     return most;
+}
+
+void ExpressionField::octantValues(const Leaf& leaf, const std::vector<double>& distance,
+                                   const std::vector<Vec3>& points,
+                                   std::vector<double>& out) const {
+    // Beyond twice the largest semi-axis from the surface the gauge is at
+    // least 2: a bound (its distance over the largest axis) serves there,
+    // as it errs towards zero, which is all the sampling's cell test needs.
+    constexpr double kCap = 2;
+    const OctantBody& body = *leaf.octants;
+    const double largest = body.largest();
+    const TriangleBvh& bvh = shapes_[leaf.shape]->scene->bvh(leaf.object);
+    const std::vector<Vec3>& closest = shapes_[leaf.shape]->closest.at(leaf.object);
+    const auto valueAt = [&](std::size_t k) {
+        const double d = distance[k];
+        double f;
+        if (!leaf.shrink) {
+            // Inside the ROI: in the growth, at least 1 + depth / largest deep.
+            if (d < 0)
+                f = -(1 + -d / largest);
+            else if (d >= kCap * largest)
+                f = d / largest - 1;
+            else  // the gauge to the nearest point bounds the search
+                f = smallestGauge(
+                        bvh, points[k], body, false,
+                        std::min(kCap, body.gauge(points[k] - closest[k]) * (1 + 1e-12))) -
+                    1;
+        } else {
+            if (d >= 0)
+                f = 1 + d / largest;
+            else if (-d >= kCap * largest)
+                f = 1 - -d / largest;
+            else
+                f = 1 -
+                    smallestGauge(bvh, points[k], body, true,
+                                  std::min(kCap, body.gauge(closest[k] - points[k]) * (1 + 1e-12)));
+        }
+        return f * leaf.norm;
+    };
+    // The gauges are the host's work: every core takes a share of points.
+    const std::size_t threads = std::max<std::size_t>(
+        1, std::min<std::size_t>(std::thread::hardware_concurrency(), points.size() / 256));
+    std::vector<std::thread> workers;
+    for (std::size_t t = 0; t < threads; ++t)
+        workers.emplace_back([&, t] {
+            for (std::size_t k = t; k < points.size(); k += threads) out[k] = valueAt(k);
+        });
+    for (std::thread& w : workers) w.join();
 }
 
 Box3 ExpressionField::support() const {

@@ -39,10 +39,11 @@ class ExpressionField {
     /// `surfaces`: each ROI's closed, outward surface in patient mm, by
     /// name. `planes`: the frame of the planes the field will be asked on
     /// (its Lipschitz bound is taken within them). `runtime` may be null
-    /// with DistanceBackend::Reference. Throws std::invalid_argument for an
-    /// ROI without a surface, a surface that is not closed, or a margin that
-    /// differs between the two senses of an axis (R ≠ L, A ≠ P or S ≠ I:
-    /// eight ellipsoid octants, not yet supported). O(T log T) in all the
+    /// with DistanceBackend::Reference. A margin that differs between the
+    /// two senses of an axis (R ≠ L, A ≠ P or S ≠ I) is the body of eight
+    /// ellipsoid octants (algebra/OctantGauge), its gauge found on the host
+    /// near the surface. Throws std::invalid_argument for an ROI without a
+    /// surface or a surface that is not closed. O(T log T) in all the
     /// triangles, once per margin shape.
     ExpressionField(const RoiExpression& lowered,
                     const std::map<std::string, TriangleSoup>& surfaces, const PlaneFrame& planes,
@@ -67,12 +68,25 @@ class ExpressionField {
     /// large). O(leaves).
     double lipschitzInSpace() const;
 
+    /// How far the values may be off by rounding (mm): the distances'
+    /// tolerance (ClosestPrimitiveKernel::toleranceMm, 1e-12 of the scene's
+    /// extent in double precision, 1e-6 in single) over the smallest norm,
+    /// and never below 1e-9. O(shapes).
+    double toleranceMm() const;
+
+    /// Whether a leaf is an eight-octant margin (its values come from the
+    /// host, about a hundred times slower than distances). O(leaves).
+    bool hasOctantMargins() const;
+
     /// Points evaluated so far (each point once per distance query).
     std::size_t distanceQueries() const { return queries_; }
 
   private:
     struct Leaf;
     struct Shape;
+    /// An eight-octant margin's values at `points` from their distances.
+    void octantValues(const Leaf& leaf, const std::vector<double>& distance,
+                      const std::vector<Vec3>& points, std::vector<double>& out) const;
     const RoiExpression expression_;
     std::vector<std::unique_ptr<Shape>> shapes_;
     std::vector<Leaf> leaves_;  // by node index (leaves only used)

@@ -146,16 +146,21 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
         return field.values(patient);
     };
     const Stopwatch sectionWatch;
-    out.roi.slices = planeSections(inPlanes, out.planesMm, {lo.x, hi.x, lo.y, hi.y},
-                                   options.sections, &out.sections);
+    PlaneSectionOptions sections = options.sections;
+    sections.zeroToleranceMm = std::max(sections.zeroToleranceMm, field.toleranceMm());
+    out.roi.slices =
+        planeSections(inPlanes, out.planesMm, {lo.x, hi.x, lo.y, hi.y}, sections, &out.sections);
     out.sectionsSeconds = sectionWatch.total();
     if (out.roi.slices.empty())
         throw std::invalid_argument("'" + expression.name + "' = " + expression.text() +
                                     " has no section on any plane: it is empty");
     // The exact surface in space, where the field's slope allows sampling
-    // it (a flat ellipsoid axis makes it steep along that axis).
+    // it (a flat ellipsoid axis makes it steep along that axis) and its
+    // values are cheap (an eight-octant margin's gauge is found on the host:
+    // a minute for a 20 mm sphere's surface).
     constexpr double kSteepestForSurface = 50;
-    if (options.surfaceVoxelMm > 0 && field.lipschitzInSpace() <= kSteepestForSurface) {
+    if (options.surfaceVoxelMm > 0 && field.lipschitzInSpace() <= kSteepestForSurface &&
+        !field.hasOctantMargins()) {
         const Stopwatch surfaceWatch;
         SolidSurfaceOptions surfaceOptions;
         surfaceOptions.voxelMm = options.surfaceVoxelMm;

@@ -324,7 +324,8 @@ void addOutputOptions(CLI::App* cmd, AlgebraArgs& args) {
 const char* kAlgebraFooter =
     "The solid of each ROI is its reconstructed surface (reconstruct's defaults: it passes "
     "through every contour). A margin of M mm holds every point within M mm of that solid "
-    "(the Minkowski sum with a ball, or with an ellipsoid for per-direction values); a negative "
+    "(the Minkowski sum with a ball, or with eight ellipsoid octants for per-direction values); a "
+    "negative "
     "margin every point at least |M| mm inside it. Distances are exact (the closest triangle, "
     "signed by pseudo-normals); on each plane every contour vertex lies on the exact boundary "
     "within 1e-6 mm (or 5 % of --step off a lattice sample it passes near), and between "
@@ -349,7 +350,8 @@ void addMarginCommand(CLI::App& root, const GlobalOptions& global) {
     CLI::Option* per = cmd->add_option(
         "--mm-per-direction", args->perDirection,
         "Margins R,L,A,P,S,I in mm (patient right, left, anterior, posterior, superior, "
-        "inferior), all ≥ 0 or all ≤ 0; equal in each pair (R = L, A = P, S = I): an ellipsoid");
+        "inferior), all ≥ 0 or all ≤ 0: the body of eight ellipsoid octants with those "
+        "semi-axes (an ellipsoid when R = L, A = P and S = I)");
     mm->excludes(per);
     cmd->callback([args, &global, mm, per] {
         if (mm->count() == 0 && per->count() == 0)

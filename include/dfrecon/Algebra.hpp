@@ -55,8 +55,9 @@ struct StructureAlgebraResult {
     PlaneSectionStats sections;
     /// The solids the expression read: each ROI's reconstructed surface's volume (mm³).
     std::map<std::string, double> surfaceVolumesMm3;
-    /// The exact surface (patient mm, outward), when surfaceVoxelMm > 0
-    /// and the field's Lipschitz bound in space is at most 50; else none.
+    /// The exact surface (patient mm, outward), when surfaceVoxelMm > 0,
+    /// the field's Lipschitz bound in space is at most 50 and no margin has
+    /// eight octants; else none.
     /// Its vertices lie on the exact boundary, unless moving them there
     /// made the mesh invalid (surfaceStats.projected false: then within a
     /// voxel of it, as OpenVDB's mesher put them).

@@ -218,6 +218,19 @@ TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
     }
 }
 
+TEST(StructureAlgebra, APlaneOnAFlatFaceOfTheResultHoldsNoSpecks) {
+    // The box's lids lie at -1.25 and 21.25 mm; grown by 3.75 mm they lie
+    // on the planes -5 and 25, where the field is zero up to rounding over
+    // the whole face.
+    ContourSet set;
+    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    const StructureAlgebraResult r =
+        marginRoi(runtime(), set, "Box", DirectionalMargin::uniform(3.75), "M");
+    for (const Slice& s : r.roi.slices) EXPECT_EQ(s.contours.size(), 1u) << s.zMm;
+    EXPECT_GT(r.roi.slices.front().zMm, -5);
+    EXPECT_LT(r.roi.slices.back().zMm, 25);
+}
+
 TEST(StructureAlgebra, BooleansOfBoxesHaveTheExactAreas) {
     ContourSet set;
     set.rois.push_back(boxRoi("A", 0, 40, 0, 40, 0, 20, 2));
@@ -261,8 +274,63 @@ TEST(StructureAlgebra, EllipsoidalMarginsScaleEachAxis) {
         EXPECT_NEAR(xMax, 14, 0.01);
         EXPECT_NEAR(yMax, 14, 0.01);
     }
-    m.mm = {4, 5, 8, 8, 0, 0};
-    EXPECT_THROW(marginRoi(runtime(), set, "Box", m, "E"), std::invalid_argument);
+}
+
+TEST(StructureAlgebra, MarginsPerDirectionAreTheExactOctantSum) {
+    // A box grown by the eight-octant body: p is in it when
+    // sqrt(Σ (excess_i / a_i(side))²) ≤ 1, excess_i being how far p lies
+    // beyond the box along axis i (a box's nearest point is per axis).
+    ContourSet set;
+    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    const Box3 box = boundsOf(reconstructRoi(runtime(), set.rois[0]).surface);
+    const auto gaugeFromBox = [&](Vec3 p, const std::array<double, 6>& a) {
+        const double ex = p.x < box.lo.x   ? (box.lo.x - p.x) / a[0]
+                          : p.x > box.hi.x ? (p.x - box.hi.x) / a[1]
+                                           : 0;
+        const double ey = p.y < box.lo.y   ? (box.lo.y - p.y) / a[2]
+                          : p.y > box.hi.y ? (p.y - box.hi.y) / a[3]
+                                           : 0;
+        const double ez = p.z > box.hi.z   ? (p.z - box.hi.z) / a[4]
+                          : p.z < box.lo.z ? (box.lo.z - p.z) / a[5]
+                                           : 0;
+        return std::sqrt(ex * ex + ey * ey + ez * ez);
+    };
+    DirectionalMargin m;
+    m.mm = {5, 3, 6, 2, 4, 1};  // R, L, A, P, S, I
+    for (DistanceBackend backend : {DistanceBackend::Device, DistanceBackend::Reference}) {
+        StructureAlgebraOptions options;
+        options.backend = backend;
+        const StructureAlgebraResult r = marginRoi(runtime(), set, "Box", m, "O", options);
+        std::size_t vertices = 0;
+        for (const Slice& s : r.roi.slices)
+            for (const Polygon& p : s.contours)
+                for (const Point2& v : p) {
+                    // 1 on the boundary; 5 % of a step (over the smallest axis) near a sample.
+                    ASSERT_NEAR(gaugeFromBox({v.x, v.y, s.zMm}, m.mm), 1, 0.05 * 0.25 / 1)
+                        << v.x << " " << v.y << " " << s.zMm;
+                    ++vertices;
+                }
+        EXPECT_GT(vertices, 100u);
+        // Planes reach S 4 mm above the box and I 1 mm below it.
+        EXPECT_LE(r.roi.slices.back().zMm, box.hi.z + 4);
+        EXPECT_GE(r.roi.slices.front().zMm, box.lo.z - 1);
+    }
+    // Shrunk: the box's faces move in by their own values, corners stay sharp.
+    m.mm = {-2, -1, -3, -1, -2, -2};
+    const StructureAlgebraResult r = marginRoi(runtime(), set, "Box", m, "S");
+    for (const Slice& s : r.roi.slices) {
+        if (s.zMm < box.lo.z + 2.5 || s.zMm > box.hi.z - 2.5) continue;
+        ASSERT_EQ(s.contours.size(), 1u);
+        double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
+        for (const Point2& v : s.contours[0]) {
+            xMin = std::min(xMin, v.x), xMax = std::max(xMax, v.x);
+            yMin = std::min(yMin, v.y), yMax = std::max(yMax, v.y);
+        }
+        EXPECT_NEAR(xMin, -8, 0.02);
+        EXPECT_NEAR(xMax, 9, 0.02);
+        EXPECT_NEAR(yMin, -3, 0.02);
+        EXPECT_NEAR(yMax, 5, 0.02);
+    }
 }
 
 TEST(DistanceHistograms, ConcentricSpheresFollowTheAnalyticOvh) {

@@ -99,11 +99,21 @@ TEST(CliAlgebra, CombineEvaluatesRingsAndRefusesBadExpressions) {
         EXPECT_NE(e.err.find(b.message), std::string::npos) << e.err;
         EXPECT_FALSE(fs::exists(dir / std::string("x.slices")));
     }
-    const CliResult octants =
-        runCli(dir.str(), "-q margin " + in + " --roi sphere --mm-per-direction 5,3,5,5,5,5 -o " +
+    const CliResult mixed =
+        runCli(dir.str(), "-q margin " + in + " --roi sphere --mm-per-direction 5,-3,5,5,5,5 -o " +
                               (dir / std::string("x.slices")));
-    EXPECT_EQ(octants.exitCode, 1);
-    EXPECT_NE(octants.err.find("not supported yet"), std::string::npos) << octants.err;
+    EXPECT_EQ(mixed.exitCode, 1);
+    EXPECT_NE(mixed.err.find("both grows and shrinks"), std::string::npos) << mixed.err;
+    // Eight octants: 5 mm everywhere but 2 mm posterior (+y).
+    const CliResult octants =
+        runCli(dir.str(), "-q margin " + in +
+                              " --roi sphere --mm-per-direction 5,5,5,2,5,5 --json --only-new -o " +
+                              (dir / std::string("o.slices")));
+    ASSERT_EQ(octants.exitCode, 0) << octants.err;
+    const CliResult info = runCli(dir.str(), "info --slices " + (dir / std::string("o.slices")));
+    EXPECT_NE(info.out.find("y -24.97"), std::string::npos) << info.out;  // 5 mm anterior,
+    EXPECT_NE(info.out.find(".. 21.97"), std::string::npos) << info.out;  // 2 mm posterior
+    EXPECT_NE(info.out.find("24 slices, 24 contours"), std::string::npos) << info.out;
 }
 
 TEST(CliAlgebra, HistogramWritesTableAndPlot) {
