@@ -13,6 +13,11 @@ namespace {
 // Vertices nearer than this are one (0.1 µm: far below any contour's
 // precision, far above rounding).
 constexpr double kRepeatMm = 1e-4;
+// Every vertex is rounded to this grid (plane mm). Where the section on two
+// planes runs along one straight edge (a staircase ROI's pixel edges), its
+// vertices on both planes agree to rounding, not bit for bit, and
+// reconstruction folded on edges 1e-9 mm apart; on a grid they are equal.
+constexpr double kSnapMm = 1e-4;
 // A crossing stays this fraction of a step off the lattice samples, so
 // parts of a section that pinch at a sample stay at least about 0.035 of a
 // step apart (9 µm at 0.25 mm). Reconstruction opens exact touches, but
@@ -282,8 +287,11 @@ std::vector<Slice> planeSections(const PlaneField& exactField, const std::vector
             Slice slice;
             slice.zMm = planes[p].z;
             for (Polygon& polygon : polygons[p]) {
+                for (Point2& v : polygon)
+                    v = {std::round(v.x / kSnapMm) * kSnapMm, std::round(v.y / kSnapMm) * kSnapMm};
                 dropNearRepeats(polygon, kRepeatMm);
-                if (polygon.size() >= 3 && std::abs(signedArea(polygon)) >= 1e-4)
+                if (polygon.size() >= 3 &&
+                    std::abs(signedArea(polygon)) >= options.minContourAreaMm2)
                     slice.contours.push_back(std::move(polygon));
             }
             if (!slice.contours.empty()) out.push_back(std::move(slice));

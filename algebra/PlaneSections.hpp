@@ -1,10 +1,11 @@
 #pragma once
 // The sections, on given planes, of the solid where a field is negative:
 // closed polygons whose every vertex lies on the field's zero set (to
-// 1e-6 mm; where the boundary passes within 5 % of a step of a lattice
-// sample, the vertex stays that far off the sample, so that the parts of a
-// section that pinch there stay apart by more than reconstruction needs), found without sampling
-// the whole plane finely.
+// 1e-4 mm: vertices are rounded to a 0.1 µm grid, so that sections of one
+// straight edge on two planes agree bit for bit; where the boundary passes within 5 % of a step of
+// a lattice sample, the vertex stays that far off the sample, so that the parts of a section that
+// pinch there stay apart by more than reconstruction needs), found without sampling the whole plane
+// finely.
 //
 // Each plane is sampled on a coarse lattice first (cells coarseFactor steps
 // wide); because the field changes by at most the distance moved along a
@@ -31,8 +32,12 @@ struct PlaneSectionOptions {
     int coarseFactor = 8;  // coarse cells are this many steps wide
     int refineIterations = 12;
     /// Vertices move until the field is within this of zero, or the
-    /// bracket is this narrow (mm).
-    double toleranceMm = 1e-6;
+    /// bracket is this narrow (mm): far below the 0.1 µm grid they are
+    /// rounded to, so that equal boundaries give equal vertices.
+    double toleranceMm = 1e-10;
+    /// Contours (islands and holes) of less area are dropped (mm²; the
+    /// default 1e-4 drops only marching squares' slivers).
+    double minContourAreaMm2 = 1e-4;
     /// Values within this of zero count as outside (mm): a plane through a
     /// flat face of the solid (a grown lid) sees the field's rounding
     /// there, not a section. At least the field's own rounding.
@@ -59,8 +64,8 @@ struct PlaneSectionStats {
 /// (the field must be positive on the region's border, or the section is
 /// cut there). Returns one Slice per plane with a section, sorted by z,
 /// outer contours counter-clockwise and holes clockwise, no two crossing;
-/// vertices within 1e-4 mm of the previous one and polygons under 1e-4 mm²
-/// are dropped. Throws std::invalid_argument for a
+/// vertices within 1e-4 mm of the previous one and polygons under
+/// options.minContourAreaMm2 are dropped. Throws std::invalid_argument for a
 /// step that is not positive or a region of more than 2^31 samples per
 /// plane. O(coarse samples + boundary length / step × coarseFactor +
 /// vertices × refineIterations) field evaluations, in a few batches.

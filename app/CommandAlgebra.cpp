@@ -31,7 +31,7 @@ namespace {
 
 struct AlgebraArgs {
     std::string input, output, mesh, like, colour, roiType, name;
-    double stepMm = 0.25, meshVoxelMm = 0.5;
+    double stepMm = 0.25, meshVoxelMm = 0.5, minAreaMm2 = 1e-4;
     bool json = false, onlyNew = false, replace = false, reference = false;
     // margin
     std::string roi, perDirection;
@@ -86,6 +86,7 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
 
     StructureAlgebraOptions options;
     options.sections.stepMm = args.stepMm;
+    options.sections.minContourAreaMm2 = args.minAreaMm2;
     if (!args.mesh.empty()) options.surfaceVoxelMm = args.meshVoxelMm;
     options.backend = args.reference ? DistanceBackend::Reference : DistanceBackend::Device;
     if (!args.colour.empty()) {
@@ -307,6 +308,10 @@ void addOutputOptions(CLI::App* cmd, AlgebraArgs& args) {
                     "Lattice step (mm) along which contour vertices are found on the exact "
                     "boundary; between vertices contours are chords")
         ->capture_default_str();
+    cmd->add_option("--min-area", args.minAreaMm2,
+                    "Drop islands and holes of the new ROI smaller than this (mm²) on each plane")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e6));
     cmd->add_option("--colour", args.colour, "Display colour of the new ROI, R,G,B in 0..255");
     std::vector<std::string> roiTypes(kRoiInterpretedTypes.begin(), kRoiInterpretedTypes.end());
     cmd->add_option("--roi-type", args.roiType,
@@ -328,7 +333,7 @@ const char* kAlgebraFooter =
     "negative "
     "margin every point at least |M| mm inside it. Distances are exact (the closest triangle, "
     "signed by pseudo-normals); on each plane every contour vertex lies on the exact boundary "
-    "within 1e-6 mm (or 5 % of --step off a lattice sample it passes near), and between "
+    "within 1e-4 mm (or 5 % of --step off a lattice sample it passes near), and between "
     "vertices (--step apart) contours are chords. Planes: the "
     "ROIs' own, continued at their spacing as far as a growth reaches, or --like's images. "
     "Exit codes: 0 done, 1 usage (also an expression that does not parse), 2 bad input, "

@@ -12,7 +12,7 @@
 // ball; with per-axis values, an ellipsoid), a negative margin the points
 // at least |M| inside it; the field of algebra/SolidField combines the
 // exact distances, and algebra/PlaneSections draws its zero set on each
-// plane: every contour vertex lies on the exact boundary (within 1e-6 mm,
+// plane: every contour vertex lies on the exact boundary (within 1e-4 mm,
 // or 5 % of the lattice step where the boundary passes near a sample).
 #include <map>
 #include <optional>

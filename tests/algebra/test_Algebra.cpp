@@ -188,7 +188,7 @@ TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
                             std::abs(boxDistance({v.x, v.y, s.zMm}, box.lo, box.hi) - margin);
                         ASSERT_LT(off, 0.05 * options.sections.stepMm)
                             << v.x << " " << v.y << " " << s.zMm;
-                        onBoundary += off < 1e-5;
+                        onBoundary += off < 1e-4;  // the 0.1 µm grid
                         ++vertices;
                     }
             EXPECT_GT(vertices, 100u);
