@@ -1,6 +1,7 @@
 #include "field/ClosestPrimitives.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -334,6 +335,46 @@ constexpr bool laidOutAsTheKernels() {
 static_assert(laidOutAsTheKernels<cl_double>() && sizeof(QueryParams<cl_double>) == 56);
 static_assert(laidOutAsTheKernels<cl_float>() && sizeof(QueryParams<cl_float>) == 44);
 
+// What both kernels write per sample, on the device, and its download
+// into answers (sample k of the launch is answers[order(k)]).
+template <class Real, class Real4>
+struct DeviceAnswers {
+    ocl::DeviceBuffer<cl_uint> nearest;
+    ocl::DeviceBuffer<Real> distance;
+    ocl::DeviceBuffer<cl_uchar> feature;
+    ocl::DeviceBuffer<Real4> closest;
+
+    DeviceAnswers(ocl::Runtime& runtime, std::size_t count)
+        : nearest(runtime, count, CL_MEM_WRITE_ONLY),
+          distance(runtime, count, CL_MEM_WRITE_ONLY),
+          feature(runtime, count, CL_MEM_WRITE_ONLY),
+          closest(runtime, count, CL_MEM_WRITE_ONLY) {}
+
+    /// The kernels' argument order: distance, nearest, feature, closest.
+    std::array<const cl::Buffer*, 4> arguments() const {
+        return {&distance.get(), &nearest.get(), &feature.get(), &closest.get()};
+    }
+
+    template <class Order>
+    void collect(ocl::Runtime& runtime, const std::vector<std::size_t>& objectOfTriangle,
+                 const std::vector<std::size_t>& firstTriangle, Order order,
+                 std::vector<ClosestPrimitive>& answers) const {
+        const std::vector<cl_uint> t = nearest.download(runtime);
+        const std::vector<Real> d = distance.download(runtime);
+        const std::vector<cl_uchar> f = feature.download(runtime);
+        const std::vector<Real4> c = closest.download(runtime);
+        for (std::size_t k = 0; k < t.size(); ++k) {
+            if (t[k] == CL_UINT_MAX) continue;
+            ClosestPrimitive& answer = answers[order(k)];
+            answer.object = std::int32_t(objectOfTriangle[t[k]]);
+            answer.triangle = std::uint32_t(t[k] - firstTriangle[objectOfTriangle[t[k]]]);
+            answer.distanceMm = double(d[k]);
+            answer.feature = TriangleFeature(f[k]);
+            answer.point = {double(c[k].s[0]), double(c[k].s[1]), double(c[k].s[2])};
+        }
+    }
+};
+
 // The interface both precisions implement.
 struct DeviceScene {
     virtual ~DeviceScene() = default;
@@ -420,10 +461,7 @@ class DeviceSceneT final : public DeviceScene {
         ocl::DeviceBuffer<cl_uint> dCentreNearest(runtime_, chunk);
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
         ocl::DeviceBuffer<cl_uint> dSampleSource(runtime_, sampleSource);
-        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
+        const DeviceAnswers<Real, Real4> written(runtime_, count);
         try {
             cl::Kernel cull(*program_, "source_candidates");
             cl::Kernel kernel(*program_, "closest_primitive");
@@ -444,8 +482,9 @@ class DeviceSceneT final : public DeviceScene {
             const cl_uint cullQuery = setShared(cull);
             cl_uint sampleQuery = setShared(kernel);
             for (const cl::Buffer* buffer :
-                 {&normals_.get(), &closed_.get(), &dPoints.get(), &dSampleSource.get(),
-                  &dDistance.get(), &dNearest.get(), &dFeature.get(), &dClosest.get()})
+                 {&normals_.get(), &closed_.get(), &dPoints.get(), &dSampleSource.get()})
+                kernel.setArg(sampleQuery++, *buffer);
+            for (const cl::Buffer* buffer : written.arguments())
                 kernel.setArg(sampleQuery++, *buffer);
             QueryParams<Real> params{};
             params.maxDistance2 = Real(bandSquared(query));
@@ -479,16 +518,9 @@ class DeviceSceneT final : public DeviceScene {
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
         }
-        const std::vector<cl_uint> nearest = dNearest.download(runtime_);
-        const std::vector<Real> distance = dDistance.download(runtime_);
-        const std::vector<cl_uchar> feature = dFeature.download(runtime_);
-        const std::vector<Real4> closest = dClosest.download(runtime_);
-
-        for (std::size_t k = 0; k < count; ++k) {
-            const cl_uint t = nearest[k];
-            if (t == CL_UINT_MAX) continue;
-            answers[sorted[k]] = answerOf(t, distance[k], feature[k], closest[k]);
-        }
+        written.collect(
+            runtime_, objectOfTriangle_, firstTriangle_, [&](std::size_t k) { return sorted[k]; },
+            answers);
         return answers;
     }
 
@@ -501,17 +533,14 @@ class DeviceSceneT final : public DeviceScene {
         for (std::size_t k = 0; k < count; ++k)
             points[k] = SurfaceArrays<Real4>::real4(queryPoints[k]);
         ocl::DeviceBuffer<Real4> dPoints(runtime_, points);
-        ocl::DeviceBuffer<cl_uint> dNearest(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real> dDistance(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<cl_uchar> dFeature(runtime_, count, CL_MEM_WRITE_ONLY);
-        ocl::DeviceBuffer<Real4> dClosest(runtime_, count, CL_MEM_WRITE_ONLY);
+        const DeviceAnswers<Real, Real4> written(runtime_, count);
         try {
             cl::Kernel kernel(*program_, "closest_primitive_at");
             cl_uint a = surface_.setArgs(kernel, 0);
             for (const cl::Buffer* buffer :
-                 {&objectRoot_.get(), &normals_.get(), &closed_.get(), &dPoints.get(),
-                  &dDistance.get(), &dNearest.get(), &dFeature.get(), &dClosest.get()})
+                 {&objectRoot_.get(), &normals_.get(), &closed_.get(), &dPoints.get()})
                 kernel.setArg(a++, *buffer);
+            for (const cl::Buffer* buffer : written.arguments()) kernel.setArg(a++, *buffer);
             QueryParams<Real> params{};
             params.maxDistance2 = Real(bandSquared(query));
             params.maxDistance = Real(query.maxDistanceMm);
@@ -532,29 +561,12 @@ class DeviceSceneT final : public DeviceScene {
         } catch (const cl::Error& e) {
             throw ocl::toClError(e, "surface_distance.cl");
         }
-        const std::vector<cl_uint> nearest = dNearest.download(runtime_);
-        const std::vector<Real> distance = dDistance.download(runtime_);
-        const std::vector<cl_uchar> feature = dFeature.download(runtime_);
-        const std::vector<Real4> closest = dClosest.download(runtime_);
-        for (std::size_t k = 0; k < count; ++k)
-            if (nearest[k] != CL_UINT_MAX)
-                answers[k] = answerOf(nearest[k], distance[k], feature[k], closest[k]);
+        written.collect(
+            runtime_, objectOfTriangle_, firstTriangle_, [](std::size_t k) { return k; }, answers);
         return answers;
     }
 
   private:
-    // A kernel's answer for global triangle t, in the scene's numbering.
-    ClosestPrimitive answerOf(cl_uint t, Real distance, cl_uchar feature,
-                              const Real4& closest) const {
-        ClosestPrimitive answer;
-        answer.object = std::int32_t(objectOfTriangle_[t]);
-        answer.triangle = std::uint32_t(t - firstTriangle_[objectOfTriangle_[t]]);
-        answer.distanceMm = double(distance);
-        answer.feature = TriangleFeature(feature);
-        answer.point = {double(closest.s[0]), double(closest.s[1]), double(closest.s[2])};
-        return answer;
-    }
-
     // Adds a chunk's list lengths to stats (a small read: one count per
     // source triangle).
     void countCandidates(const ocl::DeviceBuffer<cl_uint>& counts, std::size_t sources,

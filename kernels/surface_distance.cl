@@ -129,6 +129,33 @@ __kernel void source_candidates(__global const REAL4* source_corners,
     candidate_count[i] = n;
 }
 
+// Writes sample k's answer for nearest triangle t (UINT_MAX: none within
+// the band): the closest point, its feature, and the distance, negative
+// inside a closed object by the feature's pseudo-normal. Both kernels end
+// with it.
+inline void write_answer(__global const REAL4* points, __global const int4* triangles,
+                         __global const REAL4* pseudo_normals, __global const uchar* object_closed,
+                         REAL4 p, uint t, uint k, __global REAL* distance, __global uint* nearest,
+                         __global uchar* feature, __global REAL4* closest) {
+    nearest[k] = t;
+    if (t == UINT_MAX) {
+        distance[k] = INFINITY;
+        feature[k] = FEATURE_FACE;
+        closest[k] = p;
+        return;
+    }
+    const int4 tri = triangles[t];
+    int f;
+    const REAL4 q =
+        closest_point_on_triangle_feature(p, points[tri.x], points[tri.y], points[tri.z], &f);
+    const REAL4 away = p - q;
+    REAL d = sqrt(dot3(away, away));
+    if (object_closed[tri.w] && dot3(away, pseudo_normals[7 * t + f]) < 0) d = -d;
+    distance[k] = d;
+    feature[k] = (uchar)f;
+    closest[k] = q;
+}
+
 // Samples sorted by source, so a chunk's sources serve a run of them:
 // work-item i takes sample k = sample_first + i (k < sample_end), whose
 // source sample_source[k] is source_first + its index in the chunk's lists.
@@ -187,23 +214,8 @@ __kernel void closest_primitive(
             if (is_candidate(o, own, target) && object_root[o] >= 0)
                 search_nearest_triangle(&surface, object_root[o], p, &best2, &t);
     }
-    nearest[k] = t;
-    if (t == UINT_MAX) {
-        distance[k] = INFINITY;
-        feature[k] = FEATURE_FACE;
-        closest[k] = p;
-        return;
-    }
-    const int4 tri = triangles[t];
-    int f;
-    const REAL4 q =
-        closest_point_on_triangle_feature(p, points[tri.x], points[tri.y], points[tri.z], &f);
-    const REAL4 away = p - q;
-    REAL d = sqrt(dot3(away, away));
-    if (object_closed[tri.w] && dot3(away, pseudo_normals[7 * t + f]) < 0) d = -d;
-    distance[k] = d;
-    feature[k] = (uchar)f;
-    closest[k] = q;
+    write_answer(points, triangles, pseudo_normals, object_closed, p, t, k, distance, nearest,
+                 feature, closest);
 }
 
 // Points anywhere in space (a grid, the planes of a margin), not on an
@@ -230,21 +242,6 @@ __kernel void closest_primitive_at(__global const REAL4* points, __global const 
     for (uint o = 0; o < query.object_count; ++o)
         if ((query.target < 0 || o == (uint)query.target) && object_root[o] >= 0)
             search_nearest_triangle(&surface, object_root[o], p, &best2, &t);
-    nearest[k] = t;
-    if (t == UINT_MAX) {
-        distance[k] = INFINITY;
-        feature[k] = FEATURE_FACE;
-        closest[k] = p;
-        return;
-    }
-    const int4 tri = triangles[t];
-    int f;
-    const REAL4 q =
-        closest_point_on_triangle_feature(p, points[tri.x], points[tri.y], points[tri.z], &f);
-    const REAL4 away = p - q;
-    REAL d = sqrt(dot3(away, away));
-    if (object_closed[tri.w] && dot3(away, pseudo_normals[7 * t + f]) < 0) d = -d;
-    distance[k] = d;
-    feature[k] = (uchar)f;
-    closest[k] = q;
+    write_answer(points, triangles, pseudo_normals, object_closed, p, t, k, distance, nearest,
+                 feature, closest);
 }
