@@ -25,9 +25,6 @@ constexpr double kSnapMm = 1e-4;
 // corners, cut from it by a difference) made it fold between the planes;
 // 12 µm and more did not, on the shared Brodmann set.
 constexpr double kKeepOffSample = 0.05;
-// The lattice starts this fraction of a step off the region's corner, so
-// that boundaries at round coordinates (a box's faces) miss its samples.
-constexpr double kLatticeShift = 0.381966;
 
 // The lattice of one plane: fine samples (i, j), 0 ≤ i < width, at
 // origin + (i, j)·step; coarse cells are `factor` samples wide.
@@ -65,8 +62,8 @@ Lattice latticeOver(const PlaneRect& region, const PlaneSectionOptions& o) {
     l.factor = o.coarseFactor;
     const double cell = o.stepMm * o.coarseFactor;
     // One empty coarse cell all round, so every section closes inside.
-    l.originX = region.xMin - cell - kLatticeShift * o.stepMm;
-    l.originY = region.yMin - cell - kLatticeShift * o.stepMm;
+    l.originX = region.xMin - cell - o.latticeShift * o.stepMm;
+    l.originY = region.yMin - cell - o.latticeShift * o.stepMm;
     const double cellsX = std::ceil((region.xMax - region.xMin) / cell) + 2;
     const double cellsY = std::ceil((region.yMax - region.yMin) / cell) + 2;
     if (!(cellsX * o.coarseFactor < 46000 && cellsY * o.coarseFactor < 46000))

@@ -31,6 +31,11 @@ struct PlaneSectionOptions {
     double stepMm = 0.25;  // the fine lattice's step (mm)
     int coarseFactor = 8;  // coarse cells are this many steps wide
     int refineIterations = 12;
+    /// Where the lattice starts off the region's corner, as a fraction of
+    /// a step: off round coordinates (a box's faces miss its samples); a
+    /// caller may try another one (the vertices differ, each still on the
+    /// boundary).
+    double latticeShift = 0.381966;
     /// Vertices move until the field is within this of zero, or the
     /// bracket is this narrow (mm): far below the 0.1 µm grid they are
     /// rounded to, so that equal boundaries give equal vertices.

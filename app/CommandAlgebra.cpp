@@ -104,98 +104,115 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
         writeOptions = referenceFrom(args.input);
 
     ocl::Runtime runtime(global.device);
+    // The sections are exact at any lattice; where the ones of one lattice
+    // do not reconstruct (reconstruction still folds on some pairs of
+    // planes whose sections nearly coincide), the next lattice is tried.
+    constexpr double kLatticeShifts[] = {0.381966, 0.618034, 0.145898};
     StructureAlgebraResult result;
-    {
-        Progress progress(margin ? "margin" : "combine", !global.quiet);
-        progress.update(-1);
-        RoiExpression expression;
-        if (margin) {
-            const Roi& source = *selectRois(input.contours, args.roi, false).front();
-            DirectionalMargin m;
-            if (!args.perDirection.empty()) {
-                const std::vector<double> v =
-                    numberList(args.perDirection, 6, "--mm-per-direction");
-                std::copy(v.begin(), v.end(), m.mm.begin());
+    RtStructWriteSummary summary;
+    std::optional<ContourInput> back;
+    std::optional<RoiSurface> rebuiltOnce;
+    int attempts = 0;
+    for (double shift : kLatticeShifts) {
+        ++attempts;
+        options.sections.latticeShift = shift;
+        {
+            Progress progress(margin ? "margin" : "combine", !global.quiet);
+            progress.update(-1);
+            RoiExpression expression;
+            if (margin) {
+                const Roi& source = *selectRois(input.contours, args.roi, false).front();
+                DirectionalMargin m;
+                if (!args.perDirection.empty()) {
+                    const std::vector<double> v =
+                        numberList(args.perDirection, 6, "--mm-per-direction");
+                    std::copy(v.begin(), v.end(), m.mm.begin());
+                } else {
+                    m = DirectionalMargin::uniform(args.mm);
+                }
+                for (double v : m.mm)
+                    if (std::abs(v) > 200)
+                        throw std::invalid_argument("margins are limited to ±200 mm");
+                options.interpretedType =
+                    args.roiType.empty() ? source.interpretedType : args.roiType;
+                const std::string name =
+                    args.name.empty()
+                        ? source.name + (m.shrinks() ? "-" : "+") +
+                              (m.isUniform() ? std::to_string(int(std::lround(std::abs(m.mm[0]))))
+                                             : std::string("margin"))
+                        : args.name;
+                const PlaneFrame frame = source.frame;
+                if (writeOptions.imageSeries)
+                    options.planesMm = planesOfSeries(writeOptions, frame);
+                result = marginRoi(runtime, input.contours, source.name, m, name, options);
             } else {
-                m = DirectionalMargin::uniform(args.mm);
+                std::vector<std::string> names;
+                for (const Roi& roi : input.contours.rois) names.push_back(roi.name);
+                expression = parseRoiExpression(args.expression, names);
+                options.interpretedType = args.roiType.empty() ? "CONTROL" : args.roiType;
+                if (writeOptions.imageSeries)
+                    options.planesMm = planesOfSeries(
+                        writeOptions, input.contours.findRoi(expression.rois().front())->frame);
+                result = evaluateRoiExpression(runtime, input.contours, expression, options);
             }
-            for (double v : m.mm)
-                if (std::abs(v) > 200)
-                    throw std::invalid_argument("margins are limited to ±200 mm");
-            options.interpretedType = args.roiType.empty() ? source.interpretedType : args.roiType;
-            const std::string name =
-                args.name.empty()
-                    ? source.name + (m.shrinks() ? "-" : "+") +
-                          (m.isUniform() ? std::to_string(int(std::lround(std::abs(m.mm[0]))))
-                                         : std::string("margin"))
-                    : args.name;
-            const PlaneFrame frame = source.frame;
-            if (writeOptions.imageSeries) options.planesMm = planesOfSeries(writeOptions, frame);
-            result = marginRoi(runtime, input.contours, source.name, m, name, options);
-        } else {
-            std::vector<std::string> names;
-            for (const Roi& roi : input.contours.rois) names.push_back(roi.name);
-            expression = parseRoiExpression(args.expression, names);
-            options.interpretedType = args.roiType.empty() ? "CONTROL" : args.roiType;
-            if (writeOptions.imageSeries)
-                options.planesMm = planesOfSeries(
-                    writeOptions, input.contours.findRoi(expression.rois().front())->frame);
-            result = evaluateRoiExpression(runtime, input.contours, expression, options);
         }
+        Roi& made = result.roi;
+
+        // The set written: every ROI read (unless --only-new) and the new one.
+        ContourSet written;
+        int nextNumber = 1;
+        if (!args.onlyNew)
+            for (const Roi& roi : input.contours.rois) {
+                if (roi.defect)
+                    throw InputError(args.input, roi.defect->line(),
+                                     "ROI '" + roi.name + "' could not be read (" +
+                                         roi.defect->problem() +
+                                         "), so the structure set cannot be written whole; "
+                                         "--only-new writes the new ROI alone");
+                if (roi.name == made.name) {
+                    if (!args.replace)
+                        throw std::invalid_argument("the structure set already has an ROI named '" +
+                                                    made.name +
+                                                    "'; --name gives another, --replace "
+                                                    "replaces it");
+                    continue;
+                }
+                written.rois.push_back(roi);
+                // The writer numbers an ROI without one by its position.
+                nextNumber =
+                    std::max(nextNumber, roi.number.value_or(int(written.rois.size())) + 1);
+            }
+        if (toDicom) made.number = nextNumber;
+        written.rois.push_back(made);
+        if (!toDicom)
+            for (const Roi& roi : written.rois)
+                if (!roi.frame.isIdentity())
+                    throw std::invalid_argument(
+                        "ROI '" + roi.name + "' lies in " + roi.frame.orientationName() +
+                        " planes, and a .slices file holds axial planes only; "
+                        "write a DICOM RTSTRUCT (.dcm)");
+
+        if (toDicom) {
+            writeOptions.structureSetLabel = "dfrecon";
+            summary = writeRtStruct(written, args.output, writeOptions);
+        } else {
+            writeSlicesFile(written, args.output);
+        }
+        // The new ROI as written, read back and reconstructed as `reconstruct`
+        // would (the file's rounding and the reader's checks included): what a
+        // user gets from the file must be a valid closed solid.
+        GlobalOptions quietly = global;
+        quietly.quiet = true;
+        back = loadContours(args.output, quietly);
+        const Roi* read = back->contours.findRoi(made.name);
+        if (!read)
+            throw std::runtime_error(args.output + ": the new ROI '" + made.name +
+                                     "' did not read back");
+        rebuiltOnce = reconstructRoi(runtime, *read);
+        if (rebuiltOnce->check.validSolid()) break;
     }
     Roi& made = result.roi;
-
-    // The set written: every ROI read (unless --only-new) and the new one.
-    ContourSet written;
-    int nextNumber = 1;
-    if (!args.onlyNew)
-        for (const Roi& roi : input.contours.rois) {
-            if (roi.defect)
-                throw InputError(args.input, roi.defect->line(),
-                                 "ROI '" + roi.name + "' could not be read (" +
-                                     roi.defect->problem() +
-                                     "), so the structure set cannot be written whole; "
-                                     "--only-new writes the new ROI alone");
-            if (roi.name == made.name) {
-                if (!args.replace)
-                    throw std::invalid_argument("the structure set already has an ROI named '" +
-                                                made.name +
-                                                "'; --name gives another, --replace "
-                                                "replaces it");
-                continue;
-            }
-            written.rois.push_back(roi);
-            // The writer numbers an ROI without one by its position.
-            nextNumber = std::max(nextNumber, roi.number.value_or(int(written.rois.size())) + 1);
-        }
-    if (toDicom) made.number = nextNumber;
-    written.rois.push_back(made);
-    if (!toDicom)
-        for (const Roi& roi : written.rois)
-            if (!roi.frame.isIdentity())
-                throw std::invalid_argument("ROI '" + roi.name + "' lies in " +
-                                            roi.frame.orientationName() +
-                                            " planes, and a .slices file holds axial planes only; "
-                                            "write a DICOM RTSTRUCT (.dcm)");
-
-    RtStructWriteSummary summary;
-    if (toDicom) {
-        writeOptions.structureSetLabel = "dfrecon";
-        summary = writeRtStruct(written, args.output, writeOptions);
-    } else {
-        writeSlicesFile(written, args.output);
-    }
-    // The new ROI as written, read back and reconstructed as `reconstruct`
-    // would (the file's rounding and the reader's checks included): what a
-    // user gets from the file must be a valid closed solid.
-    GlobalOptions quietly = global;
-    quietly.quiet = true;
-    const ContourInput back = loadContours(args.output, quietly);
-    const Roi* read = back.contours.findRoi(made.name);
-    if (!read)
-        throw std::runtime_error(args.output + ": the new ROI '" + made.name +
-                                 "' did not read back");
-    const RoiSurface rebuilt = reconstructRoi(runtime, *read);
+    const RoiSurface& rebuilt = *rebuiltOnce;
     bool invalid = !rebuilt.check.validSolid();
 
     // The mesh: the exact surface of the result where the field allows it,
@@ -256,7 +273,8 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
             {"surfacesSeconds", result.surfacesSeconds},
             {"sectionsSeconds", result.sectionsSeconds}};
         report["contoursReconstructed"] = {{"validSolid", rebuilt.check.validSolid()},
-                                           {"volumeCc", rebuilt.check.volumeMm3 / kCubicMmPerCc}};
+                                           {"volumeCc", rebuilt.check.volumeMm3 / kCubicMmPerCc},
+                                           {"latticesTried", attempts}};
         if (!args.mesh.empty()) report["mesh"] = meshReport;
         report["warnings"] = summary.warnings;
         std::cout << jsonText(report, 2) << "\n";
