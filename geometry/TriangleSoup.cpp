@@ -1,5 +1,7 @@
 #include "geometry/TriangleSoup.hpp"
 
+#include <mutex>
+
 namespace dfrecon {
 
 TriangleSoup toTriangleSoup(const TriMesh& mesh) {
@@ -33,6 +35,31 @@ void removeUnusedPoints(TriangleSoup& soup) {
     soup.points = std::move(kept);
 }
 
+namespace {
+
+// OpenMesh's error stream is one process-wide object, made on first use:
+// made here at load, before any worker thread (two threads making it at
+// once made two, and leaked one), and silenced while any thread converts a
+// soup (a count, so one thread's enable does not unmute another's loop).
+std::mutex quietMutex;
+int quietSections = 0;
+[[maybe_unused]] const bool openMeshErrorStreamMade = (omerr(), true);
+
+struct QuietOpenMeshErrors {
+    QuietOpenMeshErrors() {
+        const std::lock_guard<std::mutex> lock(quietMutex);
+        if (quietSections++ == 0) omerr().disable();
+    }
+    ~QuietOpenMeshErrors() {
+        const std::lock_guard<std::mutex> lock(quietMutex);
+        if (--quietSections == 0) omerr().enable();
+    }
+    QuietOpenMeshErrors(const QuietOpenMeshErrors&) = delete;
+    QuietOpenMeshErrors& operator=(const QuietOpenMeshErrors&) = delete;
+};
+
+}  // namespace
+
 TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     TriMesh mesh;
     std::vector<TriMesh::VertexHandle> vertices;
@@ -40,14 +67,13 @@ TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
     std::size_t refused = 0;
     // OpenMesh reports each refused face on stderr; the count says it once.
-    omerr().disable();
+    const QuietOpenMeshErrors quiet;
     for (const auto& t : soup.triangles) {
         // OpenMesh asserts on a face that repeats a vertex; it is refused too.
         const bool repeats = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
         if (repeats || !mesh.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]).is_valid())
             ++refused;
     }
-    omerr().enable();
     if (refusedFaces) *refusedFaces = refused;
     return mesh;
 }

@@ -26,10 +26,12 @@ using dfrecon::testing::TempDir;
 
 namespace {
 
-// A sphere of radius 20 mm on planes 2 mm apart (synth).
+// A sphere of radius 20 mm on planes 2 mm apart (synth), its contours of
+// 64 points; the margins below use a 0.5 mm lattice: small enough that
+// the sanitizer build runs these in seconds.
 std::string sphereSlices(const TempDir& dir) {
     const std::string path = dir / "sphere.slices";
-    const CliResult r = runCli(dir.str(), "synth sphere --spacing 2 -o " + path);
+    const CliResult r = runCli(dir.str(), "synth sphere --spacing 2 --points 64 -o " + path);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return path;
 }
@@ -39,7 +41,7 @@ std::string sphereSlices(const TempDir& dir) {
 TEST(CliAlgebra, MarginWritesTheNewRoiIntoTheStructureSet) {
     TempDir dir("cli-margin");
     const std::string in = sphereSlices(dir), out = dir / "grown.dcm";
-    const CliResult r = runCli(dir.str(), "-q margin " + in +
+    const CliResult r = runCli(dir.str(), "-q margin --step 0.5 " + in +
                                               " --roi sphere --mm 5 --name PTV --roi-type PTV "
                                               "--colour 255,0,0 --mesh " +
                                               (dir / std::string("ptv.ply")) + " --json -o " + out);
@@ -64,7 +66,7 @@ TEST(CliAlgebra, MarginWritesTheNewRoiIntoTheStructureSet) {
     }
     // The name is taken now.
     const CliResult again =
-        runCli(dir.str(), "-q margin " + out + " --roi sphere --mm 5 --name PTV -o " +
+        runCli(dir.str(), "-q margin --step 0.5 " + out + " --roi sphere --mm 5 --name PTV -o " +
                               (dir / std::string("again.dcm")));
     EXPECT_EQ(again.exitCode, 1);
     EXPECT_NE(again.err.find("--replace"), std::string::npos) << again.err;
@@ -75,7 +77,7 @@ TEST(CliAlgebra, CombineEvaluatesRingsAndRefusesBadExpressions) {
     const std::string in = sphereSlices(dir), out = dir / "ring.slices";
     const CliResult r =
         runCli(dir.str(),
-               "-q combine " + in +
+               "-q combine --step 0.5 " + in +
                    " --expr \"Ring = (sphere + 10) - (sphere + 3)\" --json --only-new -o " + out);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = nlohmann::json::parse(r.out);
@@ -93,20 +95,22 @@ TEST(CliAlgebra, CombineEvaluatesRingsAndRefusesBadExpressions) {
                {"X = (sphere - sphere) + 3", "name the difference first"},
                {"sphere + 3", "NAME = EXPRESSION"}};
     for (const auto& b : bad) {
-        const CliResult e = runCli(dir.str(), "-q combine " + in + " --expr \"" + b.expression +
-                                                  "\" -o " + (dir / std::string("x.slices")));
+        const CliResult e =
+            runCli(dir.str(), "-q combine --step 0.5 " + in + " --expr \"" + b.expression +
+                                  "\" -o " + (dir / std::string("x.slices")));
         EXPECT_EQ(e.exitCode, 1) << b.expression << ": " << e.err;
         EXPECT_NE(e.err.find(b.message), std::string::npos) << e.err;
         EXPECT_FALSE(fs::exists(dir / std::string("x.slices")));
     }
     const CliResult mixed =
-        runCli(dir.str(), "-q margin " + in + " --roi sphere --mm-per-direction 5,-3,5,5,5,5 -o " +
+        runCli(dir.str(), "-q margin --step 0.5 " + in +
+                              " --roi sphere --mm-per-direction 5,-3,5,5,5,5 -o " +
                               (dir / std::string("x.slices")));
     EXPECT_EQ(mixed.exitCode, 1);
     EXPECT_NE(mixed.err.find("both grows and shrinks"), std::string::npos) << mixed.err;
     // Eight octants: 5 mm everywhere but 2 mm posterior (+y).
     const CliResult octants =
-        runCli(dir.str(), "-q margin " + in +
+        runCli(dir.str(), "-q margin --step 0.5 " + in +
                               " --roi sphere --mm-per-direction 5,5,5,2,5,5 --json --only-new -o " +
                               (dir / std::string("o.slices")));
     ASSERT_EQ(octants.exitCode, 0) << octants.err;
@@ -120,13 +124,14 @@ TEST(CliAlgebra, HistogramWritesTableAndPlot) {
     TempDir dir("cli-histogram");
     const std::string in = sphereSlices(dir);
     const std::string two = dir / "two.slices";
-    ASSERT_EQ(runCli(dir.str(), "-q combine " + in +
+    ASSERT_EQ(runCli(dir.str(), "-q combine --step 0.5 " + in +
                                     " --expr \"Shell = (sphere + 6) - (sphere + 2)\" -o " + two)
                   .exitCode,
               0);
-    const CliResult r = runCli(
-        dir.str(), "-q histogram " + two + " --roi Shell --to sphere --json -o " +
-                       (dir / std::string("h.csv")) + " --plot " + (dir / std::string("h.png")));
+    const CliResult r =
+        runCli(dir.str(), "-q histogram --step 1 --surface-spacing 1 " + two +
+                              " --roi Shell --to sphere --json -o " + (dir / std::string("h.csv")) +
+                              " --plot " + (dir / std::string("h.png")));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = nlohmann::json::parse(r.out);
     // The shell lies 2 to 6 mm from the sphere.
@@ -147,8 +152,9 @@ TEST(CliAlgebra, LikeACtPutsTheNewRoiOnItsImagePlanes) {
     // 1.25 mm apart from z = -40: the grown sphere (|z| ≤ 25) spans 40 of them.
     dfrecon::testing::writeSyntheticSeries(ct, 65, -40, 1.25);
     const std::string out = dir / "like.dcm";
-    const CliResult r = runCli(dir.str(), "-q margin " + in + " --roi sphere --mm 5 --like " + ct +
-                                              " --only-new --json -o " + out);
+    const CliResult r =
+        runCli(dir.str(), "-q margin --step 0.5 " + in + " --roi sphere --mm 5 --like " + ct +
+                              " --only-new --json -o " + out);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = nlohmann::json::parse(r.out);
     EXPECT_EQ(report["planesWithContours"].get<int>(), 39);  // |z| < 25 exactly: -23.75 .. 23.75
