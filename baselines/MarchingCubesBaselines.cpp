@@ -1,4 +1,5 @@
 #include "baselines/MarchingCubesBaselines.hpp"
+#include "baselines/RowCrossings.hpp"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/SignedFloodFill.h>
@@ -141,14 +142,7 @@ TriangleSoup rasterBaseline(const Roi& roi, double pixelMm) {
         for (int j = 0; box.min.y + j * h <= box.max.y; ++j) {
             const double y = box.min.y + j * h;
             // Even-odd along the row: inside between the 1st and 2nd crossing, ...
-            crossings.clear();
-            for (const Polygon& c : slice.contours)
-                for (std::size_t e = 0; e < c.size(); ++e) {
-                    const Point2 a = c[e], b = c[(e + 1) % c.size()];
-                    if ((a.y <= y) != (b.y <= y))
-                        crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-                }
-            std::sort(crossings.begin(), crossings.end());
+            rowCrossings(slice, y, crossings);
             for (std::size_t c = 0; c + 1 < crossings.size(); c += 2)
                 for (int i = std::max(0, int(std::ceil((crossings[c] - box.min.x) / h)));
                      i < width && box.min.x + i * h <= crossings[c + 1]; ++i)

@@ -1,4 +1,5 @@
 #include "baselines/VoxelMargins.hpp"
+#include "baselines/RowCrossings.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -61,14 +62,7 @@ void fillLayer(const Slice& slice, const VoxelMask& grid, std::uint8_t* layer) {
         // Half-open in y (a vertex on the row counts once) and in x (a centre
         // on the first crossing is in, on the second out): even-odd along the
         // row, inside between the 1st and 2nd crossing, the 3rd and 4th, ...
-        crossings.clear();
-        for (const Polygon& contour : slice.contours)
-            for (std::size_t e = 0; e < contour.size(); ++e) {
-                const Point2 a = contour[e], b = contour[(e + 1) % contour.size()];
-                if ((a.y <= y) != (b.y <= y))
-                    crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-            }
-        std::sort(crossings.begin(), crossings.end());
+        rowCrossings(slice, y, crossings);
         std::uint8_t* row = layer + std::size_t(j) * std::size_t(grid.nx);
         for (std::size_t c = 0; c + 1 < crossings.size(); c += 2) {
             const double first = std::ceil((crossings[c] - grid.x0) / grid.h);
