@@ -5,11 +5,15 @@
 // planes' spacing, then marching cubes (rasterBaseline in
 // recon/MarchingCubesBaselines). Lines per set: dfrecon
 // (seconds, valid solids, worst deviation from the contour-implied volume)
-// and rasterise+mc (seconds, valid solids, the same deviation); the
-// dfrecon line carries the speed ratio.
+// and rasterise+mc (seconds, valid solids, the same deviation), each with
+// the process's peak memory during that route; the dfrecon line carries the
+// speed ratio. The sets: the shared Brodmann atlas, plastimatch's k-means
+// fixture, a head CT's BONE alone and with BODY and AIRWAY (build/fixtures/
+// ct_head, scripts/ct_structures.py), and 200 blobs in one ROI.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -35,7 +39,24 @@ struct SetResult {
     std::size_t rois = 0, valid = 0, triangles = 0;
     double worstVolumeDeviation = 0;  // |volume / contour volume - 1|, worst ROI
     std::size_t within1Pct = 0;       // ROIs within 1 % of their contour volume
+    double peakMemoryMb = 0;          // the process's, during the route
 };
+
+// The process's peak resident memory since the last reset, in MB (Linux's
+// VmHWM; 0 where /proc does not say).
+double peakMemoryMb() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
+    return 0;
+}
+
+// Starts a new peak at the current resident size (Linux >= 4.0: writing 5
+// to clear_refs resets VmHWM), so each route's peak is its own.
+void resetPeakMemory() {
+    std::ofstream("/proc/self/clear_refs") << "5";
+}
 
 void addRoi(SetResult& set, const MeshCheckReport& check, double contourVolume) {
     ++set.rois;
@@ -59,6 +80,7 @@ void benchSet(const std::string& device, const std::string& name, const ContourS
     std::vector<std::unique_ptr<ocl::Runtime>> runtimes(jobs);
     for (auto& runtime : runtimes) runtime = std::make_unique<ocl::Runtime>(device);
     SetResult ours, baseline;
+    resetPeakMemory();
     ours.seconds = bestSeconds(1, [&] {
         app::forEachInOrder(
             rois.size(), jobs,
@@ -69,23 +91,31 @@ void benchSet(const std::string& device, const std::string& name, const ContourS
                 addRoi(ours, check, contourVolumeMm3(*rois[i]));
             });
     });
+    ours.peakMemoryMb = peakMemoryMb();
     // The baseline route ends with the marched surface; checking it is ours.
     std::vector<TriangleSoup> marched(rois.size());
+    resetPeakMemory();
     baseline.seconds = bestSeconds(1, [&] {
         app::forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t) { return rasterBaseline(*rois[i], kRasterPixelMm); },
             [&](std::size_t i, TriangleSoup soup) { marched[i] = std::move(soup); });
     });
+    baseline.peakMemoryMb = peakMemoryMb();
     for (std::size_t i = 0; i < rois.size(); ++i)
         addRoi(baseline, checkMesh(marched[i]), contourVolumeMm3(*rois[i]));
     auto line = [&](const char* system, const SetResult& r) {
-        nlohmann::ordered_json j{
-            {"bench", "structure-set"},   {"case", name},
-            {"system", system},           {"size", r.rois},
-            {"seconds", r.seconds},       {"validSolids", r.valid},
-            {"triangles", r.triangles},   {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
-            {"within1Pct", r.within1Pct}, {"jobs", jobs}};
+        nlohmann::ordered_json j{{"bench", "structure-set"},
+                                 {"case", name},
+                                 {"system", system},
+                                 {"size", r.rois},
+                                 {"seconds", r.seconds},
+                                 {"validSolids", r.valid},
+                                 {"triangles", r.triangles},
+                                 {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
+                                 {"within1Pct", r.within1Pct},
+                                 {"jobs", jobs},
+                                 {"peakMemoryMb", r.peakMemoryMb}};
         if (&r == &ours) j["speedupOverBaseline"] = baseline.seconds / ours.seconds;
         std::cout << j.dump() << std::endl;
     };
@@ -96,23 +126,43 @@ void benchSet(const std::string& device, const std::string& name, const ContourS
 }  // namespace
 
 int benchStructureSet(const std::string& device) {
+    const std::filesystem::path fixtures(DFRECON_FIXTURES);
     const std::filesystem::path brodmann =
         std::filesystem::path(DFRECON_SHARED_DATA) / "brodmann-rtstruct.dcm";
-    const std::filesystem::path kmeans =
-        std::filesystem::path(DFRECON_FIXTURES) / "kmeans_axial" / "rtstruct.dcm";
-    for (const auto& [name, path] : {std::pair{"brodmann 41 ROIs, 2 mm", brodmann},
-                                     std::pair{"kmeans_axial 7 ROIs", kmeans}}) {
-        if (!std::filesystem::exists(path)) {
+    const std::filesystem::path kmeans = fixtures / "kmeans_axial" / "rtstruct.dcm";
+    const std::filesystem::path head = fixtures / "ct_head" / "rtstruct.dcm";
+    // A case: a file and the ROIs of it to reconstruct (empty: all).
+    struct Case {
+        const char* name;
+        std::filesystem::path path;
+        std::vector<std::string> rois;
+    };
+    const Case cases[] = {
+        {"brodmann 41 ROIs, 2 mm", brodmann, {}},
+        {"kmeans_axial 7 ROIs", kmeans, {}},
+        {"head CT bone, 1.5 mm", head, {"BONE"}},
+        {"head CT body, airway, bone, 1.5 mm", head, {}},
+    };
+    for (const Case& c : cases) {
+        if (!std::filesystem::exists(c.path)) {
             std::cout << nlohmann::ordered_json{{"bench", "structure-set"},
-                                                {"case", name},
-                                                {"skipped", path.string() + " not found"}}
+                                                {"case", c.name},
+                                                {"skipped", c.path.string() + " not found"}}
                              .dump()
                       << std::endl;
             continue;
         }
-        benchSet(device, name, readRtStruct(path.string()).contours);
+        ContourSet set = readRtStruct(c.path.string()).contours;
+        if (!c.rois.empty())
+            set.rois.erase(std::remove_if(set.rois.begin(), set.rois.end(),
+                                          [&](const Roi& roi) {
+                                              return std::find(c.rois.begin(), c.rois.end(),
+                                                               roi.name) == c.rois.end();
+                                          }),
+                           set.rois.end());
+        benchSet(device, c.name, set);
     }
-    // Many contours per plane, as a CT bone structure has.
+    // Many contours per plane in one ROI.
     benchSet(device, "200 blobs, 240x240x40 voxels of 0.5x0.5x2 mm",
              contoursFromLabels(manyBlobLabelVolume(7, 200, 240, 40)));
     return 0;

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <thread>
 
 namespace dfrecon {
 
@@ -171,14 +173,62 @@ bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
 
 namespace {
 
-// Visits the pairs of non-degenerate triangles that collide.
-template <class Visit>
-void visitCollisions(const TriangleSoup& soup, const std::vector<bool>& degenerate, Visit&& visit) {
-    const TriangleBvh bvh(soup, BvhSplit::Halving);
-    bvh.selfPairs([&](std::size_t i, std::size_t j) {
-        if (degenerate[i] || degenerate[j]) return;
-        if (trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) visit(i, j);
-    });
+using TrianglePair = std::pair<std::size_t, std::size_t>;
+
+// Soups smaller than this are searched on the calling thread: starting
+// threads costs more than a small search (a piece of a slab, a strip).
+constexpr std::size_t kParallelFromTriangles = 20000;
+// Node pairs the search is cut into, whatever the thread count, so that
+// which pairs a capped search finds does not depend on the machine.
+constexpr std::size_t kSearchTasks = 256;
+
+// The pairs (i < j) of non-degenerate triangles that collide, at most
+// `cap`: the first `cap` in a fixed order (TriangleBvh::selfPairTasks', then
+// each task's). `capped` says whether the search stopped there. Large soups
+// are searched on every core, tasks taken in order, each run to its end or
+// its own cap, and no task started once `cap` pairs are in: the tasks done
+// are a prefix that holds the first `cap`. O(T log T + pairs of overlapping
+// boxes) work.
+std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
+                                         const std::vector<bool>& degenerate, std::size_t cap,
+                                         bool& capped) {
+    const TriangleBvh bvh(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
+    const std::vector<TriangleBvh::NodePair> tasks = bvh.selfPairTasks(kSearchTasks);
+    std::vector<std::vector<TrianglePair>> found(tasks.size());
+    struct TaskFull {};  // thrown to leave a task at the cap
+    auto runTask = [&](std::size_t k) {
+        try {
+            bvh.selfPairsUnder(tasks[k], [&](std::size_t i, std::size_t j) {
+                if (degenerate[i] || degenerate[j]) return;
+                if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
+                found[k].emplace_back(std::min(i, j), std::max(i, j));
+                if (found[k].size() == cap) throw TaskFull{};
+            });
+        } catch (const TaskFull&) {
+        }
+        return found[k].size();
+    };
+    const std::size_t threads =
+        soup.triangles.size() < kParallelFromTriangles
+            ? 1
+            : std::max<std::size_t>(
+                  1, std::min<std::size_t>(std::thread::hardware_concurrency(), tasks.size()));
+    std::atomic<std::size_t> next{0}, total{0};
+    auto work = [&] {
+        for (std::size_t k; total < cap && (k = next++) < tasks.size();) total += runTask(k);
+    };
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& helper : helpers) helper.join();
+    std::vector<TrianglePair> pairs;
+    for (const std::vector<TrianglePair>& part : found) {
+        pairs.insert(pairs.end(), part.begin(), part.end());
+        if (pairs.size() >= cap) break;
+    }
+    capped = pairs.size() >= cap;
+    if (capped) pairs.resize(cap);
+    return pairs;
 }
 
 }  // namespace
@@ -187,11 +237,8 @@ std::vector<std::pair<std::size_t, std::size_t>> selfIntersectingPairs(const Tri
     std::vector<bool> degenerate(soup.triangles.size());
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
         degenerate[t] = isDegenerate(soup, soup.triangles[t]);
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
-        pairs.emplace_back(std::min(i, j), std::max(i, j));
-    });
-    return pairs;
+    bool capped = false;
+    return collidingPairs(soup, degenerate, SIZE_MAX, capped);
 }
 
 std::size_t countSelfIntersections(const TriangleSoup& soup) {
@@ -313,20 +360,18 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     if (report.watertight())
         report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
 
-    // Thrown to leave the search at the cap; the BVH walk has no other exit.
-    struct EnoughCounted {};
-    try {
-        visitCollisions(soup, degenerate, [&](std::size_t i, std::size_t j) {
-            ++report.intersectingPairs;
-            if (report.intersectingExamples.size() < 10)
-                report.intersectingExamples.push_back({std::min(i, j), std::max(i, j)});
-            report.defectiveTriangles.push_back(i);
-            report.defectiveTriangles.push_back(j);
-            if (report.intersectingPairs == kMaxCountedIntersections) throw EnoughCounted{};
-        });
-    } catch (const EnoughCounted&) {
-        report.intersectingPairsCapped = true;
+    bool capped = false;
+    std::vector<TrianglePair> pairs =
+        collidingPairs(soup, degenerate, kMaxCountedIntersections, capped);
+    report.intersectingPairs = pairs.size();
+    report.intersectingPairsCapped = capped;
+    for (const auto& [i, j] : pairs) {
+        report.defectiveTriangles.push_back(i);
+        report.defectiveTriangles.push_back(j);
     }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.resize(std::min<std::size_t>(pairs.size(), 10));
+    report.intersectingExamples = std::move(pairs);
     std::vector<std::size_t>& defective = report.defectiveTriangles;
     std::sort(defective.begin(), defective.end());
     defective.erase(std::unique(defective.begin(), defective.end()), defective.end());

@@ -32,7 +32,8 @@ struct MeshCheckReport {
     /// The search stopped at kMaxCountedIntersections pairs: there are at
     /// least intersectingPairs (a soup of coincident triangles has n²/2).
     bool intersectingPairsCapped = false;
-    std::vector<std::pair<std::size_t, std::size_t>> intersectingExamples;  // first few
+    std::vector<std::pair<std::size_t, std::size_t>>
+        intersectingExamples;  // the first ten, in order
     /// Every triangle that takes part in a defect: degenerate, on a
     /// boundary, non-manifold or misoriented edge, around a non-manifold
     /// vertex, or in an intersecting pair. Sorted, no repeats. Lets a caller

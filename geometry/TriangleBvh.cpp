@@ -3,18 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <initializer_list>
+#include <stdexcept>
 
 namespace dfrecon {
 
-TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how)
-    : soup_(soup),
-      boxes_(soup.triangles.size()),
-      balls_(soup.triangles.size()),
-      order_(soup.triangles.size()) {
+TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how, BvhQueries queries)
+    : soup_(soup), boxes_(soup.triangles.size()), order_(soup.triangles.size()) {
+    const bool nearest = queries == BvhQueries::All;
+    if (nearest) balls_.resize(soup.triangles.size());
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         const auto& tri = soup.triangles[t];
         for (std::uint32_t v : tri) boxes_[t].add(soup.points[v]);
-        balls_[t] = Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
+        if (nearest)
+            balls_[t] = Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
     }
     // Built over a copy of the boxes that is reordered as it is split, so
     // that every pass runs through memory in order.
@@ -24,7 +25,45 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how)
     scratch.reserve(items.size());
     if (!items.empty()) build(items, scratch, 0, items.size(), 0, how);
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
-    packForSearch();
+    if (nearest) packForSearch();
+}
+
+void TriangleBvh::splitPair(NodePair pair, std::vector<NodePair>& out) const {
+    const auto [a, b] = pair;
+    const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
+    const bool leafA = na.left < 0, leafB = nb.left < 0;
+    if (a == b) {
+        out.push_back({na.left, na.left});
+        out.push_back({na.right, na.right});
+        out.push_back({na.left, na.right});
+    } else if (!leafA && (leafB || na.count >= nb.count)) {
+        out.push_back({na.left, b});
+        out.push_back({na.right, b});
+    } else {
+        out.push_back({a, nb.left});
+        out.push_back({a, nb.right});
+    }
+}
+
+std::vector<TriangleBvh::NodePair> TriangleBvh::selfPairTasks(std::size_t count) const {
+    std::vector<NodePair> tasks;
+    if (nodes_.empty()) return tasks;
+    // Breadth first: split the first task in line until there are enough or
+    // only pairs of leaves are left; pairs whose boxes miss are dropped.
+    std::vector<NodePair> queue{{0, 0}}, done;
+    std::size_t head = 0;
+    while (head < queue.size() && queue.size() - head + done.size() < count) {
+        const NodePair pair = queue[head++];
+        const Node &na = nodes_[std::size_t(pair.first)], &nb = nodes_[std::size_t(pair.second)];
+        if (!na.box.overlaps(nb.box)) continue;
+        if (na.left < 0 && nb.left < 0)
+            done.push_back(pair);
+        else
+            splitPair(pair, queue);
+    }
+    tasks.assign(queue.begin() + std::ptrdiff_t(head), queue.end());
+    tasks.insert(tasks.end(), done.begin(), done.end());
+    return tasks;
 }
 
 TriangleBvh::Ball TriangleBvh::Ball::around(Vec3 a, Vec3 b, Vec3 c) {
@@ -208,6 +247,8 @@ TriangleBvh::Nearest TriangleBvh::nearest(Vec3 p, std::size_t hint) const {
 
 TriangleBvh::Nearest TriangleBvh::nearestWithin(Vec3 p, double maxDistance2,
                                                 std::size_t hint) const {
+    if (!soup_.triangles.empty() && balls_.empty())
+        throw std::logic_error("TriangleBvh: built for pairs only, not for nearest searches");
     Nearest best{SIZE_MAX, INFINITY, {}};
     if (nodes_.empty()) return best;
     double best2 = maxDistance2;

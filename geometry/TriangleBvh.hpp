@@ -21,15 +21,39 @@ namespace dfrecon {
 /// look at every overlapping pair either way) as well.
 enum class BvhSplit { SurfaceArea, Halving };
 
+/// Which queries a TriangleBvh answers. The nearest search keeps its own
+/// copy of every triangle's corners and a ball around each (about 110 bytes
+/// a triangle, a sixth of a self-intersection check's time on large
+/// meshes); a hierarchy only for pairs goes without.
+enum class BvhQueries { All, PairsOnly };
+
 class TriangleBvh {
   public:
     /// Builds over `soup`, which must outlive the hierarchy. O(T log T).
-    explicit TriangleBvh(const TriangleSoup& soup, BvhSplit split = BvhSplit::SurfaceArea);
+    /// With BvhQueries::PairsOnly, nearest() and nearestWithin() throw
+    /// std::logic_error and balls() is empty.
+    explicit TriangleBvh(const TriangleSoup& soup, BvhSplit split = BvhSplit::SurfaceArea,
+                         BvhQueries queries = BvhQueries::All);
 
     /// Calls visit(i, j) once for every pair of distinct triangles whose
     /// bounding boxes overlap.
     template <class Visit>
-    void selfPairs(Visit&& visit) const;
+    void selfPairs(Visit&& visit) const {
+        if (!nodes_.empty()) selfPairsUnder({0, 0}, visit);
+    }
+
+    /// A pair of nodes: the pairs of triangles, one under each (two
+    /// different ones under the same node when both are the same), whose
+    /// boxes overlap.
+    using NodePair = std::pair<int, int>;
+    /// Node pairs that share selfPairs' work between threads: every pair of
+    /// triangles selfPairs visits lies under exactly one of them. About
+    /// `count` of them (fewer where the tree is small; more, up to twice,
+    /// where one split makes several), in a fixed order. O(count).
+    std::vector<NodePair> selfPairTasks(std::size_t count) const;
+    /// selfPairs' visits under one node pair, in a fixed order.
+    template <class Visit>
+    void selfPairsUnder(NodePair task, Visit&& visit) const;
 
     struct Nearest {
         std::size_t triangle = 0;
@@ -86,6 +110,9 @@ class TriangleBvh {
     static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
                              const Box3& box);
     void packForSearch();
+    /// The node pairs that cover an inner node pair (a, b) (not two leaves),
+    /// appended to `out`.
+    void splitPair(NodePair pair, std::vector<NodePair>& out) const;
 
     const TriangleSoup& soup_;
     std::vector<Box3> boxes_;
@@ -118,31 +145,21 @@ class TriangleBvh {
 };
 
 template <class Visit>
-void TriangleBvh::selfPairs(Visit&& visit) const {
-    if (nodes_.empty()) return;
-    std::vector<std::pair<int, int>> stack{{0, 0}};
+void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
+    std::vector<NodePair> stack{task};
     while (!stack.empty()) {
         const auto [a, b] = stack.back();
         stack.pop_back();
         const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
         if (!na.box.overlaps(nb.box)) continue;
-        const bool leafA = na.left < 0, leafB = nb.left < 0;
-        if (leafA && leafB) {
+        if (na.left < 0 && nb.left < 0) {
             for (std::size_t p = 0; p < na.count; ++p)
                 for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
                     const std::size_t i = order_[na.first + p], j = order_[nb.first + q];
                     if (boxes_[i].overlaps(boxes_[j])) visit(i, j);
                 }
-        } else if (a == b) {
-            stack.push_back({na.left, na.left});
-            stack.push_back({na.right, na.right});
-            stack.push_back({na.left, na.right});
-        } else if (!leafA && (leafB || na.count >= nb.count)) {
-            stack.push_back({na.left, b});
-            stack.push_back({na.right, b});
         } else {
-            stack.push_back({a, nb.left});
-            stack.push_back({a, nb.right});
+            splitPair({a, b}, stack);
         }
     }
 }

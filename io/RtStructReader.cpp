@@ -282,7 +282,7 @@ class Reader {
         DcmElement* element = nullptr;
         if (item.findAndGetElement(DCM_ContourData, element).bad() || !element)
             fail(where + ": missing " + tagName(DCM_ContourData));
-        if (element->ident() != EVR_DS)
+        if (element->ident() != EVR_DS && element->ident() != EVR_UN)
             fail(where + ": " + tagName(DCM_ContourData) + " has VR " +
                  DcmVR(element->ident()).getVRName() + ", expected DS");
         // Bound the work by the value's length before parsing: each number
@@ -292,8 +292,26 @@ class Reader {
             fail(where + ": " + tagName(DCM_ContourData) + " would take the file over " +
                  std::to_string(limits_.maxPointsTotal) + " points");
         OFVector<Float64> numbers;
-        if (static_cast<DcmDecimalString*>(element)->getFloat64Vector(numbers).bad())
+        if (element->ident() == EVR_UN) {
+            // Explicit VR gives DS a 16-bit length, so writers (plastimatch
+            // among them) store a contour of more than about 1 300 points
+            // as UN. The bytes are still the DS text, as the data
+            // dictionary says (PS3.5 §6.2.2), and are read as such.
+            Uint8* bytes = nullptr;
+            if (element->getUint8Array(bytes).bad() || (!bytes && element->getLength() > 0))
+                fail(where + ": " + tagName(DCM_ContourData) + " (VR UN) could not be read");
+            DcmDecimalString asDs(DcmTag(DCM_ContourData, EVR_DS));
+            if (asDs.putString(reinterpret_cast<const char*>(bytes), element->getLength()).bad() ||
+                asDs.getFloat64Vector(numbers).bad())
+                fail(where + ": " + tagName(DCM_ContourData) +
+                     " (VR UN) holds a value that is not a number");
+            if (!unContourDataWarned_)
+                warn(where + ": " + tagName(DCM_ContourData) +
+                     " is stored with VR UN (too long for explicit VR's DS); read as DS");
+            unContourDataWarned_ = true;
+        } else if (static_cast<DcmDecimalString*>(element)->getFloat64Vector(numbers).bad()) {
             fail(where + ": " + tagName(DCM_ContourData) + " holds a value that is not a number");
+        }
         if (numbers.size() % 3 != 0)
             fail(where + ": " + tagName(DCM_ContourData) + " has " +
                  std::to_string(numbers.size()) + " values, not a list of x,y,z triplets");
@@ -608,6 +626,7 @@ class Reader {
     std::size_t totalPoints_ = 0;
     std::size_t xorWork_ = 0;  // contours and crossings combined by XOR so far
     bool slabWarned_ = false;
+    bool unContourDataWarned_ = false;  // warned once per file
 };
 
 }  // namespace

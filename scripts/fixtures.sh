@@ -28,6 +28,11 @@
 #                                    axial planes 3 mm apart, coordinates that
 #                                    plastimatch writes as float32 digits
 #                                    ("-3.0999999"); same files
+#   OUTDIR/ct_head/                  invesalius-examples' head CT (Cranium.inv3)
+#                                    at 512 x 512 x 108, 0.48 x 0.48 x 1.5 mm,
+#                                    thresholded (scripts/ct_structures.py):
+#                                    BODY, AIRWAY, BONE; dicom/ the CT series
+#                                    and rtss.dcm, rtstruct.dcm, ss.txt
 #   OUTDIR/meshes/NAME.off           meshes from libcgal-demo's data.tar.gz
 #                                    (surface distance map scenes, geodesic
 #                                    benchmarks): femur, bunny00, armadillo,
@@ -49,11 +54,11 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 out=$1
 python=/usr/bin/python3 # Debian's, with python3-numpy and python3-pydicom
 source_packages=(plastimatch python3-pydicom python3-numpy insighttoolkit5-examples dicom3tools
-  libcgal-demo)
+  libcgal-demo invesalius-examples python3-scipy)
 
 stamp() {
   echo "fixtures v1"
-  sha256sum "$here/fixtures.sh" "$here/label_stats.py" | awk '{print $1}'
+  sha256sum "$here/fixtures.sh" "$here/label_stats.py" "$here/ct_structures.py" | awk '{print $1}'
   for p in "${source_packages[@]}"; do
     echo "$p $(dpkg-query -W -f='${Version}' "$p" 2>/dev/null || echo none)"
   done
@@ -82,6 +87,7 @@ pydicom_rtstruct=$(package_file python3-pydicom rtstruct.dcm)
 kmeans_labels=$(package_file insighttoolkit5-examples KmeansTest_T1KmeansPrelimSegmentation.nii.gz)
 kmeans_t1=$(package_file insighttoolkit5-examples KmeansTest_T1UCharRaw.nii.gz)
 cgal_data=$(package_file libcgal-demo data.tar.gz)
+cranium=$(package_file invesalius-examples Cranium.inv3)
 
 start=$SECONDS
 mkdir -p "$(dirname "$out")"
@@ -113,33 +119,20 @@ colors=("255 0 0" "255 255 0" "255 0 255" "0 255 255" "0 255 0" "0 0 255"
   "255 128 128" "255 255 128" "255 128 255" "128 255 255" "128 255 128"
   "128 128 255" "200 128 128" "200 200 128" "200 128 200" "128 200 200")
 
-# make_study NAME LABELS.nii.gz REFERENCE_IMAGE
-make_study() {
-  local name=$1 labels=$2 ref=$3
-  local d=$tmp/$name log=$tmp/$name/plastimatch.log
-  mkdir -p "$d/masks"
-  cp "$labels" "$d/labels.nii.gz"
-  made "$name/labels.nii.gz"
-
-  local lo hi
-  read -r lo hi < <(plastimatch stats "$d/labels.nii.gz" |
-    awk '/^MIN/ {printf "%d %d\n", $2, $6}')
-  if [ "$lo" -lt 0 ] || [ "$hi" -gt 31 ]; then
-    die "$labels: labels $lo..$hi, want 0..31 (bits of a uint32)"
-  fi
-
-  # One mask per label; weights 2^N fold them into a structure-set image
-  # (bit N = label N) with a list that names bit N "label_N".
-  local masks=() weights=() n
+# study_from_masks NAME REFERENCE_IMAGE MASK...: the masks (0/1 images on
+# the reference's grid, ROI names their file names) as one structure-set
+# image (weights 2^N: bit N = mask N, named in ss.txt), then the reference
+# as a DICOM series with the RTSTRUCT plastimatch contours from it.
+study_from_masks() {
+  local name=$1 ref=$2
+  shift 2
+  local d=$tmp/$name log=$tmp/$name/plastimatch.log masks=("$@") weights=() n=0 m
   : >"$d/ss.txt"
-  for n in $(seq "$lo" "$hi"); do
-    logged "$log" plastimatch threshold --input "$d/labels.nii.gz" \
-      --output "$d/masks/label_$n.nrrd" --range "$n,$n"
-    masks+=("$d/masks/label_$n.nrrd")
+  for m in "${masks[@]}"; do
     weights+=($((1 << n)))
-    echo "$n|${colors[n % ${#colors[@]}]}|label_$n" >>"$d/ss.txt"
+    echo "$n|${colors[n % ${#colors[@]}]}|$(basename "$m" .nrrd)" >>"$d/ss.txt"
+    n=$((n + 1))
   done
-  made "$name/masks" "${masks[*]##*/}"
   if [ ${#masks[@]} -eq 1 ]; then
     logged "$log" plastimatch convert --input "${masks[0]}" \
       --output-type uint32 --output-img "$d/ss.nrrd"
@@ -162,14 +155,40 @@ make_study() {
   made "$name/dicom" "${#images[@]} images + rtss.dcm"
   made "$name/rtstruct.dcm" "= dicom/rtss.dcm"
 
-  "$python" "$here/label_stats.py" "$d/labels.nii.gz" --ss-list "$d/ss.txt" \
-    --rtstruct "$d/rtstruct.dcm" -o "$d/labels.json"
-  made "$name/labels.json"
-
   if command -v dciodvfy >/dev/null; then
     dciodvfy "$d/rtstruct.dcm" >"$d/dciodvfy.txt" 2>&1 || true
     made "$name/dciodvfy.txt" "$(grep -c '^Error' "$d/dciodvfy.txt" || true) errors, $(grep -c '^Warning' "$d/dciodvfy.txt" || true) warnings"
   fi
+}
+
+# make_study NAME LABELS.nii.gz REFERENCE_IMAGE
+make_study() {
+  local name=$1 labels=$2 ref=$3
+  local d=$tmp/$name log=$tmp/$name/plastimatch.log
+  mkdir -p "$d/masks"
+  cp "$labels" "$d/labels.nii.gz"
+  made "$name/labels.nii.gz"
+
+  local lo hi
+  read -r lo hi < <(plastimatch stats "$d/labels.nii.gz" |
+    awk '/^MIN/ {printf "%d %d\n", $2, $6}')
+  if [ "$lo" -lt 0 ] || [ "$hi" -gt 31 ]; then
+    die "$labels: labels $lo..$hi, want 0..31 (bits of a uint32)"
+  fi
+
+  # One mask per label, named "label_N" (bit N of the structure set).
+  local masks=() n
+  for n in $(seq "$lo" "$hi"); do
+    logged "$log" plastimatch threshold --input "$d/labels.nii.gz" \
+      --output "$d/masks/label_$n.nrrd" --range "$n,$n"
+    masks+=("$d/masks/label_$n.nrrd")
+  done
+  made "$name/masks" "${masks[*]##*/}"
+  study_from_masks "$name" "$ref" "${masks[@]}"
+
+  "$python" "$here/label_stats.py" "$d/labels.nii.gz" --ss-list "$d/ss.txt" \
+    --rtstruct "$d/rtstruct.dcm" -o "$d/labels.json"
+  made "$name/labels.json"
 }
 
 # reorient_axial IN.nii.gz OUT_HEADER.nhdr: the same voxels, read with
@@ -216,6 +235,20 @@ axial_nifti() {
 axial_nifti "$kmeans_labels" labels
 axial_nifti "$kmeans_t1" t1
 make_study kmeans_axial "$scratch/labels-axial.nii.gz" "$scratch/t1-axial.nii.gz"
+
+# --- a head CT's structures: body outline, airway, bone ---------------------
+# InVesalius' example head CT at 512 x 512 pixels of 0.48 mm, 1.5 mm apart,
+# thresholded as auto-contouring does (scripts/ct_structures.py). Bone has
+# up to dozens of contours per plane; the body outline over a thousand
+# points per contour, so plastimatch writes some ContourData as VR UN.
+mkdir -p "$tmp/ct_head"
+logged "$tmp/ct_head/ct_structures.log" "$python" "$here/ct_structures.py" "$cranium" \
+  "$tmp/ct_head"
+made ct_head/masks "BODY AIRWAY BONE"
+study_from_masks ct_head "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks/BODY.nrrd" \
+  "$tmp/ct_head/masks/AIRWAY.nrrd" "$tmp/ct_head/masks/BONE.nrrd"
+# The DICOM series and RTSTRUCT hold it all (the images 57 MB, the rest 200).
+rm -rf "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks" "$tmp/ct_head/ss.nrrd"
 
 # --- real meshes: CGAL's demo data -------------------------------------------
 cgal_meshes=(femur bunny00 armadillo refined_elephant elephant blobby eight sphere cube knot1)

@@ -56,13 +56,15 @@ test_packages=(
 # (tests/app/slurm_array_test.sh) on a single-node Slurm; their recommends
 # are the plugin development headers. mricron-data holds the atlases the
 # truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
-# compare tests read; its recommends are mricron itself.
+# compare tests read; its recommends are mricron itself. invesalius-examples
+# holds the head CT whose structures the structure-set benchmark reconstructs
+# (scripts/ct_structures.py thresholds it with python3-scipy).
 test_packages_no_recommends=(
   chromium python3-vtk9 python3-pytest
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge
-  mricron-data
+  mricron-data invesalius-examples python3-scipy
 )
 packages=("${build_packages[@]}")
 packages_no_recommends=("${build_packages_no_recommends[@]}")

@@ -33,6 +33,10 @@ struct ContourSpec {
     std::string type = "CLOSED_PLANAR";
     std::vector<Vec3> points;
     std::string slabThickness;  // empty: absent
+    // ContourData stored as VR UN, as writers store a DS value too long for
+    // explicit VR's 16-bit length; `unAs` another VR of the same bytes.
+    bool asUn = false;
+    DcmEVR unAs = EVR_UN;
 };
 struct RoiSpec {
     int number = 1;
@@ -90,7 +94,15 @@ void writeDataset(const std::string& path, const std::vector<RoiSpec>& rois,
             contour->putAndInsertString(DCM_ContourGeometricType, c.type.c_str());
             contour->putAndInsertString(DCM_NumberOfContourPoints,
                                         std::to_string(c.points.size()).c_str());
-            contour->putAndInsertString(DCM_ContourData, contourDataText(c.points).c_str());
+            if (c.asUn) {
+                const std::string text = contourDataText(c.points);
+                auto* raw = new DcmOtherByteOtherWord(DcmTag(DCM_ContourData, c.unAs));
+                raw->putUint8Array(reinterpret_cast<const Uint8*>(text.data()),
+                                   Uint32(text.size()));
+                contour->insert(raw, true);
+            } else {
+                contour->putAndInsertString(DCM_ContourData, contourDataText(c.points).c_str());
+            }
             if (!c.slabThickness.empty())
                 contour->putAndInsertString(DCM_RETIRED_ContourSlabThickness,
                                             c.slabThickness.c_str());
@@ -766,5 +778,30 @@ TEST(RtStruct, Latin1NamesAreReadAsUtf8) {
     EXPECT_EQ(readRtStruct(path).contours.rois[0].name,
               "H\xc3\xbc"
               "fte");
+    fs::remove(path);
+}
+
+// plastimatch (and other writers) store a ContourData of more than about
+// 1 300 points as VR UN in explicit VR files: the DS text does not fit a
+// 16-bit length. Its bytes are still DS and are read as such, with a
+// warning; any other VR is refused, naming the element.
+TEST(RtStruct, ContourDataStoredAsUnIsReadAsDecimalStrings) {
+    RoiSpec body;
+    body.contours = {square(0, 0, 10, 0), square(0, 0, 10, 3)};
+    body.contours[1].asUn = true;
+    const std::string path = tempPath("un");
+    writeDataset(path, {body});
+    const RtStructLoad load = readRtStruct(path);
+    ASSERT_EQ(load.contours.rois[0].slices.size(), 2u);
+    const Polygon& read = load.contours.rois[0].slices[1].contours.at(0);
+    ASSERT_EQ(read.size(), 4u);
+    EXPECT_DOUBLE_EQ(read[2].x, 10);
+    EXPECT_DOUBLE_EQ(read[2].y, 10);
+    EXPECT_TRUE(anyWarning(load, "VR UN"));
+
+    body.contours[1].unAs = EVR_OB;
+    writeDataset(path, {body});
+    EXPECT_NE(readError(path).find("has VR OB, expected DS"), std::string::npos);
+
     fs::remove(path);
 }
