@@ -10,6 +10,8 @@
 // speed ratio. The sets: the shared Brodmann atlas, plastimatch's k-means
 // fixture, a head CT's BONE alone and with BODY and AIRWAY (build/fixtures/
 // ct_head, scripts/ct_structures.py), and 200 blobs in one ROI.
+#include <malloc.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -54,7 +56,10 @@ double peakMemoryMb() {
 
 // Starts a new peak at the current resident size (Linux >= 4.0: writing 5
 // to clear_refs resets VmHWM), so each route's peak is its own.
+// What the heap freed goes back to the system first (glibc keeps it
+// otherwise, and the route before would count in this one's peak).
 void resetPeakMemory() {
+    malloc_trim(0);
     std::ofstream("/proc/self/clear_refs") << "5";
 }
 

@@ -1,5 +1,6 @@
 #include "geometry/MeshCheck.hpp"
 
+#include "geometry/BoxGrid.hpp"
 #include "geometry/Polygon.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "geometry/UnionFind.hpp"
@@ -264,7 +265,63 @@ bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
     return false;
 }
 
-MeshCheckReport checkMesh(const TriangleSoup& soup) {
+namespace {
+
+// The colliding pairs (i < j) that involve a suspect, at most `cap`, in a
+// fixed order (suspects in the order given, then the grid's). Each pair is
+// tested once. O(T) box look-ups on a grid over the suspects' boxes, plus
+// the tests.
+std::vector<TrianglePair> collidingPairsNear(const TriangleSoup& soup,
+                                             const std::vector<bool>& degenerate,
+                                             const std::vector<std::size_t>& suspects,
+                                             std::size_t cap, bool& capped) {
+    capped = false;
+    std::vector<TrianglePair> pairs;
+    if (suspects.empty()) return pairs;
+    std::vector<bool> suspect(soup.triangles.size(), false);
+    std::vector<Box3> boxes;
+    std::vector<double> extents;
+    Box3 scene;
+    for (std::size_t s : suspects) {
+        suspect[s] = true;
+        Box3& box = boxes.emplace_back();
+        for (std::uint32_t v : soup.triangles[s]) box.add(soup.points[v]);
+        const Vec3 e = box.hi - box.lo;
+        extents.push_back(std::max({e.x, e.y, e.z}));
+        scene.add(box);
+    }
+    // Cells about a suspect across (the median), never so small that one
+    // box spans more than 64 a side.
+    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
+                     extents.end());
+    const Vec3 size = scene.hi - scene.lo;
+    const double cell =
+        std::max({extents[extents.size() / 2], size.x / 64, size.y / 64, size.z / 64, 1e-9});
+    const BoxGrid grid(boxes, cell);
+    for (std::size_t t = 0; t < soup.triangles.size() && pairs.size() < cap; ++t) {
+        if (degenerate[t]) continue;
+        Box3 box;
+        for (std::uint32_t v : soup.triangles[t]) box.add(soup.points[v]);
+        if (!box.overlaps(scene)) continue;
+        grid.overlapping(box, [&](std::uint32_t k) {
+            const std::size_t s = suspects[k];
+            // A pair of two suspects is tested from its larger index only.
+            if (s == t || degenerate[s] || (suspect[t] && t < s) || pairs.size() >= cap) return;
+            if (trianglesCollide(soup, soup.triangles[s], soup.triangles[t]))
+                pairs.emplace_back(std::min(s, t), std::max(s, t));
+        });
+    }
+    capped = pairs.size() >= cap;
+    return pairs;
+}
+
+}  // namespace
+
+namespace {
+
+// checkMesh, its intersection search over all pairs or over the pairs that
+// involve `suspects` (checkMeshNear).
+MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_t>* suspects) {
     MeshCheckReport report;
     report.triangles = soup.triangles.size();
     const std::size_t n = soup.points.size();
@@ -362,7 +419,8 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
 
     bool capped = false;
     std::vector<TrianglePair> pairs =
-        collidingPairs(soup, degenerate, kMaxCountedIntersections, capped);
+        suspects ? collidingPairsNear(soup, degenerate, *suspects, kMaxCountedIntersections, capped)
+                 : collidingPairs(soup, degenerate, kMaxCountedIntersections, capped);
     report.intersectingPairs = pairs.size();
     report.intersectingPairsCapped = capped;
     for (const auto& [i, j] : pairs) {
@@ -376,6 +434,16 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     std::sort(defective.begin(), defective.end());
     defective.erase(std::unique(defective.begin(), defective.end()), defective.end());
     return report;
+}
+
+}  // namespace
+
+MeshCheckReport checkMesh(const TriangleSoup& soup) {
+    return checkSoup(soup, nullptr);
+}
+
+MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects) {
+    return checkSoup(soup, &suspects);
 }
 
 }  // namespace dfrecon

@@ -58,6 +58,15 @@ struct MeshCheckReport {
 /// visits only triangle pairs whose bounding boxes overlap.
 MeshCheckReport checkMesh(const TriangleSoup& soup);
 
+/// checkMesh for a soup changed in a few places: the topology in full, but
+/// only the pairs that involve one of `suspects` (triangle indices) searched
+/// for intersections. The report is checkMesh's when no other pair
+/// intersects, e.g. when every other pair was clean in a full check and
+/// none of those triangles moved since (pieces rebuilt or swapped: their
+/// new triangles are the suspects). O(T log T) for the topology, O(T) grid
+/// look-ups for the pairs.
+MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects);
+
 /// The self-intersecting pairs checkMesh would count, without the topology
 /// checks (e.g. for a piece of surface, which has a boundary).
 std::size_t countSelfIntersections(const TriangleSoup& soup);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <initializer_list>
 #include <stdexcept>
 
@@ -26,11 +27,40 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how, BvhQueries quer
     if (!items.empty()) build(items, scratch, 0, items.size(), 0, how);
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
     if (nearest) packForSearch();
+    packForPairs();
+    if (!nearest) {
+        // The pair search reads its own copy only.
+        nodes_ = {};
+        boxes_ = {};
+    }
+}
+
+TriangleBvh::FloatBox TriangleBvh::FloatBox::around(const Box3& box) {
+    FloatBox f;
+    for (int a = 0; a < 3; ++a) {
+        f.lo[a] = float(box.lo[a]);
+        if (double(f.lo[a]) > box.lo[a]) f.lo[a] = std::nextafter(f.lo[a], -INFINITY);
+        f.hi[a] = float(box.hi[a]);
+        if (double(f.hi[a]) < box.hi[a]) f.hi[a] = std::nextafter(f.hi[a], INFINITY);
+    }
+    return f;
+}
+
+void TriangleBvh::packForPairs() {
+    pairNodes_.resize(nodes_.size());
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+        const Node& node = nodes_[n];
+        pairNodes_[n] = {FloatBox::around(node.box), node.left, node.right,
+                         std::uint32_t(node.first), std::uint32_t(node.count)};
+    }
+    pairBoxes_.resize(order_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k)
+        pairBoxes_[k] = FloatBox::around(boxes_[order_[k]]);
 }
 
 void TriangleBvh::splitPair(NodePair pair, std::vector<NodePair>& out) const {
     const auto [a, b] = pair;
-    const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
+    const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
     const bool leafA = na.left < 0, leafB = nb.left < 0;
     if (a == b) {
         out.push_back({na.left, na.left});
@@ -47,14 +77,15 @@ void TriangleBvh::splitPair(NodePair pair, std::vector<NodePair>& out) const {
 
 std::vector<TriangleBvh::NodePair> TriangleBvh::selfPairTasks(std::size_t count) const {
     std::vector<NodePair> tasks;
-    if (nodes_.empty()) return tasks;
+    if (pairNodes_.empty()) return tasks;
     // Breadth first: split the first task in line until there are enough or
     // only pairs of leaves are left; pairs whose boxes miss are dropped.
     std::vector<NodePair> queue{{0, 0}}, done;
     std::size_t head = 0;
     while (head < queue.size() && queue.size() - head + done.size() < count) {
         const NodePair pair = queue[head++];
-        const Node &na = nodes_[std::size_t(pair.first)], &nb = nodes_[std::size_t(pair.second)];
+        const PairNode &na = pairNodes_[std::size_t(pair.first)],
+                       &nb = pairNodes_[std::size_t(pair.second)];
         if (!na.box.overlaps(nb.box)) continue;
         if (na.left < 0 && nb.left < 0)
             done.push_back(pair);

@@ -31,15 +31,16 @@ class TriangleBvh {
   public:
     /// Builds over `soup`, which must outlive the hierarchy. O(T log T).
     /// With BvhQueries::PairsOnly, nearest() and nearestWithin() throw
-    /// std::logic_error and balls() is empty.
+    /// std::logic_error, and nodes() and balls() are empty.
     explicit TriangleBvh(const TriangleSoup& soup, BvhSplit split = BvhSplit::SurfaceArea,
                          BvhQueries queries = BvhQueries::All);
 
     /// Calls visit(i, j) once for every pair of distinct triangles whose
-    /// bounding boxes overlap.
+    /// bounding boxes overlap (as floats rounded outward: a few pairs more
+    /// that only touch within float rounding, never fewer).
     template <class Visit>
     void selfPairs(Visit&& visit) const {
-        if (!nodes_.empty()) selfPairsUnder({0, 0}, visit);
+        if (!pairNodes_.empty()) selfPairsUnder({0, 0}, visit);
     }
 
     /// A pair of nodes: the pairs of triangles, one under each (two
@@ -110,6 +111,7 @@ class TriangleBvh {
     static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
                              const Box3& box);
     void packForSearch();
+    void packForPairs();
     /// The node pairs that cover an inner node pair (a, b) (not two leaves),
     /// appended to `out`.
     void splitPair(NodePair pair, std::vector<NodePair>& out) const;
@@ -142,6 +144,26 @@ class TriangleBvh {
     std::vector<SearchLeaf> searchLeaves_;
     std::vector<SearchTriangle> searchTriangles_;
     int searchRoot_ = 0;  // as SearchNode::child
+
+    // The pair search's copy: the same hierarchy with float boxes rounded
+    // outward (never smaller, so never a pair fewer) and leaves' triangle
+    // boxes side by side in leaf order. A third of the memory of nodes_ and
+    // boxes_; the walk is bound by memory.
+    struct FloatBox {
+        float lo[3], hi[3];
+        bool overlaps(const FloatBox& o) const {
+            return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] &&
+                   lo[2] <= o.hi[2] && o.lo[2] <= hi[2];
+        }
+        static FloatBox around(const Box3& box);
+    };
+    struct PairNode {
+        FloatBox box;
+        int left, right;             // children, or -1 for a leaf
+        std::uint32_t first, count;  // leaf range in order_ and pairBoxes_
+    };
+    std::vector<PairNode> pairNodes_;  // as nodes_
+    std::vector<FloatBox> pairBoxes_;  // pairBoxes_[k]: triangle order_[k]
 };
 
 template <class Visit>
@@ -150,13 +172,13 @@ void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
     while (!stack.empty()) {
         const auto [a, b] = stack.back();
         stack.pop_back();
-        const Node &na = nodes_[std::size_t(a)], &nb = nodes_[std::size_t(b)];
+        const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
         if (!na.box.overlaps(nb.box)) continue;
         if (na.left < 0 && nb.left < 0) {
-            for (std::size_t p = 0; p < na.count; ++p)
-                for (std::size_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
-                    const std::size_t i = order_[na.first + p], j = order_[nb.first + q];
-                    if (boxes_[i].overlaps(boxes_[j])) visit(i, j);
+            for (std::uint32_t p = 0; p < na.count; ++p)
+                for (std::uint32_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
+                    const std::size_t i = na.first + p, j = nb.first + q;
+                    if (pairBoxes_[i].overlaps(pairBoxes_[j])) visit(order_[i], order_[j]);
                 }
         } else {
             splitPair({a, b}, stack);

@@ -467,10 +467,20 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // surface gets its linear triangles back. Pieces meet only in contour
     // vertices, which refinement never touches, so swapping one piece keeps
     // the mesh conforming.
+    // The first check is whole (unbending moved vertices anywhere); after
+    // that, only the triangles of the pieces just restored are new, and
+    // every other pair was clean in the check before (both triangles of a
+    // meeting pair are restored), unless that check stopped counting.
     std::vector<bool> restored;
-    for (int attempt = 0; attempt < 3; ++attempt) {
+    std::vector<std::size_t> swappedIn;
+    bool wholeCheck = true;
+    auto checkAgain = [&] {
         roundPointsToFloat(surface);
-        check = checkMesh(surface);
+        check = wholeCheck ? checkMesh(surface) : checkMeshNear(surface, swappedIn);
+        wholeCheck = check.intersectingPairsCapped;
+    };
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        checkAgain();
         if (check.validSolid()) return stats;
         for (std::size_t t : check.defectiveTriangles) {
             const std::uint32_t piece = pieceOf[t];
@@ -494,8 +504,10 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                 pieces.push_back(pieceOf[t]);
                 lofts.push_back(isLoft[t]);
             }
+        swappedIn.clear();
         for (std::size_t t = 0; t < linear.triangles.size(); ++t)
             if (isRestored(linearPieceOf[t]) && !wasRestored(linearPieceOf[t])) {
+                swappedIn.push_back(triangles.size());
                 triangles.push_back(linear.triangles[t]);
                 pieces.push_back(linearPieceOf[t]);
                 lofts.push_back(false);  // restored: not bent again
@@ -505,8 +517,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         isLoft = std::move(lofts);
         restoredBefore = restored;
     }
-    roundPointsToFloat(surface);
-    check = checkMesh(surface);
+    checkAgain();
     if (check.validSolid()) return stats;
     surface = linear;
     check = checkMesh(surface);

@@ -452,6 +452,10 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         std::vector<bool> broken(slices.size() + 1, false);
         for (std::size_t t : result.check.defectiveTriangles) broken[builder.pieceOf(t)] = true;
         builder.dropPieces(broken);
+        // Every pair of the triangles kept was clean (both triangles of a
+        // meeting pair are dropped), so only the new pieces' triangles are
+        // searched, unless the check stopped counting.
+        const std::size_t kept = builder.triangleCount();
         for (std::uint32_t p = 0; p < broken.size(); ++p) {
             if (!broken[p]) continue;
             ++stats.repairedPieces;
@@ -465,7 +469,13 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
                 reconstructor.closeSlabByPrisms(layers[p - 1], layers[p]);
         }
         builder.roundPointsToFloat();
-        result.check = checkMesh(builder.soup());
+        if (result.check.intersectingPairsCapped) {
+            result.check = checkMesh(builder.soup());
+        } else {
+            std::vector<std::size_t> rebuilt(builder.triangleCount() - kept);
+            std::iota(rebuilt.begin(), rebuilt.end(), kept);
+            result.check = checkMeshNear(builder.soup(), rebuilt);
+        }
     }
     // Where it is still broken, say between which planes (open ends are
     // what CapMode::None asks for).

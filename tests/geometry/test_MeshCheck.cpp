@@ -2,9 +2,11 @@
 // closed genus-0 and genus-1 surfaces, and each kind of defect on purpose.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
@@ -230,4 +232,63 @@ TEST(MeshCheck, HostileSoupsEndQuickly) {
     EXPECT_TRUE(same.intersectingPairsCapped);
     EXPECT_FALSE(same.validSolid());
     EXPECT_FALSE(checkMesh(star).intersectingPairsCapped);
+}
+
+// A soup large enough to be searched on every core, against an independent
+// sweep over all pairs whose x ranges overlap, and against checkMeshNear
+// (a grid, not the hierarchy) with every triangle a suspect.
+TEST(MeshCheck, ParallelSearchAndSuspectSearchFindEveryPair) {
+    const TriangleSoup s = dfrecon::testing::randomTriangles(5, 30000, 120, 1.5);
+    const std::size_t n = s.triangles.size();
+    auto corners = [&](std::size_t t, Vec3 out[3]) {
+        for (int k = 0; k < 3; ++k) out[k] = s.points[s.triangles[t][std::size_t(k)]];
+    };
+    std::vector<std::pair<double, double>> x(n);
+    std::vector<std::size_t> byX(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        Vec3 c[3];
+        corners(t, c);
+        x[t] = {std::min({c[0].x, c[1].x, c[2].x}), std::max({c[0].x, c[1].x, c[2].x})};
+        byX[t] = t;
+    }
+    std::sort(byX.begin(), byX.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+    std::size_t expected = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n && x[byX[j]].first <= x[byX[i]].second; ++j) {
+            Vec3 a[3], b[3];
+            corners(byX[i], a);
+            corners(byX[j], b);
+            expected += trianglesIntersect(a, b);
+        }
+    EXPECT_GT(expected, 100u);
+    const MeshCheckReport whole = checkMesh(s);
+    EXPECT_EQ(whole.intersectingPairs, expected);
+    std::vector<std::size_t> all(n);
+    std::iota(all.begin(), all.end(), 0);
+    const MeshCheckReport near = checkMeshNear(s, all);
+    EXPECT_EQ(near.intersectingPairs, expected);
+    EXPECT_EQ(near.defectiveTriangles, whole.defectiveTriangles);
+    EXPECT_EQ(near.intersectingExamples, whole.intersectingExamples);
+}
+
+// checkMeshNear searches only the pairs of its suspects: a closed torus with
+// a triangle added through it is found from that triangle, and the
+// topology (its three boundary edges) is checked in full either way.
+TEST(MeshCheck, SuspectSearchSeesOnlyItsSuspectsPairs) {
+    TriangleSoup s = torus(3, 1, 24, 12);
+    const std::uint32_t base = std::uint32_t(s.points.size());
+    s.points.push_back({3, -0.5, -2});  // through the tube at (3, 0, 0)
+    s.points.push_back({3, 0.5, -2});
+    s.points.push_back({3, 0, 2});
+    s.triangles.push_back({base, base + 1, base + 2});
+    const std::size_t added = s.triangles.size() - 1;
+    const MeshCheckReport whole = checkMesh(s);
+    const MeshCheckReport near = checkMeshNear(s, {added});
+    EXPECT_GT(whole.intersectingPairs, 0u);
+    EXPECT_EQ(near.intersectingPairs, whole.intersectingPairs);
+    EXPECT_EQ(near.defectiveTriangles, whole.defectiveTriangles);
+    const MeshCheckReport elsewhere = checkMeshNear(s, {0});
+    EXPECT_EQ(elsewhere.intersectingPairs, 0u);
+    EXPECT_EQ(elsewhere.boundaryEdges, 3u);
+    EXPECT_FALSE(elsewhere.validSolid());
 }

@@ -1,10 +1,12 @@
-// Nearest-triangle queries against brute force, and the closest point on a
-// triangle against dense sampling of it.
+// Nearest-triangle queries against brute force, the closest point on a
+// triangle against dense sampling of it, and the pair search against all pairs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <set>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -125,4 +127,37 @@ TEST(TriangleBvh, PeelingSplitsStayShallowAndExact) {
         const Vec3 p{s * direction(random), s * direction(random), s * direction(random)};
         EXPECT_EQ(bvh.nearest(p).distance2, bruteForceNearest(soup, p).second);
     }
+}
+
+// A hierarchy for pairs only visits every pair whose boxes overlap (its
+// float boxes are rounded outward), each once, split over tasks or not, and
+// refuses nearest searches.
+TEST(TriangleBvh, PairSearchVisitsEveryOverlappingPairOnce) {
+    const TriangleSoup soup = dfrecon::testing::randomTriangles(3, 3000, 40, 1.0);
+    std::vector<Box3> boxes(soup.triangles.size());
+    for (std::size_t t = 0; t < boxes.size(); ++t)
+        for (std::uint32_t v : soup.triangles[t]) boxes[t].add(soup.points[v]);
+    std::set<std::pair<std::size_t, std::size_t>> expected;
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        for (std::size_t j = i + 1; j < boxes.size(); ++j)
+            if (boxes[i].overlaps(boxes[j])) expected.insert({i, j});
+    ASSERT_GT(expected.size(), 100u);
+    for (const BvhQueries queries : {BvhQueries::All, BvhQueries::PairsOnly}) {
+        const TriangleBvh bvh(soup, BvhSplit::Halving, queries);
+        std::multiset<std::pair<std::size_t, std::size_t>> whole, split;
+        bvh.selfPairs([&](std::size_t i, std::size_t j) {
+            whole.insert({std::min(i, j), std::max(i, j)});
+        });
+        for (const TriangleBvh::NodePair& task : bvh.selfPairTasks(64))
+            bvh.selfPairsUnder(task, [&](std::size_t i, std::size_t j) {
+                split.insert({std::min(i, j), std::max(i, j)});
+            });
+        EXPECT_EQ(whole, split);
+        // Every overlapping pair, once; any other only within float rounding.
+        for (const auto& pair : expected) EXPECT_EQ(whole.count(pair), 1u);
+        EXPECT_EQ(std::set(whole.begin(), whole.end()).size(), whole.size());
+        EXPECT_LE(whole.size(), expected.size() + expected.size() / 100);
+    }
+    const TriangleBvh pairsOnly(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
+    EXPECT_THROW(pairsOnly.nearest({0, 0, 0}), std::logic_error);
 }
