@@ -9,30 +9,31 @@
 namespace dfrecon {
 
 TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how, BvhQueries queries)
-    : soup_(soup), boxes_(soup.triangles.size()), order_(soup.triangles.size()) {
+    : soup_(soup), order_(soup.triangles.size()) {
     const bool nearest = queries == BvhQueries::All;
-    if (nearest) balls_.resize(soup.triangles.size());
-    for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-        const auto& tri = soup.triangles[t];
-        for (std::uint32_t v : tri) boxes_[t].add(soup.points[v]);
-        if (nearest)
-            balls_[t] = Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
+    // Built over the boxes, reordered as they are split, so that every pass
+    // runs through memory in order. Only area splits need a second buffer.
+    std::vector<BuildItem> items(soup.triangles.size());
+    for (std::size_t t = 0; t < items.size(); ++t) {
+        items[t].triangle = t;
+        for (std::uint32_t v : soup.triangles[t]) items[t].box.add(soup.points[v]);
     }
-    // Built over a copy of the boxes that is reordered as it is split, so
-    // that every pass runs through memory in order.
-    std::vector<BuildItem> items(boxes_.size());
-    for (std::size_t t = 0; t < items.size(); ++t) items[t] = {boxes_[t], t};
+    if (nearest) {
+        balls_.resize(items.size());
+        for (std::size_t t = 0; t < items.size(); ++t) {
+            const auto& tri = soup.triangles[t];
+            balls_[t] =
+                Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
+        }
+    }
     std::vector<BuildItem> scratch;
-    scratch.reserve(items.size());
+    if (how == BvhSplit::SurfaceArea) scratch.reserve(items.size());
     if (!items.empty()) build(items, scratch, 0, items.size(), 0, how);
     for (std::size_t k = 0; k < items.size(); ++k) order_[k] = items[k].triangle;
     if (nearest) packForSearch();
-    packForPairs();
-    if (!nearest) {
-        // The pair search reads its own copy only.
-        nodes_ = {};
-        boxes_ = {};
-    }
+    packForPairs(items);
+    // The pair search reads its own copy only.
+    if (!nearest) nodes_ = {};
 }
 
 TriangleBvh::FloatBox TriangleBvh::FloatBox::around(const Box3& box) {
@@ -46,16 +47,15 @@ TriangleBvh::FloatBox TriangleBvh::FloatBox::around(const Box3& box) {
     return f;
 }
 
-void TriangleBvh::packForPairs() {
+void TriangleBvh::packForPairs(const std::vector<BuildItem>& items) {
     pairNodes_.resize(nodes_.size());
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
         const Node& node = nodes_[n];
         pairNodes_[n] = {FloatBox::around(node.box), node.left, node.right,
                          std::uint32_t(node.first), std::uint32_t(node.count)};
     }
-    pairBoxes_.resize(order_.size());
-    for (std::size_t k = 0; k < order_.size(); ++k)
-        pairBoxes_[k] = FloatBox::around(boxes_[order_[k]]);
+    pairBoxes_.resize(items.size());
+    for (std::size_t k = 0; k < items.size(); ++k) pairBoxes_[k] = FloatBox::around(items[k].box);
 }
 
 void TriangleBvh::splitPair(NodePair pair, std::vector<NodePair>& out) const {

@@ -111,13 +111,13 @@ class TriangleBvh {
     static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
                              const Box3& box);
     void packForSearch();
-    void packForPairs();
+    /// `items`: the boxes in leaf order, as the build leaves them.
+    void packForPairs(const std::vector<BuildItem>& items);
     /// The node pairs that cover an inner node pair (a, b) (not two leaves),
     /// appended to `out`.
     void splitPair(NodePair pair, std::vector<NodePair>& out) const;
 
     const TriangleSoup& soup_;
-    std::vector<Box3> boxes_;
     std::vector<Ball> balls_;
     std::vector<Node> nodes_;
     std::vector<std::size_t> order_;
@@ -147,8 +147,8 @@ class TriangleBvh {
 
     // The pair search's copy: the same hierarchy with float boxes rounded
     // outward (never smaller, so never a pair fewer) and leaves' triangle
-    // boxes side by side in leaf order. A third of the memory of nodes_ and
-    // boxes_; the walk is bound by memory.
+    // boxes side by side in leaf order: half the memory of nodes_ and a
+    // double box per triangle.
     struct FloatBox {
         float lo[3], hi[3];
         bool overlaps(const FloatBox& o) const {
