@@ -373,6 +373,9 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
         parts.join(uses[begin].lo, uses[begin].hi);
         begin = end;
     }
+    // Freed before the pair search's hierarchy is built: the peak of a
+    // large check is theirs and its together.
+    uses = {};
     // The triangles around each vertex, packed (around[first[v] .. first[v + 1])).
     std::vector<std::uint32_t> first(n + 1, 0), around(3 * soup.triangles.size());
     for (const Triangle& tri : soup.triangles)
@@ -411,6 +414,8 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
             report.defectiveTriangles.insert(report.defectiveTriangles.end(), ring, ring + k);
         }
     }
+    first = {};
+    around = {};
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
     report.eulerCharacteristic =
         long(report.vertices) - long(report.edges) + long(report.triangles);
