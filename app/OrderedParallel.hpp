@@ -13,6 +13,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "geometry/CoreBudget.hpp"
+
 namespace dfrecon::app {
 
 /// The worker count a command uses by default: one per hardware thread, at
@@ -50,6 +52,9 @@ void forEachInOrder(std::size_t count, std::size_t jobs, Work work, Take take) {
     std::atomic<bool> stop{false};
 
     auto run = [&](std::size_t worker) {
+        // Each worker holds a core while it has items, so the steps inside
+        // one (the mesh check) split only over cores no worker holds.
+        const CoreLease core(1);
         for (std::size_t item; !stop && (item = next++) < count;) {
             Slot finished;
             try {

@@ -1,6 +1,7 @@
 #include "geometry/MeshCheck.hpp"
 
 #include "geometry/BoxGrid.hpp"
+#include "geometry/CoreBudget.hpp"
 #include "geometry/Polygon.hpp"
 #include "geometry/TriangleBvh.hpp"
 #include "geometry/UnionFind.hpp"
@@ -186,7 +187,7 @@ constexpr std::size_t kSearchTasks = 256;
 // The pairs (i < j) of non-degenerate triangles that collide, at most
 // `cap`: the first `cap` in a fixed order (TriangleBvh::selfPairTasks', then
 // each task's). `capped` says whether the search stopped there. Large soups
-// are searched on every core, tasks taken in order, each run to its end or
+// are searched on every core left free, tasks taken in order, each run to its end or
 // its own cap, and no task started once `cap` pairs are in: the tasks done
 // are a prefix that holds the first `cap`. O(T log T + pairs of overlapping
 // boxes) work.
@@ -209,11 +210,15 @@ std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
         }
         return found[k].size();
     };
-    const std::size_t threads =
+    // Only the cores no other work holds (geometry/CoreBudget): ROIs
+    // reconstructed in parallel each hold one already.
+    const std::size_t wanted =
         soup.triangles.size() < kParallelFromTriangles
             ? 1
             : std::max<std::size_t>(
                   1, std::min<std::size_t>(std::thread::hardware_concurrency(), tasks.size()));
+    const CoreLease lease(wanted - 1);
+    const std::size_t threads = 1 + lease.granted();
     std::atomic<std::size_t> next{0}, total{0};
     auto work = [&] {
         for (std::size_t k; total < cap && (k = next++) < tasks.size();) total += runTask(k);

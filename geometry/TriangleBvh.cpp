@@ -22,8 +22,7 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, BvhSplit how, BvhQueries quer
         balls_.resize(items.size());
         for (std::size_t t = 0; t < items.size(); ++t) {
             const auto& tri = soup.triangles[t];
-            balls_[t] =
-                Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
+            balls_[t] = Ball::around(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]);
         }
     }
     std::vector<BuildItem> scratch;
