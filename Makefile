@@ -62,7 +62,10 @@ test: setup
 demo: build-program
 	@bash scripts/demo.sh $(BUILD_DIR)/bin/dfrecon
 
+# The benchmarks' own data (a head CT's structures) only here: the tests
+# need none of it.
 bench: build
+	@bash scripts/setup.sh bench
 	@$(BUILD_DIR)/bin/dfrecon-bench all
 
 # The tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with

@@ -8,8 +8,8 @@
 // and rasterise+mc (seconds, valid solids, the same deviation), each with
 // the process's peak memory during that route; the dfrecon line carries the
 // speed ratio. The sets: the shared Brodmann atlas, plastimatch's k-means
-// fixture, a head CT's BONE alone and with BODY and AIRWAY (build/fixtures/
-// ct_head, scripts/ct_structures.py), and 200 blobs in one ROI.
+// fixture, a head CT's BONE alone and with BODY and AIRWAY (build/bench-
+// fixtures/ct_head, scripts/ct_structures.py; make bench makes it), and 200 blobs in one ROI.
 #include <malloc.h>
 
 #include <algorithm>
@@ -135,7 +135,8 @@ int benchStructureSet(const std::string& device) {
     const std::filesystem::path brodmann =
         std::filesystem::path(DFRECON_SHARED_DATA) / "brodmann-rtstruct.dcm";
     const std::filesystem::path kmeans = fixtures / "kmeans_axial" / "rtstruct.dcm";
-    const std::filesystem::path head = fixtures / "ct_head" / "rtstruct.dcm";
+    const std::filesystem::path head =
+        std::filesystem::path(DFRECON_BENCH_FIXTURES) / "ct_head" / "rtstruct.dcm";
     // A case: a file and the ROIs of it to reconstruct (empty: all).
     struct Case {
         const char* name;
@@ -152,7 +153,8 @@ int benchStructureSet(const std::string& device) {
         if (!std::filesystem::exists(c.path)) {
             std::cout << nlohmann::ordered_json{{"bench", "structure-set"},
                                                 {"case", c.name},
-                                                {"skipped", c.path.string() + " not found"}}
+                                                {"skipped", c.path.string() +
+                                                                " not found (make bench makes it)"}}
                              .dump()
                       << std::endl;
             continue;

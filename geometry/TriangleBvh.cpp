@@ -57,23 +57,6 @@ void TriangleBvh::packForPairs(const std::vector<BuildItem>& items) {
     for (std::size_t k = 0; k < items.size(); ++k) pairBoxes_[k] = FloatBox::around(items[k].box);
 }
 
-void TriangleBvh::splitPair(NodePair pair, std::vector<NodePair>& out) const {
-    const auto [a, b] = pair;
-    const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
-    const bool leafA = na.left < 0, leafB = nb.left < 0;
-    if (a == b) {
-        out.push_back({na.left, na.left});
-        out.push_back({na.right, na.right});
-        out.push_back({na.left, na.right});
-    } else if (!leafA && (leafB || na.count >= nb.count)) {
-        out.push_back({na.left, b});
-        out.push_back({na.right, b});
-    } else {
-        out.push_back({a, nb.left});
-        out.push_back({a, nb.right});
-    }
-}
-
 std::vector<TriangleBvh::NodePair> TriangleBvh::selfPairTasks(std::size_t count) const {
     std::vector<NodePair> tasks;
     if (pairNodes_.empty()) return tasks;
@@ -86,10 +69,13 @@ std::vector<TriangleBvh::NodePair> TriangleBvh::selfPairTasks(std::size_t count)
         const PairNode &na = pairNodes_[std::size_t(pair.first)],
                        &nb = pairNodes_[std::size_t(pair.second)];
         if (!na.box.overlaps(nb.box)) continue;
-        if (na.left < 0 && nb.left < 0)
+        if (na.left < 0 && nb.left < 0) {
             done.push_back(pair);
-        else
-            splitPair(pair, queue);
+        } else {
+            NodePair children[3];
+            const int n = splitPair(pair, children);
+            queue.insert(queue.end(), children, children + n);
+        }
     }
     tasks.assign(queue.begin() + std::ptrdiff_t(head), queue.end());
     tasks.insert(tasks.end(), done.begin(), done.end());

@@ -114,8 +114,29 @@ class TriangleBvh {
     /// `items`: the boxes in leaf order, as the build leaves them.
     void packForPairs(const std::vector<BuildItem>& items);
     /// The node pairs that cover an inner node pair (a, b) (not two leaves),
-    /// appended to `out`.
-    void splitPair(NodePair pair, std::vector<NodePair>& out) const;
+    /// written to `out`; returns how many (2 or 3).
+    int splitPair(NodePair pair, NodePair out[3]) const {
+        const auto [a, b] = pair;
+        const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
+        if (a == b) {
+            out[0] = {na.left, na.left};
+            out[1] = {na.right, na.right};
+            out[2] = {na.left, na.right};
+            return 3;
+        }
+        if (na.left >= 0 && (nb.left < 0 || na.count >= nb.count)) {
+            out[0] = {na.left, b};
+            out[1] = {na.right, b};
+        } else {
+            out[0] = {a, nb.left};
+            out[1] = {a, nb.right};
+        }
+        return 2;
+    }
+    bool boxesOverlap(NodePair pair) const {
+        return pairNodes_[std::size_t(pair.first)].box.overlaps(
+            pairNodes_[std::size_t(pair.second)].box);
+    }
 
     const TriangleSoup& soup_;
     std::vector<Ball> balls_;
@@ -168,12 +189,14 @@ class TriangleBvh {
 
 template <class Visit>
 void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
+    // Only pairs whose boxes overlap are pushed: most children pairs of a
+    // surface's nodes miss each other.
+    if (!boxesOverlap(task)) return;
     std::vector<NodePair> stack{task};
     while (!stack.empty()) {
         const auto [a, b] = stack.back();
         stack.pop_back();
         const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
-        if (!na.box.overlaps(nb.box)) continue;
         if (na.left < 0 && nb.left < 0) {
             for (std::uint32_t p = 0; p < na.count; ++p)
                 for (std::uint32_t q = (a == b ? p + 1 : 0); q < nb.count; ++q) {
@@ -181,7 +204,10 @@ void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
                     if (pairBoxes_[i].overlaps(pairBoxes_[j])) visit(order_[i], order_[j]);
                 }
         } else {
-            splitPair({a, b}, stack);
+            NodePair children[3];
+            const int n = splitPair({a, b}, children);
+            for (int k = 0; k < n; ++k)
+                if (boxesOverlap(children[k])) stack.push_back(children[k]);
         }
     }
 }

@@ -28,7 +28,7 @@
 #                                    axial planes 3 mm apart, coordinates that
 #                                    plastimatch writes as float32 digits
 #                                    ("-3.0999999"); same files
-#   OUTDIR/ct_head/                  invesalius-examples' head CT (Cranium.inv3)
+#   OUTDIR/ct_head/ (bench)          invesalius-examples' head CT (Cranium.inv3)
 #                                    at 512 x 512 x 108, 0.48 x 0.48 x 1.5 mm,
 #                                    thresholded (scripts/ct_structures.py):
 #                                    BODY, AIRWAY, BONE; dicom/ the CT series
@@ -39,25 +39,33 @@
 #                                    refined_elephant, elephant, blobby, eight,
 #                                    sphere, cube, knot1 (all closed, manifold)
 #
-# Usage: scripts/fixtures.sh OUTDIR
+# Usage: scripts/fixtures.sh OUTDIR [tests|bench]
+#   tests (default)  everything above but ct_head
+#   bench            ct_head alone (the benchmarks' data; make bench)
 # Idempotent: skips when OUTDIR/.complete holds this script's stamp (its and
 # label_stats.py's hashes and the source packages' versions). Builds in a
 # temporary folder beside OUTDIR and renames it at the end, so a failed run
 # leaves no half-made OUTDIR.
 set -euo pipefail
 
-if [ $# -ne 1 ]; then
-  echo "usage: $0 OUTDIR" >&2
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+  echo "usage: $0 OUTDIR [tests|bench]" >&2
   exit 2
 fi
+which=${2:-tests}
+case "$which" in
+  tests | bench) ;;
+  *) echo "fixtures: unknown selection '$which' (tests or bench)" >&2; exit 2 ;;
+esac
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 out=$1
 python=/usr/bin/python3 # Debian's, with python3-numpy and python3-pydicom
 source_packages=(plastimatch python3-pydicom python3-numpy insighttoolkit5-examples dicom3tools
-  libcgal-demo invesalius-examples python3-scipy)
+  libcgal-demo)
+if [ "$which" = bench ]; then source_packages+=(invesalius-examples python3-scipy); fi
 
 stamp() {
-  echo "fixtures v1"
+  echo "fixtures v1 $which"
   sha256sum "$here/fixtures.sh" "$here/label_stats.py" "$here/ct_structures.py" | awk '{print $1}'
   for p in "${source_packages[@]}"; do
     echo "$p $(dpkg-query -W -f='${Version}' "$p" 2>/dev/null || echo none)"
@@ -87,7 +95,10 @@ pydicom_rtstruct=$(package_file python3-pydicom rtstruct.dcm)
 kmeans_labels=$(package_file insighttoolkit5-examples KmeansTest_T1KmeansPrelimSegmentation.nii.gz)
 kmeans_t1=$(package_file insighttoolkit5-examples KmeansTest_T1UCharRaw.nii.gz)
 cgal_data=$(package_file libcgal-demo data.tar.gz)
-cranium=$(package_file invesalius-examples Cranium.inv3)
+if [ "$which" = bench ]; then
+  cranium=$(package_file invesalius-examples Cranium.inv3)
+  "$python" -c 'import scipy' 2>/dev/null || die "$python lacks scipy (python3-scipy)"
+fi
 
 start=$SECONDS
 mkdir -p "$(dirname "$out")"
@@ -109,9 +120,11 @@ logged() {
 made() { echo "fixtures: $1 ($(du -sh "$tmp/$1" | cut -f1))${2:+ $2}"; }
 
 # --- pydicom's test RTSTRUCT -------------------------------------------------
-mkdir -p "$tmp/pydicom"
-cp "$pydicom_rtstruct" "$tmp/pydicom/rtstruct.dcm"
-made pydicom/rtstruct.dcm "from $pydicom_rtstruct"
+if [ "$which" = tests ]; then
+  mkdir -p "$tmp/pydicom"
+  cp "$pydicom_rtstruct" "$tmp/pydicom/rtstruct.dcm"
+  made pydicom/rtstruct.dcm "from $pydicom_rtstruct"
+fi
 
 # --- a study from a label volume ---------------------------------------------
 # plastimatch's default structure colours, in its order.
@@ -222,7 +235,9 @@ EOF
 }
 
 # --- the k-means segmentation, as shipped (coronal) --------------------------
-make_study kmeans "$kmeans_labels" "$kmeans_t1"
+if [ "$which" = tests ]; then
+  make_study kmeans "$kmeans_labels" "$kmeans_t1"
+fi
 
 # --- the same voxels, axial ------------------------------------------------
 # Both through NIfTI, so that labels and reference image share its float32
@@ -232,32 +247,38 @@ axial_nifti() {
   logged "$scratch/reorient.log" plastimatch convert \
     --input "$scratch/$2-axial.nhdr" --output-img "$scratch/$2-axial.nii.gz"
 }
-axial_nifti "$kmeans_labels" labels
-axial_nifti "$kmeans_t1" t1
-make_study kmeans_axial "$scratch/labels-axial.nii.gz" "$scratch/t1-axial.nii.gz"
+if [ "$which" = tests ]; then
+  axial_nifti "$kmeans_labels" labels
+  axial_nifti "$kmeans_t1" t1
+  make_study kmeans_axial "$scratch/labels-axial.nii.gz" "$scratch/t1-axial.nii.gz"
+fi
 
 # --- a head CT's structures: body outline, airway, bone ---------------------
 # InVesalius' example head CT at 512 x 512 pixels of 0.48 mm, 1.5 mm apart,
 # thresholded as auto-contouring does (scripts/ct_structures.py). Bone has
 # up to dozens of contours per plane; the body outline over a thousand
 # points per contour, so plastimatch writes some ContourData as VR UN.
-mkdir -p "$tmp/ct_head"
-logged "$tmp/ct_head/ct_structures.log" "$python" "$here/ct_structures.py" "$cranium" \
-  "$tmp/ct_head"
-made ct_head/masks "BODY AIRWAY BONE"
-study_from_masks ct_head "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks/BODY.nrrd" \
-  "$tmp/ct_head/masks/AIRWAY.nrrd" "$tmp/ct_head/masks/BONE.nrrd"
-# The DICOM series and RTSTRUCT hold it all (the images 57 MB, the rest 200).
-rm -rf "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks" "$tmp/ct_head/ss.nrrd"
+if [ "$which" = bench ]; then
+  mkdir -p "$tmp/ct_head"
+  logged "$tmp/ct_head/ct_structures.log" "$python" "$here/ct_structures.py" "$cranium" \
+    "$tmp/ct_head"
+  made ct_head/masks "BODY AIRWAY BONE"
+  study_from_masks ct_head "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks/BODY.nrrd" \
+    "$tmp/ct_head/masks/AIRWAY.nrrd" "$tmp/ct_head/masks/BONE.nrrd"
+  # The DICOM series and RTSTRUCT hold it all (the images 57 MB, the rest 200).
+  rm -rf "$tmp/ct_head/ct.nrrd" "$tmp/ct_head/masks" "$tmp/ct_head/ss.nrrd"
+fi
 
 # --- real meshes: CGAL's demo data -------------------------------------------
-cgal_meshes=(femur bunny00 armadillo refined_elephant elephant blobby eight sphere cube knot1)
-mkdir -p "$tmp/meshes"
-members=()
-for m in "${cgal_meshes[@]}"; do members+=("data/meshes/$m.off"); done
-logged "$scratch/meshes.log" tar -xzf "$cgal_data" -C "$tmp/meshes" --strip-components=2 \
-  "${members[@]}"
-made meshes "(${#cgal_meshes[@]} OFF files)"
+if [ "$which" = tests ]; then
+  cgal_meshes=(femur bunny00 armadillo refined_elephant elephant blobby eight sphere cube knot1)
+  mkdir -p "$tmp/meshes"
+  members=()
+  for m in "${cgal_meshes[@]}"; do members+=("data/meshes/$m.off"); done
+  logged "$scratch/meshes.log" tar -xzf "$cgal_data" -C "$tmp/meshes" --strip-components=2 \
+    "${members[@]}"
+  made meshes "(${#cgal_meshes[@]} OFF files)"
+fi
 
 rm -rf "$scratch"
 echo "$want_stamp" >"$tmp/.complete"

@@ -8,14 +8,17 @@
 #                            and format check need; then makes the RTSTRUCT
 #                            test fixtures in build/fixtures
 #                            (scripts/fixtures.sh) (make setup, make test)
+#   scripts/setup.sh bench   that, and the benchmarks' own data: the head CT
+#                            in build/bench-fixtures (fixtures.sh bench)
+#                            (make bench)
 #
 # Idempotent: a second run installs and regenerates nothing.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 mode=${1:-all}
 case "$mode" in
-  build | all) ;;
-  *) echo "setup.sh: unknown mode '$mode' (build or all)" >&2; exit 1 ;;
+  build | all | bench) ;;
+  *) echo "setup.sh: unknown mode '$mode' (build, all or bench)" >&2; exit 1 ;;
 esac
 
 # To build and run the program, installed with their recommends.
@@ -56,21 +59,26 @@ test_packages=(
 # (tests/app/slurm_array_test.sh) on a single-node Slurm; their recommends
 # are the plugin development headers. mricron-data holds the atlases the
 # truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
-# compare tests read; its recommends are mricron itself. invesalius-examples
-# holds the head CT whose structures the structure-set benchmark reconstructs
-# (scripts/ct_structures.py thresholds it with python3-scipy).
+# compare tests read; its recommends are mricron itself.
 test_packages_no_recommends=(
   chromium python3-vtk9 python3-pytest
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge
-  mricron-data invesalius-examples python3-scipy
+  mricron-data
 )
+# For the benchmarks alone: invesalius-examples holds the head CT whose
+# structures the structure-set benchmark reconstructs (scripts/ct_structures.py
+# thresholds it with python3-scipy).
+bench_packages_no_recommends=(invesalius-examples python3-scipy)
 packages=("${build_packages[@]}")
 packages_no_recommends=("${build_packages_no_recommends[@]}")
-if [ "$mode" = all ]; then
+if [ "$mode" != build ]; then
   packages+=("${test_packages[@]}")
   packages_no_recommends+=("${test_packages_no_recommends[@]}")
+fi
+if [ "$mode" = bench ]; then
+  packages_no_recommends+=("${bench_packages_no_recommends[@]}")
 fi
 
 missing() {
@@ -108,8 +116,11 @@ install_missing() {
 
 install_missing
 bash "$repo_root/scripts/vendor_viewer.sh" "$repo_root/build/vendor/three"
-if [ "$mode" = all ]; then
+if [ "$mode" != build ]; then
   # Fast when they are already there (a stamp check).
   bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/fixtures"
+fi
+if [ "$mode" = bench ]; then
+  bash "$repo_root/scripts/fixtures.sh" "$repo_root/build/bench-fixtures" bench
 fi
 echo "setup: done"
