@@ -88,13 +88,13 @@ class SurfaceReconstructor final : public CapSite {
                       std::size_t lowerSlice, std::size_t upperSlice) {
         const std::size_t before = builder_.triangleCount();
         const LayerPart x = part(lower, all(lower)), y = part(upper, all(upper));
-        slab(x, y, fields, lowerSlice, upperSlice, 0);
+        const bool built = slab(x, y, fields, lowerSlice, upperSlice, 0);
         // Pieces are built one connected part at a time; parts that lie close
         // in projection (an ending contour's lid under a neighbour's
         // intermediate strips, say) can still meet, and coincidences can
         // leave a piece torn. The slab is then closed as one prism piece
         // instead, which is valid by construction and stays within the slab.
-        if (!isCleanPiece(before, {&x, &y})) {
+        if (!built || !isCleanPiece(before, {&x, &y})) {
             builder_.truncateTriangles(before);
             closeSlabByPrisms(lower, upper);
             ++stats_.fallbackSlabs;
@@ -137,6 +137,17 @@ class SurfaceReconstructor final : public CapSite {
         return piece.intersectingPairs == 0 && piece.nonManifoldEdges == 0 &&
                piece.nonManifoldVertices == 0 && piece.misorientedEdges == 0 &&
                piece.degenerateTriangles == 0 && borderRight;
+    }
+
+    /// Do the triangles added since `before` break the piece they are part
+    /// of whatever else it gets: two of them meeting, an edge used three
+    /// times or twice the same way, a degenerate triangle? Each of these
+    /// stays when triangles are added, so the piece would fail
+    /// isCleanPiece.
+    bool breakTheirPiece(std::size_t before) const {
+        const MeshCheckReport part = checkMesh(builder_.trianglesSince(before));
+        return part.intersectingPairs > 0 || part.nonManifoldEdges > 0 ||
+               part.misorientedEdges > 0 || part.degenerateTriangles > 0;
     }
 
     // What caps ask of the reconstruction (CapSite).
@@ -244,8 +255,10 @@ class SurfaceReconstructor final : public CapSite {
     }
 
     /// Joins `lower` to `upper`; `fields` holds their fields (slice
-    /// `a` = lower's contours in order, `b` = upper's).
-    void slab(const LayerPart& lower, const LayerPart& upper, const SliceFields& fields,
+    /// `a` = lower's contours in order, `b` = upper's). False when a slab of
+    /// the stack proper (depth 0) was given up half-built because its caps
+    /// already meet: the caller closes it by prisms.
+    bool slab(const LayerPart& lower, const LayerPart& upper, const SliceFields& fields,
               std::size_t a, std::size_t b, int depth) {
         stats_.deepestLevel = std::max(stats_.deepestLevel, depth);
         const double middle = 0.5 * (lower.layer->zMm + upper.layer->zMm);
@@ -259,13 +272,33 @@ class SurfaceReconstructor final : public CapSite {
                 for (MedialAxis& axis : axes) std::reverse(axis.pixels.begin(), axis.pixels.end());
             stats_.medialSeconds += secondsSince(start);
         }
+        const std::vector<Component> components =
+            connectByAxes(axes, lower.contours.size(), upper.contours.size());
         LayerPart endingLower{lower.layer, {}}, endingUpper{upper.layer, {}};
-        for (const Component& c :
-             connectByAxes(axes, lower.contours.size(), upper.contours.size())) {
+        for (const Component& c : components) {
+            if (!c.axes.empty()) continue;
+            for (std::uint32_t k : c.lower) endingLower.contours.push_back(lower.contours[k]);
+            for (std::uint32_t k : c.upper) endingUpper.contours.push_back(upper.contours[k]);
+        }
+        if (depth == 0) {
+            // Ends of the stack proper: capped as the user chose. Caps come
+            // first because, between planes, the lids of contours ending
+            // below and above both reach the middle of the gap, and where
+            // they meet there (label maps' neighbouring regions, which touch
+            // in projection) the slab is given up before the costly part.
+            const std::size_t capsBefore = builder_.triangleCount();
+            const double offsetMm =
+                capOffsetMm(options_.capOffsetMm, upper.layer->zMm - lower.layer->zMm, true);
+            cap(endingLower, true, offsetMm, fields, a);
+            cap(endingUpper, false, offsetMm, fields, b);
+            if (options_.cap != CapMode::None && builder_.triangleCount() > capsBefore &&
+                breakTheirPiece(capsBefore))
+                return false;
+        }
+        for (const Component& c : components) {
             const LayerPart x = subset(lower, c.lower), y = subset(upper, c.upper);
             if (c.axes.empty()) {
-                for (std::uint32_t k : x.contours) endingLower.contours.push_back(k);
-                for (std::uint32_t k : y.contours) endingUpper.contours.push_back(k);
+                continue;
             } else if (!(c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
                          strip(x, y, axes[c.axes[0]], fields.grid, c.lower[0], c.upper[0]))) {
                 if (depth >= options_.maxDepth) {
@@ -283,16 +316,11 @@ class SurfaceReconstructor final : public CapSite {
                 }
             }
         }
-        if (depth == 0) {
-            // Ends of the stack proper: capped as the user chose.
-            const double offsetMm =
-                capOffsetMm(options_.capOffsetMm, upper.layer->zMm - lower.layer->zMm, true);
-            cap(endingLower, true, offsetMm, fields, a);
-            cap(endingUpper, false, offsetMm, fields, b);
-        } else {
+        if (depth > 0) {
             closeByPrisms(builder_, endingLower, {}, middle);
             closeByPrisms(builder_, {}, endingUpper, middle);
         }
+        return true;
     }
 
     bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,

@@ -3,6 +3,7 @@
 // topology, and against exact volumes or analytic surfaces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -255,6 +256,34 @@ TEST(Reconstruction, SlabsWhosePiecesMeetAreClosedAsOnePrismPiece) {
         expectContoursAreVertices(set.rois[0], c.result.surface);
         EXPECT_EQ(c.check.vertices, c.result.surface.points.size()) << "no unused points";
     }
+}
+
+TEST(Reconstruction, ASlabWhoseCapsMeetIsGivenUpBeforeItsBranchesAreBuilt) {
+    // Two contours of neighbouring planes touch at a corner in projection, so
+    // the lids of both (each ends in the slab) meet in its middle plane. The
+    // caps are built first; their meeting already dooms the slab, so the
+    // branch beside them gets no intermediate layer, and the slab is one
+    // prism piece, as it was when everything was built and then checked.
+    const ContourSet set =
+        readSlicesFile(std::string(DFRECON_TEST_DATA) + "/recon/caps-touching-at-a-corner.slices")
+            .contours;
+    const Checked c = reconstruct(set.rois[0]);
+    EXPECT_TRUE(c.check.validSolid());
+    EXPECT_EQ(c.check.components, 3u);
+    EXPECT_EQ(c.result.stats.fallbackSlabs, 1u);
+    EXPECT_EQ(c.result.stats.recursions, 0u) << "the branch was built, then thrown away";
+    expectContoursAreVertices(set.rois[0], c.result.surface);
+
+    // Without the touching pair the same branch is built and kept.
+    ContourSet apart = set;
+    for (Slice& slice : apart.rois[0].slices)
+        slice.contours.erase(std::remove_if(slice.contours.begin(), slice.contours.end(),
+                                            [](const Polygon& p) { return p[0].x < 0; }),
+                             slice.contours.end());
+    const Checked branch = reconstruct(apart.rois[0]);
+    EXPECT_TRUE(branch.check.validSolid());
+    EXPECT_EQ(branch.result.stats.fallbackSlabs, 0u);
+    EXPECT_GT(branch.result.stats.recursions, 0u);
 }
 
 }  // namespace
