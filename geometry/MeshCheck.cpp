@@ -379,8 +379,9 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
         begin = end;
     }
     // Freed before the pair search's hierarchy is built: the peak of a
-    // large check is theirs and its together.
-    uses = {};
+    // large check is theirs and its together. Swapped with an empty vector,
+    // because `uses = {}` assigns an empty list and keeps the memory.
+    decltype(uses)().swap(uses);
     // The triangles around each vertex, packed (around[first[v] .. first[v + 1])).
     std::vector<std::uint32_t> first(n + 1, 0), around(3 * soup.triangles.size());
     for (const Triangle& tri : soup.triangles)
@@ -419,8 +420,8 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
             report.defectiveTriangles.insert(report.defectiveTriangles.end(), ring, ring + k);
         }
     }
-    first = {};
-    around = {};
+    decltype(first)().swap(first);
+    decltype(around)().swap(around);
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
     report.eulerCharacteristic =
         long(report.vertices) - long(report.edges) + long(report.triangles);

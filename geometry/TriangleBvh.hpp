@@ -111,8 +111,11 @@ class TriangleBvh {
     static std::size_t halve(std::vector<BuildItem>& items, std::size_t first, std::size_t last,
                              const Box3& box);
     void packForSearch();
-    /// `items`: the boxes in leaf order, as the build leaves them.
-    void packForPairs(const std::vector<BuildItem>& items);
+    /// The pair search's copy (below), in two steps so the build items can
+    /// go between them: the leaves' triangle boxes from `items` (in leaf
+    /// order, as the build leaves them), then the nodes.
+    void packLeafBoxes(const std::vector<BuildItem>& items);
+    void packPairNodes();
     /// The node pairs that cover an inner node pair (a, b) (not two leaves),
     /// written to `out`; returns how many (2 or 3).
     int splitPair(NodePair pair, NodePair out[3]) const {
