@@ -123,6 +123,14 @@ class SurfaceReconstructor final : public CapSite {
     }
 
   private:
+    /// Defects that no triangles added later can mend: two triangles
+    /// meeting, an edge used three times or twice the same way, a degenerate
+    /// triangle. (A vertex of several fans or a border can still close.)
+    static bool hasLastingDefect(const MeshCheckReport& part) {
+        return part.intersectingPairs > 0 || part.nonManifoldEdges > 0 ||
+               part.misorientedEdges > 0 || part.degenerateTriangles > 0;
+    }
+
     /// Are the triangles added since `before` a clean piece: no two meeting,
     /// every edge used once or twice and consistently, every vertex one fan,
     /// nothing degenerate, and (unless ends stay open) the only border the
@@ -134,20 +142,14 @@ class SurfaceReconstructor final : public CapSite {
             for (std::uint32_t c : side->contours) contourEdges += side->layer->contours[c].size();
         const bool borderRight =
             options_.cap == CapMode::None || piece.boundaryEdges == contourEdges;
-        return piece.intersectingPairs == 0 && piece.nonManifoldEdges == 0 &&
-               piece.nonManifoldVertices == 0 && piece.misorientedEdges == 0 &&
-               piece.degenerateTriangles == 0 && borderRight;
+        return !hasLastingDefect(piece) && piece.nonManifoldVertices == 0 && borderRight;
     }
 
-    /// Do the triangles added since `before` break the piece they are part
-    /// of whatever else it gets: two of them meeting, an edge used three
-    /// times or twice the same way, a degenerate triangle? Each of these
-    /// stays when triangles are added, so the piece would fail
-    /// isCleanPiece.
+    /// Do the triangles added since `before` doom the piece they are part
+    /// of, whatever else it gets (hasLastingDefect), so that it would fail
+    /// isCleanPiece?
     bool breakTheirPiece(std::size_t before) const {
-        const MeshCheckReport part = checkMesh(builder_.trianglesSince(before));
-        return part.intersectingPairs > 0 || part.nonManifoldEdges > 0 ||
-               part.misorientedEdges > 0 || part.degenerateTriangles > 0;
+        return hasLastingDefect(checkMesh(builder_.trianglesSince(before)));
     }
 
     // What caps ask of the reconstruction (CapSite).
@@ -291,16 +293,13 @@ class SurfaceReconstructor final : public CapSite {
                 capOffsetMm(options_.capOffsetMm, upper.layer->zMm - lower.layer->zMm, true);
             cap(endingLower, true, offsetMm, fields, a);
             cap(endingUpper, false, offsetMm, fields, b);
-            if (options_.cap != CapMode::None && builder_.triangleCount() > capsBefore &&
-                breakTheirPiece(capsBefore))
-                return false;
+            if (builder_.triangleCount() > capsBefore && breakTheirPiece(capsBefore)) return false;
         }
         for (const Component& c : components) {
+            if (c.axes.empty()) continue;  // ending: capped above or closed below
             const LayerPart x = subset(lower, c.lower), y = subset(upper, c.upper);
-            if (c.axes.empty()) {
-                continue;
-            } else if (!(c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
-                         strip(x, y, axes[c.axes[0]], fields.grid, c.lower[0], c.upper[0]))) {
+            if (!(c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
+                  strip(x, y, axes[c.axes[0]], fields.grid, c.lower[0], c.upper[0]))) {
                 if (depth >= options_.maxDepth) {
                     closeByPrisms(builder_, x, y, middle);
                     ++stats_.limitClosings;
