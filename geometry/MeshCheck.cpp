@@ -324,9 +324,8 @@ std::vector<TrianglePair> collidingPairsNear(const TriangleSoup& soup,
 
 namespace {
 
-// checkMesh, its intersection search over all pairs or over the pairs that
-// involve `suspects` (checkMeshNear).
-MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_t>* suspects) {
+// checkMesh, its intersection search left to `search`.
+MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
     MeshCheckReport report;
     report.triangles = soup.triangles.size();
     const std::size_t n = soup.points.size();
@@ -428,12 +427,10 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
     if (report.watertight())
         report.genus = (2 * long(report.components) - report.eulerCharacteristic) / 2;
 
-    bool capped = false;
-    std::vector<TrianglePair> pairs =
-        suspects ? collidingPairsNear(soup, degenerate, *suspects, kMaxCountedIntersections, capped)
-                 : collidingPairs(soup, degenerate, kMaxCountedIntersections, capped);
+    CollidingPairs found = search(degenerate, kMaxCountedIntersections);
+    std::vector<TrianglePair>& pairs = found.pairs;
     report.intersectingPairs = pairs.size();
-    report.intersectingPairsCapped = capped;
+    report.intersectingPairsCapped = found.capped;
     for (const auto& [i, j] : pairs) {
         report.defectiveTriangles.push_back(i);
         report.defectiveTriangles.push_back(j);
@@ -450,11 +447,58 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const std::vector<std::size_
 }  // namespace
 
 MeshCheckReport checkMesh(const TriangleSoup& soup) {
-    return checkSoup(soup, nullptr);
+    return checkSoup(soup, [&](const std::vector<bool>& degenerate, std::size_t cap) {
+        CollidingPairs found;
+        found.pairs = collidingPairs(soup, degenerate, cap, found.capped);
+        return found;
+    });
 }
 
 MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects) {
-    return checkSoup(soup, &suspects);
+    return checkSoup(soup, [&](const std::vector<bool>& degenerate, std::size_t cap) {
+        CollidingPairs found;
+        found.pairs = collidingPairsNear(soup, degenerate, suspects, cap, found.capped);
+        return found;
+    });
+}
+
+MeshCheckReport checkMeshWith(const TriangleSoup& soup, const PairSearch& search) {
+    return checkSoup(soup, search);
+}
+
+CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<bool>& degenerate,
+                                   const std::vector<std::size_t>& subset, std::size_t cap) {
+    // The subset as a soup of its own (the hierarchy is built over a whole
+    // soup); vertex ids map one to one, so shared vertices stay shared.
+    // Sorted ids, not a table over all points: a surface's pieces are
+    // checked one after another.
+    std::vector<std::uint32_t> ids;
+    ids.reserve(3 * subset.size());
+    for (std::size_t t : subset)
+        ids.insert(ids.end(), soup.triangles[t].begin(), soup.triangles[t].end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    TriangleSoup part;
+    part.points.reserve(ids.size());
+    for (std::uint32_t v : ids) part.points.push_back(soup.points[v]);
+    part.triangles.reserve(subset.size());
+    std::vector<bool> partDegenerate;
+    partDegenerate.reserve(subset.size());
+    for (std::size_t t : subset) {
+        Triangle tri = soup.triangles[t];
+        for (std::uint32_t& v : tri)
+            v = std::uint32_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
+        part.triangles.push_back(tri);
+        partDegenerate.push_back(degenerate[t]);
+    }
+    CollidingPairs found;
+    found.pairs = collidingPairs(part, partDegenerate, cap, found.capped);
+    for (auto& [i, j] : found.pairs) {
+        i = subset[i];
+        j = subset[j];
+        if (i > j) std::swap(i, j);
+    }
+    return found;
 }
 
 }  // namespace dfrecon

@@ -7,6 +7,7 @@
 // can be described rather than refused.
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -66,6 +67,31 @@ MeshCheckReport checkMesh(const TriangleSoup& soup);
 /// new triangles are the suspects). O(T log T) for the topology, O(T) grid
 /// look-ups for the pairs.
 MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects);
+
+/// Pairs of colliding triangles (i < j) a search found, and whether it
+/// stopped at the most it was asked to count.
+struct CollidingPairs {
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    bool capped = false;
+};
+
+/// A self-intersection search: given which triangles are degenerate (never
+/// tested) and the most pairs to count, the colliding pairs.
+using PairSearch =
+    std::function<CollidingPairs(const std::vector<bool>& degenerate, std::size_t cap)>;
+
+/// checkMesh with the self-intersection search left to `search`, for callers
+/// that know where colliding pairs can lie (geometry/StackedMeshCheck). The
+/// report is checkMesh's when `search` finds the pairs checkMesh's search
+/// finds. O(T log T) plus the search.
+MeshCheckReport checkMeshWith(const TriangleSoup& soup, const PairSearch& search);
+
+/// The colliding pairs both of whose triangles are in `subset` (indices into
+/// soup), at most `cap`, in a fixed order; as checkMesh judges pairs.
+/// O(S log S + pairs of overlapping boxes) for S triangles in the subset,
+/// plus O(points) to map them.
+CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<bool>& degenerate,
+                                   const std::vector<std::size_t>& subset, std::size_t cap);
 
 /// The self-intersecting pairs checkMesh would count, without the topology
 /// checks (e.g. for a piece of surface, which has a boundary).

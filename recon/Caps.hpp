@@ -72,8 +72,9 @@ class CapSite {
                             const LayerPart& upper, const SliceFields& upperField) = 0;
     /// Whether the triangles added since `before` are a clean piece whose
     /// only border is the contours of `end` (the test every slab is held
-    /// to).
-    virtual bool isCleanCap(std::size_t before, const LayerPart& end) const = 0;
+    /// to, as a mesh file holds it); the site may note that the piece was
+    /// checked.
+    virtual bool isCleanCap(std::size_t before, const LayerPart& end) = 0;
 };
 
 /// The entry point: caps the contours of `end`, slice `slice` of `fields`,

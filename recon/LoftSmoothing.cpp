@@ -377,11 +377,23 @@ void markRepaired(const TriangleSoup& surface, MeshCheckReport& check) {
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
                                std::vector<bool> isLoft, std::size_t contourVertices,
-                               SliceInterpolant& field, const PlaneSections& planes,
-                               double toleranceMm, MeshCheckReport& check) {
+                               const PieceStack& stack, SliceInterpolant& field,
+                               const PlaneSections& planes, double toleranceMm,
+                               MeshCheckReport& check) {
     LoftSmoothingStats stats;
     const TriangleSoup linear = surface;
     const std::vector<std::uint32_t> linearPieceOf = pieceOf;
+    // The surface came valid: a piece none of whose vertices moved or are
+    // new is as clean as it was, and its pairs need no search.
+    auto checkWhole = [&] {
+        PieceStack unmoved = stack;
+        unmoved.searched.assign(stack.planeZMm.size() + 1, true);
+        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+            for (std::uint32_t v : surface.triangles[t])
+                if (v >= linear.points.size() || !(surface.points[v] == linear.points[v]))
+                    unmoved.searched[pieceOf[t]] = false;
+        return checkStackedMesh(surface, pieceOf, unmoved);
+    };
     std::vector<bool> restoredBefore;
     std::vector<bool> moved;
     // parents[v − first]: the edge whose middle new vertex v was made at.
@@ -409,7 +421,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
     roundPointsToFloat(surface);
-    check = checkMesh(surface);
+    check = checkWhole();
     if (check.validSolid()) return stats;
     // Where bent bands pass through each other (across a narrow gap between
     // two folds, say), the vertices around go back to the straight surface;
@@ -476,7 +488,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     bool wholeCheck = true;
     auto checkAgain = [&] {
         roundPointsToFloat(surface);
-        check = wholeCheck ? checkMesh(surface) : checkMeshNear(surface, swappedIn);
+        check = wholeCheck ? checkWhole() : checkMeshNear(surface, swappedIn);
         wholeCheck = check.intersectingPairsCapped;
     };
     for (int attempt = 0; attempt < 3; ++attempt) {
@@ -520,7 +532,8 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     checkAgain();
     if (check.validSolid()) return stats;
     surface = linear;
-    check = checkMesh(surface);
+    pieceOf = linearPieceOf;
+    check = checkWhole();
     stats.fellBack = true;
     return stats;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/StackedMeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
 #include "recon/SlabVolumes.hpp"
 #include "recon/SliceInterpolant.hpp"
@@ -50,11 +51,14 @@ struct LoftSmoothingStats {
 /// straight. Pieces still broken get their linear triangles back; if the
 /// surface is still not valid, the linear surface is restored. On return
 /// `check` describes `surface`.
+/// The pieces lie as `stack` says (its `searched` is not read): checks are
+/// checkStackedMesh's, which search only the pieces whose vertices moved.
 /// Work: O(T) per round and pass over the triangles made, one or two
 /// whole-mesh checks, local tests around what was repaired.
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
                                std::vector<bool> isLoft, std::size_t contourVertices,
-                               SliceInterpolant& field, const PlaneSections& planes,
-                               double toleranceMm, MeshCheckReport& check);
+                               const PieceStack& stack, SliceInterpolant& field,
+                               const PlaneSections& planes, double toleranceMm,
+                               MeshCheckReport& check);
 
 }  // namespace dfrecon

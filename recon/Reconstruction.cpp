@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/StackedMeshCheck.hpp"
 #include "geometry/TouchSeparation.hpp"
 #include "geometry/UnionFind.hpp"
 #include "recon/ContourSimplification.hpp"
@@ -98,8 +99,15 @@ class SurfaceReconstructor final : public CapSite {
             builder_.truncateTriangles(before);
             closeSlabByPrisms(lower, upper);
             ++stats_.fallbackSlabs;
+        } else {
+            markSearched();
         }
     }
+
+    /// Per piece, whether its own pairs were searched (clean) at the
+    /// coordinates a mesh file holds: the whole check need not search them
+    /// again (geometry/StackedMeshCheck).
+    const std::vector<bool>& searchedPieces() const { return searched_; }
 
     /// The guaranteed closing of the slab between two layers: one prism
     /// piece over all their contours.
@@ -136,7 +144,11 @@ class SurfaceReconstructor final : public CapSite {
     /// nothing degenerate, and (unless ends stay open) the only border the
     /// contours of `sides`?
     bool isCleanPiece(std::size_t before, std::initializer_list<const LayerPart*> sides) const {
-        const MeshCheckReport piece = checkMesh(builder_.trianglesSince(before));
+        // As a mesh file will hold it, as the whole surface is checked: a
+        // clean piece's pairs need no second search there.
+        TriangleSoup triangles = builder_.trianglesSince(before);
+        roundPointsToFloat(triangles);
+        const MeshCheckReport piece = checkMesh(triangles);
         std::size_t contourEdges = 0;
         for (const LayerPart* side : sides)
             for (std::uint32_t c : side->contours) contourEdges += side->layer->contours[c].size();
@@ -153,8 +165,15 @@ class SurfaceReconstructor final : public CapSite {
     }
 
     // What caps ask of the reconstruction (CapSite).
-    bool isCleanCap(std::size_t before, const LayerPart& end) const override {
-        return isCleanPiece(before, {&end});
+    bool isCleanCap(std::size_t before, const LayerPart& end) override {
+        if (!isCleanPiece(before, {&end})) return false;
+        markSearched();
+        return true;
+    }
+    void markSearched() {
+        const std::uint32_t p = builder_.piece();
+        if (searched_.size() <= p) searched_.resize(p + 1, false);
+        searched_[p] = true;
     }
     const Layer& addIsolineLayer(double zMm, std::vector<Polygon> isolines,
                                  const LayerPart& of) override {
@@ -385,7 +404,8 @@ class SurfaceReconstructor final : public CapSite {
     const SliceGrid& grid_;
     ReconstructionStats& stats_;
     SurfaceBuilder builder_;
-    std::deque<Layer> layers_;  // intermediate contours; LayerParts point into it
+    std::vector<bool> searched_;  // per piece
+    std::deque<Layer> layers_;    // intermediate contours; LayerParts point into it
 };
 
 }  // namespace
@@ -467,14 +487,22 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     stats.triangulationSeconds =
         secondsSince(start) - (stats.fieldsSeconds - fieldsAndMedialBefore) - stats.medialSeconds;
 
-    // Whatever the pieces' own checks missed (pieces of neighbouring slabs
-    // meeting) is found on the whole surface, and those pieces are closed
-    // again the guaranteed way.
+    // Whatever the pieces' own checks missed is found on the whole surface,
+    // and those pieces are closed again the guaranteed way: the topology
+    // where pieces join, pieces nobody searched (prism closings), and, where
+    // the stack cannot show that pieces meet only in their shared contours
+    // (geometry/StackedMeshCheck), pairs across pieces.
     // Checked as a mesh file will hold it: mesh files store floats, and a
     // gap of a few nanometres between pieces can close in rounding.
     start = Clock::now();
     builder.roundPointsToFloat();
-    result.check = checkMesh(builder.soup());
+    PieceStack stack;
+    for (const Layer& layer : layers) {
+        stack.planeZMm.push_back(builder.point(layer.vertexIds[0][0]).z);
+        stack.planeLoops.push_back(layer.vertexIds);
+    }
+    stack.searched = reconstructor.searchedPieces();
+    result.check = checkStackedMesh(builder.soup(), builder.pieces(), stack);
     if (!result.check.validSolid() && options.cap != CapMode::None) {
         std::vector<bool> broken(slices.size() + 1, false);
         for (std::size_t t : result.check.defectiveTriangles) broken[builder.pieceOf(t)] = true;
@@ -524,7 +552,7 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         start = Clock::now();
         SliceInterpolant interpolant(fields);
         const LoftSmoothingStats smooth =
-            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices,
+            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices, stack,
                         interpolant, sectionsOf(slices), options.smoothToleranceMm, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;

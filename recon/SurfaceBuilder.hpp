@@ -43,6 +43,8 @@ class SurfaceBuilder {
     /// Tags the triangles added from now on with `piece` (the slab or cap
     /// they close), so that a broken piece can be found and built again.
     void setPiece(std::uint32_t piece) { piece_ = piece; }
+    /// The piece triangles added now are tagged with.
+    std::uint32_t piece() const { return piece_; }
     std::uint32_t pieceOf(std::size_t triangle) const { return pieces_[triangle]; }
     /// Drops the triangles of every piece p with drop[p] set. O(triangles).
     void dropPieces(const std::vector<bool>& drop);
