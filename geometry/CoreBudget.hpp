@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstddef>
 #include <thread>
+#include <vector>
 
 namespace dfrecon {
 
@@ -42,5 +43,31 @@ class CoreLease {
     }
     std::size_t granted_ = 0;
 };
+
+/// Calls body(i) for every i in [0, count): on the calling thread, and on
+/// the cores left free when there are at least `parallelFrom` items, in
+/// chunks taken in order. body must be safe to run at once for different
+/// i (each writing only its own results), so that the outcome does not
+/// depend on the threads. O(count) calls.
+template <class Body>
+void forEachOnFreeCores(std::size_t count, std::size_t parallelFrom, Body&& body) {
+    constexpr std::size_t kChunk = 256;
+    const std::size_t chunks = (count + kChunk - 1) / kChunk;
+    const std::size_t wanted =
+        count < parallelFrom || chunks < 2
+            ? 0
+            : std::min<std::size_t>(chunks, std::max(1u, std::thread::hardware_concurrency())) - 1;
+    const CoreLease lease(wanted);
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t c; (c = next++) < chunks;)
+            for (std::size_t i = c * kChunk, end = std::min(count, i + kChunk); i < end; ++i)
+                body(i);
+    };
+    std::vector<std::thread> helpers;
+    for (std::size_t h = 0; h < lease.granted(); ++h) helpers.emplace_back(work);
+    work();
+    for (std::thread& helper : helpers) helper.join();
+}
 
 }  // namespace dfrecon

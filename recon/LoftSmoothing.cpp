@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "geometry/BoxGrid.hpp"
+#include "geometry/CoreBudget.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 
 namespace dfrecon {
@@ -29,6 +30,8 @@ constexpr int kUnbendAttempts = 3;
 constexpr int kUnbendRings[kUnbendAttempts] = {1, 3, 8};
 // Volume passes after the repairs, for the slabs that lost volume there.
 constexpr int kVolumePassesAfterRepair = 2;
+// Vertices bent on one thread below this many (threads cost more).
+constexpr std::size_t kParallelFromVertices = 4096;
 // The largest bulge, as a share of the slab height. Where a section shrinks
 // to a small one (a tract or lobe ending between planes) the straight band
 // is a cone inside the rounded truth and a quarter of the slab did not give
@@ -137,9 +140,11 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
                         double toleranceMm) {
     const Vec3 start = p;
     Vec3 at = p, best = p;
-    double bestF = std::abs(field.value(p));
+    // F where the step starts: the value found where the last step ended
+    // (each evaluation is four planes' look-ups).
+    double f = field.value(p);
+    double bestF = std::abs(f);
     for (int iteration = 0; iteration < 12 && bestF > 0.1 * toleranceMm; ++iteration) {
-        const double f = field.value(at);
         const Point2 g = field.gradientXy(at);
         const double g2 = g.x * g.x + g.y * g.y;
         if (g2 < 1e-6) break;  // flat: no direction to move in
@@ -148,7 +153,8 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
         if (stepLength > 0.5 * maxMoveMm) step = (0.5 * maxMoveMm / stepLength) * step;
         at = at - step;
         if (length(at - start) > maxMoveMm) break;
-        const double fa = std::abs(field.value(at));
+        f = field.value(at);
+        const double fa = std::abs(f);
         if (fa < bestF) bestF = fa, best = at;
     }
     if (bestF > toleranceMm) return false;
@@ -163,12 +169,23 @@ void bendVertices(TriangleSoup& surface, const std::vector<bool>& which,
                   const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
                   LoftSmoothingStats& stats) {
     moved.resize(surface.points.size(), false);
-    for (std::size_t v = 0; v < which.size(); ++v) {
-        if (!which[v]) continue;
-        Vec3 p = surface.points[v];
-        if (!projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm))
-            continue;
-        surface.points[v] = p;
+    std::vector<std::uint32_t> vertices;
+    for (std::size_t v = 0; v < which.size(); ++v)
+        if (which[v]) vertices.push_back(std::uint32_t(v));
+    // Each vertex's projection is its own, so they run on the free cores
+    // and land in vertex order.
+    std::vector<Vec3> to(vertices.size());
+    std::vector<char> projected(vertices.size(), 0);
+    forEachOnFreeCores(vertices.size(), kParallelFromVertices, [&](std::size_t i) {
+        Vec3 p = surface.points[vertices[i]];
+        projected[i] =
+            projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm);
+        to[i] = p;
+    });
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        if (!projected[i]) continue;
+        const std::uint32_t v = vertices[i];
+        surface.points[v] = to[i];
         if (!moved[v]) ++stats.movedVertices;
         moved[v] = true;
     }
