@@ -15,7 +15,7 @@ class BoxGrid {
   public:
     /// Buckets `boxes` (item i has boxes[i]) on cells of `cellMm` a side
     /// (> 0). O(Σ cells each box covers).
-    BoxGrid(const std::vector<Box3>& boxes, double cellMm);
+    BoxGrid(std::vector<Box3> boxes, double cellMm);
 
     /// Calls visit(i) once for every item whose box overlaps `query`.
     /// O(cells the query covers + items in them).

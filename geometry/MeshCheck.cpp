@@ -302,7 +302,7 @@ std::vector<TrianglePair> collidingPairsNear(const TriangleSoup& soup,
     const Vec3 size = scene.hi - scene.lo;
     const double cell =
         std::max({extents[extents.size() / 2], size.x / 64, size.y / 64, size.z / 64, 1e-9});
-    const BoxGrid grid(boxes, cell);
+    const BoxGrid grid(std::move(boxes), cell);
     for (std::size_t t = 0; t < soup.triangles.size() && pairs.size() < cap; ++t) {
         if (degenerate[t]) continue;
         Box3 box;

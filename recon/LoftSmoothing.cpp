@@ -368,8 +368,10 @@ class LocalRepair {
         std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
                          extents.end());
         const Vec3 size = scene.hi - scene.lo;
-        return BoxGrid(
-            reach, std::max(extents[extents.size() / 2], std::max({size.x, size.y, size.z}) / 64));
+        const double cellMm =
+            std::max(extents[extents.size() / 2], std::max({size.x, size.y, size.z}) / 64);
+        decltype(extents)().swap(extents);
+        return BoxGrid(std::move(reach), cellMm);
     }
 
     TriangleSoup& surface_;
