@@ -2,8 +2,9 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <ostream>
-#include <sstream>
 #include <stdexcept>
+#include <streambuf>
+#include <utility>
 
 #include "io/AtomicWrite.hpp"
 #include "io/MeshFormat.hpp"
@@ -31,23 +32,50 @@ std::string oneLine(const std::string& text) {
     return line;
 }
 
-// The structure's comments go right after the format line: OpenMesh's
-// reader finds binary data from the last token before end_header, which
-// a comment there would move (io/PlyFileCheck).
-std::string withStructureComments(const std::string& ply, const StructureTag& structure) {
-    if (structure.empty()) return ply;
+// The structure's header comments ("comment roi_name …", "comment
+// roi_colour …"), one a line; empty without a structure.
+std::string structureComments(const StructureTag& structure) {
     std::string comments;
     if (!structure.name.empty()) comments += "comment roi_name " + oneLine(structure.name) + "\n";
     if (const auto& c = structure.colour)
         comments += "comment roi_colour " + std::to_string((*c)[0]) + " " +
                     std::to_string((*c)[1]) + " " + std::to_string((*c)[2]) + "\n";
-    const std::size_t formatLine = ply.find('\n');
-    const std::size_t afterFormat =
-        formatLine == std::string::npos ? std::string::npos : ply.find('\n', formatLine + 1);
-    if (afterFormat == std::string::npos)
-        throw std::runtime_error("OpenMesh wrote a PLY without a format line");
-    return ply.substr(0, afterFormat + 1) + comments + ply.substr(afterFormat + 1);
+    return comments;
 }
+
+// Passes what OpenMesh writes on to `out`, with `insert` right after the
+// second line. The structure's comments go after the format line:
+// OpenMesh's reader finds binary data from the last token before
+// end_header, which a comment there would move (io/PlyFileCheck). Streamed,
+// not collected: a large surface's PLY was held three times over in memory.
+class InsertAfterFormatLine final : public std::streambuf {
+  public:
+    InsertAfterFormatLine(std::ostream& out, std::string insert)
+        : out_(out), insert_(std::move(insert)) {}
+    bool inserted() const { return lines_ >= 2; }
+
+  protected:
+    int_type overflow(int_type c) override {
+        if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+        const char ch = traits_type::to_char_type(c);
+        return xsputn(&ch, 1) == 1 ? c : traits_type::eof();
+    }
+    std::streamsize xsputn(const char* s, std::streamsize n) override {
+        std::streamsize done = 0;
+        while (lines_ < 2 && done < n) {
+            const char ch = s[done++];
+            out_.put(ch);
+            if (ch == '\n' && ++lines_ == 2) out_ << insert_;
+        }
+        if (done < n) out_.write(s + done, n - done);
+        return out_ ? n : 0;
+    }
+
+  private:
+    std::ostream& out_;
+    std::string insert_;
+    int lines_ = 0;
+};
 
 }  // namespace
 
@@ -84,10 +112,18 @@ void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& a
         addProperty<OpenMesh::VPropHandleT<int>>(mesh, name, mesh.vertices(), values);
     for (const auto& [name, values] : attributes.faceLabels)
         addProperty<OpenMesh::FPropHandleT<int>>(mesh, name, mesh.faces(), values);
-    std::ostringstream ply;
-    if (!OpenMesh::IO::write_mesh(mesh, ply, ".ply", flags, kAsciiMeshDigits))
+    const std::string comments = structureComments(attributes.structure);
+    if (comments.empty()) {
+        if (!OpenMesh::IO::write_mesh(mesh, out, ".ply", flags, kAsciiMeshDigits))
+            throw std::runtime_error("OpenMesh could not write the PLY");
+        return;
+    }
+    InsertAfterFormatLine withComments(out, comments);
+    std::ostream ply(&withComments);
+    if (!OpenMesh::IO::write_mesh(mesh, ply, ".ply", flags, kAsciiMeshDigits) || !ply)
         throw std::runtime_error("OpenMesh could not write the PLY");
-    out << withStructureComments(ply.str(), attributes.structure);
+    if (!withComments.inserted())
+        throw std::runtime_error("OpenMesh wrote a PLY without a format line");
 }
 
 void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
