@@ -404,8 +404,8 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     const std::vector<std::uint32_t> linearPieceOf = pieceOf;
     // The surface came valid: a piece none of whose vertices moved or are
     // new is as clean as it was, and its pairs need no search.
+    PieceStack unmoved = stack;  // copied once; only `searched` changes between checks
     auto checkWhole = [&] {
-        PieceStack unmoved = stack;
         unmoved.searched.assign(stack.planeZMm.size() + 1, true);
         for (std::size_t t = 0; t < surface.triangles.size(); ++t)
             for (std::uint32_t v : surface.triangles[t])
