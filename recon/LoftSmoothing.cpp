@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <unordered_map>
 
 #include "geometry/BoxGrid.hpp"
@@ -258,10 +259,80 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
     return changed;
 }
 
+/// Grids over every triangle's reach (its box where it is now and wherever
+/// unbending may put it, its straight place), one per piece when the pieces
+/// cannot meet (stackSeparatesPieces: vertices only ever move in xy at
+/// their own z, off the planes, so that stays true), else one over all.
+/// A piece's grid is built when a suspect of that piece first asks, so a
+/// repair costs the pieces it touches, not the surface.
+class ReachGrids {
+  public:
+    /// `groupOf[t]`: the grid triangle t belongs to, < groups.
+    ReachGrids(const TriangleSoup& surface, const std::vector<Vec3>& straight,
+               const std::vector<std::uint32_t>& groupOf, std::uint32_t groups)
+        : surface_(surface),
+          straight_(straight),
+          groupOf_(groupOf),
+          members_(groups + 1, 0),
+          grids_(groups) {
+        // Triangles of each group, in index order (counting sort).
+        for (std::uint32_t g : groupOf_) ++members_[g + 1];
+        for (std::size_t g = 0; g < groups; ++g) members_[g + 1] += members_[g];
+        order_.resize(groupOf_.size());
+        std::vector<std::size_t> next(members_.begin(), members_.end() - 1);
+        for (std::size_t t = 0; t < groupOf_.size(); ++t) order_[next[groupOf_[t]]++] = t;
+    }
+
+    /// Calls visit(u) for every triangle u of t's group whose reach
+    /// overlaps `box`.
+    template <class Visit>
+    void overlapping(std::size_t t, const Box3& box, Visit&& visit) {
+        const std::uint32_t g = groupOf_[t];
+        if (!grids_[g]) grids_[g] = std::make_unique<BoxGrid>(gridOf(g));
+        const std::size_t first = members_[g];
+        grids_[g]->overlapping(box, [&](std::uint32_t k) { visit(order_[first + k]); });
+    }
+
+  private:
+    BoxGrid gridOf(std::uint32_t g) const {
+        const std::size_t first = members_[g], count = members_[g + 1] - first;
+        std::vector<Box3> reach(count);
+        std::vector<double> extents(count);
+        Box3 scene;
+        for (std::size_t k = 0; k < count; ++k) {
+            for (std::uint32_t v : surface_.triangles[order_[first + k]]) {
+                reach[k].add(surface_.points[v]);
+                reach[k].add(straight_[v]);
+            }
+            // Points are rounded to float after they move.
+            const Vec3 pad{1e-4, 1e-4, 1e-4};
+            reach[k].lo = reach[k].lo - pad;
+            reach[k].hi = reach[k].hi + pad;
+            const Vec3 e = reach[k].hi - reach[k].lo;
+            extents[k] = std::max({e.x, e.y, e.z});
+            scene.add(reach[k]);
+        }
+        // Cells about a triangle across (the median), never so small that
+        // one box spans more than 64 a side.
+        std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(count / 2),
+                         extents.end());
+        const Vec3 size = scene.hi - scene.lo;
+        const double cellMm = std::max(extents[count / 2], std::max({size.x, size.y, size.z}) / 64);
+        return BoxGrid(std::move(reach), cellMm);
+    }
+
+    const TriangleSoup& surface_;
+    const std::vector<Vec3>& straight_;
+    const std::vector<std::uint32_t>& groupOf_;
+    std::vector<std::size_t> members_;  // group g: order_[members_[g], members_[g + 1])
+    std::vector<std::size_t> order_;
+    std::vector<std::unique_ptr<BoxGrid>> grids_;
+};
+
 /// Those of `suspects` that have no area or meet another triangle of
 /// `surface` where they should not (as checkMesh judges), with the ones they
 /// meet; `near` must hold every triangle's box. Sorted, no repeats.
-std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid& near,
+std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& near,
                                      const std::vector<std::size_t>& suspects) {
     std::vector<std::size_t> broken;
     // A pair of two suspects is tested once, from its smaller triangle.
@@ -275,7 +346,7 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid&
         }
         Box3 box;
         for (std::uint32_t v : tri) box.add(surface.points[v]);
-        near.overlapping(box, [&](std::uint32_t u) {
+        near.overlapping(t, box, [&](std::size_t u) {
             const Triangle& other = surface.triangles[u];
             if (u == t || (suspect[u] && u < t) || isDegenerate(surface, other)) return;
             if (trianglesCollide(surface, tri, other)) {
@@ -293,14 +364,19 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, const BoxGrid&
 /// lose their area, the moved vertices around them go back to the straight
 /// (linear) surface and stay there (pinned). Between repairs only the
 /// triangles that moved or were broken are tested, against their
-/// neighbours on a grid of boxes (BoxGrid): the topology never changes, and
-/// every other pair was clean before.
+/// neighbours on grids of boxes (ReachGrids: only the pieces the suspects
+/// are in, when the stack keeps pieces apart): the topology never changes,
+/// and every other pair was clean before.
 class LocalRepair {
   public:
-    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, std::vector<Vec3> straight)
+    /// `searchGroup[t]`: only triangles of one group can meet (< groups).
+    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, std::vector<Vec3> straight,
+                std::vector<std::uint32_t> searchGroup, std::uint32_t groups)
         : surface_(surface),
           contourVertices_(contourVertices),
           straight_(std::move(straight)),
+          searchGroup_(std::move(searchGroup)),
+          groups_(groups),
           pinned_(surface.points.size(), false) {}
 
     bool pinned(std::size_t v) const { return pinned_[v]; }
@@ -308,9 +384,9 @@ class LocalRepair {
     /// Tests `suspects` (and what they meet) and unbends around what is
     /// broken, with kUnbendRings rings of neighbours, up to kUnbendAttempts
     /// times. True once the tested triangles are clean. Work: O(T) for the
-    /// grid and the rings, plus local tests.
+    /// rings, grids over the suspects' groups, plus local tests.
     bool settle(std::vector<std::size_t> suspects, LoftSmoothingStats& stats) {
-        const BoxGrid near = gridOfReach();
+        ReachGrids near(surface_, straight_, searchGroup_, groups_);
         std::vector<std::size_t> broken = brokenAmong(surface_, near, suspects);
         for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
             std::vector<bool> unbend(surface_.points.size(), false);
@@ -344,40 +420,12 @@ class LocalRepair {
     }
 
   private:
-    /// A grid over boxes that hold every triangle where it is now and
-    /// wherever unbending may put it (its straight place).
-    BoxGrid gridOfReach() const {
-        std::vector<Box3> reach(surface_.triangles.size());
-        std::vector<double> extents;
-        Box3 scene;
-        for (std::size_t t = 0; t < surface_.triangles.size(); ++t) {
-            for (std::uint32_t v : surface_.triangles[t]) {
-                reach[t].add(surface_.points[v]);
-                reach[t].add(straight_[v]);
-            }
-            // Points are rounded to float after they move.
-            const Vec3 pad{1e-4, 1e-4, 1e-4};
-            reach[t].lo = reach[t].lo - pad;
-            reach[t].hi = reach[t].hi + pad;
-            const Vec3 e = reach[t].hi - reach[t].lo;
-            extents.push_back(std::max({e.x, e.y, e.z}));
-            scene.add(reach[t]);
-        }
-        // Cells about a triangle across (the median), never so small that
-        // one box spans more than 64 a side.
-        std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
-                         extents.end());
-        const Vec3 size = scene.hi - scene.lo;
-        const double cellMm =
-            std::max(extents[extents.size() / 2], std::max({size.x, size.y, size.z}) / 64);
-        decltype(extents)().swap(extents);
-        return BoxGrid(std::move(reach), cellMm);
-    }
-
     TriangleSoup& surface_;
     std::size_t contourVertices_;
     std::vector<Vec3> straight_;  // every vertex's place on the linear surface
-    std::vector<bool> pinned_;    // unbent: stays straight
+    std::vector<std::uint32_t> searchGroup_;
+    std::uint32_t groups_;
+    std::vector<bool> pinned_;  // unbent: stays straight
 };
 
 /// `check` made true again after local repairs: the topology is the one
@@ -454,7 +502,13 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         straight[v] =
             v < first ? linear.points[v]
                       : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
-    LocalRepair repair(surface, contourVertices, std::move(straight));
+    // Pieces the stack keeps apart are repaired each on its own grid.
+    const bool piecesApart = stackSeparatesPieces(surface, pieceOf, stack);
+    std::vector<std::uint32_t> searchGroup =
+        piecesApart ? pieceOf : std::vector<std::uint32_t>(pieceOf.size(), 0);
+    const std::uint32_t groups = piecesApart ? std::uint32_t(stack.planeZMm.size() + 1) : 1;
+    LocalRepair repair(surface, contourVertices, std::move(straight), std::move(searchGroup),
+                       groups);
     if (topologyKept && repair.settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
         // the passes before does not hold for it, so start afresh.
