@@ -190,10 +190,11 @@ constexpr std::size_t kSearchTasks = 256;
 // are searched on every core left free, tasks taken in order, each run to its end or
 // its own cap, and no task started once `cap` pairs are in: the tasks done
 // are a prefix that holds the first `cap`. O(T log T + pairs of overlapping
-// boxes) work.
+// boxes) work. Pairs within one clean group (cleanGroup, if given:
+// CleanGroups) are not tested.
 std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
                                          const std::vector<bool>& degenerate, std::size_t cap,
-                                         bool& capped) {
+                                         bool& capped, const CleanGroups* cleanGroup = nullptr) {
     const TriangleBvh bvh(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
     const std::vector<TriangleBvh::NodePair> tasks = bvh.selfPairTasks(kSearchTasks);
     std::vector<std::vector<TrianglePair>> found(tasks.size());
@@ -202,6 +203,8 @@ std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
         try {
             bvh.selfPairsUnder(tasks[k], [&](std::size_t i, std::size_t j) {
                 if (degenerate[i] || degenerate[j]) return;
+                if (cleanGroup && (*cleanGroup)[i] != 0 && (*cleanGroup)[i] == (*cleanGroup)[j])
+                    return;
                 if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
                 found[k].emplace_back(std::min(i, j), std::max(i, j));
                 if (found[k].size() == cap) throw TaskFull{};
@@ -454,6 +457,14 @@ MeshCheckReport checkMesh(const TriangleSoup& soup) {
     });
 }
 
+MeshCheckReport checkMeshKnowing(const TriangleSoup& soup, const CleanGroups& cleanGroup) {
+    return checkSoup(soup, [&](const std::vector<bool>& degenerate, std::size_t cap) {
+        CollidingPairs found;
+        found.pairs = collidingPairs(soup, degenerate, cap, found.capped, &cleanGroup);
+        return found;
+    });
+}
+
 MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects) {
     return checkSoup(soup, [&](const std::vector<bool>& degenerate, std::size_t cap) {
         CollidingPairs found;
@@ -467,7 +478,8 @@ MeshCheckReport checkMeshWith(const TriangleSoup& soup, const PairSearch& search
 }
 
 CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<bool>& degenerate,
-                                   const std::vector<std::size_t>& subset, std::size_t cap) {
+                                   const std::vector<std::size_t>& subset, std::size_t cap,
+                                   const CleanGroups* cleanGroup) {
     // The subset as a soup of its own (the hierarchy is built over a whole
     // soup); vertex ids map one to one, so shared vertices stay shared.
     // Sorted ids, not a table over all points: a surface's pieces are
@@ -484,15 +496,19 @@ CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<b
     part.triangles.reserve(subset.size());
     std::vector<bool> partDegenerate;
     partDegenerate.reserve(subset.size());
+    CleanGroups partGroup;
+    if (cleanGroup) partGroup.reserve(subset.size());
     for (std::size_t t : subset) {
         Triangle tri = soup.triangles[t];
         for (std::uint32_t& v : tri)
             v = std::uint32_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
         part.triangles.push_back(tri);
         partDegenerate.push_back(degenerate[t]);
+        if (cleanGroup) partGroup.push_back((*cleanGroup)[t]);
     }
     CollidingPairs found;
-    found.pairs = collidingPairs(part, partDegenerate, cap, found.capped);
+    found.pairs =
+        collidingPairs(part, partDegenerate, cap, found.capped, cleanGroup ? &partGroup : nullptr);
     for (auto& [i, j] : found.pairs) {
         i = subset[i];
         j = subset[j];

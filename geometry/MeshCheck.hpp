@@ -7,6 +7,7 @@
 // can be described rather than refused.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -59,6 +60,18 @@ struct MeshCheckReport {
 /// visits only triangle pairs whose bounding boxes overlap.
 MeshCheckReport checkMesh(const TriangleSoup& soup);
 
+/// What is known of a soup's pairs before a search: per triangle, 0
+/// (nothing) or a group; the pairs of triangles in one nonzero group were
+/// searched together and none collides, at the soup's present coordinates
+/// (a strip checked as it was built, triangles that have not moved since a
+/// clean check), so they are not tested again.
+using CleanGroups = std::vector<std::uint32_t>;
+
+/// checkMesh when some pairs are known clean (`cleanGroup`, one per
+/// triangle): the same report, those pairs untested. O(T log T) plus the
+/// pairs of overlapping boxes outside the groups.
+MeshCheckReport checkMeshKnowing(const TriangleSoup& soup, const CleanGroups& cleanGroup);
+
 /// checkMesh for a soup changed in a few places: the topology in full, but
 /// only the pairs that involve one of `suspects` (triangle indices) searched
 /// for intersections. The report is checkMesh's when no other pair
@@ -89,9 +102,11 @@ MeshCheckReport checkMeshWith(const TriangleSoup& soup, const PairSearch& search
 /// The colliding pairs both of whose triangles are in `subset` (indices into
 /// soup), at most `cap`, in a fixed order; as checkMesh judges pairs.
 /// O(S log S + pairs of overlapping boxes) for S triangles in the subset,
-/// plus O(points) to map them.
+/// plus O(points) to map them. Pairs within one of `cleanGroup`'s groups
+/// (if given; indexed like soup's triangles) are not tested.
 CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<bool>& degenerate,
-                                   const std::vector<std::size_t>& subset, std::size_t cap);
+                                   const std::vector<std::size_t>& subset, std::size_t cap,
+                                   const CleanGroups* cleanGroup = nullptr);
 
 /// The self-intersecting pairs checkMesh would count, without the topology
 /// checks (e.g. for a piece of surface, which has a boundary).

@@ -121,12 +121,13 @@ CollidingPairs pairsWithinPieces(const TriangleSoup& soup,
         members[p].push_back(t);
         ++searchedTriangles;
     }
+    const CleanGroups* clean = stack.cleanGroup.empty() ? nullptr : &stack.cleanGroup;
     std::vector<CollidingPairs> found(pieceCount);
     std::atomic<std::size_t> next{0}, total{0};
     auto work = [&] {
         for (std::size_t p; total < cap && (p = next++) < pieceCount;) {
             if (members[p].size() < 2) continue;
-            found[p] = collidingPairsAmong(soup, degenerate, members[p], cap);
+            found[p] = collidingPairsAmong(soup, degenerate, members[p], cap, clean);
             total += found[p].pairs.size();
         }
     };
@@ -152,7 +153,9 @@ CollidingPairs pairsWithinPieces(const TriangleSoup& soup,
 MeshCheckReport checkStackedMesh(const TriangleSoup& soup,
                                  const std::vector<std::uint32_t>& pieceOf,
                                  const PieceStack& stack) {
-    if (!stackSeparatesPieces(soup, pieceOf, stack)) return checkMesh(soup);
+    if (!stackSeparatesPieces(soup, pieceOf, stack))
+        return stack.cleanGroup.empty() ? checkMesh(soup)
+                                        : checkMeshKnowing(soup, stack.cleanGroup);
     return checkMeshWith(soup, [&](const std::vector<bool>& degenerate, std::size_t cap) {
         return pairsWithinPieces(soup, pieceOf, stack, degenerate, cap);
     });

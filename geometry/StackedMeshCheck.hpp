@@ -30,6 +30,9 @@ struct PieceStack {
     /// pairs were already searched, clean, at the soup's present coordinates
     /// (as checkMesh judges pairs), so need not be searched again.
     std::vector<bool> searched;
+    /// Per triangle (or empty), pairs within the other pieces known clean
+    /// (geometry/MeshCheck CleanGroups): not tested again.
+    CleanGroups cleanGroup;
 };
 
 /// Does the stack keep the pieces of `soup` (piece of triangle t:
@@ -47,7 +50,8 @@ bool stackSeparatesPieces(const TriangleSoup& soup, const std::vector<std::uint3
 
 /// checkMesh for a stacked surface: when stackSeparatesPieces, the pairs
 /// are searched within each piece not yet searched (pieces on the free
-/// cores at once), otherwise over the whole surface. The report is
+/// cores at once), except pairs the stack's clean groups vouch for,
+/// otherwise over the whole surface. The report is
 /// checkMesh's (the intersecting pairs the same set unless the count is
 /// capped, where it is a different first kMaxCountedIntersections).
 /// O(T log T) for the topology plus O(S log S + overlapping pairs) for the

@@ -451,14 +451,20 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     const TriangleSoup linear = surface;
     const std::vector<std::uint32_t> linearPieceOf = pieceOf;
     // The surface came valid: a piece none of whose vertices moved or are
-    // new is as clean as it was, and its pairs need no search.
-    PieceStack unmoved = stack;  // copied once; only `searched` changes between checks
+    // new is as clean as it was, and its pairs need no search; nor do the
+    // pairs of triangles whose corners all stayed (refinement splits every
+    // triangle it touches with new vertices, so such a triangle is one of
+    // the linear surface's, where it was).
+    PieceStack unmoved = stack;  // copied once; what is known clean changes between checks
     auto checkWhole = [&] {
         unmoved.searched.assign(stack.planeZMm.size() + 1, true);
+        unmoved.cleanGroup.assign(surface.triangles.size(), 1);
         for (std::size_t t = 0; t < surface.triangles.size(); ++t)
             for (std::uint32_t v : surface.triangles[t])
-                if (v >= linear.points.size() || !(surface.points[v] == linear.points[v]))
+                if (v >= linear.points.size() || !(surface.points[v] == linear.points[v])) {
                     unmoved.searched[pieceOf[t]] = false;
+                    unmoved.cleanGroup[t] = 0;
+                }
         return checkStackedMesh(surface, pieceOf, unmoved);
     };
     std::vector<bool> restoredBefore;

@@ -148,7 +148,9 @@ class SurfaceReconstructor final : public CapSite {
         // clean piece's pairs need no second search there.
         TriangleSoup triangles = builder_.trianglesSince(before);
         roundPointsToFloat(triangles);
-        const MeshCheckReport piece = checkMesh(triangles);
+        // A strip's own pairs were searched as it was built.
+        const MeshCheckReport piece =
+            checkMeshKnowing(triangles, builder_.cleanGroupsSince(before));
         std::size_t contourEdges = 0;
         for (const LayerPart* side : sides)
             for (std::uint32_t c : side->contours) contourEdges += side->layer->contours[c].size();
@@ -358,11 +360,16 @@ class SurfaceReconstructor final : public CapSite {
         // Contours that zigzag or lean far can make a strip fold through
         // itself; such a band is solved again with an intermediate contour
         // instead (and at the limit closed by prisms, which cannot fold).
-        if (countSelfIntersections(builder_.trianglesSince(before)) > 0) {
+        // Searched as a mesh file will hold it, as its piece is checked, so
+        // that check need not search these pairs again.
+        TriangleSoup band = builder_.trianglesSince(before);
+        roundPointsToFloat(band);
+        if (countSelfIntersections(band) > 0) {
             builder_.truncateTriangles(before);
             ++stats_.rejectedStrips;
             return false;
         }
+        builder_.markSearchedTogetherSince(before);
         ++stats_.strips;
         return true;
     }

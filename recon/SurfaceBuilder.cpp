@@ -26,6 +26,7 @@ void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {
         if (pieces_[t] < drop.size() && drop[pieces_[t]]) continue;
         soup_.triangles[kept] = soup_.triangles[t];
         lofts_[kept] = lofts_[t];
+        cleanGroups_[kept] = cleanGroups_[t];
         pieces_[kept++] = pieces_[t];
     }
     truncateTriangles(kept);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/MeshCheck.hpp"
 #include "geometry/Polygon.hpp"
 #include "geometry/TriangleSoup.hpp"
 
@@ -24,6 +25,7 @@ class SurfaceBuilder {
         soup_.triangles.push_back({a, b, c});
         pieces_.push_back(piece_);
         lofts_.push_back(false);
+        cleanGroups_.push_back(0);
     }
     const Vec3& point(std::uint32_t v) const { return soup_.points[v]; }
     std::size_t triangleCount() const { return soup_.triangles.size(); }
@@ -32,11 +34,24 @@ class SurfaceBuilder {
         soup_.triangles.resize(count);
         pieces_.resize(count);
         lofts_.resize(count);
+        cleanGroups_.resize(count);
     }
     /// Marks the triangles added since `first` as a loft band: a strip
     /// stitched between two layers, which smooth interpolation may bend.
     void markLoftSince(std::size_t first) {
         std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), true);
+    }
+    /// Records that the triangles added since `first` were searched for
+    /// colliding pairs among themselves, clean, at float coordinates (a
+    /// strip's own check): a check of their piece need not test those
+    /// pairs again (geometry/MeshCheck CleanGroups).
+    void markSearchedTogetherSince(std::size_t first) {
+        const std::uint32_t group = ++lastCleanGroup_;
+        std::fill(cleanGroups_.begin() + std::ptrdiff_t(first), cleanGroups_.end(), group);
+    }
+    /// Per triangle from `first` on, its clean group (0: none).
+    CleanGroups cleanGroupsSince(std::size_t first) const {
+        return CleanGroups(cleanGroups_.begin() + std::ptrdiff_t(first), cleanGroups_.end());
     }
     const std::vector<std::uint32_t>& pieces() const { return pieces_; }
     const std::vector<bool>& lofts() const { return lofts_; }
@@ -60,6 +75,8 @@ class SurfaceBuilder {
     TriangleSoup soup_;
     std::vector<std::uint32_t> pieces_;  // per triangle
     std::vector<bool> lofts_;            // per triangle
+    CleanGroups cleanGroups_;            // per triangle
+    std::uint32_t lastCleanGroup_ = 0;
     std::uint32_t piece_ = 0;
 };
 

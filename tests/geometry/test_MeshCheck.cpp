@@ -292,3 +292,33 @@ TEST(MeshCheck, SuspectSearchSeesOnlyItsSuspectsPairs) {
     EXPECT_EQ(elsewhere.boundaryEdges, 3u);
     EXPECT_FALSE(elsewhere.validSolid());
 }
+
+TEST(MeshCheck, CleanGroupsSkipOnlyThePairsWithinAGroup) {
+    // Two octahedra passing through each other: every colliding pair has one
+    // triangle of each, so marking each solid a clean group of its own
+    // (their own pairs are clean) must leave the report checkMesh's.
+    const TriangleSoup a = octahedron(), b = octahedron({0.5, 0.3, 0.2});
+    const TriangleSoup s = merged(a, b);
+    const MeshCheckReport whole = checkMesh(s);
+    ASSERT_GT(whole.intersectingPairs, 0u);
+    CleanGroups groups(s.triangles.size(), 1);
+    std::fill(groups.begin() + std::ptrdiff_t(a.triangles.size()), groups.end(), 2);
+    const MeshCheckReport known = checkMeshKnowing(s, groups);
+    EXPECT_EQ(known.intersectingPairs, whole.intersectingPairs);
+    EXPECT_EQ(known.defectiveTriangles, whole.defectiveTriangles);
+    EXPECT_EQ(known.boundaryEdges, whole.boundaryEdges);
+    // Group 0 vouches for nothing.
+    EXPECT_EQ(checkMeshKnowing(s, CleanGroups(s.triangles.size(), 0)).intersectingPairs,
+              whole.intersectingPairs);
+    // One group over both says every pair is clean: none is tested (the
+    // caller's promise), the topology is still checked.
+    const MeshCheckReport trusted = checkMeshKnowing(s, CleanGroups(s.triangles.size(), 7));
+    EXPECT_EQ(trusted.intersectingPairs, 0u);
+    EXPECT_EQ(trusted.boundaryEdges, whole.boundaryEdges);
+    // Among a subset, likewise.
+    std::vector<bool> degenerate(s.triangles.size(), false);
+    std::vector<std::size_t> all(s.triangles.size());
+    std::iota(all.begin(), all.end(), std::size_t(0));
+    EXPECT_EQ(collidingPairsAmong(s, degenerate, all, SIZE_MAX, &groups).pairs.size(),
+              whole.intersectingPairs);
+}
