@@ -98,6 +98,10 @@ bool stackSeparatesPieces(const TriangleSoup& soup, const std::vector<std::uint3
     }
     // Loops that touch or cross would let triangles of both sides meet
     // beyond the vertices and edges they share.
+    return stack.loopsKnownApart || planeLoopsApart(soup, stack);
+}
+
+bool planeLoopsApart(const TriangleSoup& soup, const PieceStack& stack) {
     for (const std::vector<std::vector<std::uint32_t>>& loops : stack.planeLoops)
         if (!loopsApart(soup, loops)) return false;
     return true;

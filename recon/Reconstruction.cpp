@@ -509,6 +509,9 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
         stack.planeLoops.push_back(layer.vertexIds);
     }
     stack.searched = reconstructor.searchedPieces();
+    // Contour points never move from here on (repairs and smoothing leave
+    // them), so their loops are tested once for all the checks below.
+    stack.loopsKnownApart = planeLoopsApart(builder.soup(), stack);
     result.check = checkStackedMesh(builder.soup(), builder.pieces(), stack);
     if (!result.check.validSolid() && options.cap != CapMode::None) {
         std::vector<bool> broken(slices.size() + 1, false);

@@ -147,12 +147,17 @@ TEST(StackedMeshCheck, LoopsThatTouchAreNotSeparated) {
     // Radii on plane 1 are 1.2 sin(1) + 1 > 1: the rings overlap, and
     // crossing loops are refused as well.
     EXPECT_FALSE(stackSeparatesPieces(t.soup, t.pieceOf, t.stack));
+    EXPECT_FALSE(planeLoopsApart(t.soup, t.stack));
     expectSameReport(checkStackedMesh(t.soup, t.pieceOf, t.stack), checkMesh(t.soup));
+    // Loops known apart are not tested again (the caller's promise).
+    t.stack.loopsKnownApart = true;
+    EXPECT_TRUE(stackSeparatesPieces(t.soup, t.pieceOf, t.stack));
 
     Tower apart;
     addTower(apart, 3, 8, {0, 0}, 0.5);
     addTower(apart, 3, 8, {3, 0}, 0.5);
     EXPECT_TRUE(stackSeparatesPieces(apart.soup, apart.pieceOf, apart.stack));
+    EXPECT_TRUE(planeLoopsApart(apart.soup, apart.stack));
     // Touching exactly: a vertex of one ring moved onto a vertex of the other.
     const std::uint32_t a = apart.stack.planeLoops[1][0][0];  // angle 0 of the first
     const std::uint32_t b = apart.stack.planeLoops[1][1][4];  // angle π of the second
@@ -170,6 +175,10 @@ TEST(StackedMeshCheck, ATriangleMeetingItsPlaneOutsideTheLoopsIsNotSeparated) {
     const std::vector<std::uint32_t>& loop = t.stack.planeLoops[0][0];
     t.soup.triangles.push_back({loop[0], loop[3], t.freeVertices[1]});
     t.pieceOf.push_back(1);
+    EXPECT_FALSE(stackSeparatesPieces(t.soup, t.pieceOf, t.stack));
+    // The loops themselves are apart: knowing so changes nothing here.
+    EXPECT_TRUE(planeLoopsApart(t.soup, t.stack));
+    t.stack.loopsKnownApart = true;
     EXPECT_FALSE(stackSeparatesPieces(t.soup, t.pieceOf, t.stack));
     expectSameReport(checkStackedMesh(t.soup, t.pieceOf, t.stack), checkMesh(t.soup));
     // A loop vertex that is not at its plane's height.
