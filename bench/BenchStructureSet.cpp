@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/OrderedParallel.hpp"
+#include "app/WorkerRuntimes.hpp"
 #include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -82,15 +83,14 @@ void benchSet(const std::string& device, const std::string& name, const ContourS
     for (const Roi& roi : set.rois)
         if (!roi.slices.empty()) rois.push_back(&roi);
     const std::size_t jobs = app::defaultJobs(rois.size());
-    std::vector<std::unique_ptr<ocl::Runtime>> runtimes(jobs);
-    for (auto& runtime : runtimes) runtime = std::make_unique<ocl::Runtime>(device);
+    app::WorkerRuntimes runtimes(device, jobs);  // as reconstruct --all opens them
     SetResult ours, baseline;
     resetPeakMemory();
     ours.seconds = bestSeconds(1, [&] {
         app::forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t worker) {
-                return reconstructSurface(*runtimes[worker], *rois[i]).check;
+                return reconstructSurface(runtimes[worker], *rois[i]).check;
             },
             [&](std::size_t i, const MeshCheckReport& check) {
                 addRoi(ours, check, contourVolumeMm3(*rois[i]));

@@ -16,13 +16,25 @@ Runtime::Runtime(DeviceInfo device) : device_(std::move(device)) {
     }
 }
 
+Runtime::Runtime(Runtime& other, ShareContext)
+    : device_(other.device_), context_(other.context_), programs_(other.programs_) {
+    try {
+        queue_ = cl::CommandQueue(context_, device_.device);
+    } catch (const cl::Error& e) {
+        throw toClError(e, "while opening a queue on device '" + device_.deviceName + "'");
+    }
+}
+
 const cl::Program& Runtime::program(const std::vector<std::string>& sourceFiles,
                                     const std::string& options) {
     std::string key = options;
     for (const std::string& file : sourceFiles) key += "|" + file;
 
-    std::lock_guard<std::mutex> lock(cacheMutex_);
-    if (auto found = programs_.find(key); found != programs_.end()) return found->second;
+    // Held through the build: a worker asking for a program another is
+    // building waits for it instead of building it again.
+    std::lock_guard<std::mutex> lock(programs_->mutex);
+    if (auto found = programs_->programs.find(key); found != programs_->programs.end())
+        return found->second;
 
     std::string source;
     for (const std::string& file : sourceFiles) {
@@ -36,7 +48,7 @@ const cl::Program& Runtime::program(const std::vector<std::string>& sourceFiles,
     std::string label;
     for (const std::string& file : sourceFiles) label += (label.empty() ? "" : ", ") + file;
     cl::Program program = buildProgram(source, label, options);
-    return programs_.emplace(key, std::move(program)).first->second;
+    return programs_->programs.emplace(key, std::move(program)).first->second;
 }
 
 cl::Program Runtime::buildProgram(const std::string& source, const std::string& label,

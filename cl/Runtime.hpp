@@ -12,11 +12,21 @@
 
 namespace dfrecon::ocl {
 
+/// Asks Runtime for a second queue on a runtime's context (below).
+struct ShareContext {};
+
 class Runtime {
   public:
     /// Opens the device chosen by chooseDevice(spec). Throws ClError.
     explicit Runtime(const std::string& deviceSpec = {});
     explicit Runtime(DeviceInfo device);
+    /// A runtime on `other`'s device and context with an in-order queue of
+    /// its own (a worker beside other workers: no item waits for another's
+    /// kernels), sharing its programs: each is built once however many
+    /// workers use it (a build costs a tenth of a second or more, even
+    /// from PoCL's cache). Thread-safe against `other`'s use. Throws
+    /// ClError.
+    Runtime(Runtime& other, ShareContext);
 
     const DeviceInfo& device() const { return device_; }
     cl::Context& context() { return context_; }
@@ -38,11 +48,17 @@ class Runtime {
     cl::Kernel kernel(const std::vector<std::string>& sourceFiles, const std::string& name);
 
   private:
+    // Built programs by sources and options, shared by the runtimes of
+    // one context.
+    struct ProgramCache {
+        std::mutex mutex;
+        std::map<std::string, cl::Program> programs;
+    };
+
     DeviceInfo device_;
     cl::Context context_;
     cl::CommandQueue queue_;
-    std::mutex cacheMutex_;
-    std::map<std::string, cl::Program> programs_;
+    std::shared_ptr<ProgramCache> programs_ = std::make_shared<ProgramCache>();
 };
 
 /// The work-group size of every 1D launch, always given explicitly: PoCL

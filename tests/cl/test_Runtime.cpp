@@ -1,6 +1,8 @@
 // Programs from embedded sources, the program cache, build logs and buffers.
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "cl/ClError.hpp"
 #include "cl/DeviceBuffer.hpp"
 #include "cl/Runtime.hpp"
@@ -26,6 +28,45 @@ TEST(Runtime, BuildsAndCachesPrograms) {
     EXPECT_NO_THROW(runtime.kernel(sources, "signed_distance_2d"));
     EXPECT_THROW(runtime.kernel(sources, "no_such_kernel"), ClError);
     EXPECT_THROW(runtime.program({"missing.cl"}), ClError);
+}
+
+// Workers' runtimes: one context, a queue each, each program built once.
+TEST(Runtime, RuntimesSharingAContextShareProgramsNotQueues) {
+    Runtime first("cpu");
+    Runtime second(first, ShareContext{});
+    EXPECT_EQ(first.context()(), second.context()());
+    EXPECT_NE(first.queue()(), second.queue()());
+    const std::vector<std::string> sources{"real.cl", "closest_segment_2d.cl"};
+    EXPECT_EQ(second.program(sources)(), first.program(sources)());
+    EXPECT_NO_THROW(first.kernel(sources, "signed_distance_2d"));
+    // Both queues run work at once, from two threads, each its own.
+    const cl::Program program = first.buildProgram(
+        "__kernel void twice(__global const int* in, __global int* out) {"
+        "  out[get_global_id(0)] = 2 * in[get_global_id(0)]; }",
+        "twice.cl");
+    auto run = [&](Runtime& runtime, int base, std::vector<cl_int>& output) {
+        std::vector<cl_int> input(4096);
+        for (std::size_t i = 0; i < input.size(); ++i) input[i] = base + int(i);
+        const DeviceBuffer<cl_int> in(runtime, input);
+        DeviceBuffer<cl_int> out(runtime, input.size());
+        cl::Kernel kernel(program, "twice");
+        kernel.setArg(0, in.get());
+        kernel.setArg(1, out.get());
+        for (int repeat = 0; repeat < 20; ++repeat)
+            runtime.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(input.size()),
+                                                 cl::NDRange(64));
+        output = out.download(runtime);
+    };
+    std::vector<cl_int> a, b;
+    std::thread other([&] { run(second, 1000, b); });
+    run(first, 0, a);
+    other.join();
+    ASSERT_EQ(a.size(), 4096u);
+    ASSERT_EQ(b.size(), 4096u);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i], 2 * int(i));
+        EXPECT_EQ(b[i], 2 * (1000 + int(i)));
+    }
 }
 
 TEST(Runtime, BuildFailureShowsTheLog) {
