@@ -95,6 +95,17 @@ void expectSameReport(const MeshCheckReport& stacked, const MeshCheckReport& who
     EXPECT_DOUBLE_EQ(stacked.volumeMm3, whole.volumeMm3);
 }
 
+// Three free vertices (half-way rings, apexes) moved sideways at random,
+// always within their slab: enough to pull rings through their tower's axis.
+void shakeFreeVertices(Tower& t, std::mt19937& random) {
+    std::uniform_real_distribution<double> shift(-1.6, 1.6);
+    for (int moves = 0; moves < 3; ++moves) {
+        const std::uint32_t v = t.freeVertices[std::size_t(random() % t.freeVertices.size())];
+        t.soup.points[v].x += shift(random);
+        t.soup.points[v].y += shift(random);
+    }
+}
+
 }  // namespace
 
 TEST(StackedMeshCheck, AValidTowerIsSeparatedAndReportedAsTheWholeCheckDoes) {
@@ -109,15 +120,10 @@ TEST(StackedMeshCheck, PairsWithinPiecesAreFoundAsTheWholeCheckFindsThem) {
     // sideways) at random, always within their slab: the pieces stay
     // separated and the colliding pairs are all within pieces.
     std::mt19937 random(7);
-    std::uniform_real_distribution<double> shift(-1.6, 1.6);
     int broken = 0;
     for (int trial = 0; trial < 40; ++trial) {
         Tower t = tower();
-        for (int moves = 0; moves < 3; ++moves) {
-            const std::uint32_t v = t.freeVertices[std::size_t(random() % t.freeVertices.size())];
-            t.soup.points[v].x += shift(random);
-            t.soup.points[v].y += shift(random);
-        }
+        shakeFreeVertices(t, random);
         ASSERT_TRUE(stackSeparatesPieces(t.soup, t.pieceOf, t.stack));
         const MeshCheckReport whole = checkMesh(t.soup);
         broken += whole.intersectingPairs > 0;
@@ -214,17 +220,12 @@ TEST(StackedMeshCheck, PairsOfTrianglesThatDidNotMoveAreNotSearchedAndNothingIsM
     // of triangles none of whose corners moved are one clean group; every
     // collision involves a moved triangle and is still found.
     std::mt19937 random(11);
-    std::uniform_real_distribution<double> shift(-1.6, 1.6);
     int broken = 0;
     for (int trial = 0; trial < 40; ++trial) {
         Tower t = tower();
         ASSERT_TRUE(checkMesh(t.soup).validSolid());
         const std::vector<Vec3> before = t.soup.points;
-        for (int moves = 0; moves < 3; ++moves) {
-            const std::uint32_t v = t.freeVertices[std::size_t(random() % t.freeVertices.size())];
-            t.soup.points[v].x += shift(random);
-            t.soup.points[v].y += shift(random);
-        }
+        shakeFreeVertices(t, random);
         t.stack.cleanGroup.assign(t.soup.triangles.size(), 1);
         for (std::size_t k = 0; k < t.soup.triangles.size(); ++k)
             for (std::uint32_t v : t.soup.triangles[k])
