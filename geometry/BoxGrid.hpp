@@ -17,6 +17,12 @@ class BoxGrid {
     /// (> 0). O(Σ cells each box covers).
     BoxGrid(std::vector<Box3> boxes, double cellMm);
 
+    /// A grid whose cells are about a box across (the median box's largest
+    /// side), never so small that the boxes' scene spans more than 64 cells
+    /// a side: each box covers a few cells, and a query visits few. O(n)
+    /// plus the constructor's work.
+    static BoxGrid sizedToBoxes(std::vector<Box3> boxes);
+
     /// Calls visit(i) once for every item whose box overlaps `query`.
     /// O(cells the query covers + items in them).
     template <class Visit>

@@ -288,24 +288,14 @@ std::vector<TrianglePair> collidingPairsNear(const TriangleSoup& soup,
     if (suspects.empty()) return pairs;
     std::vector<bool> suspect(soup.triangles.size(), false);
     std::vector<Box3> boxes;
-    std::vector<double> extents;
     Box3 scene;
     for (std::size_t s : suspects) {
         suspect[s] = true;
         Box3& box = boxes.emplace_back();
         for (std::uint32_t v : soup.triangles[s]) box.add(soup.points[v]);
-        const Vec3 e = box.hi - box.lo;
-        extents.push_back(std::max({e.x, e.y, e.z}));
         scene.add(box);
     }
-    // Cells about a suspect across (the median), never so small that one
-    // box spans more than 64 a side.
-    std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(extents.size() / 2),
-                     extents.end());
-    const Vec3 size = scene.hi - scene.lo;
-    const double cell =
-        std::max({extents[extents.size() / 2], size.x / 64, size.y / 64, size.z / 64, 1e-9});
-    const BoxGrid grid(std::move(boxes), cell);
+    const BoxGrid grid = BoxGrid::sizedToBoxes(std::move(boxes));
     for (std::size_t t = 0; t < soup.triangles.size() && pairs.size() < cap; ++t) {
         if (degenerate[t]) continue;
         Box3 box;

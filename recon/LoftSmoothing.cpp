@@ -259,48 +259,53 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
     return changed;
 }
 
+/// The triangles of each group, in index order: group g is
+/// order[first[g], first[g + 1]). O(T) to make (a counting sort).
+struct TrianglesByGroup {
+    std::vector<std::uint32_t> groupOf;
+    std::vector<std::size_t> first, order;
+
+    TrianglesByGroup(std::vector<std::uint32_t> groups, std::uint32_t count)
+        : groupOf(std::move(groups)), first(count + 1, 0), order(groupOf.size()) {
+        for (std::uint32_t g : groupOf) ++first[g + 1];
+        for (std::size_t g = 0; g < count; ++g) first[g + 1] += first[g];
+        std::vector<std::size_t> next(first.begin(), first.end() - 1);
+        for (std::size_t t = 0; t < groupOf.size(); ++t) order[next[groupOf[t]]++] = t;
+    }
+};
+
 /// Grids over every triangle's reach (its box where it is now and wherever
-/// unbending may put it, its straight place), one per piece when the pieces
-/// cannot meet (stackSeparatesPieces: vertices only ever move in xy at
-/// their own z, off the planes, so that stays true), else one over all.
-/// A piece's grid is built when a suspect of that piece first asks, so a
-/// repair costs the pieces it touches, not the surface.
+/// unbending may put it, its straight place), one per group of triangles
+/// that can meet only each other (pieces the stack keeps apart:
+/// stackSeparatesPieces stays true, since vertices only ever move in xy at
+/// their own z, off the planes). A group's grid is built when a suspect of
+/// that group first asks, so a repair costs the pieces it touches, not the
+/// surface.
 class ReachGrids {
   public:
-    /// `groupOf[t]`: the grid triangle t belongs to, < groups.
     ReachGrids(const TriangleSoup& surface, const std::vector<Vec3>& straight,
-               const std::vector<std::uint32_t>& groupOf, std::uint32_t groups)
+               const TrianglesByGroup& groups)
         : surface_(surface),
           straight_(straight),
-          groupOf_(groupOf),
-          members_(groups + 1, 0),
-          grids_(groups) {
-        // Triangles of each group, in index order (counting sort).
-        for (std::uint32_t g : groupOf_) ++members_[g + 1];
-        for (std::size_t g = 0; g < groups; ++g) members_[g + 1] += members_[g];
-        order_.resize(groupOf_.size());
-        std::vector<std::size_t> next(members_.begin(), members_.end() - 1);
-        for (std::size_t t = 0; t < groupOf_.size(); ++t) order_[next[groupOf_[t]]++] = t;
-    }
+          groups_(groups),
+          grids_(groups.first.size() - 1) {}
 
     /// Calls visit(u) for every triangle u of t's group whose reach
     /// overlaps `box`.
     template <class Visit>
     void overlapping(std::size_t t, const Box3& box, Visit&& visit) {
-        const std::uint32_t g = groupOf_[t];
+        const std::uint32_t g = groups_.groupOf[t];
         if (!grids_[g]) grids_[g] = std::make_unique<BoxGrid>(gridOf(g));
-        const std::size_t first = members_[g];
-        grids_[g]->overlapping(box, [&](std::uint32_t k) { visit(order_[first + k]); });
+        const std::size_t first = groups_.first[g];
+        grids_[g]->overlapping(box, [&](std::uint32_t k) { visit(groups_.order[first + k]); });
     }
 
   private:
     BoxGrid gridOf(std::uint32_t g) const {
-        const std::size_t first = members_[g], count = members_[g + 1] - first;
+        const std::size_t first = groups_.first[g], count = groups_.first[g + 1] - first;
         std::vector<Box3> reach(count);
-        std::vector<double> extents(count);
-        Box3 scene;
         for (std::size_t k = 0; k < count; ++k) {
-            for (std::uint32_t v : surface_.triangles[order_[first + k]]) {
+            for (std::uint32_t v : surface_.triangles[groups_.order[first + k]]) {
                 reach[k].add(surface_.points[v]);
                 reach[k].add(straight_[v]);
             }
@@ -308,24 +313,13 @@ class ReachGrids {
             const Vec3 pad{1e-4, 1e-4, 1e-4};
             reach[k].lo = reach[k].lo - pad;
             reach[k].hi = reach[k].hi + pad;
-            const Vec3 e = reach[k].hi - reach[k].lo;
-            extents[k] = std::max({e.x, e.y, e.z});
-            scene.add(reach[k]);
         }
-        // Cells about a triangle across (the median), never so small that
-        // one box spans more than 64 a side.
-        std::nth_element(extents.begin(), extents.begin() + std::ptrdiff_t(count / 2),
-                         extents.end());
-        const Vec3 size = scene.hi - scene.lo;
-        const double cellMm = std::max(extents[count / 2], std::max({size.x, size.y, size.z}) / 64);
-        return BoxGrid(std::move(reach), cellMm);
+        return BoxGrid::sizedToBoxes(std::move(reach));
     }
 
     const TriangleSoup& surface_;
     const std::vector<Vec3>& straight_;
-    const std::vector<std::uint32_t>& groupOf_;
-    std::vector<std::size_t> members_;  // group g: order_[members_[g], members_[g + 1])
-    std::vector<std::size_t> order_;
+    const TrianglesByGroup& groups_;
     std::vector<std::unique_ptr<BoxGrid>> grids_;
 };
 
@@ -375,8 +369,7 @@ class LocalRepair {
         : surface_(surface),
           contourVertices_(contourVertices),
           straight_(std::move(straight)),
-          searchGroup_(std::move(searchGroup)),
-          groups_(groups),
+          groups_(std::move(searchGroup), groups),
           pinned_(surface.points.size(), false) {}
 
     bool pinned(std::size_t v) const { return pinned_[v]; }
@@ -386,7 +379,7 @@ class LocalRepair {
     /// times. True once the tested triangles are clean. Work: O(T) for the
     /// rings, grids over the suspects' groups, plus local tests.
     bool settle(std::vector<std::size_t> suspects, LoftSmoothingStats& stats) {
-        ReachGrids near(surface_, straight_, searchGroup_, groups_);
+        ReachGrids near(surface_, straight_, groups_);
         std::vector<std::size_t> broken = brokenAmong(surface_, near, suspects);
         for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
             std::vector<bool> unbend(surface_.points.size(), false);
@@ -423,9 +416,8 @@ class LocalRepair {
     TriangleSoup& surface_;
     std::size_t contourVertices_;
     std::vector<Vec3> straight_;  // every vertex's place on the linear surface
-    std::vector<std::uint32_t> searchGroup_;
-    std::uint32_t groups_;
-    std::vector<bool> pinned_;  // unbent: stays straight
+    TrianglesByGroup groups_;     // which triangles can meet: the topology never changes
+    std::vector<bool> pinned_;    // unbent: stays straight
 };
 
 /// `check` made true again after local repairs: the topology is the one
