@@ -51,9 +51,11 @@ bool addSurface(HtmlReport& report, ReportSurface surface);
 /// builds the table and the 3D view from data embedded in it: positions as
 /// base64 float32, triangles as uint32, colours per point as RGB bytes.
 /// Size about 30 bytes per point and 16 per triangle, plus 640 kB of
-/// viewer. Once drawn, the page's body carries data-surfaces (how many it
-/// drew) and data-webgl ("1", or "0" where the browser has no WebGL: the
-/// table is there all the same), for tests and scripts. Throws
+/// viewer. Once drawn, the page removes the embedded data from its
+/// document (it holds the meshes, not their text too), and its body
+/// carries data-surfaces (how many it drew) and data-webgl ("1", or "0"
+/// where the browser has no WebGL: the table is there all the same), for
+/// tests and scripts. Throws
 /// std::runtime_error naming the file when it cannot be written. O(size).
 void writeHtmlReport(const std::string& path, const HtmlReport& report);
 

@@ -2,7 +2,12 @@
 // built from the JSON in #dfrecon-data with three.js (inlined before this).
 (function () {
   'use strict';
-  const data = JSON.parse(document.getElementById('dfrecon-data').textContent);
+  const dataElement = document.getElementById('dfrecon-data');
+  const data = JSON.parse(dataElement.textContent);
+  // The embedded text is most of the page (tens of MB for a whole atlas):
+  // once parsed it is dropped from the document, so the page does not hold
+  // it twice and a saved or dumped DOM stays small.
+  dataElement.remove();
   document.title = data.title;
   document.getElementById('title').textContent = data.title;
 
@@ -102,6 +107,7 @@
     } else {
       options.color = new THREE.Color(s.colour[0] / 255, s.colour[1] / 255, s.colour[2] / 255);
     }
+    s.positions = s.triangles = s.pointColours = undefined;  // decoded: the text can go
     const mesh = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial(options));
     mesh.name = s.name;
     meshes[s.name] = mesh;

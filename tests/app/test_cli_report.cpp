@@ -146,6 +146,10 @@ TEST(HtmlReport, AWholeAtlasOpensWithEveryRoi) {
     EXPECT_EQ(bodyData(dom.out, "webgl"), "1");
     EXPECT_EQ(bodyData(dom.out, "surfaces"), "41");
     EXPECT_NE(dom.out.find("label_48"), std::string::npos);  // the table's last row
+    // The page drops its embedded data once drawn: the 62 MB of surfaces
+    // are not kept in the document beside the meshes made from them.
+    EXPECT_EQ(dom.out.find("id=\"dfrecon-data\""), std::string::npos);
+    EXPECT_LT(dom.out.size(), std::size_t(1) << 20);
 }
 
 TEST(HtmlReport, SdmAndBatchReportPagesOpenWithTheirSurfaces) {
