@@ -22,8 +22,10 @@ case "$mode" in
 esac
 
 # To build and run the program, installed with their recommends.
+# The release build is clang with Ninja (CMakePresets.json); build-essential
+# brings the C++ library clang links.
 build_packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config clang ninja-build
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libopenmesh-dev
   libopenvdb-dev libboost-iostreams-dev libtbb-dev
@@ -44,11 +46,11 @@ build_packages_no_recommends=(
 # Debian's where the machine has none of its own.
 if ! command -v npm >/dev/null; then build_packages_no_recommends+=(npm); fi
 # For the tests, benchmarks, fuzzing and format check, with recommends:
-# GoogleTest, OpenVDB's tools, clang and its runtime (the sanitizer build and
-# fuzzing), Ninja (the sanitizer build), clang-format.
+# GoogleTest, OpenVDB's tools, clang's sanitizer and fuzzer runtime,
+# clang-format.
 test_packages=(
   libgtest-dev libopenvdb-tools
-  clang libclang-rt-14-dev clang-format ninja-build
+  libclang-rt-14-dev clang-format
 )
 # Chromium opens the HTML reports headless in their tests. python3-vtk9
 # reads our .vtk and .vtp files with VTK's own readers in the
