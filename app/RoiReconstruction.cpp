@@ -129,12 +129,12 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
     Stopwatch watch;
     std::size_t refused = 0;
     if (written) {
-        const TriMesh mesh = toTriMesh(result.surface, &refused);
+        TriMesh mesh = toTriMesh(result.surface, &refused);
         MeshWriteOptions write;
         write.binary = !settings.ascii;
         write.structure = structureTagOf(roi);
         const std::lock_guard<std::mutex> lock(meshWriting);
-        writeMeshOutput(mesh, output, write);
+        writeMeshOutput(std::move(mesh), output, write);
     }
     const double writeSeconds = watch.lap();
 

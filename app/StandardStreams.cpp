@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 namespace dfrecon::app {
 
@@ -51,12 +52,11 @@ MeshOutput meshOutput(const std::string& output, const std::string& format, bool
     return {output, *extension};
 }
 
-void writeMeshOutput(const TriMesh& mesh, const MeshOutput& output,
-                     const MeshWriteOptions& options) {
+void writeMeshOutput(TriMesh&& mesh, const MeshOutput& output, const MeshWriteOptions& options) {
     if (output.toStandardOutput())
-        writeMesh(mesh, std::cout, output.format, options);
+        writeMesh(std::move(mesh), std::cout, output.format, options);
     else
-        writeMesh(mesh, output.path, options);
+        writeMesh(std::move(mesh), output.path, options);
 }
 
 void checkStandardOutput() {

@@ -45,9 +45,9 @@ void addMeshFormatOption(CLI::App& command, std::string& format, const std::stri
 MeshOutput meshOutput(const std::string& output, const std::string& format, bool json);
 
 /// Writes `mesh` where `output` says: a file atomically (io/AtomicWrite), or
-/// standard output, flushed and checked.
-void writeMeshOutput(const TriMesh& mesh, const MeshOutput& output,
-                     const MeshWriteOptions& options);
+/// standard output, flushed and checked. `mesh` gains the written
+/// properties in place (writeMesh's rvalue overload: no copy).
+void writeMeshOutput(TriMesh&& mesh, const MeshOutput& output, const MeshWriteOptions& options);
 
 /// Flushes standard output and throws std::runtime_error (exit 3, "cannot
 /// write to standard output: REASON") when anything written to it since the

@@ -6,6 +6,7 @@
 #include <streambuf>
 #include <utility>
 
+#include "geometry/VertexNormals.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/MeshFormat.hpp"
 #include "io/VtkPolyData.hpp"
@@ -79,15 +80,20 @@ class InsertAfterFormatLine final : public std::streambuf {
 
 }  // namespace
 
-void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& attributes,
+void writeAttributedPly(std::ostream& out, const TriMesh& mesh, const MeshAttributes& attributes,
+                        bool binary, bool vertexNormals) {
+    checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
+    TriMesh copy = mesh;
+    writeAttributedPly(out, std::move(copy), attributes, binary, vertexNormals);
+}
+
+void writeAttributedPly(std::ostream& out, TriMesh&& mesh, const MeshAttributes& attributes,
                         bool binary, bool vertexNormals) {
     checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
     OpenMesh::IO::Options flags = OpenMesh::IO::Options::Custom;
     if (binary) flags += OpenMesh::IO::Options::Binary;
     if (vertexNormals) {
-        mesh.request_face_normals();
-        mesh.request_vertex_normals();
-        mesh.update_normals();
+        setVertexNormals(mesh);
         flags += OpenMesh::IO::Options::VertexNormal;
     }
     if (!attributes.vertexColours.empty()) {
@@ -126,7 +132,14 @@ void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& a
         throw std::runtime_error("OpenMesh wrote a PLY without a format line");
 }
 
-void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
+void writeAttributedPly(const TriMesh& mesh, const MeshAttributes& attributes,
+                        const std::string& path, bool binary) {
+    checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
+    TriMesh copy = mesh;
+    writeAttributedPly(std::move(copy), attributes, path, binary);
+}
+
+void writeAttributedPly(TriMesh&& mesh, const MeshAttributes& attributes, const std::string& path,
                         bool binary) {
     checkAttributeSizes(attributes, mesh.n_vertices(), mesh.n_faces());
     writeStreamAtomically(path, [&](std::ostream& out) {

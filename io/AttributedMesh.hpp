@@ -30,11 +30,17 @@ namespace dfrecon {
 /// with kAsciiMeshDigits digits, each float exactly). Throws std::invalid_argument when an array's
 /// size is not the vertex or face count (before writing anything),
 /// std::runtime_error when OpenMesh fails.
-void writeAttributedPly(std::ostream& out, TriMesh mesh, const MeshAttributes& attributes,
+/// The properties are added to the mesh: a const mesh is copied first, an
+/// rvalue (std::move) gains them in place (io/MeshIO's writeMesh says why).
+void writeAttributedPly(std::ostream& out, const TriMesh& mesh, const MeshAttributes& attributes,
+                        bool binary, bool vertexNormals = false);
+void writeAttributedPly(std::ostream& out, TriMesh&& mesh, const MeshAttributes& attributes,
                         bool binary, bool vertexNormals = false);
 
 /// The same into the file `path`, atomically.
-void writeAttributedPly(TriMesh mesh, const MeshAttributes& attributes, const std::string& path,
+void writeAttributedPly(const TriMesh& mesh, const MeshAttributes& attributes,
+                        const std::string& path, bool binary = true);
+void writeAttributedPly(TriMesh&& mesh, const MeshAttributes& attributes, const std::string& path,
                         bool binary = true);
 
 /// The same for a soup, through toTriMesh: faces OpenMesh refuses

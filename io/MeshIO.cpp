@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "contours/InputError.hpp"
+#include "geometry/VertexNormals.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/AttributedMesh.hpp"
 #include "io/InputLimits.hpp"
@@ -90,18 +91,15 @@ std::string objName(const StructureTag& structure) {
 
 // What OpenMesh writes for `format` (obj off stl), into memory: the
 // structure goes into those bytes before they reach the stream.
-std::string openMeshBytes(const TriMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
-    TriMesh copy = mesh;  // normals are added to a copy: the caller's stays const
+std::string openMeshBytes(TriMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
     OpenMesh::IO::Options flags;
     if (options.binary && format == MeshFormat::Stl) flags += OpenMesh::IO::Options::Binary;
     if (options.vertexNormals && format != MeshFormat::Stl) {
-        copy.request_face_normals();
-        copy.request_vertex_normals();
-        copy.update_normals();
+        setVertexNormals(mesh);
         flags += OpenMesh::IO::Options::VertexNormal;
     }
     std::ostringstream bytes;
-    if (!OpenMesh::IO::write_mesh(copy, bytes, meshFormatExtension(format), flags,
+    if (!OpenMesh::IO::write_mesh(mesh, bytes, meshFormatExtension(format), flags,
                                   kAsciiMeshDigits))
         throw std::runtime_error(std::string("OpenMesh could not write the ") +
                                  meshFormatName(format) + " mesh");
@@ -157,14 +155,18 @@ MeshAttributes structureAttributes(std::size_t vertices, const StructureTag& str
     return attributes;
 }
 
-void writeMeshBytes(const TriMesh& mesh, std::ostream& out, MeshFormat format,
+// `mesh` gains the properties the format writes (normals, colours).
+void writeMeshBytes(TriMesh& mesh, std::ostream& out, MeshFormat format,
                     const MeshWriteOptions& options, const std::string& materialLibrary) {
     const StructureTag& structure = options.structure;
     switch (format) {
-        case MeshFormat::Ply:
-            writeAttributedPly(out, mesh, structureAttributes(mesh.n_vertices(), structure),
-                               options.binary, options.vertexNormals);
+        case MeshFormat::Ply: {
+            // Before the move: argument order is unspecified.
+            const MeshAttributes attributes = structureAttributes(mesh.n_vertices(), structure);
+            writeAttributedPly(out, std::move(mesh), attributes, options.binary,
+                               options.vertexNormals);  // in place: no copy
             return;
+        }
         case MeshFormat::Obj:
             out << objWithStructure(openMeshBytes(mesh, format, options), structure,
                                     materialLibrary);
@@ -203,6 +205,11 @@ void writeMaterialLibrary(const std::string& path, const StructureTag& structure
 }  // namespace
 
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options) {
+    TriMesh copy = mesh;
+    writeMesh(std::move(copy), path, options);
+}
+
+void writeMesh(TriMesh&& mesh, const std::string& path, const MeshWriteOptions& options) {
     const std::optional<MeshFormat> format = meshFormatOfPath(path);
     if (!format)
         throw std::invalid_argument(path + ": unsupported mesh extension (use " +
@@ -220,6 +227,12 @@ void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOpti
 }
 
 void writeMesh(const TriMesh& mesh, std::ostream& out, MeshFormat format,
+               const MeshWriteOptions& options) {
+    TriMesh copy = mesh;
+    writeMesh(std::move(copy), out, format, options);
+}
+
+void writeMesh(TriMesh&& mesh, std::ostream& out, MeshFormat format,
                const MeshWriteOptions& options) {
     writeMeshBytes(mesh, out, format, options, "");
     if (!out.flush())

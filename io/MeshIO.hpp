@@ -52,14 +52,21 @@ TriangleSoup readTriangleSoup(const std::string& path);
 /// PLY, OBJ, OFF and STL hold floats (OpenMesh's writers; ASCII with
 /// kAsciiMeshDigits, so each float exactly), VTK and VTP doubles. Throws
 /// std::runtime_error on failure, std::invalid_argument for an unsupported
-/// extension. O(vertices + faces).
+/// extension. O(vertices + faces). The writers add what they write
+/// (normals, colours) to the mesh as properties: a const mesh is copied
+/// first, a mesh passed as an rvalue (std::move: OpenMesh's meshes have no
+/// move constructor, so by-value would copy it too) gains them in place,
+/// which saves the copy (150 MB for a 2.8 M-triangle surface).
 void writeMesh(const TriMesh& mesh, const std::string& path, const MeshWriteOptions& options = {});
+void writeMesh(TriMesh&& mesh, const std::string& path, const MeshWriteOptions& options = {});
 
 /// Writes `mesh` to a stream (standard output: `-o -`) in `format`, the same
 /// bytes writeMesh would put in a file, except that an OBJ names no material
 /// library (there is no file beside a stream to hold it). Throws
 /// std::runtime_error when the stream fails (checked after a flush).
 void writeMesh(const TriMesh& mesh, std::ostream& out, MeshFormat format,
+               const MeshWriteOptions& options = {});
+void writeMesh(TriMesh&& mesh, std::ostream& out, MeshFormat format,
                const MeshWriteOptions& options = {});
 
 }  // namespace dfrecon
