@@ -330,6 +330,10 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
         bool forward;
     };
     std::vector<EdgeUse> uses;
+    // Exactly: grown by doubling, its last reallocation held old and new
+    // buffers together, up to three times this (a 2.8 M-triangle surface:
+    // 133 MB against up to 400).
+    uses.reserve(3 * soup.triangles.size());
     std::vector<bool> used(n, false), degenerate(soup.triangles.size(), false);
     const SurfaceMeasures measures = measureSurface(soup);
     report.volumeMm3 = measures.volumeMm3;

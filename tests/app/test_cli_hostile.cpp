@@ -38,7 +38,7 @@ std::string memoryCap() {
 }
 
 // Runs dfrecon -q with `args` under the cap.
-Result run(const TempDir& dir, const std::string& args) {
+Result runCapped(const TempDir& dir, const std::string& args) {
     return dfrecon::testing::runCli(dir.str(), "-q " + args, memoryCap());
 }
 
@@ -54,7 +54,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 // timing the run: wall-clock limits fail on a loaded machine.
 void expectRefused(const TempDir& dir, const std::string& file, const std::string& args,
                    const std::string& fragment, int exitCode = 2) {
-    const Result r = run(dir, args);
+    const Result r = runCapped(dir, args);
     EXPECT_EQ(r.exitCode, exitCode) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("dfrecon: " + file, 0), 0u) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\n" << r.err;
@@ -228,15 +228,15 @@ std::string writeFile(const TempDir& dir, const std::string& name, const std::st
 std::string batchOutput(const TempDir& dir) {
     const std::string manifest = writeFile(
         dir, "manifest.csv", "input,id\n" + std::string(DFRECON_EXAMPLES) + "/torus.slices,a\n");
-    const Result r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    const Result r = runCapped(dir, "batch " + manifest + " -o " + dir / "out");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return dir / "out";
 }
 
 std::string volumeOfTheTorus(const TempDir& dir) {
     const std::string volume = dir / "torus.nrrd";
-    const Result r = run(dir, "rasterize " + std::string(DFRECON_EXAMPLES) +
-                                  "/torus.slices --voxel-mm 2 -o " + volume);
+    const Result r = runCapped(dir, "rasterize " + std::string(DFRECON_EXAMPLES) +
+                                        "/torus.slices --voxel-mm 2 -o " + volume);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     fs::remove(dir / "torus.txt");  // the table rasterize wrote: each test brings its own
     return volume;
@@ -252,9 +252,9 @@ TEST(HostileInputs, BoundsBelowCoordinateResolutionAreUsageErrorsNotCrashes) {
     for (const char* command : {"reconstruct", "simplify"}) {
         const std::string input = std::string(command) == "simplify" ? dir / "y.ply" : y;
         if (input != y) {
-            ASSERT_EQ(run(dir, "reconstruct " + y + " -o " + input).exitCode, 0);
+            ASSERT_EQ(runCapped(dir, "reconstruct " + y + " -o " + input).exitCode, 0);
         }
-        const Result r = run(
+        const Result r = runCapped(
             dir, std::string(command) + " " + input + " --max-error 1e-16 -o " + dir / "out.ply");
         EXPECT_EQ(r.exitCode, 1) << r.err;
         EXPECT_NE(r.err.find("--max-error: must be"), std::string::npos) << r.err;
@@ -262,7 +262,7 @@ TEST(HostileInputs, BoundsBelowCoordinateResolutionAreUsageErrorsNotCrashes) {
     }
     // At the floor it works, within the memory cap.
     const Result r =
-        run(dir, "reconstruct " + y + " --max-error 1e-6 --json -o " + dir / "out.ply");
+        runCapped(dir, "reconstruct " + y + " --max-error 1e-6 --json -o " + dir / "out.ply");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("\"withinBound\": true"), std::string::npos) << r.out;
 }
@@ -288,14 +288,14 @@ TEST(HostileInputs, ABatchEntryWhoseProcessDiesFailsAlone) {
         EXPECT_NE(r.out.find("c: 1 ROI done"), std::string::npos) << r.out;
         EXPECT_TRUE(fs::exists(out + "/c/torus.ply"));
         // The crashed entry has a record, so the report shows it.
-        const Result report = run(dir, "batch-report " + out + " -o -");
+        const Result report = runCapped(dir, "batch-report " + out + " -o -");
         EXPECT_EQ(report.exitCode, 0) << report.err;
         EXPECT_NE(report.out.find("\nb,,,,,,,0,3,the entry's process ended on signal 11"),
                   std::string::npos)
             << report.out;
     }
     // A rerun skips it (same input, options, version), and skips the others.
-    const Result rerun = run(dir, "batch " + manifest + " -o " + out);
+    const Result rerun = runCapped(dir, "batch " + manifest + " -o " + out);
     EXPECT_EQ(rerun.exitCode, 3) << rerun.err;
     EXPECT_NE(rerun.out.find("0 done, 3 skipped"), std::string::npos) << rerun.out;
 }
@@ -313,7 +313,7 @@ TEST(HostileInputs, SpoiledBatchRecordsAreBadInputNotHangsOrCrashes) {
     fs::remove(record);
     ASSERT_EQ(std::system(("mkfifo " + record).c_str()), 0);
     expectRefused(dir, record, "batch-report " + out, "a named pipe, not a regular file");
-    Result r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    Result r = runCapped(dir, "batch " + dir / "manifest.csv" + " -o " + out);
     EXPECT_EQ(r.exitCode, 0) << r.err;  // the entry ran again and replaced it
     EXPECT_NE(r.out.find("a: 1 ROI done"), std::string::npos) << r.out;
     // A link to /dev/zero: 2 GB read before refusing.
@@ -322,7 +322,7 @@ TEST(HostileInputs, SpoiledBatchRecordsAreBadInputNotHangsOrCrashes) {
     expectRefused(dir, record, "batch-report " + out, "a character device, not a regular file");
     // A mesh outside the entry's folder: trusted on resume.
     fs::remove(record);
-    r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    r = runCapped(dir, "batch " + dir / "manifest.csv" + " -o " + out);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::string text = slurp(record);
     const std::string mesh = "\"mesh\": \"torus.ply\"";
@@ -331,7 +331,7 @@ TEST(HostileInputs, SpoiledBatchRecordsAreBadInputNotHangsOrCrashes) {
     writeFile(dir, "out/a/record.json", text);
     expectRefused(dir, record, "batch-report " + out,
                   "/rois/0/mesh is not the name of a file in the entry's folder");
-    r = run(dir, "batch " + dir / "manifest.csv" + " -o " + out);
+    r = runCapped(dir, "batch " + dir / "manifest.csv" + " -o " + out);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("a: 1 ROI done"), std::string::npos) << r.out;  // not "skipped"
 }
@@ -339,7 +339,7 @@ TEST(HostileInputs, SpoiledBatchRecordsAreBadInputNotHangsOrCrashes) {
 TEST(HostileInputs, BatchReportToStandardOutputWritesNoFile) {
     const TempDir dir("hostile-report-stdout");
     const std::string out = batchOutput(dir);
-    const Result r = run(dir, "batch-report " + out + " -o -");
+    const Result r = runCapped(dir, "batch-report " + out + " -o -");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out.rfind("entry,roi,mesh,", 0), 0u) << r.out;
     EXPECT_NE(r.out.find("\na,torus,a/torus.ply,"), std::string::npos) << r.out;
@@ -365,7 +365,7 @@ TEST(HostileInputs, ManifestsThatAreNoManifestsAreRefusedInTime) {
     std::ofstream(giant).close();
     fs::resize_file(giant, std::uint64_t(100) << 30);
     const std::string manifest = writeFile(dir, "giant.csv", "input,id\n" + giant + ",g\n");
-    const Result r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    const Result r = runCapped(dir, "batch " + manifest + " -o " + dir / "out");
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("dfrecon: entry g (" + manifest + ":2): " + giant +
                          ": larger than 4096 MiB, the limit of an input file"),
@@ -378,7 +378,7 @@ TEST(HostileInputs, ManifestsThatAreNoManifestsAreRefusedInTime) {
         list += std::string(k ? "," : "") + "{\"input\": \"" + torus + "\", \"id\": \"e" +
                 std::to_string(k) + "\"}\n";
     const std::string big = writeFile(dir, "big.json", list + "]");
-    const Result many = run(dir, "batch " + big + " -o " + dir / "many --shard 0/200000");
+    const Result many = runCapped(dir, "batch " + big + " -o " + dir / "many --shard 0/200000");
     EXPECT_EQ(many.exitCode, 0) << many.err;
     EXPECT_NE(many.out.find("e0: 1 ROI done"), std::string::npos) << many.out;
 }
@@ -390,21 +390,21 @@ TEST(HostileInputs, TextThatIsNotUtf8IsReadAsWindows1252) {
     std::string slices = slurp(std::string(DFRECON_EXAMPLES) + "/torus.slices");
     slices.replace(slices.find("roi torus"), 9, "roi L\xE4sion");
     const std::string path = writeFile(dir, "caf\xE9.slices", slices);
-    Result r = run(dir, "info " + path + " --json");
+    Result r = runCapped(dir, "info " + path + " --json");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("\"name\": \"L\xC3\xA4sion\""), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("caf\xEF\xBF\xBD.slices"), std::string::npos) << r.out;  // U+FFFD
     // In a batch: the entry's record is written, and the report lists it.
     const std::string manifest = writeFile(dir, "m.csv", "input,id\n" + path + ",a\n");
-    r = run(dir, "batch " + manifest + " -o " + dir / "out");
+    r = runCapped(dir, "batch " + manifest + " -o " + dir / "out");
     EXPECT_EQ(r.exitCode, 0) << r.err;
-    r = run(dir, "batch-report " + dir / "out" + " -o -");
+    r = runCapped(dir, "batch-report " + dir / "out" + " -o -");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("\na,L\xC3\xA4sion,a/L__sion.ply,"), std::string::npos) << r.out;
     // A label table: its names too.
     const std::string volume = volumeOfTheTorus(dir);
     const std::string table = writeFile(dir, "names.txt", "1 C\xF4t\xE9_D\n");
-    r = run(dir, "--label-table " + table + " info " + volume + " --json");
+    r = runCapped(dir, "--label-table " + table + " info " + volume + " --json");
     EXPECT_EQ(r.exitCode, 0) << r.err;  // and the usage line's order works
     EXPECT_NE(r.out.find("\"name\": \"C\xC3\xB4t\xC3\xA9_D\""), std::string::npos) << r.out;
 }
@@ -441,11 +441,11 @@ TEST(HostileInputs, NamesThatWritersWriteReadersReadBack) {
     std::string quoted = slices;
     quoted.replace(quoted.find("roi torus"), 9, "roi \"GTV \"\"left\"\"\"");
     const std::string source = writeFile(dir, "quoted.slices", quoted);
-    ASSERT_EQ(run(dir, "convert " + source + " -o " + dir / "q.dcm").exitCode, 0);
-    Result r = run(dir, "convert " + dir / "q.dcm" + " -o " + dir / "back.slices");
+    ASSERT_EQ(runCapped(dir, "convert " + source + " -o " + dir / "q.dcm").exitCode, 0);
+    Result r = runCapped(dir, "convert " + dir / "q.dcm" + " -o " + dir / "back.slices");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(slurp(dir / "back.slices").find("roi \"GTV \"\"left\"\"\""), std::string::npos);
-    r = run(dir, "info " + dir / "back.slices" + " --json");
+    r = runCapped(dir, "info " + dir / "back.slices" + " --json");
     EXPECT_NE(r.out.find("\"name\": \"GTV \\\"left\\\"\""), std::string::npos) << r.out;
 }
 
@@ -499,7 +499,7 @@ TEST(HostileInputs, InputsClaimingHugeGridsAreRefusedBeforeAllocating) {
     dfrecon::testing::writeSyntheticSeries(series, 3, 0, 2, image);
     expectRefused(dir, series, "rasterize " + torus + " --like " + series + " -o " + dir / "o.nrrd",
                   "its grid has more than 2147483648 voxels");
-    const Result r = run(dir, "rasterize " + torus + " --voxel-mm 0.02 -o " + dir / "o.nrrd");
+    const Result r = runCapped(dir, "rasterize " + torus + " --voxel-mm 0.02 -o " + dir / "o.nrrd");
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("--voxel-mm 0.02: the grid around the ROIs has"), std::string::npos)
         << r.err;
@@ -519,7 +519,7 @@ TEST(HostileInputs, HugeOrManyThingsStayWithinMemory) {
     for (int k = 0; k < planeCount; ++k)
         tiny += "slice " + std::to_string(k) + "\ncontour 3\n0 0\n0.01 0\n0 0.01\n";
     const std::string planes = writeFile(dir, "tiny.slices", tiny);
-    Result r = run(dir, "reconstruct " + planes + " -o " + dir / "tiny.ply");
+    Result r = runCapped(dir, "reconstruct " + planes + " -o " + dir / "tiny.ply");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     // A 1 m cube against itself: samples grew with the area.
     const std::string cube = writeFile(dir, "cube.off",

@@ -7,17 +7,13 @@
 #include "field/DistanceField3D.hpp"
 #include "field/FieldVolume.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {
 namespace {
 
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
-
 SliceFields fieldsOf(const std::vector<Slice>& slices, double pixelMm) {
-    return computeSliceFields(runtime(), slices, gridForSlices(slices, pixelMm));
+    return computeSliceFields(cpuRuntime(), slices, gridForSlices(slices, pixelMm));
 }
 
 TEST(DistanceField3D, KernelMatchesReferenceWithUnevenGaps) {
@@ -28,7 +24,7 @@ TEST(DistanceField3D, KernelMatchesReferenceWithUnevenGaps) {
     slices.erase(slices.begin() + 2);  // a double gap in the middle
     const SliceFields fields = fieldsOf(slices, 0.5);
     DistanceField3D onDevice = layersFromSlices(fields, 3), reference = onDevice;
-    propagateAlongZ(runtime(), onDevice);
+    propagateAlongZ(cpuRuntime(), onDevice);
     propagateAlongZReference(reference);
     ASSERT_EQ(onDevice.distanceMm.size(), reference.distanceMm.size());
     for (std::size_t k = 0; k < reference.distanceMm.size(); ++k)
@@ -62,7 +58,7 @@ TEST(DistanceField3D, ConservativeAndExactOnTheSidesOfACylinder) {
     for (int s = -2; s <= 2; ++s) slices.push_back({2.0 * s, {circlePolygon({0, 0}, 6, 400)}});
     const SliceFields fields = fieldsOf(slices, 0.25);
     DistanceField3D field = layersFromSlices(fields, 2);
-    propagateAlongZ(runtime(), field);
+    propagateAlongZ(cpuRuntime(), field);
     // The 400-gon is within 2e-3 mm of the circle; fields are exact otherwise.
     const double polygonError = 6 * (1 - std::cos(M_PI / 400)) + 1e-4;
     for (std::size_t layer = 0; layer < field.layerCount(); ++layer)

@@ -13,15 +13,11 @@
 #include "field/SliceFields.hpp"
 #include "geometry/ContourValidation.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "tests/CpuRuntime.hpp"
 
 using namespace dfrecon;
 
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 double distanceToPrimitive(Point2 p, const std::vector<Polygon>& contours, std::uint32_t id) {
     const PrimitiveId prim = PrimitiveId::decode(id);
@@ -33,7 +29,7 @@ double distanceToPrimitive(Point2 p, const std::vector<Polygon>& contours, std::
 
 void expectVariantAgrees(const std::vector<Slice>& slices, const SliceGrid& grid,
                          const SliceFields& reference, const FieldKernelOptions& options) {
-    const SliceFields kernel = computeSliceFields(runtime(), slices, grid, {}, options);
+    const SliceFields kernel = computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     ASSERT_EQ(kernel.distanceMm.size(), reference.distanceMm.size());
     const double pixel = grid.pixelMm;
     // Float carries about 1e-6 of the coordinates' magnitude on top.
@@ -150,7 +146,7 @@ TEST(SliceFields, TouchingContoursKeepTheirSigns) {
     normaliseOrientation(slice);
     const std::vector<Slice> slices{slice};
     expectAgreement(slices, gridForSlices(slices, 0.25));
-    const SliceFields f = computeSliceFields(runtime(), slices, gridForSlices(slices, 0.25));
+    const SliceFields f = computeSliceFields(cpuRuntime(), slices, gridForSlices(slices, 0.25));
     // Just inside square 2 near the shared corner, and inside the hole.
     const SliceGrid& g = f.grid;
     const int i = int((10.3 - g.originMm.x) / g.pixelMm),
@@ -228,7 +224,7 @@ TEST(SliceFields, ContoursWithThousandsOfSegments) {
     FieldKernelStats stats;
     FieldKernelOptions options;
     options.stats = &stats;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_GT(stats.leafListingTiles, 0u);
     EXPECT_GT(stats.columnTiles, 0u);
     EXPECT_LT(stats.columnTiles, stats.leafListingTiles + stats.overflowingTiles);
@@ -289,20 +285,20 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     FieldKernelStats stats;
     FieldKernelOptions options;
     options.stats = &stats;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 2u * 7u * 4u);
     EXPECT_EQ(stats.tilePixels, 16u);  // sides of 20 and 30 pixels
     EXPECT_EQ(stats.overflowingTiles, 0u);
     EXPECT_GE(stats.meanListed(), 1.0);
     EXPECT_LE(stats.meanListed(), 4.0);
     options.tileListCapacity = 0;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 56u);
     EXPECT_EQ(stats.overflowingTiles, 56u);
     EXPECT_EQ(stats.meanListed(), 0.0);
     options.tileListCapacity = -1;
     options.leafListsFrom = 0;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 56u);
     EXPECT_EQ(stats.overflowingTiles, 0u);
     EXPECT_EQ(stats.leafListingTiles, 56u);
@@ -312,21 +308,22 @@ TEST(SliceFields, TileListStatsCountEveryTile) {
     EXPECT_GT(stats.columnTiles, 0u);
     EXPECT_LT(stats.columnTiles, 56u);
     options.lanesAlong = LanesAlong::Rows;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.columnTiles, 0u);
     options.lanesAlong = LanesAlong::Columns;
     options.leafListsFrom = -1;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.columnTiles, 56u);
     options.lanesAlong = LanesAlong::Contour;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.columnTiles, 0u);
     options.tilePixels = 32;
-    computeSliceFields(runtime(), slices, grid, {}, options);
+    computeSliceFields(cpuRuntime(), slices, grid, {}, options);
     EXPECT_EQ(stats.tiles, 2u * 4u * 2u);
     EXPECT_EQ(stats.tilePixels, 32u);
     options.tilePixels = 24;
-    EXPECT_THROW(computeSliceFields(runtime(), slices, grid, {}, options), std::invalid_argument);
+    EXPECT_THROW(computeSliceFields(cpuRuntime(), slices, grid, {}, options),
+                 std::invalid_argument);
 }
 
 TEST(SliceFields, RejectsIdsThatDoNotFit) {
@@ -368,8 +365,8 @@ TEST(SliceGridWindow, FieldsOnAWindowEqualTheWholeGrids) {
     EXPECT_GE(window.pixelCentre(window.width - 1 - kGridMarginPx, 0).x, part.max.x);
     EXPECT_GE(window.pixelCentre(0, window.height - 1 - kGridMarginPx).y, part.max.y);
 
-    const SliceFields whole = computeSliceFields(runtime(), slices, grid);
-    const SliceFields part2 = computeSliceFields(runtime(), slices, window);
+    const SliceFields whole = computeSliceFields(cpuRuntime(), slices, grid);
+    const SliceFields part2 = computeSliceFields(cpuRuntime(), slices, window);
     for (std::size_t s = 0; s < slices.size(); ++s)
         for (int j = 0; j < window.height; ++j)
             for (int i = 0; i < window.width; ++i) {

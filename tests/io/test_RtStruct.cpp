@@ -15,6 +15,7 @@
 #include "io/RtStruct.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/HostileDicom.hpp"
+#include "tests/RtStructWarnings.hpp"
 #include "tests/SyntheticDicomSeries.hpp"
 #include "tests/TempDir.hpp"
 
@@ -128,12 +129,6 @@ std::string readError(const std::string& path) {
     }
     ADD_FAILURE() << "no error reading " << path;
     return "";
-}
-
-bool anyWarning(const RtStructLoad& load, const std::string& text) {
-    for (const InputWarning& w : load.warnings)
-        if (w.message.find(text) != std::string::npos) return true;
-    return false;
 }
 
 // A ring (hole inside) and a separate island on each of three slices.

@@ -12,6 +12,7 @@
 
 #include "io/LabelVolume.hpp"
 #include "io/RtStruct.hpp"
+#include "tests/RtStructWarnings.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;
@@ -23,12 +24,6 @@ std::string fixture(const std::string& relative) {
     if (!fs::exists(path))
         ADD_FAILURE() << path << " is missing: run `make setup` (scripts/fixtures.sh makes it)";
     return path.string();
-}
-
-bool anyWarning(const RtStructLoad& load, const std::string& text) {
-    for (const InputWarning& w : load.warnings)
-        if (w.message.find(text) != std::string::npos) return true;
-    return false;
 }
 
 // plastimatch's structure sets take minutes in a sanitized binary, so

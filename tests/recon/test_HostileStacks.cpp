@@ -12,14 +12,10 @@
 #include "io/MaskContours.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
+#include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 void expectEveryRoiValid(std::uint32_t seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -27,7 +23,7 @@ void expectEveryRoiValid(std::uint32_t seed) {
     ASSERT_FALSE(set.rois.empty());
     for (const Roi& roi : set.rois) {
         if (roi.slices.empty()) continue;
-        const Reconstruction result = reconstructSurface(runtime(), roi);
+        const Reconstruction result = reconstructSurface(cpuRuntime(), roi);
         TriangleSoup written = result.surface;
         roundPointsToFloat(written);
         const MeshCheckReport check = checkMesh(written);

@@ -9,15 +9,11 @@
 
 #include "recon/MedialAxis.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "tests/CpuRuntime.hpp"
 
 using namespace dfrecon;
 
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 Polygon circle(Point2 c, double r, int n, bool ccw = true) {
     return circlePolygon(c, r, n, !ccw);
@@ -36,7 +32,7 @@ Pair medialAxesOf(const std::vector<Polygon>& lower, const std::vector<Polygon>&
     slices[1] = {2, upper};
     for (Slice& s : slices) normaliseOrientation(s);
     Pair pair;
-    pair.fields = computeSliceFields(runtime(), slices, gridForSlices(slices, pixelMm));
+    pair.fields = computeSliceFields(cpuRuntime(), slices, gridForSlices(slices, pixelMm));
     pair.sum = sumSlices(pair.fields, 0, 1);
     pair.axes = traceMedialAxes(pair.fields, 0, 1, pair.sum);
     return pair;
@@ -83,7 +79,7 @@ double chainArea(const MedialAxis& axis, const SliceGrid& g) {
 TEST(MedialAxis, SumIsTheFloatSumAndZeroCountsAsPositive) {
     const ContourSet set = sliceShape(*makeShape("y"), {});
     const std::vector<Slice>& slices = set.rois[0].slices;
-    const SliceFields fields = computeSliceFields(runtime(), slices, gridForSlices(slices, 0.4));
+    const SliceFields fields = computeSliceFields(cpuRuntime(), slices, gridForSlices(slices, 0.4));
     const std::size_t pixels = fields.grid.pixelCount();
     for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
         const SliceSum sum = sumSlices(fields, s, s + 1);

@@ -12,20 +12,16 @@
 #include "io/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
+#include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 Polygon circle(Point2 centre, double radius) {
     return circlePolygon(centre, radius, 48);
 }
 
-Polygon square(double x0, double y0, double side) {
+Polygon squareContour(double x0, double y0, double side) {
     return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
 }
 
@@ -47,7 +43,7 @@ struct Checked {
 
 Checked reconstruct(const Roi& roi, const ReconstructionOptions& options = {}) {
     Checked c;
-    c.result = reconstructSurface(runtime(), roi, options);
+    c.result = reconstructSurface(cpuRuntime(), roi, options);
     c.check = checkMesh(c.result.surface);
     return c;
 }
@@ -160,7 +156,8 @@ TEST(Reconstruction, CavityAndIslandInsideItGiveThreeSurfaces) {
 TEST(Reconstruction, FlatCapsOnStraightSidesGiveThePlanningVolume) {
     // Identical squares: vertical sides, so each end extends exactly half a
     // spacing and the volume is area x slices x spacing.
-    const Roi roi = stack({{square(0, 0, 10)}, {square(0, 0, 10)}, {square(0, 0, 10)}});
+    const Roi roi =
+        stack({{squareContour(0, 0, 10)}, {squareContour(0, 0, 10)}, {squareContour(0, 0, 10)}});
     const Checked c = reconstruct(roi);
     expectSolid(c, 0, 1);
     EXPECT_NEAR(c.check.volumeMm3, 100 * 3 * 2, 1e-9);
@@ -206,7 +203,7 @@ TEST(Reconstruction, DomesOverSpikyContoursDoNotMeetTheirMirror) {
 }
 
 TEST(Reconstruction, SingleSliceBecomesAFlatSlab) {
-    const Checked c = reconstruct(stack({{square(0, 0, 10)}}));
+    const Checked c = reconstruct(stack({{squareContour(0, 0, 10)}}));
     expectSolid(c, 0, 1);
     EXPECT_NEAR(c.check.volumeMm3, 100 * 1.0, 1e-9);  // 1 mm thick without a spacing
 }

@@ -15,14 +15,10 @@
 #include "recon/SliceInterpolant.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "simplify/SurfaceDistance.hpp"
+#include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 double meanDistance(const AnalyticShape& shape, const TriangleSoup& soup, double zLo, double zHi) {
     double sum = 0;
@@ -101,10 +97,10 @@ TEST(SmoothInterpolation, CloserToRoundShapesThroughEveryContourPointAndValid) {
             const Roi& roi = set.rois[0];
             ReconstructionOptions linearOptions;
             linearOptions.interpolation = Interpolation::Linear;
-            const Reconstruction linear = reconstructSurface(runtime(), roi, linearOptions);
+            const Reconstruction linear = reconstructSurface(cpuRuntime(), roi, linearOptions);
             ReconstructionOptions smoothOptions;
             smoothOptions.interpolation = Interpolation::Smooth;
-            const Reconstruction smooth = reconstructSurface(runtime(), roi, smoothOptions);
+            const Reconstruction smooth = reconstructSurface(cpuRuntime(), roi, smoothOptions);
             const std::string label = std::string(name) + " " + std::to_string(spacing);
             ASSERT_TRUE(smooth.check.validSolid()) << label;
             EXPECT_TRUE(checkMesh(smooth.surface).validSolid()) << label;
@@ -143,7 +139,7 @@ TEST(SmoothInterpolation, SlabVolumesMatchTheirTargets) {
     options.spacingMm = 3;
     const ContourSet set = sliceShape(*makeShape("ellipsoid"), options);
     const Roi& roi = set.rois[0];
-    const Reconstruction smooth = reconstructSurface(runtime(), roi);
+    const Reconstruction smooth = reconstructSurface(cpuRuntime(), roi);
     ASSERT_TRUE(smooth.check.validSolid());
     const PlaneSections planes = sectionsOf(roi.slices);
     const std::vector<double> targets = slabVolumeTargets(planes);

@@ -17,14 +17,10 @@
 #include "simplify/InitialPriorities.hpp"
 #include "simplify/Simplification.hpp"
 #include "simplify/SurfaceDistance.hpp"
+#include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {
 namespace {
-
-ocl::Runtime& runtime() {
-    static ocl::Runtime instance("cpu");
-    return instance;
-}
 
 struct Case {
     Roi roi;
@@ -39,7 +35,7 @@ Case reconstructed(const std::string& shape, double spacingMm,
     c.roi = sliceShape(*makeShape(shape), options).rois[0];
     ReconstructionOptions recon;
     recon.interpolation = interpolation;
-    c.surface = reconstructSurface(runtime(), c.roi, recon).surface;
+    c.surface = reconstructSurface(cpuRuntime(), c.roi, recon).surface;
     return c;
 }
 
@@ -47,7 +43,7 @@ Case reconstructed(const std::string& shape, double spacingMm,
 TriangleSoup simplifyAndVerify(const Case& c, double maxErrorMm) {
     SimplifyOptions options;
     options.maxErrorMm = maxErrorMm;
-    const Simplified s = simplifySurface(&runtime(), c.surface, options);
+    const Simplified s = simplifySurface(&cpuRuntime(), c.surface, options);
     const MeshCheckReport before = checkMesh(c.surface), after = checkMesh(s.surface);
     EXPECT_TRUE(after.validSolid())
         << "watertight " << after.watertight() << ", intersecting " << after.intersectingPairs;
@@ -98,7 +94,7 @@ TEST(Simplification, RandomHarshStackStaysWithinTheBound) {
     Case c;
     c.roi = readSlicesFile(std::string(DFRECON_TEST_DATA) + "/simplify/random-blobs-1-harsh.slices")
                 .contours.rois[0];
-    c.surface = reconstructSurface(runtime(), c.roi).surface;
+    c.surface = reconstructSurface(cpuRuntime(), c.roi).surface;
     simplifyAndVerify(c, 0.25);
 }
 
@@ -372,7 +368,8 @@ TEST(InitialPriorities, KernelMatchesReference) {
         const TriMesh mesh = toTriMesh(c.surface);
         const DeviationSurface original(c.surface);
         for (double bound : {0.25, 1.0}) {
-            const std::vector<float> device = initialPriorities(runtime(), mesh, original, bound);
+            const std::vector<float> device =
+                initialPriorities(cpuRuntime(), mesh, original, bound);
             const std::vector<float> reference = initialPrioritiesReference(mesh, original, bound);
             ASSERT_EQ(device.size(), reference.size());
             std::size_t legal = 0, mismatched = 0;
@@ -399,8 +396,8 @@ TEST(InitialPriorities, UnwantedHalfedgesAreSkippedTheOthersUnchanged) {
     std::mt19937 random(4);
     std::vector<bool> wanted(mesh.n_halfedges());
     for (std::size_t h = 0; h < wanted.size(); ++h) wanted[h] = random() % 3 != 0;
-    const std::vector<float> all = initialPriorities(runtime(), mesh, original, 0.5);
-    const std::vector<float> some = initialPriorities(runtime(), mesh, original, 0.5, &wanted);
+    const std::vector<float> all = initialPriorities(cpuRuntime(), mesh, original, 0.5);
+    const std::vector<float> some = initialPriorities(cpuRuntime(), mesh, original, 0.5, &wanted);
     const std::vector<float> allReference = initialPrioritiesReference(mesh, original, 0.5);
     const std::vector<float> someReference =
         initialPrioritiesReference(mesh, original, 0.5, &wanted);
@@ -419,13 +416,13 @@ TEST(Simplification, RefusesBadOptionsAndNonManifoldInput) {
     const Case c = reconstructed("sphere", 5.0);
     SimplifyOptions options;
     options.maxErrorMm = 0;
-    EXPECT_THROW(simplifySurface(&runtime(), c.surface, options), std::invalid_argument);
+    EXPECT_THROW(simplifySurface(&cpuRuntime(), c.surface, options), std::invalid_argument);
     TriangleSoup fin = c.surface;  // a third face on one edge
     const auto t = fin.triangles[0];
     fin.points.push_back({0, 0, 100});
     fin.triangles.push_back({t[0], t[1], std::uint32_t(fin.points.size() - 1)});
     options.maxErrorMm = 0.5;
-    EXPECT_THROW(simplifySurface(&runtime(), fin, options), std::invalid_argument);
+    EXPECT_THROW(simplifySurface(&cpuRuntime(), fin, options), std::invalid_argument);
 }
 
 TEST(Simplification, CpuAndDeviceInitialBoundsGiveValidResults) {
