@@ -1,13 +1,22 @@
 #include "recon/Reconstruction.hpp"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <exception>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
+#include "geometry/CoreBudget.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/StackedMeshCheck.hpp"
 #include "geometry/TouchSeparation.hpp"
@@ -78,8 +87,13 @@ constexpr double kTouchGapMm = 2e-3;
 class SurfaceReconstructor final : public CapSite {
   public:
     SurfaceReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
-                         const SliceGrid& grid, ReconstructionStats& stats)
-        : runtime_(runtime), options_(options), grid_(grid), stats_(stats) {}
+                         const SliceGrid& grid, ReconstructionStats& stats,
+                         SurfaceBuilder builder = {})
+        : runtime_(runtime),
+          options_(options),
+          grid_(grid),
+          stats_(stats),
+          builder_(std::move(builder)) {}
 
     SurfaceBuilder& builder() override { return builder_; }
 
@@ -108,6 +122,22 @@ class SurfaceReconstructor final : public CapSite {
     /// coordinates a mesh file holds: the whole check need not search them
     /// again (geometry/StackedMeshCheck).
     const std::vector<bool>& searchedPieces() const { return searched_; }
+    void markSearched(std::uint32_t piece) {
+        if (searched_.size() <= piece) searched_.resize(piece + 1, false);
+        searched_[piece] = true;
+    }
+
+    /// Hands over what was built since the builder held only its first
+    /// `sharedPoints` points, with whether its piece was searched, and
+    /// forgets it (intermediate layers included): the next slab starts
+    /// afresh on the same points.
+    SurfacePart takePart(std::size_t sharedPoints, bool& searched) {
+        const std::uint32_t piece = builder_.piece();
+        searched = piece < searched_.size() && searched_[piece];
+        searched_.clear();
+        layers_.clear();
+        return builder_.takePart(sharedPoints);
+    }
 
     /// The guaranteed closing of the slab between two layers: one prism
     /// piece over all their contours.
@@ -172,11 +202,7 @@ class SurfaceReconstructor final : public CapSite {
         markSearched();
         return true;
     }
-    void markSearched() {
-        const std::uint32_t p = builder_.piece();
-        if (searched_.size() <= p) searched_.resize(p + 1, false);
-        searched_[p] = true;
-    }
+    void markSearched() { markSearched(builder_.piece()); }
     const Layer& addIsolineLayer(double zMm, std::vector<Polygon> isolines,
                                  const LayerPart& of) override {
         if (emptyIsNegative(of, {of.layer, {}}))
@@ -415,6 +441,113 @@ class SurfaceReconstructor final : public CapSite {
     std::deque<Layer> layers_;    // intermediate contours; LayerParts point into it
 };
 
+/// One slab built apart: its part of the surface, whether its piece's own
+/// pairs were searched, the counts it added and the seconds it took.
+struct BuiltSlab {
+    SurfacePart part;
+    bool searched = false;
+    ReconstructionStats stats;
+    double seconds = 0;
+};
+
+void addSlabStats(ReconstructionStats& into, const ReconstructionStats& slab) {
+    into.strips += slab.strips;
+    into.rejectedStrips += slab.rejectedStrips;
+    into.recursions += slab.recursions;
+    into.deepestLevel = std::max(into.deepestLevel, slab.deepestLevel);
+    into.limitClosings += slab.limitClosings;
+    into.caps += slab.caps;
+    into.fallbackSlabs += slab.fallbackSlabs;
+    into.fieldsSeconds += slab.fieldsSeconds;
+    into.medialSeconds += slab.medialSeconds;
+}
+
+/// The slabs between neighbouring layers, slab s as piece s + 1, built on
+/// the calling thread and on the cores left free (geometry/CoreBudget). A
+/// slab reads only its two layers' contour points and the planes' fields,
+/// so each thread builds on a builder of its own that starts with the
+/// `contourPoints`, and the calling thread hands each slab to `append` in
+/// slab order as soon as it and those before it are done (so few finished
+/// parts wait at once); appended in that order, the parts make the same
+/// surface, point for point, whatever the number of threads. Helper
+/// threads get their own OpenCL queue on `runtime`'s context. Progress
+/// (0.5 to 1, as slabs finish) is reported from the calling thread only.
+/// An exception in any thread is rethrown here once all have stopped.
+/// Returns how many helper threads ran.
+std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& options,
+                       const SliceGrid& grid, const std::deque<Layer>& layers,
+                       const SliceFields& fields, const std::vector<Vec3>& contourPoints,
+                       const std::function<void(double)>& progress,
+                       const std::function<void(std::size_t, BuiltSlab&&)>& append) {
+    const std::size_t slabs = layers.size() - 1;
+    std::vector<BuiltSlab> built(slabs);
+    std::mutex finishedMutex;
+    std::vector<bool> finished(slabs, false);
+    std::size_t finishedCount = 0;
+    std::size_t appended = 0;  // slabs handed to `append`, by the calling thread only
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> failed{false};
+    auto appendFinished = [&] {
+        std::unique_lock<std::mutex> lock(finishedMutex);
+        while (appended < slabs && finished[appended]) {
+            BuiltSlab slab = std::move(built[appended]);
+            lock.unlock();
+            append(appended, std::move(slab));
+            lock.lock();
+            ++appended;
+        }
+    };
+    auto work = [&](ocl::Runtime& queue, bool caller) {
+        ReconstructionStats stats;
+        SurfaceReconstructor slab(queue, options, grid, stats, SurfaceBuilder(contourPoints));
+        for (std::size_t s; !failed && (s = next++) < slabs;) {
+            stats = {};
+            const auto start = Clock::now();
+            slab.builder().setPiece(std::uint32_t(s + 1));
+            slab.originalSlab(layers[s], layers[s + 1], fields, s, s + 1);
+            BuiltSlab out;
+            out.part = slab.takePart(contourPoints.size(), out.searched);
+            out.stats = stats;
+            out.seconds = secondsSince(start);
+            std::size_t done = 0;
+            {
+                const std::lock_guard<std::mutex> lock(finishedMutex);
+                built[s] = std::move(out);
+                finished[s] = true;
+                done = ++finishedCount;
+            }
+            if (!caller) continue;
+            if (progress) progress(0.5 + 0.5 * double(done) / double(slabs + 1));
+            appendFinished();
+        }
+    };
+    const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    const CoreLease lease(slabs < 2 ? 0 : std::min(cores, slabs) - 1);
+    std::vector<std::exception_ptr> errors(lease.granted() + 1);
+    std::vector<std::thread> helpers;
+    for (std::size_t h = 1; h <= lease.granted(); ++h)
+        helpers.emplace_back([&, h] {
+            try {
+                ocl::Runtime own(runtime, ocl::ShareContext{});
+                work(own, false);
+            } catch (...) {
+                errors[h] = std::current_exception();
+                failed = true;
+            }
+        });
+    try {
+        work(runtime, true);
+    } catch (...) {
+        errors[0] = std::current_exception();
+        failed = true;
+    }
+    for (std::thread& helper : helpers) helper.join();
+    for (const std::exception_ptr& error : errors)
+        if (error) std::rethrow_exception(error);
+    appendFinished();
+    return helpers.size();
+}
+
 }  // namespace
 
 Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
@@ -482,17 +615,34 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     const std::uint32_t topCap = std::uint32_t(slices.size());
     builder.setPiece(0);
     reconstructor.capLayer(layers[0], false, capOffset(0, false), fields, 0);
-    for (std::size_t s = 0; s + 1 < slices.size(); ++s) {
-        builder.setPiece(std::uint32_t(s + 1));
-        reconstructor.originalSlab(layers[s], layers[s + 1], fields, s, s + 1);
-        if (progress) progress(0.5 + 0.5 * double(s + 1) / double(slices.size()));
-    }
+    // The slabs on the free cores, then appended in order (the caps' own
+    // stats are the main reconstructor's). Their seconds count per thread,
+    // so the stages can add up to more than the wall time.
+    const auto slabsStart = Clock::now();
+    double slabThreadSeconds = 0;
+    [[maybe_unused]] const std::size_t helpers =
+        buildSlabs(runtime, options, grid, layers, fields,
+                   {builder.soup().points.begin(),
+                    builder.soup().points.begin() + std::ptrdiff_t(contourVertices)},
+                   progress, [&](std::size_t s, BuiltSlab&& slab) {
+                       builder.appendPart(std::move(slab.part));
+                       if (slab.searched) reconstructor.markSearched(std::uint32_t(s + 1));
+                       addSlabStats(stats, slab.stats);
+                       slabThreadSeconds += slab.seconds;
+                   });
+    const double slabsWallSeconds = secondsSince(slabsStart);
+#if defined(__GLIBC__)
+    // The helpers' heap arenas keep what the slabs freed; the steps after
+    // run on this thread and cannot reuse it.
+    if (helpers > 0) malloc_trim(0);
+#endif
     builder.setPiece(topCap);
     reconstructor.capLayer(layers.back(), true, capOffset(slices.size() - 1, true), fields,
                            slices.size() - 1);
     // Time spent on fields and axes inside the recursion is counted there.
-    stats.triangulationSeconds =
-        secondsSince(start) - (stats.fieldsSeconds - fieldsAndMedialBefore) - stats.medialSeconds;
+    stats.triangulationSeconds = secondsSince(start) - slabsWallSeconds + slabThreadSeconds -
+                                 (stats.fieldsSeconds - fieldsAndMedialBefore) -
+                                 stats.medialSeconds;
 
     // Whatever the pieces' own checks missed is found on the whole surface,
     // and those pieces are closed again the guaranteed way: the topology

@@ -73,6 +73,9 @@ struct ReconstructionStats {
     std::size_t smoothUnbentVertices =
         0;                        // smooth mode: bent vertices put back straight (validity)
     bool smoothFellBack = false;  // smooth mode: the whole surface kept linear
+    // Seconds per stage. The slabs run on the cores left free, and their
+    // fields, axes and triangulation count per thread: the stages can add up
+    // to more than the wall time.
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0,
            checkSeconds = 0;
 };
@@ -92,7 +95,11 @@ struct Reconstruction {
 /// store them — `check` says so, and `brokenPieces` where it is not. Contour
 /// points are mesh vertices, to float precision (unless simplified away, or
 /// moved 1 µm where contours of a plane touched). `progress` receives the
-/// fraction done. Throws
+/// fraction done (from the calling thread). The slabs between planes are
+/// built on the calling thread and the cores the process has free
+/// (geometry/CoreBudget), each helper with its own OpenCL queue on
+/// `runtime`'s context, and joined in order: the surface is the same,
+/// point for point, on any number of cores. Throws
 /// std::invalid_argument for an ROI without contours, ClError on device
 /// failure. Work: the fields, O(pixels) per slab for the axes, O(points)
 /// for the strips.

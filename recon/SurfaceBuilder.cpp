@@ -1,6 +1,8 @@
 #include "recon/SurfaceBuilder.hpp"
 
+#include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 namespace dfrecon {
 
@@ -30,6 +32,37 @@ void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {
         pieces_[kept++] = pieces_[t];
     }
     truncateTriangles(kept);
+}
+
+SurfacePart SurfaceBuilder::takePart(std::size_t sharedPoints) {
+    SurfacePart part;
+    part.sharedPoints = sharedPoints;
+    part.points.assign(soup_.points.begin() + std::ptrdiff_t(sharedPoints), soup_.points.end());
+    soup_.points.resize(sharedPoints);
+    part.triangles = std::exchange(soup_.triangles, {});
+    part.pieces = std::exchange(pieces_, {});
+    part.lofts = std::exchange(lofts_, {});
+    part.cleanGroups = std::exchange(cleanGroups_, {});
+    part.cleanGroupCount = std::exchange(lastCleanGroup_, 0);
+    return part;
+}
+
+void SurfaceBuilder::appendPart(SurfacePart&& part) {
+    if (part.sharedPoints > soup_.points.size())
+        throw std::logic_error("SurfaceBuilder::appendPart: part built on more points");
+    const auto offset = std::uint32_t(soup_.points.size() - part.sharedPoints);
+    soup_.points.insert(soup_.points.end(), part.points.begin(), part.points.end());
+    for (std::array<std::uint32_t, 3> t : part.triangles) {
+        for (std::uint32_t& v : t)
+            if (v >= part.sharedPoints) v += offset;
+        soup_.triangles.push_back(t);
+    }
+    pieces_.insert(pieces_.end(), part.pieces.begin(), part.pieces.end());
+    lofts_.insert(lofts_.end(), part.lofts.begin(), part.lofts.end());
+    for (std::uint32_t group : part.cleanGroups)
+        cleanGroups_.push_back(group == 0 ? 0 : group + lastCleanGroup_);
+    lastCleanGroup_ += part.cleanGroupCount;
+    part = {};
 }
 
 Layer makeLayer(SurfaceBuilder& builder, double zMm, std::vector<Polygon> contours) {

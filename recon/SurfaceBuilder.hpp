@@ -14,8 +14,29 @@
 
 namespace dfrecon {
 
+/// What a builder added on top of the points it started with: its new
+/// points and its triangles with their pieces, loft marks and clean groups.
+/// Parts built apart (the slabs, on several cores) and appended in order
+/// make the same surface as one builder adding them one after the other.
+struct SurfacePart {
+    std::size_t sharedPoints = 0;  // the points it started with: ids below this
+    std::vector<Vec3> points;      // the new points, ids sharedPoints, sharedPoints + 1, ...
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::uint32_t> pieces;  // per triangle
+    std::vector<bool> lofts;            // per triangle
+    CleanGroups cleanGroups;            // per triangle, numbered from 1 within the part
+    std::uint32_t cleanGroupCount = 0;
+};
+
 class SurfaceBuilder {
   public:
+    SurfaceBuilder() = default;
+    /// A builder whose first vertices are `sharedPoints` (a part built on
+    /// it is appended to a builder that holds the same first points).
+    explicit SurfaceBuilder(std::vector<Vec3> sharedPoints) {
+        soup_.points = std::move(sharedPoints);
+    }
+
     std::uint32_t addVertex(Point2 p, double zMm) {
         soup_.points.push_back({p.x, p.y, zMm});
         return std::uint32_t(soup_.points.size() - 1);
@@ -70,6 +91,15 @@ class SurfaceBuilder {
     TriangleSoup trianglesSince(std::size_t first) const;
     const TriangleSoup& soup() const { return soup_; }
     TriangleSoup release() { return std::move(soup_); }
+
+    /// Hands over everything added after the first `sharedPoints` points
+    /// (which must be all the builder started with, and no triangle), and
+    /// goes back to holding only those. O(what was added).
+    SurfacePart takePart(std::size_t sharedPoints);
+    /// Appends a part built on a builder whose first points were this
+    /// one's first part.sharedPoints: its new points get the next ids, its
+    /// clean groups the next numbers. O(part).
+    void appendPart(SurfacePart&& part);
 
   private:
     TriangleSoup soup_;
