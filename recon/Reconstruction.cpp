@@ -14,6 +14,7 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "geometry/CoreBudget.hpp"
@@ -525,16 +526,21 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
     const CoreLease lease(slabs < 2 ? 0 : std::min(cores, slabs) - 1);
     std::vector<std::exception_ptr> errors(lease.granted() + 1);
     std::vector<std::thread> helpers;
-    for (std::size_t h = 1; h <= lease.granted(); ++h)
-        helpers.emplace_back([&, h] {
-            try {
-                ocl::Runtime own(runtime, ocl::ShareContext{});
-                work(own, false);
-            } catch (...) {
-                errors[h] = std::current_exception();
-                failed = true;
-            }
-        });
+    for (std::size_t h = 1; h <= lease.granted(); ++h) {
+        try {
+            helpers.emplace_back([&, h] {
+                try {
+                    ocl::Runtime own(runtime, ocl::ShareContext{});
+                    work(own, false);
+                } catch (...) {
+                    errors[h] = std::current_exception();
+                    failed = true;
+                }
+            });
+        } catch (const std::system_error&) {
+            break;  // no thread to be had: the threads started do the slabs
+        }
+    }
     try {
         work(runtime, true);
     } catch (...) {
