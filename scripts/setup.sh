@@ -22,10 +22,10 @@ case "$mode" in
 esac
 
 # To build and run the program, installed with their recommends.
-# The release build is clang with Ninja (CMakePresets.json); build-essential
-# brings the C++ library clang links.
+# The release build is clang with Ninja (CMakePresets.json) and links with
+# lld (CMakeLists.txt); build-essential brings the C++ library clang links.
 build_packages=(
-  build-essential cmake pkg-config clang ninja-build
+  build-essential cmake pkg-config clang lld ninja-build
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libopenmesh-dev
   libopenvdb-dev libboost-iostreams-dev libtbb-dev
@@ -33,9 +33,10 @@ build_packages=(
   libnifti2-dev libteem-dev zlib1g-dev
   libcgal-dev
   libcli11-dev nlohmann-json3-dev
+  libpng-dev libtiff-dev
 )
-# OpenCV pulls in a desktop's worth of recommends; we link core, imgproc and
-# imgcodecs only. python3 makes the man page and bash completion at build
+# OpenCV pulls in a desktop's worth of recommends; we link core and imgproc
+# only (images are read and written with libpng and libtiff: io/ImageFiles). python3 makes the man page and bash completion at build
 # time (scripts/help_pages.py); python3-dev, pybind11-dev and python3-numpy
 # build the Python module (python/, docs/python.md).
 build_packages_no_recommends=(
