@@ -18,8 +18,13 @@ namespace dfrecon {
 // its sample. Halving the longest edge keeps cells' angles bounded and a
 // sliver's cells few (about its length over the spacing, where a grid of
 // similar cells would need that squared).
+//
+// This form stops as soon as visit returns false, and returns false then
+// (true when every cell was visited): counting up to a budget costs the
+// budget, not the cells.
 template <class Visit>
-void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm, Visit&& visit) {
+bool forEachCellWhile(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm,
+                      Visit&& visit) {
     const double spacing2 = spacingMm * spacingMm;
     struct Cell {
         Vec3 a, b, c;
@@ -36,7 +41,8 @@ void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingM
         // 60 halvings leave any cell of a valid mesh far below the spacing:
         // the depth only guards the stack.
         if (reach2 <= spacing2 || top >= 62) {
-            visit(centroid, 0.5 * length(cross(cell.b - cell.a, cell.c - cell.a)));
+            if (!visit(centroid, 0.5 * length(cross(cell.b - cell.a, cell.c - cell.a))))
+                return false;
             continue;
         }
         const double ab = dot(cell.b - cell.a, cell.b - cell.a),
@@ -56,6 +62,16 @@ void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingM
             stack[top++] = {m, cell.b, cell.c};
         }
     }
+    return true;
+}
+
+// Every cell, as forEachCellWhile with a visit that never stops.
+template <class Visit>
+void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingMm, Visit&& visit) {
+    forEachCellWhile(p0, p1, p2, spacingMm, [&](const Vec3& point, double weightMm2) {
+        visit(point, weightMm2);
+        return true;
+    });
 }
 
 }  // namespace dfrecon

@@ -14,6 +14,7 @@
 #include "geometry/ClosestPoint.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
+#include "geometry/TriangleCells.hpp"
 #include "shapes/MeshShapes.hpp"
 
 using namespace dfrecon;
@@ -194,6 +195,51 @@ TEST(SurfaceDistances, ConcentricSurfacesAreAllAtOneDistance) {
     EXPECT_GE(above.hd95PooledMm, std::min(above.aToB.p95Mm, above.bToA.p95Mm));
     EXPECT_LE(above.hd95PooledMm, above.hd95Mm());
     EXPECT_NEAR(above.aToB.p95Mm, d, 1e-9);
+}
+
+// The cells of `soup` at spacingMm, every one counted.
+std::size_t cellCount(const TriangleSoup& soup, double spacingMm) {
+    std::size_t count = 0;
+    for (const auto& t : soup.triangles)
+        forEachCell(soup.points[t[0]], soup.points[t[1]], soup.points[t[2]], spacingMm,
+                    [&](const Vec3&, double) { ++count; });
+    return count;
+}
+
+TEST(SurfaceDistances, ACellWalkStopsWhereItsVisitSaysSo) {
+    const Vec3 p0{0, 0, 0}, p1{10, 0, 0}, p2{0, 7, 0};
+    std::size_t all = 0;
+    double areaMm2 = 0;
+    EXPECT_TRUE(forEachCellWhile(p0, p1, p2, 0.1, [&](const Vec3&, double weightMm2) {
+        ++all;
+        areaMm2 += weightMm2;
+        return true;
+    }));
+    EXPECT_NEAR(areaMm2, 35, 1e-9);
+    ASSERT_GT(all, 1000u);
+    std::size_t visited = 0;
+    EXPECT_FALSE(
+        forEachCellWhile(p0, p1, p2, 0.1, [&](const Vec3&, double) { return ++visited < 1000; }));
+    EXPECT_EQ(visited, 1000u);
+}
+
+TEST(SurfaceDistances, ASpacingOverTheSampleBudgetIsCoarsenedToJustWithinIt) {
+    // A metre cube at 0.2 mm: about 1.5·10^8 cells a surface, which the
+    // budget search no longer counts one by one.
+    const TriangleSoup cube = boxMesh({0, 0, 0}, {1000, 1000, 1000}, 1);
+    const double spacing = distanceSpacingWithinBudget(cube, cube, 0.2);
+    EXPECT_GT(spacing, 0.2);
+    const std::size_t cells = cellCount(cube, spacing);
+    EXPECT_LE(cells, kMaxDistanceSamples);
+    // Not coarser than it needs to be: a right triangle's cells halve in
+    // number with each longest-edge halving level, so the first spacing
+    // within the budget holds more than a quarter of it.
+    EXPECT_GT(cells, kMaxDistanceSamples / 4);
+    EXPECT_GT(cellCount(cube, spacing / 1.5), kMaxDistanceSamples);
+    // Within the budget the asked spacing is the one used.
+    const TriangleSoup small = boxMesh({0, 0, 0}, {10, 10, 10}, 2);
+    EXPECT_EQ(distanceSpacingWithinBudget(small, cube, 50.0), 50.0);
+    EXPECT_EQ(distanceSpacingWithinBudget(small, small, 0.25), 0.25);
 }
 
 TEST(SurfaceDistances, DeviceAgreesWithTheHostReference) {
