@@ -24,6 +24,7 @@
 #include "io/AttributedMesh.hpp"
 #include "io/Colours.hpp"
 #include "io/FieldImages.hpp"
+#include "io/ImageFiles.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 

@@ -36,7 +36,11 @@ _dfrecon_require(OpenCL 1.2)
 _dfrecon_require(OpenMesh)
 _dfrecon_require(nlohmann_json 3.10)
 _dfrecon_require(Threads)
-_dfrecon_require(OpenCV COMPONENTS core imgproc imgcodecs)
+_dfrecon_require(OpenCV COMPONENTS core imgproc)
+# PNG and TIFF files through their own libraries, not OpenCV's imgcodecs
+# (io/ImageFiles.hpp says why).
+_dfrecon_require(PNG)
+_dfrecon_require(TIFF)
 # Debian ships OpenVDB's find module (not a config file) in its cmake folder.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB
      /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)

@@ -4,11 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/AtomicWrite.hpp"
 #include "io/Colours.hpp"
+#include "io/ImageFiles.hpp"
 
 namespace dfrecon {
 
@@ -39,11 +38,6 @@ void drawContours(cv::Mat& image, const ImageFrame& frame, const std::vector<Pol
 // OpenCV stores pixels blue first.
 cv::Vec3b toBgr(Rgb colour) {
     return {colour[2], colour[1], colour[0]};
-}
-
-void writePng(const std::string& path, const cv::Mat& image) {
-    writeAtomically(path,
-                    [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
 }
 
 }  // namespace
@@ -92,17 +86,6 @@ void writeLabelPng(const std::string& path, const std::uint32_t* labels, const I
         }
     drawContours(image, frame, contours);
     writePng(path, image);
-}
-
-void writeFloatTiff(const std::string& path, const float* values, int width, int height,
-                    int channels) {
-    if (width <= 0 || height <= 0 || (channels != 1 && channels != 3))
-        throw std::invalid_argument("writeFloatTiff: bad image shape");
-    cv::Mat image(height, width, channels == 1 ? CV_32FC1 : CV_32FC3, const_cast<float*>(values));
-    cv::Mat written = image;
-    if (channels == 3) cv::cvtColor(image, written, cv::COLOR_RGB2BGR);  // OpenCV stores BGR
-    writeAtomically(path,
-                    [&](const std::string& temporary) { return cv::imwrite(temporary, written); });
 }
 
 }  // namespace dfrecon

@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of sampled 2D fields for people: PNG files through OpenCV, with
+// Pictures of sampled 2D fields for people: PNG files drawn with OpenCV, with
 // the contours drawn on top at sub-pixel precision. Image row 0 is the top,
 // so the grid's +y points up as in a plot.
 #include <cstdint>
@@ -37,11 +37,5 @@ void writeSignedFieldPng(const std::string& path, const float* distanceMm, const
 /// in white.
 void writeLabelPng(const std::string& path, const std::uint32_t* labels, const ImageFrame& frame,
                    const std::vector<Polygon>& contours);
-
-/// A float image (row-major, row 0 first, `channels` of 1 or 3 interleaved)
-/// as a 32-bit float TIFF that keeps every value (NaN included), for
-/// ParaView, 3D Slicer, Fiji or numpy. Written atomically.
-void writeFloatTiff(const std::string& path, const float* values, int width, int height,
-                    int channels);
 
 }  // namespace dfrecon

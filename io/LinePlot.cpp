@@ -5,10 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/AtomicWrite.hpp"
+#include "io/ImageFiles.hpp"
 
 namespace dfrecon {
 
@@ -98,8 +97,7 @@ void writeLinePlotPng(const std::string& path, const LinePlot& plot) {
         cv::putText(image, c.label, {w - right - 190, legend}, font, 0.45, black, 1, cv::LINE_AA);
         legend += 20;
     }
-    writeAtomically(path,
-                    [&](const std::string& temporary) { return cv::imwrite(temporary, image); });
+    writePng(path, image);
 }
 
 }  // namespace dfrecon

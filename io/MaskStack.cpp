@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "contours/InputError.hpp"
+#include "io/ImageFiles.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/JsonText.hpp"
@@ -187,18 +187,13 @@ cv::Mat readImage(const fs::path& path) {
     const std::string name = path.string();
     std::error_code error;
     if (!fs::is_regular_file(path, error)) throw InputError(name, 0, "image file not found");
-    cv::Mat image;
-    try {
-        image = cv::imread(name, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-        throw InputError(name, 0, std::string("cannot decode the image: ") + e.what());
-    }
-    if (image.empty()) throw InputError(name, 0, "cannot decode the image (PNG or TIFF expected)");
-    if (image.type() != CV_8UC1 && image.type() != CV_16UC1)
+    ImageSamples found;
+    cv::Mat image = readGreyImage(name, found);
+    if (image.empty())
         throw InputError(name, 0,
                          "label images must be 8- or 16-bit single channel (found " +
-                             std::to_string(image.channels()) + " channel(s) of depth " +
-                             std::to_string(image.elemSize1() * 8) + " bits)");
+                             std::to_string(found.samplesPerPixel) + " channel(s) of depth " +
+                             std::to_string(found.bitsPerSample) + " bits)");
     return image;
 }
 

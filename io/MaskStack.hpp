@@ -1,7 +1,6 @@
 #pragma once
-// Mask stacks: a folder of per-slice label images (PNG, TIFF, anything
-// OpenCV decodes) described by a small JSON sidecar, stack.json, read into
-// an axial LabelVolume. The sidecar format is in docs/formats.md.
+// Mask stacks: a folder of per-slice label images (PNG or TIFF) described by a small JSON sidecar,
+// stack.json, read into an axial LabelVolume. The sidecar format is in docs/formats.md.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -35,8 +34,8 @@ bool isMaskStackPath(const std::string& path);
 
 /// Reads the stack whose sidecar is `path` (or `path`/stack.json for a
 /// folder); image names are relative to the sidecar's folder. Images are
-/// read with cv::imread(IMREAD_UNCHANGED) and must be 8- or 16-bit single
-/// channel, all of one size. Throws InputError(file, 0, what is wrong) for
+/// PNG or TIFF files read unchanged (io/ImageFiles) and must be 8- or 16-bit
+/// single channel, all of one size. Throws InputError(file, 0, what is wrong) for
 /// a missing or malformed sidecar (bad JSON, missing or mistyped keys,
 /// spacing not a finite length from kMinVoxelSpacingMm to
 /// kMaxAbsCoordinateMm, positions not strictly increasing or not one per
