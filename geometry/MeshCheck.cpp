@@ -215,21 +215,12 @@ std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
     };
     // Only the cores no other work holds (geometry/CoreBudget): ROIs
     // reconstructed in parallel each hold one already.
-    const std::size_t wanted =
-        soup.triangles.size() < kParallelFromTriangles
-            ? 1
-            : std::max<std::size_t>(
-                  1, std::min<std::size_t>(std::thread::hardware_concurrency(), tasks.size()));
-    const CoreLease lease(wanted - 1);
-    const std::size_t threads = 1 + lease.granted();
     std::atomic<std::size_t> next{0}, total{0};
-    auto work = [&] {
-        for (std::size_t k; total < cap && (k = next++) < tasks.size();) total += runTask(k);
-    };
-    std::vector<std::thread> helpers;
-    for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
-    work();
-    for (std::thread& helper : helpers) helper.join();
+    runOnFreeCores(soup.triangles.size() < kParallelFromTriangles ? 0 : helpersFor(tasks.size(), 2),
+                   [&](std::size_t, const std::atomic<bool>& stop) {
+                       for (std::size_t k; !stop && total < cap && (k = next++) < tasks.size();)
+                           total += runTask(k);
+                   });
     std::vector<TrianglePair> pairs;
     for (const std::vector<TrianglePair>& part : found) {
         pairs.insert(pairs.end(), part.begin(), part.end());

@@ -128,20 +128,15 @@ CollidingPairs pairsWithinPieces(const TriangleSoup& soup,
     const CleanGroups* clean = stack.cleanGroup.empty() ? nullptr : &stack.cleanGroup;
     std::vector<CollidingPairs> found(pieceCount);
     std::atomic<std::size_t> next{0}, total{0};
-    auto work = [&] {
-        for (std::size_t p; total < cap && (p = next++) < pieceCount;) {
-            if (members[p].size() < 2) continue;
-            found[p] = collidingPairsAmong(soup, degenerate, members[p], cap, clean);
-            total += found[p].pairs.size();
-        }
-    };
     // Small surfaces on the calling thread, as checkMesh does.
-    const std::size_t wanted = searchedTriangles < 20000 ? 1 : std::thread::hardware_concurrency();
-    const CoreLease lease(std::max<std::size_t>(wanted, 1) - 1);
-    std::vector<std::thread> helpers;
-    for (std::size_t h = 0; h < lease.granted(); ++h) helpers.emplace_back(work);
-    work();
-    for (std::thread& helper : helpers) helper.join();
+    runOnFreeCores(searchedTriangles < 20000 ? 0 : helpersFor(pieceCount, 2),
+                   [&](std::size_t, const std::atomic<bool>& stop) {
+                       for (std::size_t p; !stop && total < cap && (p = next++) < pieceCount;) {
+                           if (members[p].size() < 2) continue;
+                           found[p] = collidingPairsAmong(soup, degenerate, members[p], cap, clean);
+                           total += found[p].pairs.size();
+                       }
+                   });
     CollidingPairs all;
     for (CollidingPairs& part : found) {
         all.pairs.insert(all.pairs.end(), part.pairs.begin(), part.pairs.end());

@@ -487,7 +487,6 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
     std::size_t finishedCount = 0;
     std::size_t appended = 0;  // slabs handed to `append`, by the calling thread only
     std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
     auto appendFinished = [&] {
         std::unique_lock<std::mutex> lock(finishedMutex);
         while (appended < slabs && finished[appended]) {
@@ -498,10 +497,10 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
             ++appended;
         }
     };
-    auto work = [&](ocl::Runtime& queue, bool caller) {
+    auto work = [&](ocl::Runtime& queue, bool caller, const std::atomic<bool>& stop) {
         ReconstructionStats stats;
         SurfaceReconstructor slab(queue, options, grid, stats, SurfaceBuilder(contourPoints));
-        for (std::size_t s; !failed && (s = next++) < slabs;) {
+        for (std::size_t s; !stop && (s = next++) < slabs;) {
             stats = {};
             const auto start = Clock::now();
             slab.builder().setPiece(std::uint32_t(s + 1));
@@ -522,36 +521,14 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
             appendFinished();
         }
     };
-    const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
-    const CoreLease lease(slabs < 2 ? 0 : std::min(cores, slabs) - 1);
-    std::vector<std::exception_ptr> errors(lease.granted() + 1);
-    std::vector<std::thread> helpers;
-    for (std::size_t h = 1; h <= lease.granted(); ++h) {
-        try {
-            helpers.emplace_back([&, h] {
-                try {
-                    ocl::Runtime own(runtime, ocl::ShareContext{});
-                    work(own, false);
-                } catch (...) {
-                    errors[h] = std::current_exception();
-                    failed = true;
-                }
-            });
-        } catch (const std::system_error&) {
-            break;  // no thread to be had: the threads started do the slabs
-        }
-    }
-    try {
-        work(runtime, true);
-    } catch (...) {
-        errors[0] = std::current_exception();
-        failed = true;
-    }
-    for (std::thread& helper : helpers) helper.join();
-    for (const std::exception_ptr& error : errors)
-        if (error) std::rethrow_exception(error);
+    const std::size_t helpers = runOnFreeCores(
+        helpersFor(slabs, 2), [&](std::size_t worker, const std::atomic<bool>& stop) {
+            if (worker == 0) return work(runtime, true, stop);
+            ocl::Runtime own(runtime, ocl::ShareContext{});
+            work(own, false, stop);
+        });
     appendFinished();
-    return helpers.size();
+    return helpers;
 }
 
 }  // namespace
