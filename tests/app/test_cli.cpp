@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -14,6 +15,8 @@
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/LabelVolume.hpp"
 #include "io/MeshIO.hpp"
@@ -1014,6 +1017,26 @@ TEST(Cli, SdmWritesMapsMeshesAndAPairReport) {
         EXPECT_NE(std::find(distances.begin(), distances.end(), nlohmann::json(3.0)),
                   distances.end());
     }
+
+    // The atlas maps as OpenCV reads them: every texel with a distance has
+    // a unit direction to its nearest point, stored red (x) first.
+    const cv::Mat distanceMap =
+        cv::imread((dir / "near_distance.tif").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat directionMap =
+        cv::imread((dir / "near_direction.tif").string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(distanceMap.type(), CV_32FC1);
+    ASSERT_EQ(directionMap.type(), CV_32FC3);
+    ASSERT_EQ(distanceMap.size(), directionMap.size());
+    int texels = 0, unitDirections = 0;
+    for (int row = 0; row < distanceMap.rows; ++row)
+        for (int col = 0; col < distanceMap.cols; ++col) {
+            if (std::isnan(distanceMap.at<float>(row, col))) continue;
+            ++texels;
+            const cv::Vec3f d = directionMap.at<cv::Vec3f>(row, col);
+            if (std::abs(std::sqrt(d.dot(d)) - 1) < 1e-4) ++unitDirections;
+        }
+    EXPECT_GT(texels, 100);
+    EXPECT_EQ(unitDirections, texels);
 
     // One mesh is a usage error; an unreadable one bad input; neither
     // leaves outputs behind.
