@@ -110,10 +110,12 @@ DistanceHistograms distanceHistograms(const TriangleSoup& oar, const TriangleSou
     out.volume = sorted(toTarget, std::vector<double>(inside.size(), step * step * step));
 
     // Surface: the centroids of cells of the OAR's triangles, by area.
+    out.surfaceSpacingMm =
+        cellSpacingWithinBudget({&oar}, options.surfaceSpacingMm, options.maxSurfaceCells);
     std::vector<Vec3> samples;
     std::vector<double> areas;
     for (const auto& t : oar.triangles)
-        forEachCell(oar.points[t[0]], oar.points[t[1]], oar.points[t[2]], options.surfaceSpacingMm,
+        forEachCell(oar.points[t[0]], oar.points[t[1]], oar.points[t[2]], out.surfaceSpacingMm,
                     [&](const Vec3& p, double area) {
                         samples.push_back(p);
                         areas.push_back(area);

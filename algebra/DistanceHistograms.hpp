@@ -25,6 +25,10 @@ struct DistanceHistogramOptions {
     /// Most volume cells; beyond, volumeStepMm grows until there are not
     /// more (the step used is reported).
     std::size_t maxVolumeCells = std::size_t(1) << 22;
+    /// Most surface cells; beyond, surfaceSpacingMm grows until there are
+    /// not more (the spacing used is reported): a tiny spacing would
+    /// otherwise take memory without bound.
+    std::size_t maxSurfaceCells = std::size_t(1) << 22;
     DistanceBackend backend = DistanceBackend::Device;
 };
 
@@ -44,10 +48,11 @@ struct WeightedDistances {
 };
 
 struct DistanceHistograms {
-    WeightedDistances volume;   // OVH: the OAR's volume cells, mm³
-    WeightedDistances surface;  // the OAR's surface cells, mm²
-    double volumeStepMm = 0;    // as used
-    double oarVolumeMm3 = 0;    // enclosed by its surface (the cells sum to about this)
+    WeightedDistances volume;     // OVH: the OAR's volume cells, mm³
+    WeightedDistances surface;    // the OAR's surface cells, mm²
+    double volumeStepMm = 0;      // as used
+    double surfaceSpacingMm = 0;  // as used
+    double oarVolumeMm3 = 0;      // enclosed by its surface (the cells sum to about this)
     double oarAreaMm2 = 0;
 };
 

@@ -98,6 +98,7 @@ void runHistogram(const HistogramArgs& args, const GlobalOptions& global) {
             {"oarVolumeCc", h.oarVolumeMm3 / kCubicMmPerCc},
             {"sampledVolumeCc", h.volume.total / kCubicMmPerCc},
             {"volumeStepMm", h.volumeStepMm},
+            {"surfaceSpacingMm", h.surfaceSpacingMm},
             {"oarAreaCm2", h.oarAreaMm2 / 100},
             {"volume", summary(h.volume)},
             {"surface", summary(h.surface)},
@@ -148,7 +149,9 @@ void addHistogramCommand(CLI::App& root, const GlobalOptions& global) {
            "large OARs, reported as volumeStepMm)")
         ->capture_default_str();
     cmd->add_option("--surface-spacing", args->surfaceSpacingMm,
-                    "Largest distance from a surface cell's sample to its points (mm)")
+                    "Largest distance from a surface cell's sample to its points (mm; grows "
+                    "where it would take more than 4 194 304 cells, reported as "
+                    "surfaceSpacingMm)")
         ->capture_default_str();
     cmd->add_flag("--reference", args->reference,
                   "Compute distances with the C++ reference instead of the OpenCL kernel");

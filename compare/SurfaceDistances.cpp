@@ -46,30 +46,6 @@ void forEachCellCentroid(const TriangleSoup& soup, double spacingMm, Visit&& vis
     }
 }
 
-// The number of cells of `soup` at spacingMm where that is at most
-// `limit`. Past the limit the walk stops, and the number is estimated from
-// the cells counted over the area they cover (always above `limit`): a
-// metre-sized cube at 0.2 mm has 10^8 cells, and counting them all took
-// most of a compare that samples it at a coarser spacing. O(min(S, limit)
-// + T) for S cells and T triangles.
-double sampleCountUpTo(const TriangleSoup& soup, double spacingMm, double limit) {
-    double count = 0, countedAreaMm2 = 0;
-    for (const auto& tri : soup.triangles) {
-        const bool whole =
-            forEachCellWhile(soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]],
-                             spacingMm, [&](const Vec3&, double weightMm2) {
-                                 ++count;
-                                 countedAreaMm2 += weightMm2;
-                                 return count <= limit;
-                             });
-        if (!whole) {
-            const double areaMm2 = measureSurface(soup).areaMm2;
-            return countedAreaMm2 > 0 ? std::max(count, count * areaMm2 / countedAreaMm2) : count;
-        }
-    }
-    return count;
-}
-
 // The summary of one direction's samples, which it leaves sorted by
 // distance for the pooled figures.
 DirectedDistances summarise(std::vector<WeightedDistance>& samples, double toleranceMm) {
@@ -163,15 +139,7 @@ void checkArguments(const TriangleSoup& a, const TriangleSoup& b, double spacing
 }  // namespace
 
 double distanceSpacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b, double spacingMm) {
-    const double limit = double(kMaxDistanceSamples);
-    for (;;) {
-        const double samples =
-            std::max(sampleCountUpTo(a, spacingMm, limit), sampleCountUpTo(b, spacingMm, limit));
-        if (samples <= limit) return spacingMm;
-        // Samples fall with the square of the spacing, or slower (at least
-        // one per triangle): grow by the root, at least by 5 %.
-        spacingMm *= std::max(1.05, std::sqrt(samples / limit));
-    }
+    return cellSpacingWithinBudget({&a, &b}, spacingMm, kMaxDistanceSamples);
 }
 
 double SurfaceDistances::hausdorffMm() const {

@@ -57,11 +57,8 @@ struct SurfaceDistances {
 };
 
 /// The spacing surfaceDistances samples `a` and `b` at when asked for
-/// `spacingMm`: that one where neither surface then has more than
-/// kMaxDistanceSamples cells, else the first spacing found, growing from it,
-/// where neither has. O(min(S, kMaxDistanceSamples) + T) per step, a few
-/// steps: past the budget cells are not all counted but estimated from
-/// those counted.
+/// `spacingMm`: geometry/TriangleCells' cellSpacingWithinBudget with
+/// kMaxDistanceSamples cells.
 double distanceSpacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b, double spacingMm);
 
 /// Distances between `a` and `b` (any triangle soups; closed or not), on

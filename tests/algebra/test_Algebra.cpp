@@ -380,6 +380,27 @@ TEST(DistanceHistograms, AgreeWithBruteForcePointDistances) {
     EXPECT_NEAR(mine.volume.total, 22 * 20 * 12, 0.005 * 22 * 20 * 12);
 }
 
+TEST(DistanceHistograms, SpacingsThatWouldTakeTooManyCellsAreCoarsenedAndReported) {
+    // A 1e-6 mm surface spacing on a 20 mm box would be some 10^15 cells;
+    // with a budget of 20 000 the spacing grows until it fits, the cells
+    // still cover the whole surface, and the spacing used is reported.
+    const TriangleSoup oar = boxMesh({0, 0, 0}, {20, 20, 20}, 2),
+                       target = geodesicSphere(6, 5, {40, 10, 10});
+    DistanceHistogramOptions options;
+    options.backend = DistanceBackend::Reference;
+    options.volumeStepMm = 2;
+    options.surfaceSpacingMm = 1e-6;
+    options.maxSurfaceCells = 20000;
+    const DistanceHistograms h = distanceHistograms(oar, target, options, nullptr);
+    EXPECT_GT(h.surfaceSpacingMm, 1e-6);
+    EXPECT_LE(h.surface.distanceMm.size(), options.maxSurfaceCells);
+    EXPECT_GT(h.surface.distanceMm.size(), options.maxSurfaceCells / 4);
+    EXPECT_NEAR(h.surface.total, 6 * 400, 1e-6);
+    // Within the budget the asked spacing is the one used.
+    options.surfaceSpacingMm = 2;
+    EXPECT_EQ(distanceHistograms(oar, target, options, nullptr).surfaceSpacingMm, 2.0);
+}
+
 TEST(EuclideanDistanceVolume, IsTheExactDistanceToTheReconstructedBox) {
     const Roi roi = boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5);
     RoiFieldOptions options;

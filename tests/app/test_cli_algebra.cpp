@@ -138,6 +138,8 @@ TEST(CliAlgebra, HistogramWritesTableAndPlot) {
     EXPECT_NEAR(report["volume"]["minMm"].get<double>(), 2, 0.3);
     EXPECT_NEAR(report["volume"]["maxMm"].get<double>(), 6, 0.3);
     EXPECT_EQ(report["volume"]["fractionInsideTarget"].get<double>(), 0.0);
+    EXPECT_EQ(report["volumeStepMm"].get<double>(), 1.0);  // within the budget: as asked
+    EXPECT_EQ(report["surfaceSpacingMm"].get<double>(), 1.0);
     EXPECT_TRUE(fs::file_size(dir / std::string("h.png")) > 1000);
     std::ifstream csv(dir / std::string("h.csv"));
     std::string header;
