@@ -63,6 +63,19 @@ void expectRefused(const std::string& path, const std::string& what) {
     }
 }
 
+// A TIFF opened with libtiff for writing one grey sample of `bits` a pixel,
+// its size set; the caller adds its layout and data.
+TIFF* greyTiff(const std::string& path, std::uint32_t width, std::uint32_t height, int bits) {
+    TIFF* tiff = TIFFOpen(path.c_str(), "w");
+    if (!tiff) return nullptr;
+    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, width);
+    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, height);
+    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
+    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, bits);
+    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    return tiff;
+}
+
 TEST(ImageFiles, GreyPngAndTiffReadAsOpenCvReadsThem) {
     const TempDir dir("image-files-grey");
     const cv::Mat bytes = patterned(37, 23, CV_8UC1), words = patterned(41, 19, CV_16UC1);
@@ -100,13 +113,8 @@ TEST(ImageFiles, TiledTiffsReadWholeIncludingPartTiles) {
     const TempDir dir("image-files-tiled");
     const cv::Mat image = patterned(40, 35, CV_16UC1);
     const std::string path = dir / "tiled.tif";
-    TIFF* tiff = TIFFOpen(path.c_str(), "w");
+    TIFF* tiff = greyTiff(path, 40, 35, 16);
     ASSERT_NE(tiff, nullptr);
-    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, 40u);
-    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, 35u);
-    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
-    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 16);
-    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
     TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
     TIFFSetField(tiff, TIFFTAG_TILEWIDTH, 16u);
     TIFFSetField(tiff, TIFFTAG_TILELENGTH, 16u);
@@ -166,13 +174,8 @@ TEST(ImageFiles, HugeImagesAreRefusedBeforeTheirPixelsAreAllocated) {
     // byte: 10^10 pixels, over the 2^30 an image may have.
     const TempDir dir("image-files-huge");
     const std::string path = dir / "huge.tif";
-    TIFF* tiff = TIFFOpen(path.c_str(), "w");
+    TIFF* tiff = greyTiff(path, 100000, 100000, 8);
     ASSERT_NE(tiff, nullptr);
-    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, 100000u);
-    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, 100000u);
-    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
-    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 8);
-    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
     TIFFSetField(tiff, TIFFTAG_ROWSPERSTRIP, 1u);
     const std::uint8_t row = 0;
     ASSERT_GE(TIFFWriteRawStrip(tiff, 0, const_cast<std::uint8_t*>(&row), 1), 0);
