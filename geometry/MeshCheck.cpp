@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 
 namespace dfrecon {
 

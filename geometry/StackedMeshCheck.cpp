@@ -5,7 +5,6 @@
 #include <atomic>
 #include <cmath>
 #include <optional>
-#include <thread>
 
 #include "geometry/ContourValidation.hpp"
 #include "geometry/CoreBudget.hpp"

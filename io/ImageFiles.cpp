@@ -12,12 +12,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <memory>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
 #include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
+#include "io/RegularFile.hpp"
 
 namespace dfrecon {
 
@@ -241,6 +242,9 @@ bool startsWith(const unsigned char* bytes, std::size_t size, const char* signat
 }  // namespace
 
 cv::Mat readGreyImage(const std::string& path, ImageSamples& found) {
+    // The gate every input passes: a pipe or a device is refused before
+    // libpng or libtiff would block on it or read it for ever.
+    checkRegularFile(path, kMaxInputFileBytes, "an image");
     unsigned char head[8] = {};
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "cannot open the image");

@@ -32,8 +32,9 @@ struct ImageSamples {
 /// pixels are; for anything but one unsigned 8- or 16-bit sample a pixel
 /// (colour, grey with alpha, palettes — counted as their 3 colour samples
 /// —, signed or float samples, 1-bit TIFFs) the image returned is empty.
-/// Throws InputError(path, 0, what is wrong) for a file that is neither
-/// format, does not decode, or has more than kMaxImagePixels pixels.
+/// Throws InputError(path, 0, what is wrong) for a path that is no regular
+/// file within io/RegularFile's limit, a file that is neither format, does
+/// not decode, or has more than kMaxImagePixels pixels.
 /// O(pixels).
 cv::Mat readGreyImage(const std::string& path, ImageSamples& found);
 

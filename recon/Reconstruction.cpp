@@ -14,8 +14,6 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 
 #include "geometry/CoreBudget.hpp"
 #include "geometry/MeshCheck.hpp"

@@ -157,6 +157,8 @@ TEST(ImageFiles, WhatIsNoImageIsRefusedNamingTheFile) {
     ASSERT_TRUE(cv::imwrite(jpeg, patterned(8, 8, CV_8UC1)));
     for (const std::string& path : {text, empty, jpeg})
         expectRefused(path, "cannot decode the image (PNG or TIFF expected)");
+    // A folder is no image: refused at the gate every input passes.
+    expectRefused(dir.str(), "not a regular file");
     // Cut short after the header: the rows are missing.
     std::vector<uchar> bytes;
     ASSERT_TRUE(cv::imencode(".png", patterned(64, 64, CV_8UC1), bytes));
