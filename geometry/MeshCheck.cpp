@@ -314,22 +314,8 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
     report.triangles = soup.triangles.size();
     const std::size_t n = soup.points.size();
 
-    // Edges: (lo, hi, triangle, forward) sorted, so each edge's uses are
-    // adjacent. Twelve bytes a use, the direction in the triangle number's
-    // lowest bit (sixteen with a bool of its own: the list is the largest
-    // block of a large check, 8.4 M uses on a 2.8 M-triangle surface).
-    struct EdgeUse {
-        std::uint32_t lo, hi;
-        std::uint32_t triangleAndForward;  // triangle << 1 | (lo is the edge's first corner)
-        std::uint32_t triangle() const { return triangleAndForward >> 1; }
-        bool forward() const { return (triangleAndForward & 1) != 0; }
-    };
     if (soup.triangles.size() >= (std::size_t(1) << 31))
         throw std::length_error("checkMesh: 2^31 triangles or more");
-    std::vector<EdgeUse> uses;
-    // Exactly: grown by doubling, its last reallocation held old and new
-    // buffers together, up to three times this.
-    uses.reserve(3 * soup.triangles.size());
     std::vector<bool> used(n, false), degenerate(soup.triangles.size(), false);
     const SurfaceMeasures measures = measureSurface(soup);
     report.volumeMm3 = measures.volumeMm3;
@@ -341,43 +327,10 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
             ++report.degenerateTriangles;
             report.defectiveTriangles.push_back(t);
         }
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
-            used[a] = true;
-            if (a != b)
-                uses.push_back({std::min(a, b), std::max(a, b), t << 1 | (a < b ? 1u : 0u)});
-        }
+        for (std::uint32_t v : tri) used[v] = true;
     }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-        return x.lo != y.lo
-                   ? x.lo < y.lo
-                   : (x.hi != y.hi ? x.hi < y.hi : x.triangleAndForward < y.triangleAndForward);
-    });
-
-    UnionFind parts(n);
-    for (std::size_t begin = 0; begin < uses.size();) {
-        std::size_t end = begin;
-        while (end < uses.size() && uses[end].lo == uses[begin].lo &&
-               uses[end].hi == uses[begin].hi)
-            ++end;
-        ++report.edges;
-        const std::size_t count = end - begin;
-        bool defective = false;
-        if (count == 1) ++report.boundaryEdges, defective = true;
-        if (count > 2) ++report.nonManifoldEdges, defective = true;
-        if (count == 2 && uses[begin].forward() == uses[begin + 1].forward())
-            ++report.misorientedEdges, defective = true;
-        if (defective)
-            for (std::size_t k = begin; k < end; ++k)
-                report.defectiveTriangles.push_back(uses[k].triangle());
-        parts.join(uses[begin].lo, uses[begin].hi);
-        begin = end;
-    }
-    // Freed before the pair search's hierarchy is built: the peak of a
-    // large check is theirs and its together. Swapped with an empty vector,
-    // because `uses = {}` assigns an empty list and keeps the memory.
-    decltype(uses)().swap(uses);
-    // The triangles around each vertex, packed (around[first[v] .. first[v + 1])).
+    // The triangles around each vertex, packed (around[first[v] .. first[v + 1]));
+    // a triangle with a vertex twice is listed twice, next to itself.
     std::vector<std::uint32_t> first(n + 1, 0), around(3 * soup.triangles.size());
     for (const Triangle& tri : soup.triangles)
         for (std::uint32_t v : tri) ++first[v + 1];
@@ -387,18 +340,61 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
         for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
             for (std::uint32_t v : soup.triangles[t]) around[fill[v]++] = t;
     }
+    // Each edge is judged at its lower vertex, from the triangles around it:
+    // its uses (the other vertex, then triangle << 1 | (it runs from lower to
+    // higher)) sorted, so each edge's uses are adjacent. One vertex's list
+    // at a time, not one list of every edge use (12 bytes each: the largest
+    // block of a large check, 8.4 M uses on a 2.8 M-triangle surface).
+    struct EdgeUse {
+        std::uint32_t hi;
+        std::uint32_t triangleAndForward;
+        std::uint32_t triangle() const { return triangleAndForward >> 1; }
+        bool forward() const { return (triangleAndForward & 1) != 0; }
+        bool operator<(const EdgeUse& o) const {
+            return hi != o.hi ? hi < o.hi : triangleAndForward < o.triangleAndForward;
+        }
+    };
+    std::vector<EdgeUse> uses;
     // Reused from vertex to vertex: (other vertex, position in the ring) of
     // each edge at v, and the groups of the ring's triangles.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> spokes;
-    UnionFind fan;
+    UnionFind parts(n), fan;
     for (std::size_t v = 0; v < n; ++v) {
         if (!used[v]) continue;
         ++report.vertices;
+        const std::uint32_t* ring = around.data() + first[v];
+        const std::size_t k = first[v + 1] - first[v];
+        uses.clear();
+        for (std::size_t p = 0; p < k; ++p) {
+            if (p > 0 && ring[p] == ring[p - 1]) continue;  // the same triangle again
+            const std::uint32_t t = ring[p];
+            const Triangle& tri = soup.triangles[t];
+            for (std::size_t e = 0; e < 3; ++e) {
+                const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
+                if (a != b && std::min(a, b) == v)
+                    uses.push_back({std::max(a, b), t << 1 | (a < b ? 1u : 0u)});
+            }
+        }
+        std::sort(uses.begin(), uses.end());
+        for (std::size_t begin = 0; begin < uses.size();) {
+            std::size_t end = begin;
+            while (end < uses.size() && uses[end].hi == uses[begin].hi) ++end;
+            ++report.edges;
+            const std::size_t count = end - begin;
+            bool defective = false;
+            if (count == 1) ++report.boundaryEdges, defective = true;
+            if (count > 2) ++report.nonManifoldEdges, defective = true;
+            if (count == 2 && uses[begin].forward() == uses[begin + 1].forward())
+                ++report.misorientedEdges, defective = true;
+            if (defective)
+                for (std::size_t u = begin; u < end; ++u)
+                    report.defectiveTriangles.push_back(uses[u].triangle());
+            parts.join(v, uses[begin].hi);
+            begin = end;
+        }
         // The triangles around v must form one fan: join those sharing an
         // edge at v and count the groups. By sorting the edges, not comparing
         // every pair: a hostile file put ten million triangles at one vertex.
-        const std::uint32_t* ring = around.data() + first[v];
-        const std::size_t k = first[v + 1] - first[v];
         spokes.clear();
         for (std::size_t p = 0; p < k; ++p)
             for (std::uint32_t x : soup.triangles[ring[p]])
@@ -415,6 +411,8 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
             report.defectiveTriangles.insert(report.defectiveTriangles.end(), ring, ring + k);
         }
     }
+    // Freed before the pair search's hierarchy is built.
+    decltype(uses)().swap(uses);
     decltype(first)().swap(first);
     decltype(around)().swap(around);
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "geometry/BoxGrid.hpp"
@@ -505,15 +506,15 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     std::vector<std::uint32_t> searchGroup =
         piecesApart ? pieceOf : std::vector<std::uint32_t>(pieceOf.size(), 0);
     const std::uint32_t groups = piecesApart ? std::uint32_t(stack.planeZMm.size() + 1) : 1;
-    LocalRepair repair(surface, contourVertices, std::move(straight), std::move(searchGroup),
-                       groups);
-    if (topologyKept && repair.settle(check.defectiveTriangles, stats)) {
+    std::optional<LocalRepair> repair;
+    repair.emplace(surface, contourVertices, std::move(straight), std::move(searchGroup), groups);
+    if (topologyKept && repair->settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
         // the passes before does not hold for it, so start afresh.
         steps.lastBulge = steps.bulge;
         std::vector<bool> repaired(targets.size(), false);
         for (std::size_t v = 0; v < surface.points.size(); ++v)
-            if (repair.pinned(v)) repaired[field.slabAt(surface.points[v].z)] = true;
+            if (repair->pinned(v)) repaired[field.slabAt(surface.points[v].z)] = true;
         for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
             const std::vector<double> bulgeBefore = steps.bulge;
             if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
@@ -525,7 +526,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             std::vector<bool> free = moved;
             for (std::size_t v = 0; v < free.size(); ++v) {
                 const std::size_t slab = field.slabAt(surface.points[v].z);
-                free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
+                free[v] = free[v] && !repair->pinned(v) && repaired[slab] &&
                           steps.bulge[slab] != bulgeBefore[slab];
             }
             bendVertices(surface, free, field, toleranceMm, moved, stats);
@@ -537,7 +538,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                         suspects.push_back(t);
                         break;
                     }
-            if (!repair.settle(suspects, stats)) {
+            if (!repair->settle(suspects, stats)) {
                 surface.points = before;  // valid as it was
                 break;
             }
@@ -545,6 +546,9 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         markRepaired(surface, check);
         return stats;
     }
+    // What the repair holds (the straight surface, the triangles by group)
+    // goes before the whole checks below, where a large surface peaks.
+    repair.reset();
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the
     // surface gets its linear triangles back. Pieces meet only in contour

@@ -15,6 +15,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cl/HostScratch.hpp"
 #include "geometry/CoreBudget.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/StackedMeshCheck.hpp"
@@ -620,6 +621,12 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     builder.setPiece(topCap);
     reconstructor.capLayer(layers.back(), true, capOffset(slices.size() - 1, true), fields,
                            slices.size() - 1);
+    // This ROI's kernels are done: the blocks the scratch pool keeps for the
+    // next call (cl/HostScratch; 92 MB after the head CT bone's fields and
+    // slabs) would stay resident through the checks and smoothing, where a
+    // large ROI peaks. The next ROI faults its blocks in again, a few
+    // milliseconds against its seconds.
+    ocl::releaseScratch();
     // Time spent on fields and axes inside the recursion is counted there.
     stats.triangulationSeconds = secondsSince(start) - slabsWallSeconds + slabThreadSeconds -
                                  (stats.fieldsSeconds - fieldsAndMedialBefore) -
