@@ -6,7 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <numeric>
+#include <random>
+#include <set>
 
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
@@ -321,4 +325,66 @@ TEST(MeshCheck, CleanGroupsSkipOnlyThePairsWithinAGroup) {
     std::iota(all.begin(), all.end(), std::size_t(0));
     EXPECT_EQ(collidingPairsAmong(s, degenerate, all, SIZE_MAX, &groups).pairs.size(),
               whole.intersectingPairs);
+}
+
+// The edge counts and components against an independent edge list (a map
+// from each vertex pair to its uses), on soups drawn from a few vertices so
+// that every kind of edge occurs: used once, twice either way, three or
+// more times, and triangles with a vertex twice (which use one edge twice).
+TEST(MeshCheck, EdgeCountsMatchAnEdgeListOnRandomSoups) {
+    std::mt19937 random(17);
+    for (int round = 0; round < 40; ++round) {
+        const std::uint32_t vertexCount = 4 + std::uint32_t(round % 9);
+        TriangleSoup soup;
+        std::uniform_real_distribution<double> coordinate(-1, 1);
+        for (std::uint32_t v = 0; v < vertexCount + 2; ++v)  // two never used
+            soup.points.push_back({coordinate(random), coordinate(random), coordinate(random)});
+        std::uniform_int_distribution<std::uint32_t> vertex(0, vertexCount - 1);
+        const int triangles = 1 + round % 17;
+        for (int t = 0; t < triangles; ++t) {
+            std::array<std::uint32_t, 3> tri{vertex(random), vertex(random), vertex(random)};
+            if (t % 5 == 4) tri[2] = tri[0];  // a vertex twice
+            soup.triangles.push_back(tri);
+        }
+        // Each edge's uses: (triangle, runs from the lower vertex).
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, bool>>>
+            edges;
+        std::vector<std::size_t> parent(soup.points.size());
+        std::iota(parent.begin(), parent.end(), 0);
+        std::function<std::size_t(std::size_t)> root = [&](std::size_t x) {
+            return parent[x] == x ? x : parent[x] = root(parent[x]);
+        };
+        std::set<std::uint32_t> used;
+        for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = soup.triangles[t][k], b = soup.triangles[t][(k + 1) % 3];
+                used.insert(a);
+                if (a == b) continue;
+                edges[{std::min(a, b), std::max(a, b)}].push_back({t, a < b});
+                parent[root(a)] = root(b);
+            }
+        std::size_t boundary = 0, nonManifold = 0, misoriented = 0, components = 0;
+        std::set<std::size_t> defective;
+        for (const auto& [edge, uses] : edges) {
+            const bool bad = uses.size() != 2 || uses[0].second == uses[1].second;
+            boundary += uses.size() == 1;
+            nonManifold += uses.size() > 2;
+            misoriented += uses.size() == 2 && uses[0].second == uses[1].second;
+            if (bad)
+                for (const auto& use : uses) defective.insert(use.first);
+        }
+        for (std::uint32_t v : used) components += root(v) == v;
+        const MeshCheckReport report = checkMesh(soup);
+        SCOPED_TRACE("round " + std::to_string(round));
+        EXPECT_EQ(report.edges, edges.size());
+        EXPECT_EQ(report.boundaryEdges, boundary);
+        EXPECT_EQ(report.nonManifoldEdges, nonManifold);
+        EXPECT_EQ(report.misorientedEdges, misoriented);
+        EXPECT_EQ(report.vertices, used.size());
+        EXPECT_EQ(report.components, components);
+        for (std::size_t t : defective)
+            EXPECT_TRUE(std::binary_search(report.defectiveTriangles.begin(),
+                                           report.defectiveTriangles.end(), t))
+                << "triangle " << t;
+    }
 }
