@@ -1,7 +1,6 @@
 #include "app/Program.hpp"
 
 #include <iostream>
-#include <new>
 #include <string>
 
 #include "app/BatchWorkers.hpp"

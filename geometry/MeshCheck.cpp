@@ -412,7 +412,6 @@ MeshCheckReport checkSoup(const TriangleSoup& soup, const PairSearch& search) {
         }
     }
     // Freed before the pair search's hierarchy is built.
-    decltype(uses)().swap(uses);
     decltype(first)().swap(first);
     decltype(around)().swap(around);
     for (std::size_t v = 0; v < n; ++v) report.components += used[v] && parts.find(v) == v;
