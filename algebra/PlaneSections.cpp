@@ -28,7 +28,7 @@ constexpr double kKeepOffSample = 0.05;
 
 // The lattice of one plane: fine samples (i, j), 0 ≤ i < width, at
 // origin + (i, j)·step; coarse cells are `factor` samples wide.
-struct Lattice {
+struct SectionLattice {
     double originX = 0, originY = 0, step = 0;
     int factor = 1, cellsX = 0, cellsY = 0;
     int width() const { return cellsX * factor + 1; }
@@ -56,8 +56,8 @@ struct EdgeVertex {
     bool done = false;
 };
 
-Lattice latticeOver(const PlaneRect& region, const PlaneSectionOptions& o) {
-    Lattice l;
+SectionLattice latticeOver(const PlaneRect& region, const PlaneSectionOptions& o) {
+    SectionLattice l;
     l.step = o.stepMm;
     l.factor = o.coarseFactor;
     const double cell = o.stepMm * o.coarseFactor;
@@ -79,7 +79,7 @@ Lattice latticeOver(const PlaneRect& region, const PlaneSectionOptions& o) {
 // Samples the planes of one group: coarse corners, then every sample of the
 // cells the Lipschitz bound cannot rule out.
 std::vector<PlaneSamples> samplePlanes(const PlaneField& field, const std::vector<double>& zs,
-                                       const Lattice& l, PlaneSectionStats& stats) {
+                                       const SectionLattice& l, PlaneSectionStats& stats) {
     const int w = l.width(), k = l.factor;
     const int cw = l.cellsX + 1, ch = l.cellsY + 1;
     std::vector<Vec3> points;
@@ -138,7 +138,7 @@ std::vector<PlaneSamples> samplePlanes(const PlaneField& field, const std::vecto
 // The lattice edge a marching-squares vertex lies on: the one of the two
 // candidate edges (horizontal or vertical through it) whose ends differ in
 // sign. False when neither does (it then stays where it is).
-bool edgeOf(Point2 v, const Lattice& l, const PlaneSamples& s, EdgeVertex& e) {
+bool edgeOf(Point2 v, const SectionLattice& l, const PlaneSamples& s, EdgeVertex& e) {
     const double fi = (v.x - l.originX) / l.step, fj = (v.y - l.originY) / l.step;
     const int w = l.width(), h = l.height();
     const auto valueAt = [&](int i, int j) {
@@ -253,7 +253,7 @@ std::vector<Slice> planeSections(const PlaneField& exactField, const std::vector
     stats.planes = planeZMm.size();
     std::vector<double> zs = planeZMm;
     std::sort(zs.begin(), zs.end());
-    const Lattice l = latticeOver(region, options);
+    const SectionLattice l = latticeOver(region, options);
     const std::size_t perGroup = std::max<std::size_t>(1, options.maxSamplesPerBatch / l.samples());
     std::vector<Slice> out;
     for (std::size_t first = 0; first < zs.size(); first += perGroup) {

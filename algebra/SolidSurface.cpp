@@ -11,7 +11,7 @@ namespace dfrecon {
 
 namespace {
 
-struct Lattice {
+struct VoxelLattice {
     Vec3 origin;  // centre of voxel (0, 0, 0)
     double voxel = 0;
     int block = 8;
@@ -31,7 +31,7 @@ TriangleSoup solidSurface(const SpaceField& field, double lipschitz, const Box3&
         throw std::invalid_argument("solidSurface: the Lipschitz constant must be finite and > 0");
     openvdb::initialize();
     SolidSurfaceStats stats;
-    Lattice l;
+    VoxelLattice l;
     l.block = options.blockVoxels;
     l.voxel = options.voxelMm;
     const Vec3 size = support.hi - support.lo;

@@ -14,10 +14,10 @@ namespace {
 
 // Planes closer than this are one plane (DICOM's DS precision, and the
 // tolerance readers put planes together by).
-constexpr double kSamePlaneMm = 1e-3;
+constexpr double kMergedPlanesWithinMm = 1e-3;
 
 // The planes of `rois`, in `frame` (z along its normal), sorted, merged
-// within kSamePlaneMm.
+// within kMergedPlanesWithinMm.
 std::vector<double> planesOf(const std::vector<const Roi*>& rois, const PlaneFrame& frame) {
     std::vector<double> zs;
     for (const Roi* roi : rois) {
@@ -28,7 +28,7 @@ std::vector<double> planesOf(const std::vector<const Roi*>& rois, const PlaneFra
     std::sort(zs.begin(), zs.end());
     std::vector<double> merged;
     for (double z : zs)
-        if (merged.empty() || z - merged.back() > kSamePlaneMm) merged.push_back(z);
+        if (merged.empty() || z - merged.back() > kMergedPlanesWithinMm) merged.push_back(z);
     return merged;
 }
 
@@ -45,8 +45,10 @@ double typicalSpacing(const std::vector<double>& zs) {
 std::vector<double> extendedPlanes(std::vector<double> zs, double lo, double hi, double spacing) {
     if (zs.empty() || !(spacing > 0)) return zs;
     std::vector<double> below, above;
-    for (double z = zs.front() - spacing; z >= lo - kSamePlaneMm; z -= spacing) below.push_back(z);
-    for (double z = zs.back() + spacing; z <= hi + kSamePlaneMm; z += spacing) above.push_back(z);
+    for (double z = zs.front() - spacing; z >= lo - kMergedPlanesWithinMm; z -= spacing)
+        below.push_back(z);
+    for (double z = zs.back() + spacing; z <= hi + kMergedPlanesWithinMm; z += spacing)
+        above.push_back(z);
     std::reverse(below.begin(), below.end());
     below.insert(below.end(), zs.begin(), zs.end());
     below.insert(below.end(), above.begin(), above.end());
@@ -135,7 +137,8 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
         out.planesMm = extendedPlanes(own, lo.z, hi.z, spacing);
     } else {
         for (double z : options.planesMm)
-            if (z >= lo.z - kSamePlaneMm && z <= hi.z + kSamePlaneMm) out.planesMm.push_back(z);
+            if (z >= lo.z - kMergedPlanesWithinMm && z <= hi.z + kMergedPlanesWithinMm)
+                out.planesMm.push_back(z);
         std::sort(out.planesMm.begin(), out.planesMm.end());
     }
 

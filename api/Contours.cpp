@@ -15,7 +15,7 @@ namespace {
 
 // Two points this close in z lie on one plane: well below any scanner's
 // slice position precision, well above double rounding of typed values.
-constexpr double kSamePlaneMm = 1e-6;
+constexpr double kOnePlaneWithinMm = 1e-6;
 
 std::string contourName(const RoiPoints& roi, std::size_t index) {
     return "ROI '" + roi.name + "', contour " + std::to_string(index);
@@ -37,7 +37,7 @@ void checkPoints(const RoiPoints& roi, const std::string& source) {
                 throw InputError(source, 0,
                                  contourName(roi, c) + ", point " + std::to_string(k) +
                                      ": coordinate is not a finite number");
-            if (std::abs(p.z - points[0].z) > kSamePlaneMm)
+            if (std::abs(p.z - points[0].z) > kOnePlaneWithinMm)
                 throw InputError(source, 0,
                                  contourName(roi, c) + ": not on one axial plane (z " +
                                      std::to_string(points[0].z) + " at point 0, " +

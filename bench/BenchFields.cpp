@@ -28,7 +28,6 @@ constexpr int kGridPixels = 512;
 // starts with the other's data in the caches, which slows both, OpenCV by
 // a fifth.)
 constexpr int kTimedRuns = 100;
-constexpr double kPi = 3.14159265358979323846;
 
 // A wavy outer contour and a circular hole, `segments` edges in all, in a
 // 512 px square with 1 mm pixels.

@@ -321,7 +321,7 @@ struct QueryParams {
 };
 
 template <class Real>
-constexpr bool laidOutAsTheKernels() {
+constexpr bool queryParamsLaidOutAsTheKernels() {
     using P = QueryParams<Real>;
     constexpr std::size_t r = sizeof(Real), u = sizeof(cl_uint);
     return std::is_standard_layout_v<P> && std::is_trivially_copyable_v<P> &&
@@ -332,8 +332,8 @@ constexpr bool laidOutAsTheKernels() {
            offsetof(P, sampleFirst) == 3 * r + 5 * u && offsetof(P, sampleEnd) == 3 * r + 6 * u &&
            offsetof(P, padding) == 3 * r + 7 * u && sizeof(P) == 3 * r + 8 * u;
 }
-static_assert(laidOutAsTheKernels<cl_double>() && sizeof(QueryParams<cl_double>) == 56);
-static_assert(laidOutAsTheKernels<cl_float>() && sizeof(QueryParams<cl_float>) == 44);
+static_assert(queryParamsLaidOutAsTheKernels<cl_double>() && sizeof(QueryParams<cl_double>) == 56);
+static_assert(queryParamsLaidOutAsTheKernels<cl_float>() && sizeof(QueryParams<cl_float>) == 44);
 
 // What both kernels write per sample, on the device, and its download
 // into answers (sample k of the launch is answers[order(k)]).

@@ -176,7 +176,7 @@ struct TileParams {
 };
 
 template <class Real>
-constexpr bool laidOutAsTheKernels() {
+constexpr bool tileParamsLaidOutAsTheKernels() {
     using P = TileParams<Real>;
     constexpr std::size_t r = sizeof(Real), u = sizeof(cl_uint);
     return std::is_standard_layout_v<P> && std::is_trivially_copyable_v<P> &&
@@ -187,8 +187,8 @@ constexpr bool laidOutAsTheKernels() {
            offsetof(P, lanesAlong) == 3 * r + 4 * u && offsetof(P, padding) == 3 * r + 5 * u &&
            sizeof(P) == 3 * r + 6 * u;
 }
-static_assert(laidOutAsTheKernels<cl_double>() && sizeof(TileParams<cl_double>) == 48);
-static_assert(laidOutAsTheKernels<cl_float>() && sizeof(TileParams<cl_float>) == 36);
+static_assert(tileParamsLaidOutAsTheKernels<cl_double>() && sizeof(TileParams<cl_double>) == 48);
+static_assert(tileParamsLaidOutAsTheKernels<cl_float>() && sizeof(TileParams<cl_float>) == 36);
 
 // The tree of segments[first, first + count): O(count). Capsules are
 // computed in double from the coordinates the kernel reads; its b - a

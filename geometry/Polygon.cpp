@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "geometry/ClosestPoint.hpp"
+#include "geometry/Vec3.hpp"
 
 namespace dfrecon {
 
@@ -77,7 +78,6 @@ Box2 boundingBox(const Polygon& polygon) {
 }
 
 Polygon circlePolygon(Point2 centre, double radius, int points, bool clockwise) {
-    constexpr double kPi = 3.14159265358979323846;
     Polygon polygon;
     for (int i = 0; i < points; ++i) {
         const double t = 2 * kPi * (clockwise ? -i : i) / points;

@@ -4,6 +4,8 @@
 
 namespace dfrecon {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 struct Vec3 {
     double x = 0, y = 0, z = 0;
     double operator[](int axis) const { return axis == 0 ? x : axis == 1 ? y : z; }

@@ -91,7 +91,7 @@ std::string checkedName(const std::string& name) {
 
 // Whether a token is meant as a number, good or bad ("1e9", "nan", "-3"):
 // such tokens after a name are its colour and must be one.
-bool looksNumeric(const std::string& token) {
+bool meantAsNumber(const std::string& token) {
     if (token.empty()) return false;
     const char c = token[0];
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.')
@@ -114,8 +114,8 @@ std::pair<std::int32_t, LabelEntry> entryOfLine(const std::vector<std::string>& 
     // FreeSurfer LUT / Slicer colour table: VALUE NAME R G B [A]; a colour
     // that is out of range or no integer ("1e9", "nan") is an error, not a
     // plain-list line's trailing words.
-    if ((t.size() == 5 || t.size() == 6) && first && !integerOf(t[1]) && looksNumeric(t[2]) &&
-        looksNumeric(t[3]) && looksNumeric(t[4])) {
+    if ((t.size() == 5 || t.size() == 6) && first && !integerOf(t[1]) && meantAsNumber(t[2]) &&
+        meantAsNumber(t[3]) && meantAsNumber(t[4])) {
         return {labelValue(*first),
                 {checkedName(t[1]),
                  Rgb{component(t[2], "red"), component(t[3], "green"), component(t[4], "blue")}}};

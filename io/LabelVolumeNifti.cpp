@@ -39,7 +39,7 @@ struct ImageFree {
 };
 using Image = std::unique_ptr<nifti_image, ImageFree>;
 
-SampleType sampleTypeOf(const std::string& path, int datatype) {
+SampleType niftiSampleType(const std::string& path, int datatype) {
     switch (datatype) {
         case DT_INT8:
             return SampleType::Int8;
@@ -188,7 +188,7 @@ LabelVolume readNiftiLabelVolume(const std::string& path) {
         sizes.push_back(std::uint64_t(image->dim[a]));
     }
     const std::array<int, 3> size = checkedSizes(path, sizes);
-    const SampleType type = sampleTypeOf(path, image->datatype);
+    const SampleType type = niftiSampleType(path, image->datatype);
     const std::uint64_t voxels =
         std::uint64_t(size[0]) * std::uint64_t(size[1]) * std::uint64_t(size[2]);
     if (image->nbyper != int(sampleBytes(type)) || image->nvox != std::int64_t(voxels))

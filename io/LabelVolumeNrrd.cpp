@@ -187,7 +187,7 @@ DataLocation screenHeader(const std::string& path) {
     return location;
 }
 
-SampleType sampleTypeOf(const std::string& path, int teemType) {
+SampleType nrrdSampleType(const std::string& path, int teemType) {
     switch (teemType) {
         case nrrdTypeChar:
             return SampleType::Int8;
@@ -325,7 +325,7 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
         throw InputError(
             path, 0, std::to_string(header->dim) + "-D image; a label volume needs 3 dimensions");
     const std::array<int, 3> size = checkedSizes(path, sizes);
-    const SampleType type = sampleTypeOf(path, header->type);
+    const SampleType type = nrrdSampleType(path, header->type);
     const std::string memory =
         memoryProblem(sizes[0] * sizes[1] * sizes[2], sampleBytes(type));  // sizes checked above
     if (!memory.empty()) throw InputError(path, 0, memory);

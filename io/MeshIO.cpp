@@ -240,7 +240,9 @@ void writeMesh(TriMesh&& mesh, std::ostream& out, MeshFormat format,
                                  " mesh to the stream");
 }
 
-namespace {
+// OpenMesh's names only here (a unity build compiles the files of this
+// library together).
+namespace openmesh_import {
 
 using namespace OpenMesh;
 
@@ -311,15 +313,15 @@ class SoupImporter : public IO::BaseImporter {
     TriangleSoup& soup_;
 };
 
-}  // namespace
+}  // namespace openmesh_import
 
 TriangleSoup readTriangleSoup(const std::string& path) {
     const ReadingInput reading(path);
     requireMeshFile(path);
     TriangleSoup soup;
-    SoupImporter importer(soup);
-    IO::Options options;
-    if (!IO::IOManager().read(path, importer, options))
+    openmesh_import::SoupImporter importer(soup);
+    OpenMesh::IO::Options options;
+    if (!OpenMesh::IO::IOManager().read(path, importer, options))
         throw InputError(path, 0, "not a readable mesh (OpenMesh could not parse it)");
     for (const auto& t : soup.triangles)
         for (std::uint32_t v : t)

@@ -105,7 +105,7 @@ std::vector<std::string> words(const std::string& line) {
     return out;
 }
 
-bool isKeyword(const std::string& w) {
+bool isPlyKeyword(const std::string& w) {
     return w == "comment" || w == "element" || w == "property" || w == "end_header" ||
            w == "format" || w == "obj_info";
 }
@@ -178,7 +178,7 @@ class HeaderParser {
                 // OpenMesh skips it word by word: a keyword among its words
                 // would be taken as one.
                 for (std::size_t k = 1; k < w.size(); ++k)
-                    if (isKeyword(w[k]))
+                    if (isPlyKeyword(w[k]))
                         fail(lineNumber, "obj_info holds the keyword '" + w[k] + "'");
             } else {
                 fail(lineNumber, "unknown header keyword '" + w[0] + "'");

@@ -36,7 +36,7 @@ std::string tagName(const DcmTagKey& key) {
 }
 
 // One closed contour as read, in patient coordinates.
-struct SourceContour {
+struct RtStructContour {
     std::vector<Vec3> points;
     std::size_t item = 0;  // 1-based position in its ContourSequence
     bool xorType = false;
@@ -261,7 +261,7 @@ class Reader {
                 ++info.contoursSkipped;
                 continue;
             }
-            SourceContour contour;
+            RtStructContour contour;
             contour.item = k + 1;
             contour.xorType = type == "CLOSEDPLANAR_XOR";
             contour.points = readPoints(item, where);
@@ -388,13 +388,13 @@ class Reader {
     // coordinates stay exactly as written; other stacks get the frame of
     // their common normal.
     PlaneFrame chooseFrame(std::size_t r) {
-        std::vector<SourceContour>& contours = contours_[r];
+        std::vector<RtStructContour>& contours = contours_[r];
         const bool axial = std::all_of(contours.begin(), contours.end(), [](const auto& c) {
             return spanAlong(c.points, {0, 0, 1}) <= kSamePlaneToleranceMm;
         });
         if (axial) return {};
         Vec3 sum;
-        for (const SourceContour& c : contours) {
+        for (const RtStructContour& c : contours) {
             const Vec3 n = newellNormal(c.points);
             sum = sum + (dot(n, sum) < 0 ? -1.0 : 1.0) * n;
         }
@@ -406,7 +406,7 @@ class Reader {
                 const double s = normal[a] < 0 ? -1 : 1;
                 normal = a == 0 ? Vec3{s, 0, 0} : a == 1 ? Vec3{0, s, 0} : Vec3{0, 0, s};
             }
-        for (const SourceContour& c : contours) {
+        for (const RtStructContour& c : contours) {
             const double span = spanAlong(c.points, normal);
             if (span > kSamePlaneToleranceMm)
                 fail(roiLabel(r) + ": contour " + std::to_string(c.item) + " of " +
@@ -426,11 +426,11 @@ class Reader {
     void buildSlices(std::size_t r) {
         Roi& roi = out_.contours.rois[r];
         RtStructRoiInfo& info = out_.rois[r];
-        std::vector<SourceContour>& contours = contours_[r];
+        std::vector<RtStructContour>& contours = contours_[r];
         info.contoursRead = contours.size();
         if (contours.empty()) return;
         roi.frame = chooseFrame(r);
-        for (SourceContour& c : contours) {
+        for (RtStructContour& c : contours) {
             std::vector<double> z;
             for (Vec3 p : c.points) z.push_back(roi.frame.fromPatient(p).z);
             std::nth_element(z.begin(), z.begin() + std::ptrdiff_t(z.size() / 2), z.end());
@@ -464,7 +464,7 @@ class Reader {
 
     Slice buildSlice(std::size_t r, std::size_t begin, std::size_t end) {
         const Roi& roi = out_.contours.rois[r];
-        std::vector<SourceContour>& contours = contours_[r];
+        std::vector<RtStructContour>& contours = contours_[r];
         std::vector<double> z;
         for (std::size_t i = begin; i < end; ++i) z.push_back(contours[i].planeZ);
         Slice slice;
@@ -622,7 +622,7 @@ class Reader {
     ContourRepairOptions repair_;
     RtStructLoad out_;
     std::map<Sint32, std::size_t> indexOfNumber_;
-    std::vector<std::vector<SourceContour>> contours_;  // per ROI
+    std::vector<std::vector<RtStructContour>> contours_;  // per ROI
     std::size_t totalPoints_ = 0;
     std::size_t xorWork_ = 0;  // contours and crossings combined by XOR so far
     bool slabWarned_ = false;

@@ -24,7 +24,7 @@ namespace {
 
 // A contour as read, with the line of each point so later checks can point
 // at the file.
-struct SourceContour {
+struct SlicesContour {
     int keywordLine = 0;
     Polygon points;
     std::vector<int> pointLines;
@@ -32,7 +32,7 @@ struct SourceContour {
 struct SourceSlice {
     double zMm = 0;
     int line = 0;
-    std::vector<SourceContour> contours;
+    std::vector<SlicesContour> contours;
 };
 struct SourceRoi {
     Roi roi;  // name and colour; slices are filled from `slices` at the end
@@ -90,7 +90,7 @@ struct Tokenizer {
     }
 };
 
-bool isKeyword(const std::string& token) {
+bool isSlicesKeyword(const std::string& token) {
     return token == "roi" || token == "slice" || token == "contour" || token == "units" ||
            token == "dfrecon-slices";
 }
@@ -218,7 +218,7 @@ class Parser {
             const std::string& key = tok_.tokens[0];
 
             if (pendingPoints_ > 0) {
-                if (isKeyword(key) && !tok_.quoted[0]) contourCountMismatch();
+                if (isSlicesKeyword(key) && !tok_.quoted[0]) contourCountMismatch();
                 readPoint();
                 continue;
             }
@@ -248,7 +248,7 @@ class Parser {
                 fail(lineNo_, "'" + key + "' may appear only once, at the top");
             } else if (looksNumeric(key) && !rois_.empty() && !rois_.back().slices.empty() &&
                        !rois_.back().slices.back().contours.empty()) {
-                const SourceContour& c = rois_.back().slices.back().contours.back();
+                const SlicesContour& c = rois_.back().slices.back().contours.back();
                 fail(lineNo_, "contour at line " + std::to_string(c.keywordLine) + " declares " +
                                   std::to_string(c.points.size()) +
                                   " points but more follow (point count does not match)");
@@ -262,7 +262,7 @@ class Parser {
     }
 
     [[noreturn]] void contourCountMismatch() const {
-        const SourceContour& c = rois_.back().slices.back().contours.back();
+        const SlicesContour& c = rois_.back().slices.back().contours.back();
         fail(c.keywordLine, "contour declares " + std::to_string(c.points.size() + pendingPoints_) +
                                 " points but " + std::to_string(c.points.size()) +
                                 " follow (point count does not match)");
@@ -315,7 +315,7 @@ class Parser {
         if (totalPoints_ + std::size_t(count) > limits_.maxPointsTotal)
             fail(lineNo_,
                  "file holds more than " + std::to_string(limits_.maxPointsTotal) + " points");
-        SourceContour contour;
+        SlicesContour contour;
         contour.keywordLine = lineNo_;
         slice.contours.push_back(std::move(contour));
         pendingPoints_ = std::size_t(count);
@@ -326,7 +326,7 @@ class Parser {
         if (tok_.tokens.size() != 2)
             fail(lineNo_,
                  "expected a point 'x y', got " + std::to_string(tok_.tokens.size()) + " tokens");
-        SourceContour& c = rois_.back().slices.back().contours.back();
+        SlicesContour& c = rois_.back().slices.back().contours.back();
         c.points.push_back({number(tok_.tokens[0], "x"), number(tok_.tokens[1], "y")});
         c.pointLines.push_back(lineNo_);
         --pendingPoints_;
@@ -339,7 +339,7 @@ class Parser {
         const std::string name = source.roi.name;
 
         for (SourceSlice& slice : slices)
-            for (SourceContour& c : slice.contours) dropRepeatedPoints(c);
+            for (SlicesContour& c : slice.contours) dropRepeatedPoints(c);
 
         if (!std::is_sorted(
                 slices.begin(), slices.end(),
@@ -362,14 +362,14 @@ class Parser {
             validate(slice, name);
             Slice out;
             out.zMm = slice.zMm;
-            for (SourceContour& c : slice.contours) out.contours.push_back(std::move(c.points));
+            for (SlicesContour& c : slice.contours) out.contours.push_back(std::move(c.points));
             normaliseOrientation(out);
             roi.slices.push_back(std::move(out));
         }
         return roi;
     }
 
-    void dropRepeatedPoints(SourceContour& c) {
+    void dropRepeatedPoints(SlicesContour& c) {
         std::size_t kept = 0;
         for (std::size_t i = 0; i < c.points.size(); ++i) {
             if (kept > 0 && c.points[i] == c.points[kept - 1]) continue;
@@ -397,7 +397,7 @@ class Parser {
                 warn(slice.line, "ROI '" + name + "' has slice z=" + formatNumber(slice.zMm) +
                                      " twice (also line " + std::to_string(merged.back().line) +
                                      "); contours merged");
-                for (SourceContour& c : slice.contours)
+                for (SlicesContour& c : slice.contours)
                     merged.back().contours.push_back(std::move(c));
                 continue;
             }
@@ -409,8 +409,8 @@ class Parser {
     // Each contour that crosses itself becomes the contours of its even-odd
     // region, all carrying its line; one that cannot stays for validate().
     void repairSelfCrossings(SourceSlice& slice) {
-        std::vector<SourceContour> out;
-        for (SourceContour& c : slice.contours) {
+        std::vector<SlicesContour> out;
+        for (SlicesContour& c : slice.contours) {
             const std::optional<ContourDefect> defect = findContourDefect({c.points});
             std::optional<std::vector<Polygon>> region;
             if (defect && defect->kind == ContourDefect::Kind::SelfIntersection &&
@@ -431,7 +431,7 @@ class Parser {
 
     void validate(const SourceSlice& slice, const std::string& name) const {
         std::vector<Polygon> polygons;
-        for (const SourceContour& c : slice.contours) polygons.push_back(c.points);
+        for (const SlicesContour& c : slice.contours) polygons.push_back(c.points);
         // Zero area is either a line (nothing to validate further) or a
         // figure eight whose halves cancel, which the crossing test names.
         for (std::size_t i = 0; i < polygons.size(); ++i)
@@ -443,8 +443,8 @@ class Parser {
         if (defect->kind == ContourDefect::Kind::TooComplex)
             fail(slice.line, "slice z=" + formatNumber(slice.zMm) +
                                  " is too complex to validate (pathological segment layout)");
-        const SourceContour& a = slice.contours[defect->contourA];
-        const SourceContour& b = slice.contours[defect->contourB];
+        const SlicesContour& a = slice.contours[defect->contourA];
+        const SlicesContour& b = slice.contours[defect->contourB];
         const std::string segA = describeSegment(a, defect->segmentA);
         const std::string segB = describeSegment(b, defect->segmentB);
         const std::string how = defect->contact == SegmentContact::Overlap ? " overlaps "
@@ -459,7 +459,7 @@ class Parser {
                        "contour at line " + std::to_string(b.keywordLine) + " " + segB);
     }
 
-    static std::string describeSegment(const SourceContour& c, std::size_t k) {
+    static std::string describeSegment(const SlicesContour& c, std::size_t k) {
         const std::size_t next = (k + 1) % c.points.size();
         return "segment " + std::to_string(k + 1) + " (lines " + std::to_string(c.pointLines[k]) +
                "-" + std::to_string(c.pointLines[next]) + ")";
@@ -508,7 +508,7 @@ std::string quotedName(const std::string& name) {
         if (c == ' ' || c == '\t' || c == '#' || c == '"') needsQuotes = true;
         quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
     }
-    if (isKeyword(name)) needsQuotes = true;
+    if (isSlicesKeyword(name)) needsQuotes = true;
     return needsQuotes ? "\"" + quoted + "\"" : name;
 }
 

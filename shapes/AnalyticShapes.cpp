@@ -14,8 +14,6 @@ namespace dfrecon {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 int atLeast3(int points) {
     return std::max(points, 3);
 }

@@ -12,8 +12,6 @@ namespace dfrecon {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double radians(double degrees) {
     return degrees * kPi / 180;
 }

@@ -18,8 +18,6 @@ using namespace dfrecon;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // x0..x1 × y0..y1 squares on the planes z = z0, z0 + 1, ..., z1.
 Roi boxRoi(double x0, double y0, double x1, double y1, int z0, int z1) {
     Roi roi;
