@@ -546,21 +546,35 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         markRepaired(surface, check);
         return stats;
     }
+    // The surface differs from the one just checked in whole only where the
+    // repair unbent vertices (all pinned; none when it did not run): every
+    // pair away from those and from the defects found was clean, so the
+    // next check searches only around them (unless that check stopped
+    // counting and may have missed defects).
+    std::vector<std::size_t> suspects = check.defectiveTriangles;
+    const bool searchAgainWhole = check.intersectingPairsCapped;
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+        const Triangle& tri = surface.triangles[t];
+        if (repair->pinned(tri[0]) || repair->pinned(tri[1]) || repair->pinned(tri[2]))
+            suspects.push_back(t);
+    }
+    std::sort(suspects.begin(), suspects.end());  // each pair tested once
+    suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
     // What the repair holds (the straight surface, the triangles by group)
-    // goes before the whole checks below, where a large surface peaks.
+    // goes before the checks below, where a large surface peaks.
     repair.reset();
     // A piece whose bent (or merely refined: halving thin triangles and
     // rounding the new points to float can fold them) triangles break the
     // surface gets its linear triangles back. Pieces meet only in contour
     // vertices, which refinement never touches, so swapping one piece keeps
     // the mesh conforming.
-    // The first check is whole (unbending moved vertices anywhere); after
-    // that, only the triangles of the pieces just restored are new, and
-    // every other pair was clean in the check before (both triangles of a
-    // meeting pair are restored), unless that check stopped counting.
+    // After each check, only the triangles of the pieces just restored are
+    // new, and every other pair was clean in the check before (both
+    // triangles of a meeting pair are restored), unless that check stopped
+    // counting.
     std::vector<bool> restored;
-    std::vector<std::size_t> swappedIn;
-    bool wholeCheck = true;
+    std::vector<std::size_t> swappedIn = std::move(suspects);
+    bool wholeCheck = searchAgainWhole;
     auto checkAgain = [&] {
         roundPointsToFloat(surface);
         check = wholeCheck ? checkWhole() : checkMeshNear(surface, swappedIn);
