@@ -552,7 +552,6 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // next check searches only around them (unless that check stopped
     // counting and may have missed defects).
     std::vector<std::size_t> suspects = check.defectiveTriangles;
-    const bool searchAgainWhole = check.intersectingPairsCapped;
     for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
         const Triangle& tri = surface.triangles[t];
         if (repair->pinned(tri[0]) || repair->pinned(tri[1]) || repair->pinned(tri[2]))
@@ -574,7 +573,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // counting.
     std::vector<bool> restored;
     std::vector<std::size_t> swappedIn = std::move(suspects);
-    bool wholeCheck = searchAgainWhole;
+    bool wholeCheck = check.intersectingPairsCapped;  // of the whole check before the repair
     auto checkAgain = [&] {
         roundPointsToFloat(surface);
         check = wholeCheck ? checkWhole() : checkMeshNear(surface, swappedIn);
