@@ -35,6 +35,24 @@ void removeUnusedPoints(TriangleSoup& soup) {
     soup.points = std::move(kept);
 }
 
+void removeUnusedPointsFrom(TriangleSoup& soup, std::size_t first) {
+    constexpr std::uint32_t kUnused = 0xffffffffu;
+    std::vector<std::uint32_t> index(soup.points.size(), kUnused);
+    for (const auto& t : soup.triangles)
+        for (std::uint32_t v : t) index[v] = 0;
+    std::size_t kept = 0;
+    for (std::size_t v = 0; v < soup.points.size(); ++v) {
+        if (v >= first && index[v] == kUnused) continue;
+        index[v] = std::uint32_t(kept);
+        soup.points[kept++] = soup.points[v];
+    }
+    soup.points.resize(kept);
+    soup.points.shrink_to_fit();
+    soup.triangles.shrink_to_fit();
+    for (auto& t : soup.triangles)
+        for (std::uint32_t& v : t) v = index[v];
+}
+
 namespace {
 
 // OpenMesh's error stream is one process-wide object, made on first use:

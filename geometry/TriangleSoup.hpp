@@ -24,6 +24,12 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh);
 /// Drops the points no triangle uses and renumbers the triangles. O(n).
 void removeUnusedPoints(TriangleSoup& soup);
 
+/// Drops the points from `first` on that no triangle uses; the points below
+/// `first` keep their ids and the rest their order (so any comparison of
+/// ids gives what it gave before), and both arrays are left with no spare
+/// capacity. O(n).
+void removeUnusedPointsFrom(TriangleSoup& soup, std::size_t first);
+
 /// Rounds every point to the nearest float, as mesh files store them, so
 /// that a check sees the surface a file will hold. O(n).
 void roundPointsToFloat(TriangleSoup& soup);

@@ -1,9 +1,11 @@
 #include "recon/LoftSmoothing.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "geometry/BoxGrid.hpp"
@@ -56,6 +58,9 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
                        std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
                        std::vector<Edge>& parents) {
     std::unordered_map<std::uint64_t, std::uint32_t> middle;
+    // Collected apart and appended with an exact reservation: a surface of
+    // millions of points grown by push_back would hold up to twice its size.
+    std::vector<Vec3> middles;
     for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
         if (!isLoft[t]) continue;
         const Triangle& tri = soup.triangles[t];
@@ -73,14 +78,22 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
                 continue;
             const Vec3 m = 0.5 * (pa + pb);
             if (std::abs(field.value(m)) <= toleranceMm) continue;
-            middle.emplace(edgeKey(a, b), std::uint32_t(soup.points.size()));
-            soup.points.push_back(m);
+            middle.emplace(edgeKey(a, b), std::uint32_t(soup.points.size() + middles.size()));
+            middles.push_back(m);
             parents.push_back({a, b});
         }
     }
+    soup.points.reserve(soup.points.size() + middles.size());
+    soup.points.insert(soup.points.end(), middles.begin(), middles.end());
+    // Each split edge splits the two triangles that share it (the surface
+    // is closed): two triangles more per edge.
+    const std::size_t triangleCount = soup.triangles.size() + 2 * middle.size();
     std::vector<Triangle> triangles;
     std::vector<std::uint32_t> pieces;
     std::vector<bool> lofts;
+    triangles.reserve(triangleCount);
+    pieces.reserve(triangleCount);
+    lofts.reserve(triangleCount);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::size_t from) {
         triangles.push_back({a, b, c});
         pieces.push_back(pieceOf[from]);
@@ -264,15 +277,73 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
 /// order[first[g], first[g + 1]). O(T) to make (a counting sort).
 struct TrianglesByGroup {
     std::vector<std::uint32_t> groupOf;
-    std::vector<std::size_t> first, order;
+    std::vector<std::size_t> first;
+    std::vector<std::uint32_t> order;  // triangle ids fit 32 bits (the soup's do)
 
     TrianglesByGroup(std::vector<std::uint32_t> groups, std::uint32_t count)
         : groupOf(std::move(groups)), first(count + 1, 0), order(groupOf.size()) {
         for (std::uint32_t g : groupOf) ++first[g + 1];
         for (std::size_t g = 0; g < count; ++g) first[g + 1] += first[g];
         std::vector<std::size_t> next(first.begin(), first.end() - 1);
-        for (std::size_t t = 0; t < groupOf.size(); ++t) order[next[groupOf[t]]++] = t;
+        for (std::size_t t = 0; t < groupOf.size(); ++t)
+            order[next[groupOf[t]]++] = std::uint32_t(t);
     }
+};
+
+/// A point rounded to float, held as floats: half the memory of a Vec3.
+/// The surfaces smoothing keeps copies of are rounded to float (as mesh
+/// files store them) whenever they are checked, so the copies are exact.
+using FloatPoint = std::array<float, 3>;
+
+FloatPoint exactFloats(const Vec3& p) {
+    const FloatPoint f{float(p.x), float(p.y), float(p.z)};
+    if (double(f[0]) != p.x || double(f[1]) != p.y || double(f[2]) != p.z)
+        throw std::logic_error("smoothLofts: a point not rounded to float");
+    return f;
+}
+
+Vec3 toVec3(const FloatPoint& f) {
+    return {f[0], f[1], f[2]};
+}
+
+std::vector<FloatPoint> exactFloats(const std::vector<Vec3>& points) {
+    std::vector<FloatPoint> floats(points.size());
+    for (std::size_t v = 0; v < points.size(); ++v) floats[v] = exactFloats(points[v]);
+    return floats;
+}
+
+/// The surface as it came (straight bands from plane to plane), kept for
+/// what smoothing may undo: its points, triangles and their pieces.
+struct LinearSurface {
+    std::vector<FloatPoint> points;
+    std::vector<Triangle> triangles;
+    std::vector<std::uint32_t> pieceOf;
+
+    Vec3 point(std::size_t v) const { return toVec3(points[v]); }
+};
+
+/// Every vertex's place on the linear surface: a linear vertex's own point,
+/// and for a vertex refinement made, the middle of its parent edge's
+/// straight places (refinement splits straight edges at their middles).
+/// Only the made vertices' places are stored. O(made vertices).
+class StraightPlaces {
+  public:
+    /// parents[i]: the edge whose middle vertex linear.points.size() + i is.
+    StraightPlaces(const LinearSurface& linear, const std::vector<Edge>& parents)
+        : linear_(linear), middles_(parents.size()) {
+        // Parents are older vertices: their places are known by then.
+        for (std::size_t i = 0; i < parents.size(); ++i)
+            middles_[i] = 0.5 * ((*this)[parents[i][0]] + (*this)[parents[i][1]]);
+    }
+
+    Vec3 operator[](std::size_t v) const {
+        const std::size_t first = linear_.points.size();
+        return v < first ? linear_.point(v) : middles_[v - first];
+    }
+
+  private:
+    const LinearSurface& linear_;
+    std::vector<Vec3> middles_;
 };
 
 /// Grids over every triangle's reach (its box where it is now and wherever
@@ -284,7 +355,7 @@ struct TrianglesByGroup {
 /// surface.
 class ReachGrids {
   public:
-    ReachGrids(const TriangleSoup& surface, const std::vector<Vec3>& straight,
+    ReachGrids(const TriangleSoup& surface, const StraightPlaces& straight,
                const TrianglesByGroup& groups)
         : surface_(surface),
           straight_(straight),
@@ -319,7 +390,7 @@ class ReachGrids {
     }
 
     const TriangleSoup& surface_;
-    const std::vector<Vec3>& straight_;
+    const StraightPlaces& straight_;
     const TrianglesByGroup& groups_;
     std::vector<std::unique_ptr<BoxGrid>> grids_;
 };
@@ -365,7 +436,7 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
 class LocalRepair {
   public:
     /// `searchGroup[t]`: only triangles of one group can meet (< groups).
-    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, std::vector<Vec3> straight,
+    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, StraightPlaces straight,
                 std::vector<std::uint32_t> searchGroup, std::uint32_t groups)
         : surface_(surface),
           contourVertices_(contourVertices),
@@ -397,8 +468,9 @@ class LocalRepair {
             for (std::size_t v = contourVertices_; v < surface_.points.size(); ++v)
                 if (unbend[v]) {
                     pinned_[v] = true;
-                    if (surface_.points[v] == straight_[v]) continue;
-                    surface_.points[v] = straight_[v];
+                    const Vec3 straight = straight_[v];
+                    if (surface_.points[v] == straight) continue;
+                    surface_.points[v] = straight;
                     changed[v] = true;
                     ++stats.unbentVertices;
                 }
@@ -416,9 +488,9 @@ class LocalRepair {
   private:
     TriangleSoup& surface_;
     std::size_t contourVertices_;
-    std::vector<Vec3> straight_;  // every vertex's place on the linear surface
-    TrianglesByGroup groups_;     // which triangles can meet: the topology never changes
-    std::vector<bool> pinned_;    // unbent: stays straight
+    StraightPlaces straight_;   // every vertex's place on the linear surface
+    TrianglesByGroup groups_;   // which triangles can meet: the topology never changes
+    std::vector<bool> pinned_;  // unbent: stays straight
 };
 
 /// `check` made true again after local repairs: the topology is the one
@@ -441,8 +513,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                                const PlaneSections& planes, double toleranceMm,
                                MeshCheckReport& check) {
     LoftSmoothingStats stats;
-    const TriangleSoup linear = surface;
-    const std::vector<std::uint32_t> linearPieceOf = pieceOf;
+    const LinearSurface linear{exactFloats(surface.points), surface.triangles, pieceOf};
     // The surface came valid: a piece none of whose vertices moved or are
     // new is as clean as it was, and its pairs need no search; nor do the
     // pairs of triangles whose corners all stayed (refinement splits every
@@ -454,7 +525,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         unmoved.cleanGroup.assign(surface.triangles.size(), 1);
         for (std::size_t t = 0; t < surface.triangles.size(); ++t)
             for (std::uint32_t v : surface.triangles[t])
-                if (v >= linear.points.size() || !(surface.points[v] == linear.points[v])) {
+                if (v >= linear.points.size() || !(surface.points[v] == linear.point(v))) {
                     unmoved.searched[pieceOf[t]] = false;
                     unmoved.cleanGroup[t] = 0;
                 }
@@ -462,8 +533,8 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     };
     std::vector<bool> restoredBefore;
     std::vector<bool> moved;
-    // parents[v − first]: the edge whose middle new vertex v was made at.
-    const std::size_t first = linear.points.size();
+    // parents[i]: the edge at whose middle refinement made vertex
+    // linear.points.size() + i.
     std::vector<Edge> parents;
     // Intermediate contours (recursion layers half-way) lie on the zero set
     // of the linear interpolation; between loft bands they follow the smooth
@@ -496,18 +567,14 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // vertices cannot mend the topology: that is for the pieces below.
     const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
                               check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
-    std::vector<Vec3> straight(surface.points.size());
-    for (std::size_t v = 0; v < straight.size(); ++v)
-        straight[v] =
-            v < first ? linear.points[v]
-                      : 0.5 * (straight[parents[v - first][0]] + straight[parents[v - first][1]]);
     // Pieces the stack keeps apart are repaired each on its own grid.
     const bool piecesApart = stackSeparatesPieces(surface, pieceOf, stack);
     std::vector<std::uint32_t> searchGroup =
         piecesApart ? pieceOf : std::vector<std::uint32_t>(pieceOf.size(), 0);
     const std::uint32_t groups = piecesApart ? std::uint32_t(stack.planeZMm.size() + 1) : 1;
     std::optional<LocalRepair> repair;
-    repair.emplace(surface, contourVertices, std::move(straight), std::move(searchGroup), groups);
+    repair.emplace(surface, contourVertices, StraightPlaces(linear, parents),
+                   std::move(searchGroup), groups);
     if (topologyKept && repair->settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
         // the passes before does not hold for it, so start afresh.
@@ -519,7 +586,8 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             const std::vector<double> bulgeBefore = steps.bulge;
             if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
             field.setSlabBulges(steps.bulge);
-            const std::vector<Vec3> before = surface.points;
+            // As floats: the surface is rounded to float after every move.
+            const std::vector<FloatPoint> before = exactFloats(surface.points);
             // Only the slabs that were repaired (the others are where the
             // passes above left them) and whose bulge changed move, and not
             // where pinned.
@@ -534,12 +602,13 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             std::vector<std::size_t> suspects;
             for (std::size_t t = 0; t < surface.triangles.size(); ++t)
                 for (std::uint32_t v : surface.triangles[t])
-                    if (!(surface.points[v] == before[v])) {
+                    if (!(surface.points[v] == toVec3(before[v]))) {
                         suspects.push_back(t);
                         break;
                     }
             if (!repair->settle(suspects, stats)) {
-                surface.points = before;  // valid as it was
+                for (std::size_t v = 0; v < before.size(); ++v)  // valid as it was
+                    surface.points[v] = toVec3(before[v]);
                 break;
             }
         }
@@ -606,10 +675,10 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             }
         swappedIn.clear();
         for (std::size_t t = 0; t < linear.triangles.size(); ++t)
-            if (isRestored(linearPieceOf[t]) && !wasRestored(linearPieceOf[t])) {
+            if (isRestored(linear.pieceOf[t]) && !wasRestored(linear.pieceOf[t])) {
                 swappedIn.push_back(triangles.size());
                 triangles.push_back(linear.triangles[t]);
-                pieces.push_back(linearPieceOf[t]);
+                pieces.push_back(linear.pieceOf[t]);
                 lofts.push_back(false);  // restored: not bent again
             }
         surface.triangles = std::move(triangles);
@@ -619,8 +688,10 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     }
     checkAgain();
     if (check.validSolid()) return stats;
-    surface = linear;
-    pieceOf = linearPieceOf;
+    surface.points.resize(linear.points.size());
+    for (std::size_t v = 0; v < linear.points.size(); ++v) surface.points[v] = linear.point(v);
+    surface.triangles = linear.triangles;
+    pieceOf = linear.pieceOf;
     check = checkWhole();
     stats.fellBack = true;
     return stats;

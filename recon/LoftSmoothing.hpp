@@ -29,7 +29,9 @@ struct LoftSmoothingStats {
 
 /// `surface` is a valid reconstruction whose triangle t lies in piece
 /// pieceOf[t] (a slab or a cap) and is part of a loft band iff isLoft[t];
-/// its first `contourVertices` vertices are the contour points.
+/// its first `contourVertices` vertices are the contour points; its points
+/// are rounded to float (as checks see them; std::logic_error otherwise:
+/// smoothing keeps its copies of them as floats).
 /// Every edge of a loft triangle that is not horizontal, not shorter in z
 /// than a quarter of its slab, and whose middle is farther than
 /// `toleranceMm` from the smooth surface is halved, in rounds until none is

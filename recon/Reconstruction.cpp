@@ -570,8 +570,7 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     auto fieldProgress = [&](double f) {
         if (progress) progress(0.5 * f);
     };
-    const SliceFields fields =
-        computeSliceFields(runtime, slices, grid, fieldProgress, options.kernel);
+    SliceFields fields = computeSliceFields(runtime, slices, grid, fieldProgress, options.kernel);
     stats.fieldsSeconds = secondsSince(start);
     start = Clock::now();
     const double fieldsAndMedialBefore = stats.fieldsSeconds;
@@ -694,14 +693,23 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
     }
     std::sort(result.brokenPieces.begin(), result.brokenPieces.end());
     stats.checkSeconds = secondsSince(start);
-    result.surface = builder.release();
+    SurfaceBuilder::Released built = builder.release();
+    result.surface = std::move(built.soup);
     if (options.interpolation == Interpolation::Smooth && slices.size() > 1 &&
         result.check.validSolid()) {
         start = Clock::now();
+        // Smoothing is where a large ROI peaks, and it copies every point
+        // (the straight places it may go back to): the points of strips
+        // solved again and of pieces closed again go first (the head CT
+        // bone: a third of 1.7 M), and so do the nearest ids, which only
+        // the medial axes read (the interpolant reads the distances).
+        // Neither changes the surface: the points left keep their order.
+        removeUnusedPointsFrom(result.surface, contourVertices);
+        std::vector<std::uint32_t>().swap(fields.nearestId);
         SliceInterpolant interpolant(fields);
-        const LoftSmoothingStats smooth =
-            smoothLofts(result.surface, builder.pieces(), builder.lofts(), contourVertices, stack,
-                        interpolant, sectionsOf(slices), options.smoothToleranceMm, result.check);
+        const LoftSmoothingStats smooth = smoothLofts(
+            result.surface, std::move(built.pieces), std::move(built.lofts), contourVertices, stack,
+            interpolant, sectionsOf(slices), options.smoothToleranceMm, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;
         stats.smoothUnbentVertices = smooth.unbentVertices;

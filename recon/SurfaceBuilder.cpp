@@ -47,6 +47,14 @@ SurfacePart SurfaceBuilder::takePart(std::size_t sharedPoints) {
     return part;
 }
 
+SurfaceBuilder::Released SurfaceBuilder::release() {
+    Released released{std::exchange(soup_, {}), std::exchange(pieces_, {}),
+                      std::exchange(lofts_, {})};
+    cleanGroups_ = {};
+    lastCleanGroup_ = 0;
+    return released;
+}
+
 void SurfaceBuilder::appendPart(SurfacePart&& part) {
     if (part.sharedPoints > soup_.points.size())
         throw std::logic_error("SurfaceBuilder::appendPart: part built on more points");

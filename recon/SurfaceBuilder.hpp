@@ -90,7 +90,17 @@ class SurfaceBuilder {
     /// The triangles from `first` on, as a soup of just their vertices.
     TriangleSoup trianglesSince(std::size_t first) const;
     const TriangleSoup& soup() const { return soup_; }
-    TriangleSoup release() { return std::move(soup_); }
+
+    /// The finished surface and what smoothing reads of it per triangle.
+    struct Released {
+        TriangleSoup soup;
+        std::vector<std::uint32_t> pieces;
+        std::vector<bool> lofts;
+    };
+    /// Hands over the surface with its pieces and loft marks. The builder
+    /// is empty afterwards: the clean groups, which only the checks before
+    /// read, are freed with it rather than held through smoothing. O(1).
+    Released release();
 
     /// Hands over everything added after the first `sharedPoints` points
     /// (which must be all the builder started with, and no triangle), and

@@ -1,6 +1,7 @@
 // Rounding a soup's points to floats, as files hold them: every coordinate
 // of every point, whatever the count (GCC 12.2's vectorizer once left the x
-// and y of the points after the last group of four unrounded).
+// and y of the points after the last group of four unrounded). Dropping the
+// points no triangle uses, against a brute-force renumbering.
 #include <gtest/gtest.h>
 
 #include "geometry/TriangleSoup.hpp"
@@ -30,4 +31,30 @@ TEST(TriangleSoup, RoundPointsToFloatRoundsEveryCoordinate) {
             EXPECT_NEAR(p.x, -187.3 + double(k) / 3.0, 1e-4);
         }
     }
+}
+
+// Points below `first` stay even when unused; the rest keep their order, and
+// every triangle still names the same positions.
+TEST(TriangleSoup, RemoveUnusedPointsFromKeepsTheFirstAndTheOrder) {
+    TriangleSoup soup;
+    for (int k = 0; k < 12; ++k) soup.points.push_back({double(k), 0.5 * k, -double(k)});
+    // Unused: 1 (below first), 5, 6, 9, 11.
+    soup.triangles = {{0, 2, 3}, {3, 4, 7}, {8, 10, 4}, {7, 2, 10}};
+    const std::size_t first = 4;
+    std::vector<std::array<Vec3, 3>> corners;
+    for (const auto& t : soup.triangles)
+        corners.push_back({soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]});
+    soup.points.reserve(100);
+    removeUnusedPointsFrom(soup, first);
+    std::vector<double> xs;
+    for (const Vec3& p : soup.points) xs.push_back(p.x);
+    EXPECT_EQ(xs, (std::vector<double>{0, 1, 2, 3, 4, 7, 8, 10}));
+    EXPECT_EQ(soup.points.capacity(), soup.points.size());
+    ASSERT_EQ(soup.triangles.size(), corners.size());
+    for (std::size_t t = 0; t < corners.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& p = soup.points[soup.triangles[t][std::size_t(k)]];
+            const Vec3& q = corners[t][std::size_t(k)];
+            EXPECT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z) << "triangle " << t;
+        }
 }
