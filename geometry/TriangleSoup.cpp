@@ -23,15 +23,17 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh) {
 void removeUnusedPoints(TriangleSoup& soup) {
     constexpr std::uint32_t kUnused = 0xffffffffu;
     std::vector<std::uint32_t> index(soup.points.size(), kUnused);
-    std::vector<Vec3> kept;
+    std::uint32_t count = 0;
     for (auto& t : soup.triangles)
         for (std::uint32_t& v : t) {
-            if (index[v] == kUnused) {
-                index[v] = std::uint32_t(kept.size());
-                kept.push_back(soup.points[v]);
-            }
+            if (index[v] == kUnused) index[v] = count++;
             v = index[v];
         }
+    // Sized once: grown point by point, a surface of millions of points
+    // would hold up to twice its size beside the old array.
+    std::vector<Vec3> kept(count);
+    for (std::size_t v = 0; v < soup.points.size(); ++v)
+        if (index[v] != kUnused) kept[index[v]] = soup.points[v];
     soup.points = std::move(kept);
 }
 

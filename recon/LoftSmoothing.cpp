@@ -276,18 +276,21 @@ bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
 /// The triangles of each group, in index order: group g is
 /// order[first[g], first[g + 1]). O(T) to make (a counting sort).
 struct TrianglesByGroup {
-    std::vector<std::uint32_t> groupOf;
+    const std::vector<std::uint32_t>* groupOf;  // per triangle; null: all in group 0
     std::vector<std::size_t> first;
     std::vector<std::uint32_t> order;  // triangle ids fit 32 bits (the soup's do)
 
-    TrianglesByGroup(std::vector<std::uint32_t> groups, std::uint32_t count)
-        : groupOf(std::move(groups)), first(count + 1, 0), order(groupOf.size()) {
-        for (std::uint32_t g : groupOf) ++first[g + 1];
+    /// `groups` (if given) must outlive this and not change.
+    TrianglesByGroup(const std::vector<std::uint32_t>* groups, std::size_t triangles,
+                     std::uint32_t count)
+        : groupOf(groups), first(count + 1, 0), order(triangles) {
+        for (std::size_t t = 0; t < triangles; ++t) ++first[group(t) + 1];
         for (std::size_t g = 0; g < count; ++g) first[g + 1] += first[g];
         std::vector<std::size_t> next(first.begin(), first.end() - 1);
-        for (std::size_t t = 0; t < groupOf.size(); ++t)
-            order[next[groupOf[t]]++] = std::uint32_t(t);
+        for (std::size_t t = 0; t < triangles; ++t) order[next[group(t)]++] = std::uint32_t(t);
     }
+
+    std::uint32_t group(std::size_t t) const { return groupOf ? (*groupOf)[t] : 0; }
 };
 
 /// A point rounded to float, held as floats: half the memory of a Vec3.
@@ -366,7 +369,7 @@ class ReachGrids {
     /// overlaps `box`.
     template <class Visit>
     void overlapping(std::size_t t, const Box3& box, Visit&& visit) {
-        const std::uint32_t g = groups_.groupOf[t];
+        const std::uint32_t g = groups_.group(t);
         if (!grids_[g]) grids_[g] = std::make_unique<BoxGrid>(gridOf(g));
         const std::size_t first = groups_.first[g];
         grids_[g]->overlapping(box, [&](std::uint32_t k) { visit(groups_.order[first + k]); });
@@ -435,13 +438,14 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
 /// and every other pair was clean before.
 class LocalRepair {
   public:
-    /// `searchGroup[t]`: only triangles of one group can meet (< groups).
+    /// `searchGroup[t]`: only triangles of one group can meet (< groups);
+    /// null: any can. It must outlive the repair and not change.
     LocalRepair(TriangleSoup& surface, std::size_t contourVertices, StraightPlaces straight,
-                std::vector<std::uint32_t> searchGroup, std::uint32_t groups)
+                const std::vector<std::uint32_t>* searchGroup, std::uint32_t groups)
         : surface_(surface),
           contourVertices_(contourVertices),
           straight_(std::move(straight)),
-          groups_(std::move(searchGroup), groups),
+          groups_(searchGroup, surface.triangles.size(), groups),
           pinned_(surface.points.size(), false) {}
 
     bool pinned(std::size_t v) const { return pinned_[v]; }
@@ -529,7 +533,9 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                     unmoved.searched[pieceOf[t]] = false;
                     unmoved.cleanGroup[t] = 0;
                 }
-        return checkStackedMesh(surface, pieceOf, unmoved);
+        MeshCheckReport report = checkStackedMesh(surface, pieceOf, unmoved);
+        CleanGroups().swap(unmoved.cleanGroup);  // per triangle, and only a check reads it
+        return report;
     };
     std::vector<bool> restoredBefore;
     std::vector<bool> moved;
@@ -569,12 +575,12 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                               check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
     // Pieces the stack keeps apart are repaired each on its own grid.
     const bool piecesApart = stackSeparatesPieces(surface, pieceOf, stack);
-    std::vector<std::uint32_t> searchGroup =
-        piecesApart ? pieceOf : std::vector<std::uint32_t>(pieceOf.size(), 0);
     const std::uint32_t groups = piecesApart ? std::uint32_t(stack.planeZMm.size() + 1) : 1;
+    // pieceOf stays as it is while the repair lives (reset below, before
+    // pieces are swapped).
     std::optional<LocalRepair> repair;
     repair.emplace(surface, contourVertices, StraightPlaces(linear, parents),
-                   std::move(searchGroup), groups);
+                   piecesApart ? &pieceOf : nullptr, groups);
     if (topologyKept && repair->settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
         // the passes before does not hold for it, so start afresh.
@@ -660,12 +666,21 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         auto isRestored = [&](std::uint32_t piece) {
             return piece < restored.size() && restored[piece];
         };
-        std::vector<std::array<std::uint32_t, 3>> triangles;
-        std::vector<std::uint32_t> pieces;
-        std::vector<bool> lofts;
         auto wasRestored = [&](std::uint32_t piece) {
             return piece < restoredBefore.size() && restoredBefore[piece];
         };
+        // Reserved exactly: this runs beside the surface it replaces, where
+        // a large surface peaks.
+        std::size_t count = 0;
+        for (std::uint32_t piece : pieceOf) count += !isRestored(piece) || wasRestored(piece);
+        for (std::uint32_t piece : linear.pieceOf)
+            count += isRestored(piece) && !wasRestored(piece);
+        std::vector<std::array<std::uint32_t, 3>> triangles;
+        std::vector<std::uint32_t> pieces;
+        std::vector<bool> lofts;
+        triangles.reserve(count);
+        pieces.reserve(count);
+        lofts.reserve(count);
         // Kept: pieces still bent, and pieces already linear again.
         for (std::size_t t = 0; t < surface.triangles.size(); ++t)
             if (!isRestored(pieceOf[t]) || wasRestored(pieceOf[t])) {
