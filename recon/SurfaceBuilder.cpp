@@ -1,5 +1,6 @@
 #include "recon/SurfaceBuilder.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
@@ -34,15 +35,53 @@ void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {
     truncateTriangles(kept);
 }
 
+namespace {
+
+/// Room for `extra` more elements, growing by half at least (vector's own
+/// growth doubles: a builder of millions of triangles then holds up to
+/// twice what it needs, and three times its size while it moves).
+template <class Vector>
+void reserveFor(Vector& v, std::size_t extra) {
+    if (v.capacity() - v.size() >= extra) return;
+    v.reserve(std::max(v.size() + extra, v.size() + v.size() / 2));
+}
+
+/// A copy of `v` with no spare capacity (a part's arrays grew by doubling).
+template <class Vector>
+Vector exactCopy(Vector&& v) {
+    Vector exact(std::forward<Vector>(v));
+    exact.shrink_to_fit();
+    return exact;
+}
+
+}  // namespace
+
 SurfacePart SurfaceBuilder::takePart(std::size_t sharedPoints) {
     SurfacePart part;
     part.sharedPoints = sharedPoints;
-    part.points.assign(soup_.points.begin() + std::ptrdiff_t(sharedPoints), soup_.points.end());
+    // Only the new points a triangle uses go along, in their order: the
+    // intermediate contours of sub-slabs solved again leave points behind
+    // (a third of the head CT bone's), which the builder that collects the
+    // parts would otherwise hold to the end.
+    constexpr std::uint32_t kUnused = 0xffffffffu;
+    std::vector<std::uint32_t> newId(soup_.points.size() - sharedPoints, kUnused);
+    for (const auto& t : soup_.triangles)
+        for (std::uint32_t v : t)
+            if (v >= sharedPoints) newId[v - sharedPoints] = 0;
+    std::size_t kept = 0;
+    for (std::uint32_t& id : newId)
+        if (id != kUnused) id = std::uint32_t(sharedPoints + kept++);
+    part.points.reserve(kept);
+    for (std::size_t i = 0; i < newId.size(); ++i)
+        if (newId[i] != kUnused) part.points.push_back(soup_.points[sharedPoints + i]);
     soup_.points.resize(sharedPoints);
-    part.triangles = std::exchange(soup_.triangles, {});
-    part.pieces = std::exchange(pieces_, {});
-    part.lofts = std::exchange(lofts_, {});
-    part.cleanGroups = std::exchange(cleanGroups_, {});
+    part.triangles = exactCopy(std::exchange(soup_.triangles, {}));
+    for (auto& t : part.triangles)
+        for (std::uint32_t& v : t)
+            if (v >= sharedPoints) v = newId[v - sharedPoints];
+    part.pieces = exactCopy(std::exchange(pieces_, {}));
+    part.lofts = exactCopy(std::exchange(lofts_, {}));
+    part.cleanGroups = exactCopy(std::exchange(cleanGroups_, {}));
     part.cleanGroupCount = std::exchange(lastCleanGroup_, 0);
     return part;
 }
@@ -59,6 +98,11 @@ void SurfaceBuilder::appendPart(SurfacePart&& part) {
     if (part.sharedPoints > soup_.points.size())
         throw std::logic_error("SurfaceBuilder::appendPart: part built on more points");
     const auto offset = std::uint32_t(soup_.points.size() - part.sharedPoints);
+    reserveFor(soup_.points, part.points.size());
+    reserveFor(soup_.triangles, part.triangles.size());
+    reserveFor(pieces_, part.pieces.size());
+    reserveFor(lofts_, part.lofts.size());
+    reserveFor(cleanGroups_, part.cleanGroups.size());
     soup_.points.insert(soup_.points.end(), part.points.begin(), part.points.end());
     for (std::array<std::uint32_t, 3> t : part.triangles) {
         for (std::uint32_t& v : t)

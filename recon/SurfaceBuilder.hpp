@@ -104,7 +104,9 @@ class SurfaceBuilder {
 
     /// Hands over everything added after the first `sharedPoints` points
     /// (which must be all the builder started with, and no triangle), and
-    /// goes back to holding only those. O(what was added).
+    /// goes back to holding only those. New points no triangle uses are
+    /// left out (the rest keep their order), and the arrays have no spare
+    /// capacity. O(what was added).
     SurfacePart takePart(std::size_t sharedPoints);
     /// Appends a part built on a builder whose first points were this
     /// one's first part.sharedPoints: its new points get the next ids, its
