@@ -709,11 +709,11 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
         result.check.validSolid()) {
         start = Clock::now();
         // Smoothing is where a large ROI peaks, and it copies every point
-        // (the straight places it may go back to): the points of strips
-        // solved again and of pieces closed again go first (the head CT
-        // bone: a third of 1.7 M), and so do the nearest ids, which only
-        // the medial axes read (the interpolant reads the distances).
-        // Neither changes the surface: the points left keep their order.
+        // (the straight places it may go back to): the points that pieces
+        // closed again no longer use go first (the slabs' parts came
+        // without theirs), and so do the nearest ids, which only the
+        // medial axes read (the interpolant reads the distances). Neither
+        // changes the surface: the points left keep their order.
         removeUnusedPointsFrom(result.surface, contourVertices);
         std::vector<std::uint32_t>().swap(fields.nearestId);
         SliceInterpolant interpolant(fields);
