@@ -87,7 +87,7 @@ RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& r
             if (rois[i]->defect) throw *rois[i]->defect;
             roi = reconstructRoi(runtime, *rois[i],
                                  MeshOutput{(folder / mesh).string(), settings.folderFormat()},
-                                 input, settings, quiet, false);
+                                 input, settings, quiet, false, false);
         } catch (...) {
             roi = failedRoi(*rois[i], std::current_exception());
         }

@@ -95,9 +95,9 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             try {
                 if (rois[i]->defect) throw *rois[i]->defect;
                 const Stopwatch roiWatch;
-                RoiOutcome outcome = reconstructRoi(runtimes[worker], *rois[i],
-                                                    outputFor(args, single, stems[i], several),
-                                                    load, args.settings, global, jobs <= 1);
+                RoiOutcome outcome = reconstructRoi(
+                    runtimes[worker], *rois[i], outputFor(args, single, stems[i], several), load,
+                    args.settings, global, jobs <= 1, !args.reportPath.empty());
                 outcome.report["seconds"]["total"] = roiWatch.total();
                 return outcome;
             } catch (...) {
