@@ -37,22 +37,28 @@ void removeUnusedPoints(TriangleSoup& soup) {
     soup.points = std::move(kept);
 }
 
-void removeUnusedPointsFrom(TriangleSoup& soup, std::size_t first) {
-    constexpr std::uint32_t kUnused = 0xffffffffu;
-    std::vector<std::uint32_t> index(soup.points.size(), kUnused);
+std::vector<std::uint32_t> idsWithoutUnusedFrom(const TriangleSoup& soup, std::size_t first) {
+    std::vector<std::uint32_t> id(soup.points.size() - first, kUnusedPoint);
     for (const auto& t : soup.triangles)
-        for (std::uint32_t v : t) index[v] = 0;
-    std::size_t kept = 0;
-    for (std::size_t v = 0; v < soup.points.size(); ++v) {
-        if (v >= first && index[v] == kUnused) continue;
-        index[v] = std::uint32_t(kept);
-        soup.points[kept++] = soup.points[v];
-    }
+        for (std::uint32_t v : t)
+            if (v >= first) id[v - first] = 0;
+    std::size_t kept = first;
+    for (std::uint32_t& i : id)
+        if (i != kUnusedPoint) i = std::uint32_t(kept++);
+    return id;
+}
+
+void removeUnusedPointsFrom(TriangleSoup& soup, std::size_t first) {
+    const std::vector<std::uint32_t> id = idsWithoutUnusedFrom(soup, first);
+    std::size_t kept = first;  // the ids count up from `first` in order
+    for (std::size_t i = 0; i < id.size(); ++i)
+        if (id[i] != kUnusedPoint) soup.points[kept++] = soup.points[first + i];
     soup.points.resize(kept);
     soup.points.shrink_to_fit();
     soup.triangles.shrink_to_fit();
     for (auto& t : soup.triangles)
-        for (std::uint32_t& v : t) v = index[v];
+        for (std::uint32_t& v : t)
+            if (v >= first) v = id[v - first];
 }
 
 namespace {

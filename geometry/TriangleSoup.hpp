@@ -30,6 +30,12 @@ void removeUnusedPoints(TriangleSoup& soup);
 /// capacity. O(n).
 void removeUnusedPointsFrom(TriangleSoup& soup, std::size_t first);
 
+/// What removeUnusedPointsFrom(soup, first) renumbers: for point first + i,
+/// its id once the unused points from `first` on are dropped, or
+/// kUnusedPoint. Moves nothing. O(triangles + points from `first`).
+inline constexpr std::uint32_t kUnusedPoint = 0xffffffffu;
+std::vector<std::uint32_t> idsWithoutUnusedFrom(const TriangleSoup& soup, std::size_t first);
+
 /// Rounds every point to the nearest float, as mesh files store them, so
 /// that a check sees the surface a file will hold. O(n).
 void roundPointsToFloat(TriangleSoup& soup);

@@ -57,28 +57,23 @@ Vector exactCopy(Vector&& v) {
 }  // namespace
 
 SurfacePart SurfaceBuilder::takePart(std::size_t sharedPoints) {
-    SurfacePart part;
-    part.sharedPoints = sharedPoints;
     // Only the new points a triangle uses go along, in their order: the
     // intermediate contours of sub-slabs solved again leave points behind
     // (a third of the head CT bone's), which the builder that collects the
     // parts would otherwise hold to the end.
-    constexpr std::uint32_t kUnused = 0xffffffffu;
-    std::vector<std::uint32_t> newId(soup_.points.size() - sharedPoints, kUnused);
-    for (const auto& t : soup_.triangles)
-        for (std::uint32_t v : t)
-            if (v >= sharedPoints) newId[v - sharedPoints] = 0;
-    std::size_t kept = 0;
-    for (std::uint32_t& id : newId)
-        if (id != kUnused) id = std::uint32_t(sharedPoints + kept++);
-    part.points.reserve(kept);
-    for (std::size_t i = 0; i < newId.size(); ++i)
-        if (newId[i] != kUnused) part.points.push_back(soup_.points[sharedPoints + i]);
+    // (removeUnusedPointsFrom would also copy the shared points, once a slab.)
+    const std::vector<std::uint32_t> id = idsWithoutUnusedFrom(soup_, sharedPoints);
+    SurfacePart part;
+    part.sharedPoints = sharedPoints;
+    part.points.reserve(std::size_t(
+        std::count_if(id.begin(), id.end(), [](std::uint32_t i) { return i != kUnusedPoint; })));
+    for (std::size_t i = 0; i < id.size(); ++i)
+        if (id[i] != kUnusedPoint) part.points.push_back(soup_.points[sharedPoints + i]);
     soup_.points.resize(sharedPoints);
     part.triangles = exactCopy(std::exchange(soup_.triangles, {}));
     for (auto& t : part.triangles)
         for (std::uint32_t& v : t)
-            if (v >= sharedPoints) v = newId[v - sharedPoints];
+            if (v >= sharedPoints) v = id[v - sharedPoints];
     part.pieces = exactCopy(std::exchange(pieces_, {}));
     part.lofts = exactCopy(std::exchange(lofts_, {}));
     part.cleanGroups = exactCopy(std::exchange(cleanGroups_, {}));
