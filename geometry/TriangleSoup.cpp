@@ -88,6 +88,9 @@ struct QuietOpenMeshErrors {
 
 TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     TriMesh mesh;
+    // A closed surface has 3/2 edges per face: reserved, OpenMesh's arrays
+    // are not copied as they grow.
+    mesh.reserve(soup.points.size(), soup.triangles.size() * 3 / 2, soup.triangles.size());
     std::vector<TriMesh::VertexHandle> vertices;
     vertices.reserve(soup.points.size());
     for (const Vec3& p : soup.points) vertices.push_back(mesh.add_vertex({p.x, p.y, p.z}));
