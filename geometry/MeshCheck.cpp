@@ -197,18 +197,31 @@ std::vector<TrianglePair> collidingPairs(const TriangleSoup& soup,
                                          bool& capped, const CleanGroups* cleanGroup = nullptr) {
     const TriangleBvh bvh(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
     const std::vector<TriangleBvh::NodePair> tasks = bvh.selfPairTasks(kSearchTasks);
+    // Subtrees of one clean group (a strip searched as it was built) hold
+    // only pairs that are not tested: not entered at all, where the search
+    // would walk down to every pair of neighbours in the strip to skip it.
+    const std::vector<std::uint32_t> nodeGroup =
+        cleanGroup ? bvh.nodeGroups(*cleanGroup) : std::vector<std::uint32_t>();
+    auto withinOneGroup = [&](int a, int b) {
+        if (nodeGroup.empty()) return false;
+        const std::uint32_t g = nodeGroup[std::size_t(a)];
+        return g != 0 && g == nodeGroup[std::size_t(b)];
+    };
     std::vector<std::vector<TrianglePair>> found(tasks.size());
     struct TaskFull {};  // thrown to leave a task at the cap
     auto runTask = [&](std::size_t k) {
         try {
-            bvh.selfPairsUnder(tasks[k], [&](std::size_t i, std::size_t j) {
-                if (degenerate[i] || degenerate[j]) return;
-                if (cleanGroup && (*cleanGroup)[i] != 0 && (*cleanGroup)[i] == (*cleanGroup)[j])
-                    return;
-                if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
-                found[k].emplace_back(std::min(i, j), std::max(i, j));
-                if (found[k].size() == cap) throw TaskFull{};
-            });
+            bvh.selfPairsUnder(
+                tasks[k],
+                [&](std::size_t i, std::size_t j) {
+                    if (degenerate[i] || degenerate[j]) return;
+                    if (cleanGroup && (*cleanGroup)[i] != 0 && (*cleanGroup)[i] == (*cleanGroup)[j])
+                        return;
+                    if (!trianglesCollide(soup, soup.triangles[i], soup.triangles[j])) return;
+                    found[k].emplace_back(std::min(i, j), std::max(i, j));
+                    if (found[k].size() == cap) throw TaskFull{};
+                },
+                withinOneGroup);
         } catch (const TaskFull&) {
         }
         return found[k].size();

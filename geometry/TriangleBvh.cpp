@@ -71,6 +71,26 @@ void TriangleBvh::packPairNodes() {
     }
 }
 
+std::vector<std::uint32_t> TriangleBvh::nodeGroups(
+    const std::vector<std::uint32_t>& groupOf) const {
+    std::vector<std::uint32_t> groups(pairNodes_.size(), 0);
+    // Children come after their parent (the build numbers nodes depth
+    // first), so a backward pass sees both children before the parent.
+    for (std::size_t n = pairNodes_.size(); n-- > 0;) {
+        const PairNode& node = pairNodes_[n];
+        if (node.left >= 0) {
+            const std::uint32_t left = groups[std::size_t(node.left)];
+            groups[n] = left == groups[std::size_t(node.right)] ? left : 0;
+            continue;
+        }
+        std::uint32_t group = node.count > 0 ? groupOf[order_[node.first]] : 0;
+        for (std::uint32_t k = 1; k < node.count && group != 0; ++k)
+            if (groupOf[order_[node.first + k]] != group) group = 0;
+        groups[n] = group;
+    }
+    return groups;
+}
+
 std::vector<TriangleBvh::NodePair> TriangleBvh::selfPairTasks(std::size_t count) const {
     std::vector<NodePair> tasks;
     if (pairNodes_.empty()) return tasks;

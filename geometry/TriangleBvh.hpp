@@ -54,7 +54,22 @@ class TriangleBvh {
     std::vector<NodePair> selfPairTasks(std::size_t count) const;
     /// selfPairs' visits under one node pair, in a fixed order.
     template <class Visit>
-    void selfPairsUnder(NodePair task, Visit&& visit) const;
+    void selfPairsUnder(NodePair task, Visit&& visit) const {
+        selfPairsUnder(task, visit, [](int, int) { return false; });
+    }
+    /// The same, without descending into node pairs (a, b) for which
+    /// skip(a, b) holds: their triangle pairs are not visited, the others
+    /// in the same order. For searches that need not test whole subtrees
+    /// (nodeGroups).
+    template <class Visit, class Skip>
+    void selfPairsUnder(NodePair task, Visit&& visit, Skip&& skip) const;
+
+    /// Per node (as node pairs name them), the group that all its triangles
+    /// have in `groupOf` (per triangle), or 0 where they differ or one of
+    /// them is in group 0: a search that need not test pairs within one
+    /// group (other than 0) skips node pairs with the same group.
+    /// O(T + nodes).
+    std::vector<std::uint32_t> nodeGroups(const std::vector<std::uint32_t>& groupOf) const;
 
     struct Nearest {
         std::size_t triangle = 0;
@@ -190,8 +205,8 @@ class TriangleBvh {
     std::vector<FloatBox> pairBoxes_;  // pairBoxes_[k]: triangle order_[k]
 };
 
-template <class Visit>
-void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
+template <class Visit, class Skip>
+void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit, Skip&& skip) const {
     // Only pairs whose boxes overlap are pushed: most children pairs of a
     // surface's nodes miss each other.
     if (!boxesOverlap(task)) return;
@@ -199,6 +214,7 @@ void TriangleBvh::selfPairsUnder(NodePair task, Visit&& visit) const {
     while (!stack.empty()) {
         const auto [a, b] = stack.back();
         stack.pop_back();
+        if (skip(a, b)) continue;
         const PairNode &na = pairNodes_[std::size_t(a)], &nb = pairNodes_[std::size_t(b)];
         if (na.left < 0 && nb.left < 0) {
             for (std::uint32_t p = 0; p < na.count; ++p)

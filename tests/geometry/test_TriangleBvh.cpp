@@ -161,3 +161,49 @@ TEST(TriangleBvh, PairSearchVisitsEveryOverlappingPairOnce) {
     const TriangleBvh pairsOnly(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
     EXPECT_THROW(pairsOnly.nearest({0, 0, 0}), std::logic_error);
 }
+
+// Skipping node pairs of one group (nodeGroups) leaves out only pairs of
+// triangles within one group other than 0, and every pair across groups is
+// still visited, in the order the search without skipping visits it.
+TEST(TriangleBvh, NodeGroupsSkipOnlyPairsWithinAGroup) {
+    const TriangleSoup soup = dfrecon::testing::randomTriangles(5, 3000, 40, 1.0);
+    // Groups in runs along x (as strips of a piece are), with group 0 mixed in.
+    std::vector<std::uint32_t> group(soup.triangles.size());
+    for (std::size_t t = 0; t < group.size(); ++t) {
+        const Vec3 p = soup.points[soup.triangles[t][0]];
+        group[t] = t % 7 == 0 ? 0 : 1 + std::uint32_t(std::floor((p.x + 40) / 10));
+    }
+    const TriangleBvh bvh(soup, BvhSplit::Halving, BvhQueries::PairsOnly);
+    const std::vector<std::uint32_t> nodeGroup = bvh.nodeGroups(group);
+    auto skip = [&](int a, int b) {
+        return nodeGroup[std::size_t(a)] != 0 &&
+               nodeGroup[std::size_t(a)] == nodeGroup[std::size_t(b)];
+    };
+    auto sameGroup = [&](std::size_t i, std::size_t j) {
+        return group[i] != 0 && group[i] == group[j];
+    };
+    std::vector<std::pair<std::size_t, std::size_t>> all, skipping;
+    std::size_t skipped = 0;
+    for (const TriangleBvh::NodePair& task : bvh.selfPairTasks(64)) {
+        bvh.selfPairsUnder(task, [&](std::size_t i, std::size_t j) {
+            if (!sameGroup(i, j)) all.emplace_back(i, j);
+        });
+        bvh.selfPairsUnder(
+            task,
+            [&](std::size_t i, std::size_t j) {
+                if (!sameGroup(i, j)) skipping.emplace_back(i, j);
+            },
+            [&](int a, int b) {
+                skipped += skip(a, b);
+                return skip(a, b);
+            });
+    }
+    ASSERT_GT(all.size(), 100u);
+    EXPECT_GT(skipped, 0u);
+    EXPECT_EQ(all, skipping);
+    // A node's group is its triangles' own where they all share one.
+    std::vector<std::uint32_t> none(soup.triangles.size(), 0);
+    for (std::uint32_t g : bvh.nodeGroups(none)) EXPECT_EQ(g, 0u);
+    std::vector<std::uint32_t> one(soup.triangles.size(), 3);
+    for (std::uint32_t g : bvh.nodeGroups(one)) EXPECT_EQ(g, 3u);
+}
