@@ -28,12 +28,29 @@ namespace {
 // determinant's sign is noise.
 constexpr double kDegenerate = 1e-10;
 
-// Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc. Compared
-// squared (no square roots: this is the checker's innermost test).
+// The plane of triangle abc, for orientation tests of several points
+// against it: what orient() computes per point, computed once.
+struct OrientPlane {
+    Vec3 a, normal;  // normal: (b - a) x (c - a)
+    double scale;    // kDegenerate² |b - a|² |c - a|², as orient() multiplies it
+    OrientPlane(Vec3 a_, Vec3 b, Vec3 c) : a(a_) {
+        const Vec3 u = b - a, v = c - a;
+        normal = cross(u, v);
+        scale = kDegenerate * kDegenerate * dot(u, u) * dot(v, v);
+    }
+    // Signed volume (×6) of tetrahedron abcd: > 0 when d is above abc, 0
+    // when d is within the tolerance of the plane. Compared squared (no
+    // square roots: this is the checker's innermost test).
+    double orient(Vec3 d) const {
+        const Vec3 w = d - a;
+        const double det = dot(normal, w);
+        return det * det <= scale * dot(w, w) ? 0.0 : det;
+    }
+};
+
+// OrientPlane(a, b, c).orient(d): the same value, bit for bit.
 double orient(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    const Vec3 u = b - a, v = c - a, w = d - a;
-    const double det = dot(cross(u, v), w);
-    return det * det <= kDegenerate * kDegenerate * dot(u, u) * dot(v, v) * dot(w, w) ? 0.0 : det;
+    return OrientPlane(a, b, c).orient(d);
 }
 
 // 2D orientation in the plane that drops `axis`.
@@ -77,7 +94,8 @@ bool coplanarTrianglesMeet(const Vec3 a[3], const Vec3 b[3], int axis) {
 
 // Does the closed segment pq meet the closed triangle t (non-degenerate)?
 bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
-    const double dp = orient(t[0], t[1], t[2], p), dq = orient(t[0], t[1], t[2], q);
+    const OrientPlane plane(t[0], t[1], t[2]);
+    const double dp = plane.orient(p), dq = plane.orient(q);
     if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0)) return false;
     if (dp == 0 && dq == 0) {
         const int axis = dominantAxis(cross(t[1] - t[0], t[2] - t[0]));
@@ -145,7 +163,8 @@ bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
                b2 = b[(kb + 2) % 3];
     const Vec3 v = a[ka];
     const Vec3 nA = cross(a1 - v, a2 - v), nB = cross(b1 - v, b2 - v);
-    if (orient(v, a1, a2, b1) == 0 && orient(v, a1, a2, b2) == 0) {
+    const OrientPlane planeA(v, a1, a2);
+    if (planeA.orient(b1) == 0 && planeA.orient(b2) == 0) {
         // Coplanar wedges at v overlap iff a direction of one lies strictly
         // inside the other, or they coincide.
         const int axis = dominantAxis(normal);
@@ -259,12 +278,12 @@ std::size_t countSelfIntersections(const TriangleSoup& soup) {
 }
 
 bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
-    const double da[3] = {orient(b[0], b[1], b[2], a[0]), orient(b[0], b[1], b[2], a[1]),
-                          orient(b[0], b[1], b[2], a[2])};
+    const OrientPlane planeB(b[0], b[1], b[2]);
+    const double da[3] = {planeB.orient(a[0]), planeB.orient(a[1]), planeB.orient(a[2])};
     if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0))
         return false;
-    const double db[3] = {orient(a[0], a[1], a[2], b[0]), orient(a[0], a[1], a[2], b[1]),
-                          orient(a[0], a[1], a[2], b[2])};
+    const OrientPlane planeA(a[0], a[1], a[2]);
+    const double db[3] = {planeA.orient(b[0]), planeA.orient(b[1]), planeA.orient(b[2])};
     if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0))
         return false;
     if (da[0] == 0 && da[1] == 0 && da[2] == 0)
