@@ -439,9 +439,16 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
     // A pair of two suspects is tested once, from its smaller triangle.
     std::vector<bool> suspect(surface.triangles.size(), false);
     for (std::size_t t : suspects) suspect[t] = true;
+    // Whether a triangle has no area, worked out once: a triangle is near
+    // a dozen suspects.
+    std::vector<std::int8_t> degenerate(surface.triangles.size(), -1);
+    auto isFlat = [&](std::size_t t) {
+        if (degenerate[t] < 0) degenerate[t] = isDegenerate(surface, surface.triangles[t]);
+        return degenerate[t] != 0;
+    };
     for (std::size_t t : suspects) {
         const Triangle& tri = surface.triangles[t];
-        if (isDegenerate(surface, tri)) {
+        if (isFlat(t)) {
             broken.push_back(t);
             continue;
         }
@@ -449,7 +456,7 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
         for (std::uint32_t v : tri) box.add(surface.points[v]);
         near.overlapping(t, box, [&](std::size_t u) {
             const Triangle& other = surface.triangles[u];
-            if (u == t || (suspect[u] && u < t) || isDegenerate(surface, other)) return;
+            if (u == t || (suspect[u] && u < t) || isFlat(u)) return;
             if (trianglesCollide(surface, tri, other)) {
                 broken.push_back(t);
                 broken.push_back(u);

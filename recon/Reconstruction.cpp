@@ -355,7 +355,11 @@ class SurfaceReconstructor final : public CapSite {
                     // in hand already.
                     const bool whole = x.contours.size() == lower.contours.size() &&
                                        y.contours.size() == upper.contours.size();
-                    if (whole)
+                    // Below the stack proper, `fields` is already that
+                    // pair, in order: it is not copied again.
+                    if (whole && a == 0 && b == 1 && fields.sliceCount() == 2)
+                        recurse(x, y, depth, fields, &sum);
+                    else if (whole)
                         recurse(x, y, depth, pairOf(fields, a, fields, b), &sum);
                     else
                         recurse(x, y, depth, fieldsOf({x, y}, std::nullopt), nullptr);
