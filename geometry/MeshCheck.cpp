@@ -503,28 +503,13 @@ CollidingPairs collidingPairsAmong(const TriangleSoup& soup, const std::vector<b
                                    const std::vector<std::size_t>& subset, std::size_t cap,
                                    const CleanGroups* cleanGroup) {
     // The subset as a soup of its own (the hierarchy is built over a whole
-    // soup); vertex ids map one to one, so shared vertices stay shared.
-    // Sorted ids, not a table over all points: a surface's pieces are
-    // checked one after another.
-    std::vector<std::uint32_t> ids;
-    ids.reserve(3 * subset.size());
-    for (std::size_t t : subset)
-        ids.insert(ids.end(), soup.triangles[t].begin(), soup.triangles[t].end());
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    TriangleSoup part;
-    part.points.reserve(ids.size());
-    for (std::uint32_t v : ids) part.points.push_back(soup.points[v]);
-    part.triangles.reserve(subset.size());
+    // soup); shared vertices stay shared.
+    const TriangleSoup part = soupOfTriangles(soup, subset);
     std::vector<bool> partDegenerate;
     partDegenerate.reserve(subset.size());
     CleanGroups partGroup;
     if (cleanGroup) partGroup.reserve(subset.size());
     for (std::size_t t : subset) {
-        Triangle tri = soup.triangles[t];
-        for (std::uint32_t& v : tri)
-            v = std::uint32_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
-        part.triangles.push_back(tri);
         partDegenerate.push_back(degenerate[t]);
         if (cleanGroup) partGroup.push_back((*cleanGroup)[t]);
     }

@@ -1,5 +1,6 @@
 #include "geometry/TriangleSoup.hpp"
 
+#include <algorithm>
 #include <mutex>
 
 namespace dfrecon {
@@ -85,6 +86,44 @@ struct QuietOpenMeshErrors {
 };
 
 }  // namespace
+
+namespace {
+
+// soupOfTriangles over triangle(k) for k < count.
+template <class TriangleAt>
+TriangleSoup soupOf(const TriangleSoup& soup, std::size_t count, TriangleAt triangle) {
+    // Sorted ids, not a table over all points: a surface's parts are
+    // checked one after another, each a small share of it.
+    std::vector<std::uint32_t> ids;
+    ids.reserve(3 * count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const auto& tri = soup.triangles[triangle(k)];
+        ids.insert(ids.end(), tri.begin(), tri.end());
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    TriangleSoup part;
+    part.points.reserve(ids.size());
+    for (std::uint32_t v : ids) part.points.push_back(soup.points[v]);
+    part.triangles.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        auto tri = soup.triangles[triangle(k)];
+        for (std::uint32_t& v : tri)
+            v = std::uint32_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
+        part.triangles.push_back(tri);
+    }
+    return part;
+}
+
+}  // namespace
+
+TriangleSoup soupOfTriangles(const TriangleSoup& soup, std::size_t first, std::size_t last) {
+    return soupOf(soup, last - first, [&](std::size_t k) { return first + k; });
+}
+
+TriangleSoup soupOfTriangles(const TriangleSoup& soup, const std::vector<std::size_t>& subset) {
+    return soupOf(soup, subset.size(), [&](std::size_t k) { return subset[k]; });
+}
 
 TriMesh toTriMesh(const TriangleSoup& soup, std::size_t* refusedFaces) {
     TriMesh mesh;

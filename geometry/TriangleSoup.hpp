@@ -21,6 +21,14 @@ struct TriangleSoup {
 /// The triangles of a half-edge mesh.
 TriangleSoup toTriangleSoup(const TriMesh& mesh);
 
+/// Triangles first..last-1 of `soup`, in order, as a soup of their own: the
+/// points they use, in the order of their ids in `soup` (so shared corners
+/// stay shared). For checks of one part of a surface. O(k log k) for k
+/// triangles, nothing per point of `soup`.
+TriangleSoup soupOfTriangles(const TriangleSoup& soup, std::size_t first, std::size_t last);
+/// The same for the triangles `subset` (ids into soup.triangles), in order.
+TriangleSoup soupOfTriangles(const TriangleSoup& soup, const std::vector<std::size_t>& subset);
+
 /// Drops the points no triangle uses and renumbers the triangles. O(n).
 void removeUnusedPoints(TriangleSoup& soup);
 

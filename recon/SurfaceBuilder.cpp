@@ -2,25 +2,12 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <unordered_map>
 #include <utility>
 
 namespace dfrecon {
 
 TriangleSoup SurfaceBuilder::trianglesSince(std::size_t first) const {
-    TriangleSoup piece;
-    std::unordered_map<std::uint32_t, std::uint32_t> local;
-    for (std::size_t t = first; t < soup_.triangles.size(); ++t) {
-        std::array<std::uint32_t, 3> tri{};
-        for (std::size_t k = 0; k < 3; ++k) {
-            const std::uint32_t v = soup_.triangles[t][k];
-            auto [it, fresh] = local.emplace(v, std::uint32_t(piece.points.size()));
-            if (fresh) piece.points.push_back(soup_.points[v]);
-            tri[k] = it->second;
-        }
-        piece.triangles.push_back(tri);
-    }
-    return piece;
+    return soupOfTriangles(soup_, first, soup_.triangles.size());
 }
 
 void SurfaceBuilder::dropPieces(const std::vector<bool>& drop) {

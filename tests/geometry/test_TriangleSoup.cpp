@@ -58,3 +58,32 @@ TEST(TriangleSoup, RemoveUnusedPointsFromKeepsTheFirstAndTheOrder) {
             EXPECT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z) << "triangle " << t;
         }
 }
+
+// A part of a soup as a soup of its own: the same corners in the same
+// triangles, each point once (shared corners stay shared), the points in
+// the order of their ids in the whole.
+TEST(TriangleSoup, SoupOfTrianglesKeepsCornersAndSharing) {
+    TriangleSoup soup;
+    for (int k = 0; k < 12; ++k) soup.points.push_back({double(k), 0.5 * k, -double(k)});
+    soup.triangles = {{0, 2, 3}, {9, 4, 7}, {8, 10, 4}, {7, 2, 10}, {1, 5, 6}};
+    auto expectSameCorners = [&](const TriangleSoup& part, const std::vector<std::size_t>& from) {
+        ASSERT_EQ(part.triangles.size(), from.size());
+        for (std::size_t t = 0; t < from.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& p = part.points[part.triangles[t][std::size_t(k)]];
+                const Vec3& q = soup.points[soup.triangles[from[t]][std::size_t(k)]];
+                EXPECT_TRUE(p.x == q.x && p.y == q.y && p.z == q.z) << "triangle " << t;
+            }
+    };
+    const TriangleSoup tail = soupOfTriangles(soup, 1, 4);
+    expectSameCorners(tail, {1, 2, 3});
+    std::vector<double> xs;
+    for (const Vec3& p : tail.points) xs.push_back(p.x);
+    EXPECT_EQ(xs, (std::vector<double>{2, 4, 7, 8, 9, 10}));
+    const std::vector<std::size_t> subset{3, 0};
+    const TriangleSoup picked = soupOfTriangles(soup, subset);
+    expectSameCorners(picked, subset);
+    EXPECT_EQ(picked.points.size(), 5u);                        // 0, 2, 3, 7, 10
+    EXPECT_EQ(picked.triangles[0][1], picked.triangles[1][1]);  // point 2, shared
+    EXPECT_TRUE(soupOfTriangles(soup, 2, 2).points.empty());
+}
