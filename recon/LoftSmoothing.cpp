@@ -50,8 +50,7 @@ using Edge = std::array<std::uint32_t, 2>;
 /// that exist before the round). A look-up reads the few edges split at its
 /// lower end, in memory near its neighbours' (vertex ids are local on a
 /// surface), where a hash map of edges jumped about memory for every
-/// triangle's edges (a tenth of smoothing on the head CT bone).
-/// 4 bytes per vertex and 12 per split edge.
+/// triangle's edges. 4 bytes per vertex and 12 per split edge.
 class EdgeMiddles {
   public:
     static constexpr std::uint32_t kNone = UINT32_MAX;

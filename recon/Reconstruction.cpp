@@ -355,14 +355,10 @@ class SurfaceReconstructor final : public CapSite {
                     // in hand already.
                     const bool whole = x.contours.size() == lower.contours.size() &&
                                        y.contours.size() == upper.contours.size();
-                    // Below the stack proper, `fields` is already that
-                    // pair, in order: it is not copied again.
-                    if (whole && a == 0 && b == 1 && fields.sliceCount() == 2)
-                        recurse(x, y, depth, fields, &sum);
-                    else if (whole)
-                        recurse(x, y, depth, pairOf(fields, a, fields, b), &sum);
+                    if (whole)
+                        recurse(x, y, depth, fields, a, b, &sum);
                     else
-                        recurse(x, y, depth, fieldsOf({x, y}, std::nullopt), nullptr);
+                        recurse(x, y, depth, fieldsOf({x, y}, std::nullopt), 0, 1, nullptr);
                 }
             }
         }
@@ -406,12 +402,12 @@ class SurfaceReconstructor final : public CapSite {
 
     /// The paper's Fig. 7: the medial axis becomes a contour half-way, and
     /// both halves are solved again.
-    /// `fields` holds the fields of exactly x and y, `knownSum` (if set)
-    /// their sum.
+    /// Slices `a` and `b` of `fields` hold the fields of exactly x and y (a
+    /// whole slab passes its own, not a copy), `knownSum` (if set) their sum.
     void recurse(const LayerPart& x, const LayerPart& y, int depth, const SliceFields& fields,
-                 const SliceSum* knownSum) {
+                 std::size_t a, std::size_t b, const SliceSum* knownSum) {
         const auto start = Clock::now();
-        const SliceSum sum = knownSum ? *knownSum : sumSlices(fields, 0, 1);
+        const SliceSum sum = knownSum ? *knownSum : sumSlices(fields, a, b);
         std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, fields.grid);
         // Pixel-step isolines carry far more points than the surface needs.
         Slice middle{0.5 * (x.layer->zMm + y.layer->zMm), {}};
@@ -432,8 +428,8 @@ class SurfaceReconstructor final : public CapSite {
         const LayerPart m = part(mid, all(mid));
         // Only the intermediate contours' field is new; x's and y's are reused.
         const SliceFields middleField = fieldsOf({m}, fields.grid);
-        slab(x, m, pairOf(fields, 0, middleField, 0), 0, 1, depth + 1);
-        slab(m, y, pairOf(middleField, 0, fields, 1), 0, 1, depth + 1);
+        slab(x, m, pairOf(fields, a, middleField, 0), 0, 1, depth + 1);
+        slab(m, y, pairOf(middleField, 0, fields, b), 0, 1, depth + 1);
     }
 
     ocl::Runtime& runtime_;
@@ -534,10 +530,17 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
     return helpers;
 }
 
+/// Gives the freed heap back to the system when more than 64 MB of it is
+/// free (mallinfo2 counts every thread's arena); below that, the next steps
+/// fault in again what was given back for less than it saves (the Brodmann
+/// set's 41 small ROIs: a fifth more CPU trimmed after every ROI, 2 % more
+/// trimmed after every ROI's slabs). O(free heap) when it trims.
+void giveBackMuchFreedHeap() {
 #if defined(__GLIBC__)
-// Freed heap memory beyond this is given back to the system after an ROI.
-constexpr std::size_t kTrimFreedFromBytes = std::size_t(64) << 20;
+    constexpr std::size_t kTrimFreedFromBytes = std::size_t(64) << 20;
+    if (mallinfo2().fordblks > kTrimFreedFromBytes) malloc_trim(0);
 #endif
+}
 
 /// reconstructSurface's work; its working arrays go when it returns.
 Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
@@ -615,7 +618,7 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
     // so the stages can add up to more than the wall time.
     const auto slabsStart = Clock::now();
     double slabThreadSeconds = 0;
-    [[maybe_unused]] const std::size_t helpers =
+    const std::size_t helpers =
         buildSlabs(runtime, options, grid, layers, fields,
                    {builder.soup().points.begin(),
                     builder.soup().points.begin() + std::ptrdiff_t(contourVertices)},
@@ -626,13 +629,9 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
                        slabThreadSeconds += slab.seconds;
                    });
     const double slabsWallSeconds = secondsSince(slabsStart);
-#if defined(__GLIBC__)
     // The helpers' heap arenas keep what the slabs freed; the steps after
-    // run on this thread and cannot reuse it. Given back only when that is
-    // much (mallinfo2 counts every arena): the Brodmann set's small ROIs
-    // spent 2 % of their CPU trimming and faulting the pages in again.
-    if (helpers > 0 && mallinfo2().fordblks > kTrimFreedFromBytes) malloc_trim(0);
-#endif
+    // run on this thread and cannot reuse it.
+    if (helpers > 0) giveBackMuchFreedHeap();
     builder.setPiece(topCap);
     reconstructor.capLayer(layers.back(), true, capOffset(slices.size() - 1, true), fields,
                            slices.size() - 1);
@@ -743,16 +742,12 @@ Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
                                   const ReconstructionOptions& requested,
                                   const std::function<void(double)>& progress) {
     Reconstruction result = reconstructWithin(runtime, roi, requested, progress);
-#if defined(__GLIBC__)
     // What the reconstruction freed stays resident in the heap arena of the
     // thread that ran it (a worker of `--all`, a slab helper), where the
     // next ROI on another thread cannot reuse it: with the head CT's three
     // ROIs on two workers the process held BODY's and AIRWAY's freed
-    // arrays through BONE's peak. Given back only when that is much: the
-    // next ROI faults in again what is given back (after each of the
-    // Brodmann set's 41 small ROIs, a fifth more CPU for the set).
-    if (mallinfo2().fordblks > kTrimFreedFromBytes) malloc_trim(0);
-#endif
+    // arrays through BONE's peak.
+    giveBackMuchFreedHeap();
     return result;
 }
 
