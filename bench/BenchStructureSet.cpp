@@ -6,18 +6,26 @@
 // recon/MarchingCubesBaselines). Lines per set: dfrecon
 // (seconds, valid solids, worst deviation from the contour-implied volume)
 // and rasterise+mc (seconds, valid solids, the same deviation), each with
-// the process's peak memory during that route; the dfrecon line carries the
-// speed ratio. The sets: the shared Brodmann atlas, plastimatch's k-means
-// fixture, a head CT's BONE alone and with BODY and AIRWAY (build/bench-
-// fixtures/ct_head, scripts/ct_structures.py; make bench makes it), and 200 blobs in one ROI.
-#include <malloc.h>
+// the peak memory of the process that ran that route: every route of every
+// case runs in a process of its own (this program again, with --route), as
+// a user's command would. The dfrecon line carries the speed ratio. The
+// sets: the shared Brodmann atlas, plastimatch's k-means fixture, a head
+// CT's BONE alone and with BODY and AIRWAY (build/bench-fixtures/ct_head,
+// scripts/ct_structures.py; make bench makes it), and 200 blobs in one ROI.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
-#include <memory>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +39,8 @@
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 
+extern char** environ;
+
 namespace dfrecon::bench {
 
 namespace {
@@ -42,26 +52,39 @@ struct SetResult {
     std::size_t rois = 0, valid = 0, triangles = 0;
     double worstVolumeDeviation = 0;  // |volume / contour volume - 1|, worst ROI
     std::size_t within1Pct = 0;       // ROIs within 1 % of their contour volume
-    double peakMemoryMb = 0;          // the process's, during the route
+    double peakMemoryMb = 0;          // of the route's own process
 };
 
-// The process's peak resident memory since the last reset, in MB (Linux's
-// VmHWM; 0 where /proc does not say).
+nlohmann::ordered_json toJson(const SetResult& r) {
+    return {{"seconds", r.seconds},
+            {"rois", r.rois},
+            {"valid", r.valid},
+            {"triangles", r.triangles},
+            {"worstVolumeDeviation", r.worstVolumeDeviation},
+            {"within1Pct", r.within1Pct},
+            {"peakMemoryMb", r.peakMemoryMb}};
+}
+
+SetResult fromJson(const nlohmann::json& j) {
+    SetResult r;
+    r.seconds = j.at("seconds").get<double>();
+    r.rois = j.at("rois").get<std::size_t>();
+    r.valid = j.at("valid").get<std::size_t>();
+    r.triangles = j.at("triangles").get<std::size_t>();
+    r.worstVolumeDeviation = j.at("worstVolumeDeviation").get<double>();
+    r.within1Pct = j.at("within1Pct").get<std::size_t>();
+    r.peakMemoryMb = j.at("peakMemoryMb").get<double>();
+    return r;
+}
+
+// The process's peak resident memory, in MB (Linux's VmHWM; 0 where /proc
+// does not say).
 double peakMemoryMb() {
     std::ifstream status("/proc/self/status");
     std::string line;
     while (std::getline(status, line))
         if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
     return 0;
-}
-
-// Starts a new peak at the current resident size (Linux >= 4.0: writing 5
-// to clear_refs resets VmHWM), so each route's peak is its own.
-// What the heap freed goes back to the system first (glibc keeps it
-// otherwise, and the route before would count in this one's peak).
-void resetPeakMemory() {
-    malloc_trim(0);
-    std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 void addRoi(SetResult& set, const MeshCheckReport& check, double contourVolume) {
@@ -75,103 +98,205 @@ void addRoi(SetResult& set, const MeshCheckReport& check, double contourVolume) 
     }
 }
 
-// Both routes run the set's ROIs `jobs` at a time, as `dfrecon reconstruct
-// --all` does (each worker with its own OpenCL queue), and are timed over
-// the whole set.
-void benchSet(const std::string& device, const std::string& name, const ContourSet& set) {
+// A case: how to read its structure set (not timed), or why it is missing.
+struct Case {
+    std::string name;
+    std::string missing;  // non-empty: skipped, with this reason
+    std::function<ContourSet()> load;
+};
+
+// An RTSTRUCT file's ROIs named in `rois` (empty: all of them).
+Case fileCase(std::string name, const std::filesystem::path& path, std::vector<std::string> rois) {
+    Case c{std::move(name), {}, {}};
+    if (!std::filesystem::exists(path)) {
+        c.missing = path.string() + " not found (make bench makes it)";
+        return c;
+    }
+    c.load = [path, rois] {
+        ContourSet set = readRtStruct(path.string()).contours;
+        if (!rois.empty())
+            set.rois.erase(std::remove_if(set.rois.begin(), set.rois.end(),
+                                          [&](const Roi& roi) {
+                                              return std::find(rois.begin(), rois.end(),
+                                                               roi.name) == rois.end();
+                                          }),
+                           set.rois.end());
+        return set;
+    };
+    return c;
+}
+
+std::vector<Case> cases() {
+    const std::filesystem::path fixtures(DFRECON_FIXTURES);
+    const std::filesystem::path head =
+        std::filesystem::path(DFRECON_BENCH_FIXTURES) / "ct_head" / "rtstruct.dcm";
+    std::vector<Case> all;
+    all.push_back(fileCase("brodmann 41 ROIs, 2 mm",
+                           std::filesystem::path(DFRECON_SHARED_DATA) / "brodmann-rtstruct.dcm",
+                           {}));
+    all.push_back(fileCase("kmeans_axial 7 ROIs", fixtures / "kmeans_axial" / "rtstruct.dcm", {}));
+    all.push_back(fileCase("head CT bone, 1.5 mm", head, {"BONE"}));
+    all.push_back(fileCase("head CT body, airway, bone, 1.5 mm", head, {}));
+    // Many contours per plane in one ROI.
+    all.push_back({"200 blobs, 240x240x40 voxels of 0.5x0.5x2 mm", {}, [] {
+                       return contoursFromLabels(manyBlobLabelVolume(7, 200, 240, 40));
+                   }});
+    return all;
+}
+
+std::vector<const Roi*> roisWithSlices(const ContourSet& set) {
     std::vector<const Roi*> rois;
     for (const Roi& roi : set.rois)
         if (!roi.slices.empty()) rois.push_back(&roi);
+    return rois;
+}
+
+// dfrecon's route: every ROI reconstructed and checked, as many at a time
+// as `dfrecon reconstruct --all` runs them (each worker with its own OpenCL
+// queue), timed over the whole set.
+SetResult reconstructionRoute(const std::string& device, const ContourSet& set) {
+    const std::vector<const Roi*> rois = roisWithSlices(set);
     const std::size_t jobs = app::defaultJobs(rois.size());
     app::WorkerRuntimes runtimes(device, jobs);  // as reconstruct --all opens them
-    SetResult ours, baseline;
-    resetPeakMemory();
-    ours.seconds = bestSeconds(1, [&] {
+    SetResult r;
+    r.seconds = bestSeconds(1, [&] {
         app::forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t worker) {
                 return reconstructSurface(runtimes[worker], *rois[i]).check;
             },
             [&](std::size_t i, const MeshCheckReport& check) {
-                addRoi(ours, check, contourVolumeMm3(*rois[i]));
+                addRoi(r, check, contourVolumeMm3(*rois[i]));
             });
     });
-    ours.peakMemoryMb = peakMemoryMb();
-    // The baseline route ends with the marched surface; checking it is ours.
+    r.peakMemoryMb = peakMemoryMb();
+    return r;
+}
+
+// The route users take today, with the same number of workers.
+SetResult rasterRoute(const ContourSet& set) {
+    const std::vector<const Roi*> rois = roisWithSlices(set);
     std::vector<TriangleSoup> marched(rois.size());
-    resetPeakMemory();
-    baseline.seconds = bestSeconds(1, [&] {
+    SetResult r;
+    r.seconds = bestSeconds(1, [&] {
         app::forEachInOrder(
-            rois.size(), jobs,
+            rois.size(), app::defaultJobs(rois.size()),
             [&](std::size_t i, std::size_t) { return rasterBaseline(*rois[i], kRasterPixelMm); },
             [&](std::size_t i, TriangleSoup soup) { marched[i] = std::move(soup); });
     });
-    baseline.peakMemoryMb = peakMemoryMb();
+    // Taken before the checks: the route ends with the marched surfaces, and
+    // checking them is ours.
+    r.peakMemoryMb = peakMemoryMb();
     for (std::size_t i = 0; i < rois.size(); ++i)
-        addRoi(baseline, checkMesh(marched[i]), contourVolumeMm3(*rois[i]));
-    auto line = [&](const char* system, const SetResult& r) {
-        nlohmann::ordered_json j{{"bench", "structure-set"},
-                                 {"case", name},
-                                 {"system", system},
-                                 {"size", r.rois},
-                                 {"seconds", r.seconds},
-                                 {"validSolids", r.valid},
-                                 {"triangles", r.triangles},
-                                 {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
-                                 {"within1Pct", r.within1Pct},
-                                 {"jobs", jobs},
-                                 {"peakMemoryMb", r.peakMemoryMb}};
-        if (&r == &ours) j["speedupOverBaseline"] = baseline.seconds / ours.seconds;
-        std::cout << j.dump() << std::endl;
-    };
-    line("dfrecon", ours);
-    line("rasterise+mc", baseline);
+        addRoi(r, checkMesh(marched[i]), contourVolumeMm3(*rois[i]));
+    return r;
+}
+
+// Runs `dfrecon-bench structure-set --route ROUTE` (this program, started
+// afresh) and returns the result it prints. A route's process of its own
+// makes its peak memory the route's: in one process a case's peak would
+// also hold what earlier cases left on glibc's heap, and a fork would
+// inherit OpenCL runtimes whose threads it does not have. Throws
+// std::runtime_error when that process fails.
+SetResult inOwnProcess(const std::string& device, const std::string& route) {
+    int ends[2];
+    if (::pipe2(ends, O_CLOEXEC) != 0)
+        throw std::runtime_error(std::string("structure-set: pipe: ") + std::strerror(errno));
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, ends[1], STDOUT_FILENO);
+    std::vector<std::string> arguments{"dfrecon-bench", "structure-set", "--route", route};
+    if (!device.empty()) arguments.insert(arguments.end(), {"--device", device});
+    std::vector<char*> argv;
+    for (std::string& a : arguments) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    const int error =
+        ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(ends[1]);
+    if (error != 0) {
+        ::close(ends[0]);
+        throw std::runtime_error("structure-set: cannot start route " + route + ": " +
+                                 std::strerror(error));
+    }
+    std::string output;
+    char buffer[4096];
+    for (;;) {
+        const ssize_t n = ::read(ends[0], buffer, sizeof buffer);
+        if (n > 0)
+            output.append(buffer, std::size_t(n));
+        else if (n == 0 || errno != EINTR)
+            break;
+    }
+    ::close(ends[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw std::runtime_error("structure-set: route " + route + " failed" +
+                                 (WIFSIGNALED(status)
+                                      ? " on signal " + std::to_string(WTERMSIG(status))
+                                      : " with exit code " + std::to_string(WEXITSTATUS(status))));
+    try {
+        return fromJson(nlohmann::json::parse(output));
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error("structure-set: route " + route + " printed no result (" +
+                                 e.what() + ")");
+    }
+}
+
+void printLine(const std::string& name, const char* system, const SetResult& r,
+               const SetResult* baseline) {
+    nlohmann::ordered_json j{{"bench", "structure-set"},
+                             {"case", name},
+                             {"system", system},
+                             {"size", r.rois},
+                             {"seconds", r.seconds},
+                             {"validSolids", r.valid},
+                             {"triangles", r.triangles},
+                             {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
+                             {"within1Pct", r.within1Pct},
+                             {"jobs", app::defaultJobs(r.rois)},
+                             {"peakMemoryMb", r.peakMemoryMb}};
+    if (baseline) j["speedupOverBaseline"] = baseline->seconds / r.seconds;
+    std::cout << j.dump() << std::endl;
 }
 
 }  // namespace
 
-int benchStructureSet(const std::string& device) {
-    const std::filesystem::path fixtures(DFRECON_FIXTURES);
-    const std::filesystem::path brodmann =
-        std::filesystem::path(DFRECON_SHARED_DATA) / "brodmann-rtstruct.dcm";
-    const std::filesystem::path kmeans = fixtures / "kmeans_axial" / "rtstruct.dcm";
-    const std::filesystem::path head =
-        std::filesystem::path(DFRECON_BENCH_FIXTURES) / "ct_head" / "rtstruct.dcm";
-    // A case: a file and the ROIs of it to reconstruct (empty: all).
-    struct Case {
-        const char* name;
-        std::filesystem::path path;
-        std::vector<std::string> rois;
-    };
-    const Case cases[] = {
-        {"brodmann 41 ROIs, 2 mm", brodmann, {}},
-        {"kmeans_axial 7 ROIs", kmeans, {}},
-        {"head CT bone, 1.5 mm", head, {"BONE"}},
-        {"head CT body, airway, bone, 1.5 mm", head, {}},
-    };
-    for (const Case& c : cases) {
-        if (!std::filesystem::exists(c.path)) {
+int benchStructureSet(const std::string& device, const std::string& route) {
+    const std::vector<Case> all = cases();
+    if (!route.empty()) {
+        // One route of one case, in this process: CASE:dfrecon or CASE:raster.
+        const std::size_t colon = route.find(':');
+        const std::size_t index = std::stoul(route.substr(0, colon));
+        const std::string system = colon == std::string::npos ? "" : route.substr(colon + 1);
+        if (index >= all.size() || !all[index].load || (system != "dfrecon" && system != "raster"))
+            throw std::invalid_argument("structure-set --route " + route +
+                                        ": expected CASE:dfrecon or CASE:raster with CASE "
+                                        "one of the cases that are there, from 0");
+        const ContourSet set = all[index].load();
+        const SetResult r =
+            system == "dfrecon" ? reconstructionRoute(device, set) : rasterRoute(set);
+        std::cout << toJson(r).dump() << std::endl;
+        return 0;
+    }
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        const Case& c = all[k];
+        if (!c.missing.empty()) {
             std::cout << nlohmann::ordered_json{{"bench", "structure-set"},
                                                 {"case", c.name},
-                                                {"skipped", c.path.string() +
-                                                                " not found (make bench makes it)"}}
+                                                {"skipped", c.missing}}
                              .dump()
                       << std::endl;
             continue;
         }
-        ContourSet set = readRtStruct(c.path.string()).contours;
-        if (!c.rois.empty())
-            set.rois.erase(std::remove_if(set.rois.begin(), set.rois.end(),
-                                          [&](const Roi& roi) {
-                                              return std::find(c.rois.begin(), c.rois.end(),
-                                                               roi.name) == c.rois.end();
-                                          }),
-                           set.rois.end());
-        benchSet(device, c.name, set);
+        const SetResult ours = inOwnProcess(device, std::to_string(k) + ":dfrecon");
+        const SetResult baseline = inOwnProcess(device, std::to_string(k) + ":raster");
+        printLine(c.name, "dfrecon", ours, &baseline);
+        printLine(c.name, "rasterise+mc", baseline, nullptr);
     }
-    // Many contours per plane in one ROI.
-    benchSet(device, "200 blobs, 240x240x40 voxels of 0.5x0.5x2 mm",
-             contoursFromLabels(manyBlobLabelVolume(7, 200, 240, 40)));
     return 0;
 }
 

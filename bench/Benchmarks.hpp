@@ -15,7 +15,10 @@ int benchSimplify(const std::string& device);
 int benchRtStruct();
 int benchSdm(const std::string& device);
 int benchSegment(const std::string& device);
-int benchStructureSet(const std::string& device);
+/// `route` empty: every case, each route in a process of its own; else
+/// CASE:dfrecon or CASE:raster, one route of one case in this process (how
+/// the suite starts those processes), printed as one JSON object.
+int benchStructureSet(const std::string& device, const std::string& route = "");
 int benchCompare(const std::string& device);
 int benchMargin(const std::string& device);
 /// `setsDir` empty: build/truth-sets, made by scripts/truth_sets.sh where

@@ -1,5 +1,6 @@
 // dfrecon-bench SUITE [--device SPEC]: runs one benchmark suite (or `all`)
 // and prints its JSON lines.
+#include <exception>
 #include <iostream>
 #include <string>
 
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
         "  segment    geodesic distances (fast marching, OpenCL fast iterative method) on spheres "
         "and libcgal-demo meshes; geodesic Lloyd segmentation\n"
         "  structure-set  whole structure sets (Brodmann atlas, kmeans, many blobs) through "
-        "reconstruct --all vs rasterise + marching cubes\n"
+        "reconstruct --all vs rasterise + marching cubes, each route in a process of its own "
+        "(its peak memory; --route CASE:dfrecon|CASE:raster runs one, as the suite does)\n"
         "  margin     exact margins of spheres and cubes vs the exact offset, voxel EDT margins "
         "(1, 0.5 mm) and plastimatch's distance map\n"
         "  compare    Dice and Hausdorff of offset balls: surfaces (exact overlap) vs voxels, "
@@ -39,29 +41,35 @@ int main(int argc, char** argv) {
         return 1;
     }
     const std::string suite = argv[1];
-    std::string device, truthSets, truthSet;
+    std::string device, truthSets, truthSet, route;
     for (int a = 2; a + 1 < argc; ++a) {
         const std::string flag = argv[a];
         if (flag == "--device") device = argv[a + 1];
         if (flag == "--truth-sets") truthSets = argv[a + 1];
         if (flag == "--truth-set") truthSet = argv[a + 1];
+        if (flag == "--route") route = argv[a + 1];
     }
-    if (suite == "fields") return benchFields(device);
-    if (suite == "slices-io") return benchSlicesIO();
-    if (suite == "recon") return benchRecon(device);
-    if (suite == "truth") return benchTruth(device, truthSets, truthSet);
-    if (suite == "simplify") return benchSimplify(device);
-    if (suite == "rtstruct") return benchRtStruct();
-    if (suite == "sdm") return benchSdm(device);
-    if (suite == "segment") return benchSegment(device);
-    if (suite == "structure-set") return benchStructureSet(device);
-    if (suite == "compare") return benchCompare(device);
-    if (suite == "margin") return benchMargin(device);
-    if (suite == "all")
-        return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
-               benchTruth(device, truthSets, truthSet) | benchSimplify(device) | benchSdm(device) |
-               benchSegment(device) | benchStructureSet(device) | benchCompare(device) |
-               benchMargin(device);
+    try {
+        if (suite == "fields") return benchFields(device);
+        if (suite == "slices-io") return benchSlicesIO();
+        if (suite == "recon") return benchRecon(device);
+        if (suite == "truth") return benchTruth(device, truthSets, truthSet);
+        if (suite == "simplify") return benchSimplify(device);
+        if (suite == "rtstruct") return benchRtStruct();
+        if (suite == "sdm") return benchSdm(device);
+        if (suite == "segment") return benchSegment(device);
+        if (suite == "structure-set") return benchStructureSet(device, route);
+        if (suite == "compare") return benchCompare(device);
+        if (suite == "margin") return benchMargin(device);
+        if (suite == "all")
+            return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
+                   benchTruth(device, truthSets, truthSet) | benchSimplify(device) |
+                   benchSdm(device) | benchSegment(device) | benchStructureSet(device) |
+                   benchCompare(device) | benchMargin(device);
+    } catch (const std::exception& e) {
+        std::cerr << "dfrecon-bench " << suite << ": " << e.what() << "\n";
+        return 1;
+    }
     std::cerr << usage;
     return 1;
 }
