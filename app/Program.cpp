@@ -7,11 +7,13 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
+#include "app/HeapArenas.hpp"
 #include "app/StandardStreams.hpp"
 
 namespace dfrecon::app {
 
 int runProgram(int argc, char** argv) {
+    oneHeapArenaPerCore();
     CLI::App root{
         "dfrecon: watertight, error-bounded triangle surfaces from planar contour slices.\n"
         "Lengths are in millimetres. Exit codes: 0 ok, 1 usage, 2 bad input, 3 device/runtime, 4 "

@@ -4,11 +4,14 @@
 #include <iostream>
 #include <string>
 
+#include "app/HeapArenas.hpp"
 #include "bench/Benchmarks.hpp"
 
 using namespace dfrecon::bench;
 
 int main(int argc, char** argv) {
+    // As the dfrecon program does: the structure-set routes measure its memory.
+    dfrecon::app::oneHeapArenaPerCore();
     const std::string usage =
         "usage: dfrecon-bench "
         "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|margin|"

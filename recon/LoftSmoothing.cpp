@@ -380,30 +380,36 @@ class StraightPlaces {
     std::vector<Vec3> middles_;
 };
 
-/// Grids over every triangle's reach (its box where it is now and wherever
-/// unbending may put it, its straight place), one per group of triangles
-/// that can meet only each other (pieces the stack keeps apart:
+/// A grid over every triangle's reach (its box where it is now and wherever
+/// unbending may put it, its straight place) in one group of triangles that
+/// can meet only each other (pieces the stack keeps apart:
 /// stackSeparatesPieces stays true, since vertices only ever move in xy at
-/// their own z, off the planes). A group's grid is built when a suspect of
-/// that group first asks, so a repair costs the pieces it touches, not the
-/// surface.
+/// their own z, off the planes). The grid of the group asked about is built
+/// when asked and kept until another group is: a repair costs the pieces it
+/// touches, not the surface, and holds one piece's grid at a time (all of a
+/// large surface's at once were 56 MB at the head CT's peak), so callers
+/// ask group by group.
 class ReachGrids {
   public:
     ReachGrids(const TriangleSoup& surface, const StraightPlaces& straight,
                const TrianglesByGroup& groups)
-        : surface_(surface),
-          straight_(straight),
-          groups_(groups),
-          grids_(groups.first.size() - 1) {}
+        : surface_(surface), straight_(straight), groups_(groups) {}
+
+    std::uint32_t group(std::size_t t) const { return groups_.group(t); }
 
     /// Calls visit(u) for every triangle u of t's group whose reach
-    /// overlaps `box`.
+    /// overlaps `box`. O(the group's triangles) when the group is not the
+    /// one asked about last.
     template <class Visit>
     void overlapping(std::size_t t, const Box3& box, Visit&& visit) {
         const std::uint32_t g = groups_.group(t);
-        if (!grids_[g]) grids_[g] = std::make_unique<BoxGrid>(gridOf(g));
+        if (!grid_ || g != gridGroup_) {
+            grid_.reset();  // before the next one is made
+            grid_ = std::make_unique<BoxGrid>(gridOf(g));
+            gridGroup_ = g;
+        }
         const std::size_t first = groups_.first[g];
-        grids_[g]->overlapping(box, [&](std::uint32_t k) { visit(groups_.order[first + k]); });
+        grid_->overlapping(box, [&](std::uint32_t k) { visit(groups_.order[first + k]); });
     }
 
   private:
@@ -426,7 +432,8 @@ class ReachGrids {
     const TriangleSoup& surface_;
     const StraightPlaces& straight_;
     const TrianglesByGroup& groups_;
-    std::vector<std::unique_ptr<BoxGrid>> grids_;
+    std::unique_ptr<BoxGrid> grid_;  // of group gridGroup_
+    std::uint32_t gridGroup_ = 0;
 };
 
 /// Those of `suspects` that have no area or meet another triangle of
@@ -445,7 +452,12 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
         if (degenerate[t] < 0) degenerate[t] = isDegenerate(surface, surface.triangles[t]);
         return degenerate[t] != 0;
     };
-    for (std::size_t t : suspects) {
+    // Group by group, so that each group's grid is built once.
+    std::vector<std::size_t> byGroup = suspects;
+    std::stable_sort(byGroup.begin(), byGroup.end(), [&](std::size_t a, std::size_t b) {
+        return near.group(a) < near.group(b);
+    });
+    for (std::size_t t : byGroup) {
         const Triangle& tri = surface.triangles[t];
         if (isFlat(t)) {
             broken.push_back(t);
