@@ -93,12 +93,13 @@ bool coplanarTrianglesMeet(const Vec3 a[3], const Vec3 b[3], int axis) {
 }
 
 // Does the closed segment pq meet the closed triangle t (non-degenerate)?
-bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
-    const OrientPlane plane(t[0], t[1], t[2]);
-    const double dp = plane.orient(p), dq = plane.orient(q);
+// `plane` is t's (OrientPlane(t[0], t[1], t[2])), dp and dq its orient() of
+// p and q: trianglesIntersect has them already for all six edges it tests.
+bool segmentMeetsTriangle(Vec3 p, Vec3 q, double dp, double dq, const OrientPlane& plane,
+                          const Vec3 t[3]) {
     if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0)) return false;
     if (dp == 0 && dq == 0) {
-        const int axis = dominantAxis(cross(t[1] - t[0], t[2] - t[0]));
+        const int axis = dominantAxis(plane.normal);
         return insideTriangle2(p, t, axis) || insideTriangle2(q, t, axis) ||
                segmentsMeet2(p, q, t[0], t[1], axis) || segmentsMeet2(p, q, t[1], t[2], axis) ||
                segmentsMeet2(p, q, t[2], t[0], axis);
@@ -112,7 +113,7 @@ bool segmentMeetsTriangle(Vec3 p, Vec3 q, const Vec3 t[3]) {
     // the orientations are noise (a wall's triangle beside another of the
     // same wall). Where the segment meets the plane decides.
     const Vec3 x = p + (dp / (dp - dq)) * (q - p);
-    return insideTriangle2(x, t, dominantAxis(cross(t[1] - t[0], t[2] - t[0])));
+    return insideTriangle2(x, t, dominantAxis(plane.normal));
 }
 
 }  // namespace
@@ -287,11 +288,11 @@ bool trianglesIntersect(const Vec3 a[3], const Vec3 b[3]) {
     if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0))
         return false;
     if (da[0] == 0 && da[1] == 0 && da[2] == 0)
-        return coplanarTrianglesMeet(a, b, dominantAxis(cross(b[1] - b[0], b[2] - b[0])));
+        return coplanarTrianglesMeet(a, b, dominantAxis(planeB.normal));
     // The intersection, if any, is a segment whose ends lie on edges.
     for (int k = 0; k < 3; ++k)
-        if (segmentMeetsTriangle(a[k], a[(k + 1) % 3], b) ||
-            segmentMeetsTriangle(b[k], b[(k + 1) % 3], a))
+        if (segmentMeetsTriangle(a[k], a[(k + 1) % 3], da[k], da[(k + 1) % 3], planeB, b) ||
+            segmentMeetsTriangle(b[k], b[(k + 1) % 3], db[k], db[(k + 1) % 3], planeA, a))
             return true;
     return false;
 }
