@@ -454,9 +454,8 @@ std::vector<std::size_t> brokenAmong(const TriangleSoup& surface, ReachGrids& ne
     };
     // Group by group, so that each group's grid is built once.
     std::vector<std::size_t> byGroup = suspects;
-    std::stable_sort(byGroup.begin(), byGroup.end(), [&](std::size_t a, std::size_t b) {
-        return near.group(a) < near.group(b);
-    });
+    std::stable_sort(byGroup.begin(), byGroup.end(),
+                     [&](std::size_t a, std::size_t b) { return near.group(a) < near.group(b); });
     for (std::size_t t : byGroup) {
         const Triangle& tri = surface.triangles[t];
         if (isFlat(t)) {
