@@ -17,11 +17,9 @@ struct Box3 {
         add(b.lo);
         add(b.hi);
     }
-    /// All six comparisons, without branches: in the pair searches whether
-    /// neighbouring boxes overlap is hard to predict.
     bool overlaps(const Box3& b) const {
-        return (lo.x <= b.hi.x) & (b.lo.x <= hi.x) & (lo.y <= b.hi.y) & (b.lo.y <= hi.y) &
-               (lo.z <= b.hi.z) & (b.lo.z <= hi.z);
+        return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
+               lo.z <= b.hi.z && b.lo.z <= hi.z;
     }
     /// Squared distance from p to the box (0 inside).
     double distance2(Vec3 p) const {

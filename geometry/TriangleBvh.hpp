@@ -190,12 +190,9 @@ class TriangleBvh {
     // double box per triangle.
     struct FloatBox {
         float lo[3], hi[3];
-        // All six comparisons, without branches: whether neighbouring
-        // triangles' boxes overlap is hard to predict, and the test is most
-        // of the pair search's own time.
         bool overlaps(const FloatBox& o) const {
-            return (lo[0] <= o.hi[0]) & (o.lo[0] <= hi[0]) & (lo[1] <= o.hi[1]) &
-                   (o.lo[1] <= hi[1]) & (lo[2] <= o.hi[2]) & (o.lo[2] <= hi[2]);
+            return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] &&
+                   lo[2] <= o.hi[2] && o.lo[2] <= hi[2];
         }
         static FloatBox around(const Box3& box);
     };
