@@ -239,7 +239,12 @@ SetResult inOwnProcess(const std::string& device, const std::string& route) {
                                       ? " on signal " + std::to_string(WTERMSIG(status))
                                       : " with exit code " + std::to_string(WEXITSTATUS(status))));
     try {
-        return fromJson(nlohmann::json::parse(output));
+        // Its last line: nothing else a route runs writes to standard
+        // output, but a library's stray line must not hide the result.
+        const std::size_t last = output.find_last_of('{');
+        const std::size_t lineStart =
+            last == std::string::npos ? 0 : output.find_last_of('\n', last) + 1;
+        return fromJson(nlohmann::json::parse(output.substr(lineStart)));
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error("structure-set: route " + route + " printed no result (" +
                                  e.what() + ")");
@@ -270,8 +275,12 @@ int benchStructureSet(const std::string& device, const std::string& route) {
     if (!route.empty()) {
         // One route of one case, in this process: CASE:dfrecon or CASE:raster.
         const std::size_t colon = route.find(':');
-        const std::size_t index = std::stoul(route.substr(0, colon));
+        const std::string number = route.substr(0, colon);
         const std::string system = colon == std::string::npos ? "" : route.substr(colon + 1);
+        const bool digits =
+            !number.empty() && number.size() < 4 &&
+            std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; });
+        const std::size_t index = digits ? std::stoul(number) : all.size();
         if (index >= all.size() || !all[index].load || (system != "dfrecon" && system != "raster"))
             throw std::invalid_argument("structure-set --route " + route +
                                         ": expected CASE:dfrecon or CASE:raster with CASE "
