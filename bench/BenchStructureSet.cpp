@@ -12,25 +12,22 @@
 // sets: the shared Brodmann atlas, plastimatch's k-means fixture, a head
 // CT's BONE alone and with BODY and AIRWAY (build/bench-fixtures/ct_head,
 // scripts/ct_structures.py; make bench makes it), and 200 blobs in one ROI.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <iterator>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "app/OrderedParallel.hpp"
 #include "app/WorkerRuntimes.hpp"
+#include "baselines/ExternalCommand.hpp"
 #include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -38,8 +35,6 @@
 #include "io/RtStruct.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
-
-extern char** environ;
 
 namespace dfrecon::bench {
 
@@ -193,54 +188,31 @@ SetResult rasterRoute(const ContourSet& set) {
 }
 
 // Runs `dfrecon-bench structure-set --route ROUTE` (this program, started
-// afresh) and returns the result it prints. A route's process of its own
-// makes its peak memory the route's: in one process a case's peak would
-// also hold what earlier cases left on glibc's heap, and a fork would
-// inherit OpenCL runtimes whose threads it does not have. Throws
-// std::runtime_error when that process fails.
+// afresh, through runCommand) and returns the result it prints. A route's
+// process of its own makes its peak memory the route's: in one process a
+// case's peak would also hold what earlier cases left on glibc's heap, and
+// a fork would inherit OpenCL runtimes whose threads it does not have.
+// Throws std::runtime_error when that process fails.
 SetResult inOwnProcess(const std::string& device, const std::string& route) {
-    int ends[2];
-    if (::pipe2(ends, O_CLOEXEC) != 0)
-        throw std::runtime_error(std::string("structure-set: pipe: ") + std::strerror(errno));
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, ends[1], STDOUT_FILENO);
-    std::vector<std::string> arguments{"dfrecon-bench", "structure-set", "--route", route};
+    std::string name = route;
+    std::replace(name.begin(), name.end(), ':', '-');
+    const std::filesystem::path log =
+        std::filesystem::temp_directory_path() /
+        ("dfrecon-bench-" + std::to_string(::getpid()) + "-route-" + name + ".log");
+    std::vector<std::string> arguments{"/proc/self/exe", "structure-set", "--route", route};
     if (!device.empty()) arguments.insert(arguments.end(), {"--device", device});
-    std::vector<char*> argv;
-    for (std::string& a : arguments) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    const int error =
-        ::posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    ::close(ends[1]);
-    if (error != 0) {
-        ::close(ends[0]);
-        throw std::runtime_error("structure-set: cannot start route " + route + ": " +
-                                 std::strerror(error));
-    }
     std::string output;
-    char buffer[4096];
-    for (;;) {
-        const ssize_t n = ::read(ends[0], buffer, sizeof buffer);
-        if (n > 0)
-            output.append(buffer, std::size_t(n));
-        else if (n == 0 || errno != EINTR)
-            break;
-    }
-    ::close(ends[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw std::runtime_error("structure-set: route " + route + " failed" +
-                                 (WIFSIGNALED(status)
-                                      ? " on signal " + std::to_string(WTERMSIG(status))
-                                      : " with exit code " + std::to_string(WEXITSTATUS(status))));
     try {
-        // Its last line: nothing else a route runs writes to standard
-        // output, but a library's stray line must not hide the result.
+        runCommand(arguments, log.string());
+        std::ifstream file(log);
+        output.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    } catch (...) {
+        std::filesystem::remove(log);
+        throw;
+    }
+    std::filesystem::remove(log);
+    try {
+        // Its last line: the log holds the route's standard error too.
         const std::size_t last = output.find_last_of('{');
         const std::size_t lineStart =
             last == std::string::npos ? 0 : output.find_last_of('\n', last) + 1;

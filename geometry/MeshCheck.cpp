@@ -163,8 +163,8 @@ bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
     const Vec3 a1 = a[(ka + 1) % 3], a2 = a[(ka + 2) % 3], b1 = b[(kb + 1) % 3],
                b2 = b[(kb + 2) % 3];
     const Vec3 v = a[ka];
-    const Vec3 nA = cross(a1 - v, a2 - v), nB = cross(b1 - v, b2 - v);
     const OrientPlane planeA(v, a1, a2);
+    const Vec3 nA = planeA.normal, nB = cross(b1 - v, b2 - v);
     if (planeA.orient(b1) == 0 && planeA.orient(b2) == 0) {
         // Coplanar wedges at v overlap iff a direction of one lies strictly
         // inside the other, or they coincide.
