@@ -149,7 +149,6 @@ const RtStructRoiInfo* ContoursRead::dicomInfo(const Roi& roi) const {
 }
 
 ContoursRead readContours(const std::string& path, const ReadContoursOptions& options) {
-    const ContourRepairOptions repair{options.repairSelfCrossings};
     ContoursRead read;
     read.format = contourFormatOf(path);
     switch (read.format) {
@@ -161,14 +160,14 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
             break;
         }
         case ContourFormat::RtStruct: {
-            RtStructLoad load = readRtStruct(path, {}, repair);
+            RtStructLoad load = readRtStruct(path);
             read.contours = std::move(load.contours);
             read.warnings = std::move(load.warnings);
             read.dicomRois = std::move(load.rois);
             break;
         }
         case ContourFormat::Slices:
-            read = fromSlicesLoad(readSlicesFile(path, {}, options.progress, repair));
+            read = fromSlicesLoad(readSlicesFile(path, {}, options.progress));
             break;
     }
     return read;
@@ -178,8 +177,7 @@ ContoursRead readSlicesStream(std::istream& in, const std::string& name,
                               const ReadContoursOptions& options) {
     // The parser's limits bound what a pipe can make it hold, as they bound a file.
     const ReadingInput reading(name);
-    return fromSlicesLoad(
-        parseSlices(in, name, {}, {}, ContourRepairOptions{options.repairSelfCrossings}));
+    return fromSlicesLoad(parseSlices(in, name));
 }
 
 ContoursRead structureSetFromPoints(const std::vector<RoiPoints>& rois, const std::string& source,

@@ -51,12 +51,11 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
                                   {"uniform", spacing.uniform}}},
                                 {"planes", roi.frame.orientationName()},
                                 {"planeNormal", xyzJson(roi.frame.n)},
-                                {"perSlice", slices}};
+                                {"perSlice", slices},
+                                {"contourReading", contourReadingJson(roi.reading)}};
     if (dicom) {
         j["holeConvention"] = nameOf(kHoleConventionNames, dicom->holes);
-        j["keyholeCuts"] = dicom->keyholeCuts;
         j["contoursSkipped"] = dicom->contoursSkipped;
-        j["contoursRepaired"] = dicom->contoursRepaired;
         j["slabThicknessMm"] = valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm);
     }
     j["colour"] =

@@ -10,7 +10,6 @@ namespace dfrecon::app {
 struct GlobalOptions {
     std::string device;            // --device, falls back to $DFRECON_DEVICE
     bool quiet = false;            // --quiet: no progress bar, no warnings on stderr
-    bool repairContours = false;   // --repair-contours: self-crossing contours by even-odd
     std::string labelTable;        // --label-table: names and colours of label-volume labels
     bool acceptIntensity = false;  // --accept-intensity: contour a scan's every value
 };

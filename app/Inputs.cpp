@@ -13,7 +13,6 @@ namespace dfrecon::app {
 
 ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
     ReadContoursOptions options;
-    options.repairSelfCrossings = global.repairContours;
     options.labelTable = global.labelTable;
     options.acceptIntensity = global.acceptIntensity;
     ContourInput input;

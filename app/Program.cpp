@@ -26,10 +26,11 @@ int runProgram(int argc, char** argv) {
                     "OpenCL device: cpu, gpu, an index from `dfrecon devices`, or part of its name "
                     "(default: $DFRECON_DEVICE, else the first GPU, else the CPU)");
     root.add_flag("-q,--quiet", global.quiet, "No progress bar and no warnings on stderr");
-    root.add_flag("--repair-contours", global.repairContours,
-                  "Resolve a contour that crosses itself (a figure eight, a loop drawn over its "
-                  "start) into the simple contours of its even-odd region, with a warning naming "
-                  "it, instead of refusing its ROI (.slices and RTSTRUCT input)");
+    // Contours are always read as planning systems read them now
+    // (geometry/PlaneReading); the flag that asked for part of it stays
+    // accepted, unlisted, so that scripts written for it keep running.
+    bool repairContours = false;
+    root.add_flag("--repair-contours", repairContours)->group("");
     root.add_option("--label-table", global.labelTable,
                     "Names and colours of a label volume's labels: an ITK-SNAP label description, "
                     "a FreeSurfer LUT or Slicer colour table (VALUE NAME R G B A), or a list of "

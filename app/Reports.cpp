@@ -5,6 +5,18 @@
 
 namespace dfrecon::app {
 
+nlohmann::ordered_json contourReadingJson(const PlaneReadingCounts& counts) {
+    return {{"rule", "even-odd"},
+            {"repeatedPoints", counts.repeatedPoints},
+            {"foldPoints", counts.foldPoints},
+            {"zeroAreaContours", counts.zeroAreaContours},
+            {"duplicateContours", counts.duplicateContours},
+            {"keyholeCuts", counts.keyholeCuts},
+            {"resolvedContours", counts.resolvedContours},
+            {"planesResolved", counts.planesResolved},
+            {"changedShape", counts.changedShape()}};
+}
+
 nlohmann::ordered_json meshCheckJson(const MeshCheckReport& r) {
     nlohmann::ordered_json examples = nlohmann::ordered_json::array();
     for (const auto& [a, b] : r.intersectingExamples) examples.push_back({a, b});

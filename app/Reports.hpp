@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/PlaneReading.hpp"
 #include "geometry/TriangleSoup.hpp"
 #include "geometry/Vec3.hpp"
 
@@ -28,6 +29,12 @@ nlohmann::ordered_json meshCheckJson(const MeshCheckReport& report);
 /// intersecting pairs with their corners in mm, to find them in a viewer).
 /// O(defective triangles).
 nlohmann::ordered_json defectLocationsJson(const MeshCheckReport& report, const TriangleSoup& soup);
+
+/// What reading changed in an ROI's contours (geometry/PlaneReading), as
+/// {rule: "even-odd", repeatedPoints, foldPoints, zeroAreaContours,
+/// duplicateContours, keyholeCuts, resolvedContours, planesResolved,
+/// changedShape}. O(1).
+nlohmann::ordered_json contourReadingJson(const PlaneReadingCounts& counts);
 
 /// Copies every item of `items` into `into`, after the keys it has. O(items).
 void appendItems(nlohmann::ordered_json& into, const nlohmann::ordered_json& items);

@@ -9,6 +9,7 @@
 #include "contours/InputError.hpp"
 #include "contours/Rgb.hpp"
 #include "geometry/PlaneFrame.hpp"
+#include "geometry/PlaneReading.hpp"
 #include "geometry/Polygon.hpp"
 
 namespace dfrecon {
@@ -41,6 +42,11 @@ struct Roi {
     /// reader keeps the file's other ROIs: a clinical export with one bad
     /// contour loop still gives every other structure.
     std::optional<InputError> defect;
+    /// What reading changed in the contours as the file held them
+    /// (geometry/PlaneReading: repeated points, folds, duplicates,
+    /// contours of no area, crossings resolved by the even-odd rule),
+    /// summed over the planes; reports list it per ROI.
+    PlaneReadingCounts reading;
 
     std::size_t contourCount() const;
     std::size_t pointCount() const;
@@ -60,23 +66,6 @@ struct ContourSet {
 /// every writer can then write what was read, and read it back. DICOM's LO
 /// holds 64 characters.
 inline constexpr std::size_t kMaxRoiNameBytes = 256;
-
-/// What readers may fix in contours instead of refusing them.
-struct ContourRepairOptions {
-    /// `--repair-contours`: a contour that crosses itself becomes the simple
-    /// contours of its even-odd region (geometry/SelfCrossingRepair), with a
-    /// warning naming it, instead of failing its ROI.
-    bool selfCrossings = false;
-};
-
-/// What errors about a contour crossing itself add: the option that
-/// resolves it.
-inline constexpr const char* kRepairHint =
-    " (--repair-contours replaces such a contour by the simple contours of its region)";
-
-/// At most this many cuts resolve one self-crossing contour; more is not a
-/// drawing slip but noise, and stays an error.
-inline constexpr std::size_t kMaxSelfCrossingCuts = 10'000;
 
 /// Nesting depth of each contour of a slice: 0 for contours inside no other,
 /// 1 for holes, 2 for islands inside holes, ... Contours may touch but must

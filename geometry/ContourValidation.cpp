@@ -187,20 +187,23 @@ std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& conto
 }
 
 std::size_t countContourContacts(const std::vector<Polygon>& contours, std::size_t stopAfter,
-                                 std::size_t pairBudget) {
+                                 std::size_t pairBudget, ContactsCounted counted) {
     // A pair sharing several cells is met once per cell: kept in a set, so
     // each counts once (the set holds at most stopAfter + 1 pairs).
     const std::vector<Segment> segments = segmentsOf(contours);
     std::unordered_set<std::uint64_t> pairs;
-    const bool complete = visitContacts(segments, pairBudget,
-                                        [&](const Segment& s, const Segment& t, SegmentContact) {
-                                            if (s.contour == t.contour) return false;
-                                            std::uint64_t i = std::uint64_t(&s - segments.data()),
-                                                          j = std::uint64_t(&t - segments.data());
-                                            if (i > j) std::swap(i, j);
-                                            pairs.insert(i << 32 | j);
-                                            return pairs.size() > stopAfter;
-                                        });
+    const bool complete = visitContacts(
+        segments, pairBudget, [&](const Segment& s, const Segment& t, SegmentContact contact) {
+            if (s.contour == t.contour &&
+                (counted == ContactsCounted::BetweenContours ||
+                 (adjacent(s, t, contours[s.contour].size()) && contact != SegmentContact::Overlap)))
+                return false;
+            std::uint64_t i = std::uint64_t(&s - segments.data()),
+                          j = std::uint64_t(&t - segments.data());
+            if (i > j) std::swap(i, j);
+            pairs.insert(i << 32 | j);
+            return pairs.size() > stopAfter;
+        });
     return complete ? pairs.size() : SIZE_MAX;
 }
 

@@ -35,13 +35,21 @@ inline constexpr std::size_t kDefaultPairBudget = 400'000'000;
 std::optional<ContourDefect> findContourDefect(const std::vector<Polygon>& contours,
                                                std::size_t pairBudget = kDefaultPairBudget);
 
-/// How many pairs of segments of different contours meet (cross, touch or
-/// overlap), counted until more than `stopAfter` are found (then stopAfter +
-/// 1 is returned) or `pairBudget` pairs have been examined (then SIZE_MAX):
-/// the crossings a Boolean operation on the contours has to build. Same
-/// grid as findContourDefect; memory O(n + stopAfter).
+/// Which pairs of segments countContourContacts counts.
+enum class ContactsCounted {
+    BetweenContours,  // segments of different contours only
+    All,              // also two segments of one contour that are not neighbours,
+                      // and neighbours that fold back onto each other
+};
+
+/// How many pairs of segments meet (cross, touch or overlap), counted until
+/// more than `stopAfter` are found (then stopAfter + 1 is returned) or
+/// `pairBudget` pairs have been examined (then SIZE_MAX): the crossings a
+/// Boolean operation on the contours has to build. Same grid as
+/// findContourDefect; memory O(n + stopAfter).
 std::size_t countContourContacts(const std::vector<Polygon>& contours, std::size_t stopAfter,
-                                 std::size_t pairBudget = kDefaultPairBudget);
+                                 std::size_t pairBudget = kDefaultPairBudget,
+                                 ContactsCounted counted = ContactsCounted::BetweenContours);
 
 /// A point where two different contours of one slice touch (share one point
 /// without crossing); segment k joins point k and point k+1 of its contour.

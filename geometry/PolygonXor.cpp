@@ -1,14 +1,18 @@
 #include "geometry/PolygonXor.hpp"
 
-#include <CGAL/Boolean_set_operations_2.h>
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Polygon_set_2.h>
 
 #include <pthread.h>
 
 #include <cstdint>
+#include <deque>
 #include <exception>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "geometry/ContourValidation.hpp"
@@ -18,28 +22,18 @@ namespace dfrecon {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using CgalPolygon = CGAL::Polygon_2<Kernel>;
-using PolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+// Each segment carries its own id; where segments overlap, the arrangement
+// edge carries every id that covers it, so its multiplicity is known.
+using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::uint32_t>;
+// A face's data: 1 inside, 0 outside, -1 not yet known.
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, int>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 
-CgalPolygon toCgal(const Polygon& polygon) {
-    CgalPolygon out;
-    for (const Point2& p : polygon) out.push_back(Kernel::Point_2(p.x, p.y));
-    if (out.is_clockwise_oriented()) out.reverse_orientation();
-    return out;
-}
-
-Polygon fromCgal(const CgalPolygon& polygon, bool clockwise) {
-    Polygon out;
-    for (auto it = polygon.vertices_begin(); it != polygon.vertices_end(); ++it)
-        out.push_back({CGAL::to_double(it->x()), CGAL::to_double(it->y())});
-    if ((signedArea(out) < 0) != clockwise) std::reverse(out.begin(), out.end());
-    return out;
-}
-
-// CGAL's arrangement is scanned recursively, one call per face it reaches
-// (48 000 crossing points overflowed the 8 MB main stack). The Boolean
-// operation runs on a thread of its own with this much stack: with the
-// faces bounded by xorRegions' work limit, far more than it needs.
+// CGAL's sweep and face scans recurse (48 000 crossing points overflowed
+// the 8 MB main stack). The work runs on a thread of its own with this much
+// stack: with the faces bounded by xorRegions' work limit, far more than it
+// needs.
 constexpr std::size_t kCgalStackBytes = std::size_t(256) << 20;
 
 // Runs `work` to its end on a thread with `stackBytes` of stack, passing on
@@ -69,6 +63,64 @@ void runWithStack(std::size_t stackBytes, const std::function<void()>& work) {
     if (job.error) std::rethrow_exception(job.error);
 }
 
+// Faces separated by an edge of odd multiplicity differ in parity; the
+// unbounded face is outside. Even edges are gone by now, so every edge
+// flips it. Breadth first, no recursion.
+void markInside(Arrangement& arrangement) {
+    for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f) f->set_data(-1);
+    std::deque<Arrangement::Face_handle> pending{arrangement.unbounded_face()};
+    pending.front()->set_data(0);
+    auto visit = [&](Arrangement::Face_handle face, Arrangement::Ccb_halfedge_circulator first) {
+        auto h = first;
+        do {
+            const Arrangement::Face_handle other = h->twin()->face();
+            if (other->data() < 0) {
+                other->set_data(1 - face->data());
+                pending.push_back(other);
+            }
+        } while (++h != first);
+    };
+    while (!pending.empty()) {
+        const Arrangement::Face_handle face = pending.front();
+        pending.pop_front();
+        for (auto c = face->outer_ccbs_begin(); c != face->outer_ccbs_end(); ++c) visit(face, *c);
+        for (auto c = face->inner_ccbs_begin(); c != face->inner_ccbs_end(); ++c) visit(face, *c);
+    }
+}
+
+// The loops of one boundary cycle: a cycle that passes a vertex twice (a
+// hole touching its outer boundary, two lobes meeting at a point) is cut
+// there into simple loops, each keeping the direction it ran in.
+void appendLoops(Arrangement::Ccb_halfedge_const_circulator first, std::vector<Polygon>& out) {
+    std::vector<Arrangement::Vertex_const_handle> path;
+    std::map<Arrangement::Vertex_const_handle, std::size_t> onPath;
+    auto emit = [&](std::size_t from) {
+        Polygon loop;
+        for (std::size_t i = from; i < path.size(); ++i) {
+            const Point2 p{CGAL::to_double(path[i]->point().x()),
+                           CGAL::to_double(path[i]->point().y())};
+            // Crossing points rounded onto a neighbour would be zero-length
+            // segments.
+            if (loop.empty() || loop.back() != p) loop.push_back(p);
+        }
+        while (loop.size() > 1 && loop.back() == loop.front()) loop.pop_back();
+        if (loop.size() >= 3 && !allCollinear(loop)) out.push_back(std::move(loop));
+        for (std::size_t i = from; i < path.size(); ++i) onPath.erase(path[i]);
+        path.resize(from);
+    };
+    auto h = first;
+    do {
+        const Arrangement::Vertex_const_handle v = h->source();
+        if (const auto seen = onPath.find(v); seen != onPath.end()) {
+            const std::size_t from = seen->second;
+            emit(from);
+        }
+        onPath[v] = path.size();
+        path.push_back(v);
+    } while (++h != first);
+    emit(0);
+}
+
 }  // namespace
 
 std::vector<Polygon> xorRegions(const std::vector<Polygon>& contours, std::size_t maxWork,
@@ -77,7 +129,9 @@ std::vector<Polygon> xorRegions(const std::vector<Polygon>& contours, std::size_
     // contour: their sum bounds its memory, time and recursion.
     const std::size_t budget = maxWork > contours.size() ? maxWork - contours.size() : 0;
     const std::size_t crossings =
-        contours.size() > maxWork ? SIZE_MAX : countContourContacts(contours, budget);
+        contours.size() > maxWork
+            ? SIZE_MAX
+            : countContourContacts(contours, budget, kDefaultPairBudget, ContactsCounted::All);
     if (crossings > budget)
         throw TooManyCrossings(std::to_string(contours.size()) + " contours meeting in " +
                                (crossings == SIZE_MAX
@@ -86,22 +140,38 @@ std::vector<Polygon> xorRegions(const std::vector<Polygon>& contours, std::size_
                                ": more than the exclusive or combines (" + std::to_string(maxWork) +
                                " contours and crossing points together)");
     if (work) *work = contours.size() + crossings;
-    std::vector<PolygonWithHoles> pieces;
-    runWithStack(kCgalStackBytes, [&] {
-        std::vector<CgalPolygon> polygons;
-        for (const Polygon& contour : contours) polygons.push_back(toCgal(contour));
-        // The range form merges divide-and-conquer; one polygon at a time
-        // would rebuild the growing arrangement every step (quadratic).
-        CGAL::Polygon_set_2<Kernel> region;
-        region.symmetric_difference(polygons.begin(), polygons.end());
-        region.polygons_with_holes(std::back_inserter(pieces));
-    });
     std::vector<Polygon> out;
-    for (const PolygonWithHoles& piece : pieces) {
-        out.push_back(fromCgal(piece.outer_boundary(), false));
-        for (auto hole = piece.holes_begin(); hole != piece.holes_end(); ++hole)
-            out.push_back(fromCgal(*hole, true));
-    }
+    runWithStack(kCgalStackBytes, [&] {
+        std::vector<Traits::Curve_2> segments;
+        for (const Polygon& contour : contours)
+            for (std::size_t i = 0; i < contour.size(); ++i) {
+                const Point2 a = contour[i], b = contour[(i + 1) % contour.size()];
+                if (a == b) continue;
+                segments.emplace_back(
+                    Kernel::Segment_2(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y)),
+                    std::uint32_t(segments.size()));
+            }
+        Arrangement arrangement;
+        // The aggregated sweep: one pass over every segment, not one
+        // insertion (and point location) per segment.
+        CGAL::insert(arrangement, segments.begin(), segments.end());
+        // A piece covered an even number of times is crossed an even number
+        // of times by any ray through it: it bounds nothing.
+        std::vector<Arrangement::Halfedge_handle> even;
+        for (auto e = arrangement.edges_begin(); e != arrangement.edges_end(); ++e)
+            if (e->curve().data().size() % 2 == 0) even.push_back(e);
+        for (Arrangement::Halfedge_handle e : even) arrangement.remove_edge(e);
+        markInside(arrangement);
+        // A face lies left of its boundary's halfedges: outer cycles run
+        // counter-clockwise, the cycles of its holes clockwise.
+        for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f) {
+            if (f->data() != 1) continue;
+            for (auto c = f->outer_ccbs_begin(); c != f->outer_ccbs_end(); ++c)
+                appendLoops(*c, out);
+            for (auto c = f->inner_ccbs_begin(); c != f->inner_ccbs_end(); ++c)
+                appendLoops(*c, out);
+        }
+    });
     return out;
 }
 

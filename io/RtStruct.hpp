@@ -41,9 +41,6 @@ struct RtStructRoiInfo {
     std::string name;
     std::size_t contoursRead = 0;     // closed planar contours accepted
     std::size_t contoursSkipped = 0;  // POINT, OPEN_PLANAR, OPEN_NONPLANAR, degenerate
-    std::size_t keyholeCuts = 0;
-    std::size_t planesCombined = 0;    // planes whose contours crossed or shared edges: even-odd
-    std::size_t contoursRepaired = 0;  // self-crossing contours resolved (--repair-contours)
     HoleConvention holes = HoleConvention::None;
     bool hasContourSequence = false;
 };
@@ -78,8 +75,7 @@ struct RtStructLoad {
 /// Other geometric types are skipped with a warning. Throws InputError
 /// naming the tag for anything unreadable, missing, contradictory or over
 /// `limits`. Linear in the file size plus validation.
-RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {},
-                          const ContourRepairOptions& repair = {});
+RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits = {});
 
 /// The defined terms of RTROIInterpretedType (3006,00A4), PS3.3 C.8.8.8.
 inline constexpr std::array<const char*, 24> kRoiInterpretedTypes{"EXTERNAL",

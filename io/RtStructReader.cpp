@@ -10,9 +10,8 @@
 #include <sstream>
 
 #include "geometry/ContourValidation.hpp"
-#include "geometry/KeyholeSplit.hpp"
+#include "geometry/PlaneReading.hpp"
 #include "geometry/PolygonXor.hpp"
-#include "geometry/SelfCrossingRepair.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/FileNames.hpp"
@@ -45,8 +44,8 @@ struct RtStructContour {
 
 class Reader {
   public:
-    Reader(std::string path, const RtStructLimits& limits, const ContourRepairOptions& repair)
-        : file_(std::move(path)), limits_(limits), repair_(repair) {}
+    Reader(std::string path, const RtStructLimits& limits)
+        : file_(std::move(path)), limits_(limits) {}
 
     RtStructLoad run() {
         silenceDcmtkLog();
@@ -266,9 +265,10 @@ class Reader {
             contour.xorType = type == "CLOSEDPLANAR_XOR";
             contour.points = readPoints(item, where);
             readSlab(item, r, where);
+            // A contour of one or two points bounds nothing: counted with
+            // the contours of no area that reading drops (one warning per ROI).
             if (!dropRepeatedPoints(contour.points)) {
-                warn(where + ": fewer than 3 distinct points; skipped");
-                ++info.contoursSkipped;
+                ++out_.contours.rois[r].reading.zeroAreaContours;
                 continue;
             }
             contours_[r].push_back(std::move(contour));
@@ -444,18 +444,23 @@ class Reader {
             while (end < contours.size() &&
                    contours[end].planeZ - contours[begin].planeZ <= kSamePlaneToleranceMm)
                 ++end;
-            roi.slices.push_back(buildSlice(r, begin, end));
+            // A plane whose every contour had no area, or cancelled another,
+            // holds nothing: no slice.
+            if (Slice slice = buildSlice(r, begin, end); !slice.contours.empty())
+                roi.slices.push_back(std::move(slice));
             for (std::size_t i = begin; i < end; ++i) anyXor = anyXor || contours[i].xorType;
             begin = end;
         }
         bool anyHole = false;
         for (const Slice& slice : roi.slices)
             for (int depth : nestingDepths(slice)) anyHole = anyHole || depth % 2 == 1;
-        info.holes = anyXor                    ? HoleConvention::Xor
-                     : info.keyholeCuts > 0    ? HoleConvention::Keyhole
-                     : info.planesCombined > 0 ? HoleConvention::Xor
-                     : anyHole                 ? HoleConvention::Nested
-                                               : HoleConvention::None;
+        info.holes = anyXor                            ? HoleConvention::Xor
+                     : roi.reading.keyholeCuts > 0     ? HoleConvention::Keyhole
+                     : roi.reading.planesResolved > 0 ? HoleConvention::Xor
+                     : anyHole                         ? HoleConvention::Nested
+                                                       : HoleConvention::None;
+        if (roi.reading.changedShape())
+            warn(roiLabel(r) + ": read as planning systems read it: " + roi.reading.summary());
         const SpacingStats spacing = spacingOf(roi);
         if (!spacing.uniform)
             warn(roiLabel(r) + ": uneven slice spacing, " + std::to_string(spacing.minMm) + " to " +
@@ -463,134 +468,48 @@ class Reader {
     }
 
     Slice buildSlice(std::size_t r, std::size_t begin, std::size_t end) {
-        const Roi& roi = out_.contours.rois[r];
+        Roi& roi = out_.contours.rois[r];
         std::vector<RtStructContour>& contours = contours_[r];
         std::vector<double> z;
         for (std::size_t i = begin; i < end; ++i) z.push_back(contours[i].planeZ);
         Slice slice;
         slice.zMm = z[(z.size() - 1) / 2];
-        std::vector<std::size_t> items;  // source item of each polygon, for messages
+        std::vector<Polygon> drawn;
         for (std::size_t i = begin; i < end; ++i) {
             Polygon polygon;
             for (Vec3 p : contours[i].points) {
                 const Vec3 q = roi.frame.fromPatient(p);  // exact for the identity
                 polygon.push_back({q.x, q.y});
             }
-            polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
-            while (polygon.size() > 1 && polygon.back() == polygon.front()) polygon.pop_back();
-            for (Polygon& loop : splitSelfTouching(r, std::move(polygon), contours[i].item)) {
-                slice.contours.push_back(std::move(loop));
-                items.push_back(contours[i].item);
-            }
+            drawn.push_back(std::move(polygon));
         }
-        // Contours that share edges or cross bound their region by the
-        // even-odd rule (holes reaching the image border share it with
-        // their outer contour in mask-made files; XOR contours may cross).
-        const std::optional<ContourDefect> defect = findContourDefect(slice.contours);
-        if (defect && defect->kind == ContourDefect::Kind::Crossing) {
-            // CGAL's Boolean operations require simple polygons and check
-            // it only in debug builds: a contour crossing itself corrupted
-            // the arrangement (found by fuzzing). Such a contour is an error
-            // here as on any other plane, so it is reported before the XOR.
-            for (std::size_t i = 0; i < slice.contours.size(); ++i)
-                validate(r, Slice{slice.zMm, {slice.contours[i]}}, {items[i]});
-            // Each plane within its limit, and all planes within the file's.
-            const std::size_t fileLeft = limits_.maxXorCrossingsPerFile > xorWork_
-                                             ? limits_.maxXorCrossingsPerFile - xorWork_
-                                             : 0;
-            try {
-                xorWork_ +=
-                    combineConflicts(slice, items, std::min(limits_.maxXorCrossings, fileLeft));
-            } catch (const TooManyCrossings& e) {
-                std::ostringstream plane;
-                plane << slice.zMm;
-                fail(roiLabel(r) + ", plane " + plane.str() + " mm: " + e.what() +
-                     (fileLeft < limits_.maxXorCrossings
-                          ? " (what was left of " + std::to_string(limits_.maxXorCrossingsPerFile) +
-                                " for the whole file)"
-                          : std::string()));
-            }
-            ++out_.rois[r].planesCombined;
+        // Each plane within its limit, and all planes within the file's.
+        const std::size_t fileLeft = limits_.maxXorCrossingsPerFile > xorWork_
+                                         ? limits_.maxXorCrossingsPerFile - xorWork_
+                                         : 0;
+        PlaneReading reading;
+        try {
+            reading = readPlaneContours(std::move(drawn), std::min(limits_.maxXorCrossings, fileLeft));
+        } catch (const TooManyCrossings& e) {
+            std::ostringstream plane;
+            plane << slice.zMm;
+            fail(roiLabel(r) + ", plane " + plane.str() + " mm: " + e.what() +
+                 (fileLeft < limits_.maxXorCrossings
+                      ? " (what was left of " + std::to_string(limits_.maxXorCrossingsPerFile) +
+                            " for the whole file)"
+                      : std::string()));
         }
-        if (defect) validate(r, slice, items);  // a valid plane needs no second look
+        xorWork_ += reading.work;
+        roi.reading += reading.counts;
+        slice.contours = std::move(reading.contours);
+        std::vector<std::size_t> items;  // source item of each polygon, for messages
+        for (std::size_t source : reading.sourceOf)
+            items.push_back(source == kResolvedContour ? 0 : contours[begin + source].item);
+        // What reading leaves is valid but for a plane too complex to search
+        // or crossings rounded onto one another: reported, never guessed.
+        validate(r, slice, items);
         normaliseOrientation(slice);
         return slice;
-    }
-
-    // Contours whose bounding boxes overlap form groups (union-find); only a
-    // group with crossings or shared edges is combined by exclusive or, so
-    // every other contour keeps its points exactly as written. O(c²) box tests.
-    // Returns the work done: contours plus crossings combined.
-    static std::size_t combineConflicts(Slice& slice, std::vector<std::size_t>& items,
-                                        std::size_t maxWork) {
-        std::size_t done = 0;
-        const std::size_t n = slice.contours.size();
-        std::vector<Box2> boxes;
-        for (const Polygon& c : slice.contours) boxes.push_back(boundingBox(c));
-        std::vector<std::size_t> group(n);
-        for (std::size_t i = 0; i < n; ++i) group[i] = i;
-        auto root = [&](std::size_t i) {
-            while (group[i] != i) i = group[i] = group[group[i]];
-            return i;
-        };
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t j = i + 1; j < n; ++j)
-                if (boxes[i].min.x <= boxes[j].max.x && boxes[j].min.x <= boxes[i].max.x &&
-                    boxes[i].min.y <= boxes[j].max.y && boxes[j].min.y <= boxes[i].max.y)
-                    group[root(i)] = root(j);
-        std::map<std::size_t, std::vector<std::size_t>> members;
-        for (std::size_t i = 0; i < n; ++i) members[root(i)].push_back(i);
-        Slice combined{slice.zMm, {}};
-        std::vector<std::size_t> combinedItems;
-        for (const auto& [rootIndex, indices] : members) {
-            std::vector<Polygon> polygons;
-            for (std::size_t i : indices) polygons.push_back(std::move(slice.contours[i]));
-            // CGAL needs simple polygons: a group holding a self-crossing
-            // contour stays as it is, for validate() to report.
-            const std::optional<ContourDefect> defect =
-                polygons.size() > 1 ? findContourDefect(polygons) : std::nullopt;
-            const bool conflict =
-                defect && defect->kind == ContourDefect::Kind::Crossing &&
-                std::none_of(polygons.begin(), polygons.end(),
-                             [](const Polygon& p) { return findContourDefect({p}).has_value(); });
-            if (conflict) {
-                std::size_t work = 0;
-                polygons = xorRegions(polygons, maxWork - std::min(maxWork, done), &work);
-                done += work;
-            }
-            for (std::size_t k = 0; k < polygons.size(); ++k) {
-                combined.contours.push_back(std::move(polygons[k]));
-                combinedItems.push_back(conflict ? 0 : items[indices[k]]);
-            }
-        }
-        slice = std::move(combined);
-        items = std::move(combinedItems);
-        return done;
-    }
-
-    // A contour that touches itself is a keyhole (or a pinch); split it.
-    std::vector<Polygon> splitSelfTouching(std::size_t r, Polygon polygon, std::size_t item) {
-        // No area at all; a figure eight whose halves cancel is a crossing,
-        // which validation names.
-        if (polygon.size() < 3 || allCollinear(polygon)) {
-            warn(roiLabel(r) + ": contour " + std::to_string(item) + " has no area; skipped");
-            ++out_.rois[r].contoursSkipped;
-            return {};
-        }
-        const std::optional<ContourDefect> defect = findContourDefect({polygon});
-        if (defect && defect->contact == SegmentContact::Cross && repair_.selfCrossings)
-            if (std::optional<std::vector<Polygon>> region =
-                    evenOddRegion(polygon, kMaxSelfCrossingCuts, limits_.maxXorCrossings)) {
-                warn(roiLabel(r) + ": contour " + std::to_string(item) +
-                     " crosses itself; replaced by the " + std::to_string(region->size()) +
-                     " contour(s) of its even-odd region (--repair-contours)");
-                ++out_.rois[r].contoursRepaired;
-                return std::move(*region);
-            }
-        if (!defect || defect->contact == SegmentContact::Cross) return {std::move(polygon)};
-        KeyholeSplit split = splitKeyholes(polygon);
-        out_.rois[r].keyholeCuts += split.cuts;
-        return std::move(split.loops);
     }
 
     void validate(std::size_t r, const Slice& slice, const std::vector<std::size_t>& items) {
@@ -612,14 +531,13 @@ class Reader {
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(plane +
                  "self-intersecting contour: " + segment(defect->contourA, defect->segmentA) + how +
-                 "its segment " + std::to_string(defect->segmentB + 1) + kRepairHint);
+                 "its segment " + std::to_string(defect->segmentB + 1));
         fail(plane + "contours cross: " + segment(defect->contourA, defect->segmentA) + how +
              segment(defect->contourB, defect->segmentB));
     }
 
     std::string file_;
     RtStructLimits limits_;
-    ContourRepairOptions repair_;
     RtStructLoad out_;
     std::map<Sint32, std::size_t> indexOfNumber_;
     std::vector<std::vector<RtStructContour>> contours_;  // per ROI
@@ -631,10 +549,9 @@ class Reader {
 
 }  // namespace
 
-RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits,
-                          const ContourRepairOptions& repair) {
+RtStructLoad readRtStruct(const std::string& path, const RtStructLimits& limits) {
     const ReadingInput reading(path);
-    return Reader(path, limits, repair).run();
+    return Reader(path, limits).run();
 }
 
 }  // namespace dfrecon

@@ -11,7 +11,8 @@
 #include <sstream>
 
 #include "geometry/ContourValidation.hpp"
-#include "geometry/SelfCrossingRepair.hpp"
+#include "geometry/PlaneReading.hpp"
+#include "geometry/PolygonXor.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputLimits.hpp"
 #include "io/InputsInUse.hpp"
@@ -103,12 +104,8 @@ bool looksNumeric(const std::string& token) {
 class Parser {
   public:
     Parser(std::istream& in, std::string fileName, const SlicesLimits& limits,
-           const SlicesProgress& progress, const ContourRepairOptions& repair)
-        : in_(in),
-          file_(std::move(fileName)),
-          limits_(limits),
-          progress_(progress),
-          repair_(repair) {}
+           const SlicesProgress& progress)
+        : in_(in), file_(std::move(fileName)), limits_(limits), progress_(progress) {}
 
     SlicesLoad run() {
         readAll();
@@ -358,14 +355,19 @@ class Parser {
                                      "' has no contours; ignored");
                 continue;
             }
-            if (repair_.selfCrossings) repairSelfCrossings(slice);
+            readPlane(slice, name, roi.reading);
             validate(slice, name);
             Slice out;
             out.zMm = slice.zMm;
             for (SlicesContour& c : slice.contours) out.contours.push_back(std::move(c.points));
+            // Every contour of the plane had no area, or cancelled another.
+            if (out.contours.empty()) continue;
             normaliseOrientation(out);
             roi.slices.push_back(std::move(out));
         }
+        if (roi.reading.changedShape())
+            warn(source.line,
+                 "ROI '" + name + "' read as planning systems read it: " + roi.reading.summary());
         return roi;
     }
 
@@ -385,9 +387,6 @@ class Parser {
         if (dropped > 0)
             warn(c.keywordLine,
                  "dropped " + std::to_string(dropped) + " repeated consecutive point(s)");
-        if (kept < 3)
-            fail(c.keywordLine,
-                 "contour has fewer than 3 distinct points (" + std::to_string(kept) + ")");
     }
 
     void mergeDuplicateZ(std::vector<SourceSlice>& slices, const std::string& name) {
@@ -406,25 +405,31 @@ class Parser {
         slices = std::move(merged);
     }
 
-    // Each contour that crosses itself becomes the contours of its even-odd
-    // region, all carrying its line; one that cannot stays for validate().
-    void repairSelfCrossings(SourceSlice& slice) {
+    // The plane read as planning systems read it (geometry/PlaneReading):
+    // contours kept whole keep their lines; those of a filled region, or
+    // with points dropped, carry their contour's line (or the slice's).
+    void readPlane(SourceSlice& slice, const std::string& name, PlaneReadingCounts& counts) {
+        std::vector<Polygon> drawn;
+        for (const SlicesContour& c : slice.contours) drawn.push_back(c.points);
+        PlaneReading reading;
+        try {
+            reading = readPlaneContours(std::move(drawn), kMaxXorCrossingsPerPlane);
+        } catch (const TooManyCrossings& e) {
+            fail(slice.line, "slice z=" + formatNumber(slice.zMm) + " of ROI '" + name +
+                                 "': " + e.what());
+        }
+        counts += reading.counts;
         std::vector<SlicesContour> out;
-        for (SlicesContour& c : slice.contours) {
-            const std::optional<ContourDefect> defect = findContourDefect({c.points});
-            std::optional<std::vector<Polygon>> region;
-            if (defect && defect->kind == ContourDefect::Kind::SelfIntersection &&
-                defect->contact == SegmentContact::Cross)
-                region = evenOddRegion(c.points, kMaxSelfCrossingCuts, kMaxXorCrossingsPerPlane);
-            if (!region) {
-                out.push_back(std::move(c));
+        for (std::size_t k = 0; k < reading.contours.size(); ++k) {
+            const std::size_t source = reading.sourceOf[k];
+            Polygon& points = reading.contours[k];
+            if (source != kResolvedContour && points == slice.contours[source].points) {
+                out.push_back(std::move(slice.contours[source]));
                 continue;
             }
-            warn(c.keywordLine, "contour crosses itself; replaced by the " +
-                                    std::to_string(region->size()) +
-                                    " contour(s) of its even-odd region (--repair-contours)");
-            for (Polygon& loop : *region)
-                out.push_back({c.keywordLine, loop, std::vector<int>(loop.size(), c.keywordLine)});
+            const int line = source == kResolvedContour ? slice.line
+                                                        : slice.contours[source].keywordLine;
+            out.push_back({line, std::move(points), std::vector<int>(points.size(), line)});
         }
         slice.contours = std::move(out);
     }
@@ -432,12 +437,6 @@ class Parser {
     void validate(const SourceSlice& slice, const std::string& name) const {
         std::vector<Polygon> polygons;
         for (const SlicesContour& c : slice.contours) polygons.push_back(c.points);
-        // Zero area is either a line (nothing to validate further) or a
-        // figure eight whose halves cancel, which the crossing test names.
-        for (std::size_t i = 0; i < polygons.size(); ++i)
-            if (signedArea(polygons[i]) == 0 && allCollinear(polygons[i]))
-                fail(slice.contours[i].keywordLine, "contour has zero area (all points collinear)");
-
         const std::optional<ContourDefect> defect = findContourDefect(polygons);
         if (!defect) return;
         if (defect->kind == ContourDefect::Kind::TooComplex)
@@ -453,7 +452,7 @@ class Parser {
         const int line = a.pointLines[defect->segmentA];
         if (defect->kind == ContourDefect::Kind::SelfIntersection)
             fail(line, "self-intersecting contour (line " + std::to_string(a.keywordLine) +
-                           "): " + segA + how + segB + kRepairHint);
+                           "): " + segA + how + segB);
         fail(line, "contours of ROI '" + name + "' cross on slice z=" + formatNumber(slice.zMm) +
                        ": contour at line " + std::to_string(a.keywordLine) + " " + segA + how +
                        "contour at line " + std::to_string(b.keywordLine) + " " + segB);
@@ -478,7 +477,6 @@ class Parser {
     std::string file_;
     SlicesLimits limits_;
     SlicesProgress progress_;
-    ContourRepairOptions repair_;
     std::vector<char> chunk_;
     std::size_t chunkPos_ = 0;
     std::uint64_t bytesRead_ = 0;
@@ -515,13 +513,12 @@ std::string quotedName(const std::string& name) {
 }  // namespace
 
 SlicesLoad parseSlices(std::istream& in, const std::string& fileName, const SlicesLimits& limits,
-                       const SlicesProgress& progress, const ContourRepairOptions& repair) {
-    return Parser(in, fileName, limits, progress, repair).run();
+                       const SlicesProgress& progress) {
+    return Parser(in, fileName, limits, progress).run();
 }
 
 SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
-                          const std::function<void(double)>& progress,
-                          const ContourRepairOptions& repair) {
+                          const std::function<void(double)>& progress) {
     const ReadingInput reading(path);
     const std::uint64_t size = checkRegularFile(path, limits.maxBytes, "a .slices file");
     std::ifstream in(path, std::ios::binary);
@@ -529,7 +526,7 @@ SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits,
     SlicesProgress bytes;
     if (progress && size > 0)
         bytes = [&](std::uint64_t read) { progress(std::min(1.0, double(read) / double(size))); };
-    return parseSlices(in, path, limits, bytes, repair);
+    return parseSlices(in, path, limits, bytes);
 }
 
 void formatSlices(const ContourSet& contours, std::ostream& out) {

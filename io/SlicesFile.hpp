@@ -37,23 +37,24 @@ struct SlicesLoad {
 
 /// Parses `.slices` text. `fileName` only labels messages. Throws InputError
 /// ("file:line: problem") for any defect listed in docs/formats.md, except
-/// that a geometric defect of one ROI's contours (too few points, zero area,
-/// a contour crossing itself or another) is kept as that Roi's `defect`,
-/// with no slices, and the other ROIs load; repairs
+/// that a geometric defect of one ROI's contours that reading does not
+/// resolve (a plane too complex to search, crossings past the fill's limit)
+/// is kept as that Roi's `defect`, with no slices, and the other ROIs load;
+/// repairs
 /// repeated points, unsorted slices and duplicated z with a warning; orients
 /// contours by nesting depth (outer CCW, holes CW). Time and memory are
 /// linear in the input for valid files and bounded by `limits` otherwise.
-/// With repair.selfCrossings, a contour crossing itself is replaced by the
-/// simple contours of its even-odd region, with a warning at its line.
+/// Each plane is read as planning systems read it (geometry/PlaneReading:
+/// folds, duplicates and contours of no area dropped, contours crossing
+/// themselves or each other replaced by their even-odd region), counted in
+/// Roi::reading with one warning per ROI that changed.
 SlicesLoad parseSlices(std::istream& in, const std::string& fileName,
-                       const SlicesLimits& limits = {}, const SlicesProgress& progress = {},
-                       const ContourRepairOptions& repair = {});
+                       const SlicesLimits& limits = {}, const SlicesProgress& progress = {});
 
 /// Opens and parses a file; a missing or unreadable file is an InputError.
 /// `progress`, if set, receives the fraction of the file read so far.
 SlicesLoad readSlicesFile(const std::string& path, const SlicesLimits& limits = {},
-                          const std::function<void(double)>& progress = {},
-                          const ContourRepairOptions& repair = {});
+                          const std::function<void(double)>& progress = {});
 
 /// Writes `.slices` v1 text; numbers use the shortest form that reads back
 /// to the same double, so parseSlices(formatSlices(x)) == x.

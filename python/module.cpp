@@ -214,6 +214,18 @@ py::dict roiDict(const Roi& roi) {
     d["contours"] = contours;
     d["contour_volume_cc"] = roi.slices.empty() ? 0.0 : contourVolumeMm3(roi) / 1000;
     d["orientation"] = roi.frame.orientationName();
+    const PlaneReadingCounts& r = roi.reading;
+    py::dict reading;
+    reading["rule"] = "even-odd";
+    reading["repeated_points"] = r.repeatedPoints;
+    reading["fold_points"] = r.foldPoints;
+    reading["zero_area_contours"] = r.zeroAreaContours;
+    reading["duplicate_contours"] = r.duplicateContours;
+    reading["keyhole_cuts"] = r.keyholeCuts;
+    reading["resolved_contours"] = r.resolvedContours;
+    reading["planes_resolved"] = r.planesResolved;
+    reading["changed_shape"] = r.changedShape();
+    d["contour_reading"] = reading;
     return d;
 }
 
@@ -224,10 +236,9 @@ struct PyStructureSet {
     std::string source;
 };
 
-PyStructureSet readSet(const std::string& path, bool repair, const std::string& labelTable,
+PyStructureSet readSet(const std::string& path, const std::string& labelTable,
                        bool acceptIntensity) {
     ReadContoursOptions options;
-    options.repairSelfCrossings = repair;
     options.labelTable = labelTable;
     options.acceptIntensity = acceptIntensity;
     PyStructureSet set;
@@ -239,7 +250,7 @@ PyStructureSet readSet(const std::string& path, bool repair, const std::string& 
     return set;
 }
 
-PyStructureSet setFromContours(const py::dict& rois, const py::dict& colours, bool repair) {
+PyStructureSet setFromContours(const py::dict& rois, const py::dict& colours) {
     std::vector<RoiPoints> points;
     for (const auto& [key, value] : rois) {
         RoiPoints roi;
@@ -265,7 +276,6 @@ PyStructureSet setFromContours(const py::dict& rois, const py::dict& colours, bo
         points.push_back(std::move(roi));
     }
     ReadContoursOptions options;
-    options.repairSelfCrossings = repair;
     PyStructureSet set;
     set.read = structureSetFromPoints(points, "StructureSet.from_contours", options);
     set.source = "StructureSet.from_contours";
@@ -455,10 +465,9 @@ PYBIND11_MODULE(_dfrecon, m) {
             writeSlicesFile(s.read.contours, path);
         });
 
-    m.def("_read_contours", &readSet, py::arg("path"), py::arg("repair_contours"),
-          py::arg("label_table"), py::arg("accept_intensity"));
-    m.def("_from_contours", &setFromContours, py::arg("rois"), py::arg("colours"),
-          py::arg("repair_contours"));
+    m.def("_read_contours", &readSet, py::arg("path"), py::arg("label_table"),
+          py::arg("accept_intensity"));
+    m.def("_from_contours", &setFromContours, py::arg("rois"), py::arg("colours"));
 
     py::class_<PyMesh>(m, "_Mesh")
         .def(py::init([](const py::object& vertices, const py::object& faces) {

@@ -18,9 +18,6 @@
 namespace dfrecon {
 
 struct ReadContoursOptions {
-    /// A contour crossing itself becomes the simple contours of its even-odd
-    /// region, with a warning, instead of making its ROI a defect.
-    bool repairSelfCrossings = false;
     /// Label volumes: a label table (.txt/.csv/.ctbl/.lut) naming the labels;
     /// "" looks beside the volume.
     std::string labelTable;

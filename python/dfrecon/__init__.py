@@ -89,11 +89,12 @@ class Roi:
     float64 arrays, one closed contour each, patient mm), ``orientation``
     ('axial', 'sagittal', 'coronal' or 'oblique'), ``contour_volume_cc``
     (the planning system's sum of area x thickness), ``defect`` (why its
-    contours cannot be used, or None).
+    contours cannot be used, or None), ``contour_reading`` (dict: what
+    reading changed, as ``reconstruct --json``'s ``contourReading``).
     """
 
     __slots__ = ("name", "number", "colour", "interpreted_type", "planes", "contours",
-                 "orientation", "contour_volume_cc", "defect")
+                 "orientation", "contour_volume_cc", "defect", "contour_reading")
 
     def __init__(self, d):
         for key in self.__slots__:
@@ -114,14 +115,16 @@ class StructureSet:
         self.rois = [Roi(d) for d in core._rois()]
 
     @classmethod
-    def from_contours(cls, rois, colours=None, repair_contours=False):
+    def from_contours(cls, rois, colours=None):
         """A structure set from NumPy arrays: ``{"NAME": [array (n, 3), ...]}``,
         each array one closed contour on one axial plane (constant z), in
-        patient mm. Contours are checked, repaired and oriented exactly as a
-        .slices file's are; ``colours`` maps names to (r, g, b)."""
+        patient mm. Contours are read exactly as a .slices file's are (as
+        planning systems read them: folds, duplicates and contours of no area
+        dropped, crossings resolved by the even-odd rule, each ROI's changes
+        in ``Roi.contour_reading``); ``colours`` maps names to (r, g, b)."""
         if not isinstance(rois, dict):
             raise TypeError("from_contours: expected a dict of ROI name -> list of (n, 3) arrays")
-        return cls(_core_module._from_contours(rois, dict(colours or {}), bool(repair_contours)))
+        return cls(_core_module._from_contours(rois, dict(colours or {})))
 
     @property
     def format(self):
@@ -170,14 +173,15 @@ class StructureSet:
             self.format, len(self.rois), ", ".join(self.names))
 
 
-def read_contours(path, *, repair_contours=False, label_table=None, accept_intensity=False):
+def read_contours(path, *, label_table=None, accept_intensity=False):
     """Reads contours from `path`: a DICOM RT Structure Set, a .slices file, a
     label volume (.nii, .nii.gz, .nrrd, .nhdr, .seg.nrrd) or a mask stack
     (folder or .json), the format found by content first, then by name.
     Returns a :class:`StructureSet`. Raises :class:`InputError` (a ValueError)
-    naming the file for bad input."""
+    naming the file for bad input. Contours are read as planning systems read
+    them (docs/formats.md, "How contours are read")."""
     return StructureSet(_core_module._read_contours(
-        _os.fspath(path), bool(repair_contours), _os.fspath(label_table) if label_table else "",
+        _os.fspath(path), _os.fspath(label_table) if label_table else "",
         bool(accept_intensity)))
 
 

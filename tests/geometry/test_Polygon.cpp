@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include "geometry/Polygon.hpp"
-#include "geometry/PolygonXor.hpp"
 
 using namespace dfrecon;
 
@@ -51,15 +50,4 @@ TEST(Polygon, SegmentContactClasses) {
     EXPECT_EQ(segmentContact({0, 0}, {1, 0}, {1, 0}, {2, 0}), SegmentContact::Touch);
     EXPECT_EQ(segmentContact({0, 0}, {1, 0}, {2, 0}, {3, 0}), SegmentContact::None);
     EXPECT_EQ(segmentContact({0, 0}, {0, 2}, {0, 1}, {0, 3}), SegmentContact::Overlap);
-}
-
-TEST(PolygonXor, RefusesMoreContoursAndCrossingsThanItMayCombine) {
-    // Two squares crossing at two points: 2 contours + 2 crossings.
-    const Polygon a = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
-    const Polygon b = {{5, 5}, {15, 5}, {15, 15}, {5, 15}};
-    std::size_t work = 0;
-    EXPECT_FALSE(xorRegions({a, b}, 4, &work).empty());
-    EXPECT_EQ(work, 4u);
-    EXPECT_THROW(xorRegions({a, b}, 3), TooManyCrossings);
-    EXPECT_THROW(xorRegions({a, b}, 1), TooManyCrossings);
 }

@@ -390,7 +390,7 @@ TEST(RtStruct, ContoursSharingEdgesOrCrossingCombineByExclusiveOr) {
     writeDataset(path, {notch, crossing});
     const RtStructLoad load = readRtStruct(path);
     EXPECT_EQ(load.rois[0].holes, HoleConvention::Xor);
-    EXPECT_EQ(load.rois[0].planesCombined, 1u);
+    EXPECT_EQ(load.contours.rois[0].reading.planesResolved, 1u);
     EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[0].slices[0]), 96.0);
     EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[0].slices[1]), 100.0);
     EXPECT_DOUBLE_EQ(regionArea(load.contours.rois[1].slices[0]), 150.0);
@@ -507,7 +507,7 @@ TEST(RtStruct, ExclusiveOrWorkIsBoundedPerPlaneAndPerFile) {
     const std::string path = tempPath("stars");
     std::ofstream(path, std::ios::binary) << dfrecon::testing::crossingStarsRtStruct(6, 8, 2);
     const RtStructLoad load = readRtStruct(path);  // 6 contours, 240 crossings a plane
-    EXPECT_EQ(load.rois[0].planesCombined, 2u);
+    EXPECT_EQ(load.contours.rois[0].reading.planesResolved, 2u);
     // Over a limit, the ROI is kept with its defect and no slices.
     RtStructLimits limits;
     limits.maxXorCrossings = 200;
