@@ -138,7 +138,14 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     nlohmann::ordered_json empty = nlohmann::ordered_json::array();
     if (args.all)
         for (const Roi& roi : load.contours.rois)
-            if (roi.slices.empty()) empty.push_back(roi.name);
+            if (roi.slices.empty() && !roi.defect) empty.push_back(roi.name);
+    // ROIs with no closed contour (points, markers, contours of no area)
+    // are listed, not failures: no voxel tool fills them either.
+    if (!empty.empty() && !global.quiet && !args.json) {
+        std::string names;
+        for (const auto& name : empty) names += (names.empty() ? "" : ", ") + name.get<std::string>();
+        std::cerr << "dfrecon: no closed contour, nothing written: " << names << "\n";
+    }
     if (args.json)
         std::cout << jsonText(nlohmann::ordered_json{{"command", "reconstruct"},
                                                      {"input", args.input},

@@ -29,7 +29,10 @@ StructureTag structureTagOf(const Roi& roi) {
 }
 
 RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
-    const Failure failure = describeFailure(error);
+    Failure failure = describeFailure(error);
+    // The command line was read before any ROI: what one ROI's
+    // reconstruction refuses as an argument is that ROI's data.
+    if (failure.exitCode == kExitUsage) failure.exitCode = kExitBadInput;
     RoiOutcome outcome;
     outcome.failure = failure.exitCode;
     outcome.err = "dfrecon: ROI '" + roi.name + "': " + failure.message + "\n";

@@ -65,7 +65,9 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
                           const GlobalOptions& global, bool showProgress, bool keepSurface);
 
 /// The outcome of an ROI that failed with `error` (app/Failure names it):
-/// reported with `error` and `exitCode`, so the other ROIs go on. O(1).
+/// reported with `error` and `exitCode`, so the other ROIs go on; a usage
+/// error (the ROI's data refused as an argument) counts as bad input (2),
+/// since the command line was read before any ROI. O(1).
 RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error);
 
 }  // namespace dfrecon::app

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <unistd.h>
+
 namespace dfrecon::app {
 
 bool isStandardStream(const std::string& path) {
@@ -63,6 +65,10 @@ void checkStandardOutput() {
     errno = 0;
     std::cout.flush();
     const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+    // A report longer than the stream's buffer failed while it was written,
+    // and that write's errno is gone by now: a byte more on the broken
+    // descriptor says why (a full disk, a closed pipe).
+    if (lost && errno == 0) (void)!::write(STDOUT_FILENO, "\n", 1);
     if (lost)
         throw std::runtime_error("cannot write to standard output" +
                                  (errno != 0 ? ": " + std::string(std::strerror(errno)) : ""));

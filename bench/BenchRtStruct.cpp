@@ -55,8 +55,8 @@ int benchRtStruct() {
         for (const Roi& roi : load.contours.rois) {
             contours += roi.contourCount();
             points += roi.pointCount();
+            combined += roi.reading.planesResolved;
         }
-        for (const RtStructRoiInfo& info : load.rois) combined += info.planesCombined;
         std::size_t baselinePoints = 0;
         const double baselineSeconds =
             bestSeconds(3, [&] { baselinePoints = dcmrtRead(path.string()); });

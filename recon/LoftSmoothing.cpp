@@ -324,36 +324,66 @@ struct TrianglesByGroup {
     std::uint32_t group(std::size_t t) const { return groupOf ? (*groupOf)[t] : 0; }
 };
 
-/// A point rounded to float, held as floats: half the memory of a Vec3.
-/// The surfaces smoothing keeps copies of are rounded to float (as mesh
-/// files store them) whenever they are checked, so the copies are exact.
+/// A point as a mesh file holds it (floats), half the memory of a Vec3.
 using FloatPoint = std::array<float, 3>;
 
-FloatPoint exactFloats(const Vec3& p) {
-    const FloatPoint f{float(p.x), float(p.y), float(p.z)};
-    if (double(f[0]) != p.x || double(f[1]) != p.y || double(f[2]) != p.z)
-        throw std::logic_error("smoothLofts: a point not rounded to float");
-    return f;
-}
+/// Where the points go when the surface is written: in patient
+/// coordinates, as floats. The surface is built in its planes' frame; its
+/// points are kept at the plane-frame places of what the file will hold
+/// (WrittenFloats::round), so that every check sees the surface as written.
+/// Rounding in the plane frame and rotating afterwards (an oblique stack)
+/// rounds each point anew, and bent slivers a few nanometres apart passed
+/// through each other in the file. For the identity frame this is rounding
+/// to float, bit for bit. The copies smoothing keeps are held as the
+/// written floats, exact.
+class WrittenFloats {
+  public:
+    explicit WrittenFloats(const PlaneFrame& frame)
+        : frame_(frame), identity_(frame.isIdentity()) {}
 
-Vec3 toVec3(const FloatPoint& f) {
-    return {f[0], f[1], f[2]};
-}
+    /// The floats a file holds for `p`, which must already be rounded
+    /// (std::logic_error otherwise: the copies are exact).
+    FloatPoint exact(const Vec3& p) const {
+        const FloatPoint f = written(p);
+        if (!(point(f) == p)) throw std::logic_error("smoothLofts: a point not rounded as written");
+        return f;
+    }
+    std::vector<FloatPoint> exact(const std::vector<Vec3>& points) const {
+        std::vector<FloatPoint> floats(points.size());
+        for (std::size_t v = 0; v < points.size(); ++v) floats[v] = exact(points[v]);
+        return floats;
+    }
+    /// The plane-frame place of what a file holds. O(1).
+    Vec3 point(const FloatPoint& f) const {
+        const Vec3 written{f[0], f[1], f[2]};
+        return identity_ ? written : frame_.fromPatient(written);
+    }
+    /// Every point moved to the plane-frame place of what a file will hold
+    /// for it; a second call changes nothing (the rotation's double error
+    /// is far below half a float's step). O(points).
+    void round(TriangleSoup& soup) const {
+        if (identity_) return roundPointsToFloat(soup);
+        for (Vec3& p : soup.points) p = point(written(p));
+    }
 
-std::vector<FloatPoint> exactFloats(const std::vector<Vec3>& points) {
-    std::vector<FloatPoint> floats(points.size());
-    for (std::size_t v = 0; v < points.size(); ++v) floats[v] = exactFloats(points[v]);
-    return floats;
-}
+  private:
+    FloatPoint written(const Vec3& p) const {
+        const Vec3 q = identity_ ? p : frame_.toPatient(p);
+        return {float(q.x), float(q.y), float(q.z)};
+    }
+    PlaneFrame frame_;
+    bool identity_;
+};
 
 /// The surface as it came (straight bands from plane to plane), kept for
 /// what smoothing may undo: its points, triangles and their pieces.
 struct LinearSurface {
+    const WrittenFloats& written;
     std::vector<FloatPoint> points;
     std::vector<Triangle> triangles;
     std::vector<std::uint32_t> pieceOf;
 
-    Vec3 point(std::size_t v) const { return toVec3(points[v]); }
+    Vec3 point(std::size_t v) const { return written.point(points[v]); }
 };
 
 /// Every vertex's place on the linear surface: a linear vertex's own point,
@@ -489,9 +519,11 @@ class LocalRepair {
   public:
     /// `searchGroup[t]`: only triangles of one group can meet (< groups);
     /// null: any can. It must outlive the repair and not change.
-    LocalRepair(TriangleSoup& surface, std::size_t contourVertices, StraightPlaces straight,
-                const std::vector<std::uint32_t>* searchGroup, std::uint32_t groups)
+    LocalRepair(TriangleSoup& surface, const WrittenFloats& written, std::size_t contourVertices,
+                StraightPlaces straight, const std::vector<std::uint32_t>* searchGroup,
+                std::uint32_t groups)
         : surface_(surface),
+          written_(written),
           contourVertices_(contourVertices),
           straight_(std::move(straight)),
           groups_(searchGroup, surface.triangles.size(), groups),
@@ -527,7 +559,7 @@ class LocalRepair {
                     changed[v] = true;
                     ++stats.unbentVertices;
                 }
-            roundPointsToFloat(surface_);
+            written_.round(surface_);
             suspects = broken;
             for (std::size_t t = 0; t < surface_.triangles.size(); ++t) {
                 const Triangle& tri = surface_.triangles[t];
@@ -540,6 +572,7 @@ class LocalRepair {
 
   private:
     TriangleSoup& surface_;
+    const WrittenFloats& written_;
     std::size_t contourVertices_;
     StraightPlaces straight_;   // every vertex's place on the linear surface
     TrianglesByGroup groups_;   // which triangles can meet: the topology never changes
@@ -564,9 +597,11 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                                std::vector<bool> isLoft, std::size_t contourVertices,
                                const PieceStack& stack, SliceInterpolant& field,
                                const PlaneSections& planes, double toleranceMm,
-                               MeshCheckReport& check) {
+                               const PlaneFrame& writtenFrame, MeshCheckReport& check) {
     LoftSmoothingStats stats;
-    const LinearSurface linear{exactFloats(surface.points), surface.triangles, pieceOf};
+    const WrittenFloats written(writtenFrame);
+    written.round(surface);
+    const LinearSurface linear{written, written.exact(surface.points), surface.triangles, pieceOf};
     // The surface came valid: a piece none of whose vertices moved or are
     // new is as clean as it was, and its pairs need no search; nor do the
     // pairs of triangles whose corners all stayed (refinement splits every
@@ -612,7 +647,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
         field.setSlabBulges(steps.bulge);
         bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
     }
-    roundPointsToFloat(surface);
+    written.round(surface);
     check = checkWhole();
     if (check.validSolid()) return stats;
     // Where bent bands pass through each other (across a narrow gap between
@@ -628,7 +663,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     // pieceOf stays as it is while the repair lives (reset below, before
     // pieces are swapped).
     std::optional<LocalRepair> repair;
-    repair.emplace(surface, contourVertices, StraightPlaces(linear, parents),
+    repair.emplace(surface, written, contourVertices, StraightPlaces(linear, parents),
                    piecesApart ? &pieceOf : nullptr, groups);
     if (topologyKept && repair->settle(check.defectiveTriangles, stats)) {
         // Unbending changed volumes without changing bulges: the secant of
@@ -642,7 +677,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
             if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
             field.setSlabBulges(steps.bulge);
             // As floats: the surface is rounded to float after every move.
-            const std::vector<FloatPoint> before = exactFloats(surface.points);
+            const std::vector<FloatPoint> before = written.exact(surface.points);
             // Only the slabs that were repaired (the others are where the
             // passes above left them) and whose bulge changed move, and not
             // where pinned.
@@ -653,17 +688,17 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                           steps.bulge[slab] != bulgeBefore[slab];
             }
             bendVertices(surface, free, field, toleranceMm, moved, stats);
-            roundPointsToFloat(surface);
+            written.round(surface);
             std::vector<std::size_t> suspects;
             for (std::size_t t = 0; t < surface.triangles.size(); ++t)
                 for (std::uint32_t v : surface.triangles[t])
-                    if (!(surface.points[v] == toVec3(before[v]))) {
+                    if (!(surface.points[v] == written.point(before[v]))) {
                         suspects.push_back(t);
                         break;
                     }
             if (!repair->settle(suspects, stats)) {
                 for (std::size_t v = 0; v < before.size(); ++v)  // valid as it was
-                    surface.points[v] = toVec3(before[v]);
+                    surface.points[v] = written.point(before[v]);
                 break;
             }
         }
@@ -699,7 +734,7 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
     std::vector<std::size_t> swappedIn = std::move(suspects);
     bool wholeCheck = check.intersectingPairsCapped;  // of the whole check before the repair
     auto checkAgain = [&] {
-        roundPointsToFloat(surface);
+        written.round(surface);
         check = wholeCheck ? checkWhole() : checkMeshNear(surface, swappedIn);
         wholeCheck = check.intersectingPairsCapped;
     };

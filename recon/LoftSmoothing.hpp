@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/PlaneFrame.hpp"
 #include "geometry/StackedMeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
 #include "recon/SlabVolumes.hpp"
@@ -47,7 +48,12 @@ struct LoftSmoothingStats {
 /// (SliceInterpolant::setSlabBulges) is set by secant steps and every bent
 /// vertex moves again, up to four passes; a bulge stays within half its
 /// slab's height.
-/// Where the bent surface is broken (checked with points rounded to float),
+/// The surface's points are first moved to the plane-frame places of the
+/// floats a mesh file will hold when it is written in patient coordinates
+/// (`writtenFrame`: the ROI's plane frame; for the identity, rounding to
+/// float), and kept there after every move, so every check sees the
+/// surface as written, an oblique stack's included.
+/// Where the bent surface is broken (checked as written),
 /// the bent vertices around go back onto the linear surface, tested again
 /// locally, and the slabs repaired that way bulge again with them held
 /// straight. Pieces still broken get their linear triangles back; if the
@@ -61,6 +67,6 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t>
                                std::vector<bool> isLoft, std::size_t contourVertices,
                                const PieceStack& stack, SliceInterpolant& field,
                                const PlaneSections& planes, double toleranceMm,
-                               MeshCheckReport& check);
+                               const PlaneFrame& writtenFrame, MeshCheckReport& check);
 
 }  // namespace dfrecon

@@ -724,7 +724,7 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
         SliceInterpolant interpolant(fields);
         const LoftSmoothingStats smooth = smoothLofts(
             result.surface, std::move(built.pieces), std::move(built.lofts), contourVertices, stack,
-            interpolant, sectionsOf(slices), options.smoothToleranceMm, result.check);
+            interpolant, sectionsOf(slices), options.smoothToleranceMm, roi.frame, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;
         stats.smoothUnbentVertices = smooth.unbentVertices;

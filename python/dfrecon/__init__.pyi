@@ -30,6 +30,7 @@ class Roi:
     orientation: str
     contour_volume_cc: float
     defect: Optional[str]
+    contour_reading: Dict[str, Any]
 
 class StructureSet:
     rois: List[Roi]
@@ -38,7 +39,6 @@ class StructureSet:
         cls,
         rois: Mapping[str, Sequence[npt.ArrayLike]],
         colours: Optional[Mapping[str, _Colour]] = ...,
-        repair_contours: bool = ...,
     ) -> "StructureSet": ...
     @property
     def format(self) -> str: ...
@@ -57,7 +57,6 @@ class StructureSet:
 def read_contours(
     path: _Path,
     *,
-    repair_contours: bool = ...,
     label_table: Optional[_Path] = ...,
     accept_intensity: bool = ...,
 ) -> StructureSet: ...

@@ -63,45 +63,47 @@ TEST(Cli, EveryMalformedInputExitsTwoWithFileAndLine) {
     }
 }
 
-// A bow tie on the middle plane: refused by default (exit 2, naming its
-// line); --repair-contours makes it the two triangles of its even-odd
-// region, warns at its line, and the ROI reconstructs into a valid solid.
-TEST(Cli, RepairContoursResolvesASelfCrossingContourByEvenOdd) {
+// A bow tie on the middle plane is read as planning systems read it: the
+// two triangles of its even-odd region, one warning for the ROI at its
+// line, the change in contourReading, and the ROI reconstructs into a valid
+// solid. The former --repair-contours flag is still accepted.
+TEST(Cli, SelfCrossingContourIsReadByTheEvenOddRule) {
     const fs::path file = scratch() / "bow-tie.slices", mesh = scratch() / "bow-tie.ply";
     std::ofstream(file) << "dfrecon-slices 1\nunits mm\nroi tie\n"
                            "slice 0\ncontour 4\n0 0\n10 0\n10 10\n0 10\n"
                            "slice 2\ncontour 4\n0 0\n10 10\n10 0\n0 10\n"
                            "slice 4\ncontour 4\n0 0\n10 0\n10 10\n0 10\n";
-    const Result refused = runDfrecon("reconstruct " + file.string() + " -o " + mesh.string());
-    EXPECT_EQ(refused.exitCode, 2);
-    EXPECT_NE(refused.err.find(file.string() + ":"), std::string::npos) << refused.err;
-    EXPECT_NE(refused.err.find("self-intersecting"), std::string::npos) << refused.err;
-    EXPECT_FALSE(fs::exists(mesh));
-
-    const Result repaired = runDfrecon("--repair-contours reconstruct --json " + file.string() +
-                                       " -o " + mesh.string());
-    ASSERT_EQ(repaired.exitCode, 0) << repaired.err;
-    EXPECT_NE(repaired.err.find(file.string() + ":11: warning"), std::string::npos) << repaired.err;
-    EXPECT_NE(repaired.err.find("even-odd"), std::string::npos) << repaired.err;
-    const auto report = nlohmann::json::parse(repaired.out)["rois"][0];
-    EXPECT_TRUE(report["validSolid"].get<bool>());
-    // Planes 0 and 4 hold 100 mm², plane 2 the two triangles' 50 mm²; each
-    // plane stands for 2 mm (an end plane takes its one gap).
-    EXPECT_NEAR(report["contourVolumeMm3"].get<double>(), (100 + 50 + 100) * 2.0, 1e-9);
+    for (const std::string flag : {"", "--repair-contours "}) {
+        const Result run = runDfrecon(flag + "reconstruct --json " + file.string() + " -o " +
+                                      mesh.string());
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        EXPECT_NE(run.err.find(file.string() + ":3: warning: ROI 'tie' read as planning systems"),
+                  std::string::npos)
+            << run.err;
+        const auto report = nlohmann::json::parse(run.out)["rois"][0];
+        EXPECT_TRUE(report["validSolid"].get<bool>());
+        EXPECT_EQ(report["contourReading"]["resolvedContours"], 1);
+        EXPECT_EQ(report["contourReading"]["rule"], "even-odd");
+        // Planes 0 and 4 hold 100 mm², plane 2 the two triangles' 50 mm²;
+        // each plane stands for 2 mm (an end plane takes its one gap).
+        EXPECT_NEAR(report["contourVolumeMm3"].get<double>(), (100 + 50 + 100) * 2.0, 1e-9);
+    }
 }
 
-// One ROI of a .slices file with a crossing contour: it alone is reported;
-// the other reconstructs by name, and --all writes it and exits 2.
+// One ROI of a .slices file whose contours cross in more places than any
+// reading combines: it alone is reported; the other reconstructs by name,
+// and --all writes it and exits 2.
 TEST(Cli, OneBrokenRoiOfASlicesFileLeavesTheOthers) {
     const fs::path file = scratch() / "one-broken.slices", dir = scratch() / "one-broken";
     std::ofstream(file) << "dfrecon-slices 1\nunits mm\n"
                            "roi good\nslice 0\ncontour 4\n0 0\n10 0\n10 10\n0 10\n"
                            "slice 2\ncontour 4\n0 0\n10 0\n10 10\n0 10\n"
-                           "roi broken\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 10\n";
+                           "roi broken\nslice 0\n"
+                        << dfrecon::testing::crossingCombs(300);
     const Result info = runDfrecon("info " + file.string());
     EXPECT_EQ(info.exitCode, 2);
     EXPECT_NE(info.out.find("\"good\""), std::string::npos) << info.out;
-    EXPECT_NE(info.err.find(file.string() + ":19:"), std::string::npos) << info.err;
+    EXPECT_NE(info.err.find(file.string() + ":18:"), std::string::npos) << info.err;
     const Result good = runDfrecon("-q reconstruct " + file.string() + " --roi good -o " +
                                    (scratch() / "good.ply").string());
     EXPECT_EQ(good.exitCode, 0) << good.err;
@@ -908,8 +910,9 @@ TEST(Cli, RasterizedSphereHasTheBallsVolume) {
 
 TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
     // A 40 mm square prism with a 10 mm one inside it, and an ROI whose
-    // contour crosses itself: the map holds both good ROIs, the inner one
-    // whole, and the run says the third could not be read (exit 2).
+    // contours cross past any reading's limit: the map holds both good
+    // ROIs, the inner one whole, and the run says the third could not be
+    // read (exit 2).
     std::string text = "dfrecon-slices 1\nunits mm\n";
     const auto square = [&](double halfMm) {
         std::string slices;
@@ -922,7 +925,7 @@ TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
         return slices;
     };
     text += "roi Body 10 200 30\n" + square(20) + "roi Organ\n" + square(5) +
-            "roi Knot\nslice 0\ncontour 4\n0 0\n10 10\n10 0\n0 10\n";
+            "roi Knot\nslice 0\n" + dfrecon::testing::crossingCombs(300);
     const fs::path slices = scratch() / "nested.slices", out = scratch() / "nested.seg.nrrd";
     std::ofstream(slices) << text;
     const Result run = runDfrecon("rasterize -q --json --all " + slices.string() +

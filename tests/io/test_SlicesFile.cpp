@@ -73,6 +73,59 @@ TEST(SlicesParser, RepairsRepeatedPointsWithWarning) {
     EXPECT_NE(load.warnings[0].message.find("dropped 3 repeated"), std::string::npos);
 }
 
+// Drawings a planning system exports and a voxel tool fills: each is read
+// by the even-odd rule (geometry/PlaneReading), counted, warned about once
+// per ROI, and leaves the region the rule gives.
+struct Drawing {
+    const char* name;
+    std::string slice;  // the contours of one plane
+    double areaMm2;     // the even-odd region's area
+    std::size_t PlaneReadingCounts::*counted;
+};
+
+TEST(SlicesParser, PlanningSystemDrawingsAreReadByTheEvenOddRule) {
+    const std::vector<Drawing> drawings{
+        {"BowTie", "contour 4\n0 0\n10 10\n10 0\n0 10\n", 50,
+         &PlaneReadingCounts::resolvedContours},
+        {"SelfCrossing", "contour 4\n0 0\n10 10\n10 0\n0 5\n", 125.0 / 3,
+         &PlaneReadingCounts::resolvedContours},
+        {"SelfTouching", "contour 6\n0 0\n10 0\n5 5\n10 10\n0 10\n5 5\n", 50,
+         &PlaneReadingCounts::keyholeCuts},
+        {"Spike", "contour 5\n0 0\n10 0\n20 0\n10 0.0\n0 10\n", 50,
+         &PlaneReadingCounts::foldPoints},
+        {"ContoursCross", kSquare + "contour 4\n5 5\n15 5\n15 15\n5 15\n", 150,
+         &PlaneReadingCounts::resolvedContours},
+        {"StoredTwice", kSquare + kSquare, 100, &PlaneReadingCounts::duplicateContours},
+        {"TwoPointsBeside", kSquare + "contour 2\n20 0\n21 1\n", 100,
+         &PlaneReadingCounts::zeroAreaContours},
+        {"LineBeside", kSquare + "contour 3\n20 0\n21 1\n22 2\n", 100,
+         &PlaneReadingCounts::zeroAreaContours},
+    };
+    for (const Drawing& drawing : drawings) {
+        const SlicesLoad load = parseText(kHeader + "roi a\nslice 0\n" + drawing.slice);
+        const Roi& roi = load.contours.rois[0];
+        ASSERT_FALSE(roi.defect.has_value()) << drawing.name << ": " << roi.defect->what();
+        ASSERT_EQ(roi.slices.size(), 1u) << drawing.name;
+        double area = 0;
+        for (const Polygon& c : roi.slices[0].contours) area += signedArea(c);
+        EXPECT_NEAR(area, drawing.areaMm2, 1e-9) << drawing.name;
+        EXPECT_GT(roi.reading.*drawing.counted, 0u) << drawing.name;
+    }
+}
+
+TEST(SlicesParser, AnRoiOfNothingButLinesIsEmptyNotBroken) {
+    const SlicesLoad load =
+        parseText(kHeader + "roi a\nslice 0\ncontour 3\n0 0\n1 1\n2 2\nslice 1\ncontour 2\n0 0\n1 1\n");
+    const Roi& roi = load.contours.rois[0];
+    EXPECT_FALSE(roi.defect.has_value());
+    EXPECT_TRUE(roi.slices.empty());
+    EXPECT_EQ(roi.reading.zeroAreaContours, 2u);
+    ASSERT_EQ(load.warnings.size(), 1u);
+    EXPECT_NE(load.warnings[0].message.find("read as planning systems read it: 2 contours of no area"),
+              std::string::npos)
+        << load.warnings[0].message;
+}
+
 TEST(SlicesParser, SortsSlicesAndMergesDuplicateZWithWarnings) {
     const SlicesLoad load = parseText(kHeader + "roi a\nslice 5\n" + kSquare + "slice 1\n" +
                                       kSquare + "slice 5\ncontour 3\n20 0\n30 0\n25 5\n");

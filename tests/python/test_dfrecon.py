@@ -106,17 +106,18 @@ def test_wrong_arrays_are_value_errors(contour):
         dfrecon.StructureSet.from_contours({"Bad": [contour]})
 
 
-def test_crossing_contours_make_the_roi_a_defect():
+def test_crossing_contours_are_read_by_the_even_odd_rule():
     bowtie = np.array([[0, 0, 0], [10, 10, 0], [10, 0, 0], [0, 10, 0]], dtype=float)
-    ss = dfrecon.StructureSet.from_contours({"Tie": [bowtie], "Box": [square(5, 0)]})
+    ss = dfrecon.StructureSet.from_contours({"Tie": [bowtie, bowtie], "Box": [square(5, 0)]})
+    tie = ss["Tie"]
+    assert tie.defect is None and len(tie.contours) == 2  # the bow tie's two triangles
+    assert tie.contour_reading["duplicate_contours"] == 1
+    assert tie.contour_reading["resolved_contours"] == 1
+    assert tie.contour_reading["rule"] == "even-odd" and tie.contour_reading["changed_shape"]
     # Named by the arrays given, not by lines of a file the user never saw.
-    assert ss["Tie"].defect.startswith("StructureSet.from_contours: ROI 'Tie', contour 0")
-    assert "self-intersecting" in ss["Tie"].defect and "line" not in ss["Tie"].defect
-    with pytest.raises(dfrecon.InputError):
-        dfrecon.reconstruct(ss, "Tie")
-    assert dfrecon.reconstruct(ss, "Box").valid_solid
-    repaired = dfrecon.StructureSet.from_contours({"Tie": [bowtie]}, repair_contours=True)
-    assert repaired["Tie"].defect is None and len(repaired["Tie"].contours) == 2
+    assert any(w.startswith("StructureSet.from_contours: ") and "ROI 'Tie'" in w
+               for w in ss.warnings), ss.warnings
+    assert not ss["Box"].contour_reading["changed_shape"]
 
 
 def test_a_bad_file_names_itself(tmp_path):
