@@ -5,6 +5,7 @@
 #include <regex>
 #include <sstream>
 
+#include "contours/PlaneGaps.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelInput.hpp"
 #include "io/SlicesFile.hpp"
@@ -133,11 +134,31 @@ std::string originOf(int line, const std::vector<std::string>& origins) {
     return line > 0 && std::size_t(line) < origins.size() ? origins[std::size_t(line)] : "";
 }
 
-ContoursRead fromSlicesLoad(SlicesLoad load) {
+// Where ROIs end and start again across planes left empty
+// (contours/PlaneGaps), with a warning for each such ROI.
+void findGaps(ContoursRead& read, const std::string& source) {
+    findPlaneGaps(read.contours);
+    for (const Roi& roi : read.contours.rois) {
+        if (roi.restartsAt.empty()) continue;
+        std::ostringstream where;
+        for (std::size_t k = 0; k < roi.restartsAt.size(); ++k) {
+            const std::size_t i = roi.restartsAt[k];
+            where << (k ? ", " : "") << roi.slices[i - 1].zMm << " to " << roi.slices[i].zMm;
+        }
+        read.warnings.push_back({source, 0,
+                                 "ROI '" + roi.name + "' has planes left empty between " +
+                                     where.str() + " mm: it ends and starts again there (" +
+                                     std::to_string(roi.restartsAt.size() + 1) +
+                                     " pieces), as planning systems count its volume"});
+    }
+}
+
+ContoursRead fromSlicesLoad(SlicesLoad load, const std::string& source) {
     ContoursRead read;
     read.format = ContourFormat::Slices;
     read.contours = std::move(load.contours);
     read.warnings = std::move(load.warnings);
+    findGaps(read, source);
     return read;
 }
 
@@ -167,17 +188,18 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
             break;
         }
         case ContourFormat::Slices:
-            read = fromSlicesLoad(readSlicesFile(path, {}, options.progress));
+            read = fromSlicesLoad(readSlicesFile(path, {}, options.progress), path);
             break;
     }
+    if (read.format != ContourFormat::Slices) findGaps(read, path);
     return read;
 }
 
 ContoursRead readSlicesStream(std::istream& in, const std::string& name,
-                              const ReadContoursOptions& options) {
+                              const ReadContoursOptions& /*options: none applies*/) {
     // The parser's limits bound what a pipe can make it hold, as they bound a file.
     const ReadingInput reading(name);
-    return fromSlicesLoad(parseSlices(in, name));
+    return fromSlicesLoad(parseSlices(in, name), name);
 }
 
 ContoursRead structureSetFromPoints(const std::vector<RoiPoints>& rois, const std::string& source,

@@ -1,9 +1,11 @@
 #include "dfrecon/Field.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 #include "api/Stopwatch.hpp"
+#include "contours/PlaneGaps.hpp"
 #include "field/ClosestPrimitives.hpp"
 #include "field/FieldVolume.hpp"
 #include "recon/ContourSimplification.hpp"
@@ -55,7 +57,11 @@ DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,
     const SliceFields fields = roiSliceFields(runtime, roi, options);
     const double fieldsLap = watch.lap();
     if (fieldsSeconds) *fieldsSeconds = fieldsLap;
-    DistanceField3D field = layersFromSlices(fields, spacing.meanMm > 0 ? spacing.meanMm : 1.0);
+    // A lone plane stands for the image planes' spacing (contours/PlaneGaps).
+    const double endSpacing = spacing.meanMm > 0              ? spacing.meanMm
+                              : lonePlaneThicknessMm(roi) > 0 ? lonePlaneThicknessMm(roi)
+                                                              : 1.0;
+    DistanceField3D field = layersFromSlices(fields, endSpacing);
     propagateAlongZ(runtime, field);
     const double propagateLap = watch.lap();
     if (propagateSeconds) *propagateSeconds = propagateLap;
@@ -65,7 +71,19 @@ DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,
 std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
                                          const VolumeGeometry& grid,
                                          const RoiFieldOptions& options) {
-    return voxelsInside(roiDistanceField3D(runtime, roi, options), roi.frame, grid);
+    // Where planes are left empty the ROI ends and starts again: each run's
+    // voxels, joined, as the surface joins its runs' solids.
+    std::vector<std::size_t> inside;
+    for (const Roi& run : planeRuns(roi)) {
+        std::vector<std::size_t> part =
+            voxelsInside(roiDistanceField3D(runtime, run, options), run.frame, grid);
+        std::vector<std::size_t> joined;
+        joined.reserve(inside.size() + part.size());
+        std::set_union(inside.begin(), inside.end(), part.begin(), part.end(),
+                       std::back_inserter(joined));
+        inside = std::move(joined);
+    }
+    return inside;
 }
 
 RoiDistanceVolume roiDistanceVolume(ocl::Runtime& runtime, const Roi& roi,

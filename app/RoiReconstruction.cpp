@@ -46,6 +46,18 @@ RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
     return outcome;
 }
 
+namespace {
+
+// Where the ROI ends and starts again (contours/PlaneGaps): [below, above]
+// of each gap, in the plane frame's mm.
+nlohmann::ordered_json planeGapsJson(const Roi& roi) {
+    nlohmann::ordered_json gaps = nlohmann::ordered_json::array();
+    for (std::size_t i : roi.restartsAt) gaps.push_back({roi.slices[i - 1].zMm, roi.slices[i].zMm});
+    return gaps;
+}
+
+}  // namespace
+
 nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
                                  const RtStructRoiInfo* dicom, const ReconstructSettings& settings,
                                  const RoiWriting& writing,
@@ -70,6 +82,8 @@ nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
                  {"piecesClosedAgain", s.repairedPieces},
                  {"facesRefusedByOpenMesh", writing.refusedFaces},
                  {"slices", s.slices},
+                 {"pieces", s.runs},
+                 {"planesLeftEmptyMm", planeGapsJson(roi)},
                  {"planes", roi.frame.orientationName()},
                  {"holeConvention", valueOrNull(holes)},
                  {"contourReading", contourReadingJson(roi.reading)},

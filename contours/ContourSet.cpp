@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "contours/PlaneGaps.hpp"
+
 namespace dfrecon {
 
 std::size_t Roi::contourCount() const {
@@ -168,14 +170,20 @@ std::vector<double> planeThicknessesMm(const std::vector<double>& planeZMm,
 }
 
 double contourVolumeMm3(const Roi& roi) {
-    std::vector<double> planeZMm;
-    for (const Slice& slice : roi.slices) planeZMm.push_back(slice.zMm);
-    const std::vector<double> thickness = planeThicknessesMm(planeZMm, roi.slabThicknessMm);
     double volume = 0;
-    for (std::size_t i = 0; i < roi.slices.size(); ++i) {
-        double area = 0;
-        for (const Polygon& contour : roi.slices[i].contours) area += signedArea(contour);
-        volume += area * thickness[i];
+    std::size_t begin = 0;
+    for (std::size_t k = 0; k <= roi.restartsAt.size(); ++k) {
+        const std::size_t end = k < roi.restartsAt.size() ? roi.restartsAt[k] : roi.slices.size();
+        std::vector<double> planeZMm;
+        for (std::size_t i = begin; i < end; ++i) planeZMm.push_back(roi.slices[i].zMm);
+        std::vector<double> thickness = planeThicknessesMm(planeZMm, roi.slabThicknessMm);
+        if (end - begin == 1) thickness[0] = lonePlaneThicknessMm(roi);
+        for (std::size_t i = begin; i < end; ++i) {
+            double area = 0;
+            for (const Polygon& contour : roi.slices[i].contours) area += signedArea(contour);
+            volume += area * thickness[i - begin];
+        }
+        begin = end;
     }
     return volume;
 }

@@ -47,6 +47,15 @@ struct Roi {
     /// contours of no area, crossings resolved by the even-odd rule),
     /// summed over the planes; reports list it per ROI.
     PlaneReadingCounts reading;
+    /// Where the ROI ends and starts again (contours/PlaneGaps): indices of
+    /// the slices that begin a new run because image planes with no
+    /// contour of this ROI lie between them and the slice before. Empty:
+    /// one run.
+    std::vector<std::size_t> restartsAt;
+    /// The spacing of the image planes the ROI's stack lies on (the median
+    /// gap between the planes of every ROI of its file on that stack), 0
+    /// when unknown: the thickness of a plane alone in its run.
+    double imagePlaneSpacingMm = 0;
 
     std::size_t contourCount() const;
     std::size_t pointCount() const;
@@ -114,8 +123,9 @@ std::vector<double> planeThicknessesMm(const std::vector<double>& planeZMm, doub
 /// The volume planning systems report for an ROI: the sum over its planes
 /// of the contours' net area (holes subtracted) times the plane's thickness
 /// — the DICOM slab thickness when given, else the mean of the gaps to the
-/// neighbouring planes (an end plane takes its one gap). 0 for a single
-/// plane without a slab thickness. O(points).
+/// neighbouring planes of its run (Roi::restartsAt: planes left empty
+/// count nothing; an end plane takes its one gap; a plane alone in its run
+/// the image planes' spacing, 0 when unknown). O(points).
 double contourVolumeMm3(const Roi& roi);
 
 }  // namespace dfrecon

@@ -104,8 +104,8 @@ std::size_t dropFolds(Polygon& contour) {
 Polygon canonical(const Polygon& contour) {
     auto less = [](Point2 a, Point2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
     const std::size_t n = contour.size();
-    const std::size_t first = std::size_t(
-        std::min_element(contour.begin(), contour.end(), less) - contour.begin());
+    const std::size_t first =
+        std::size_t(std::min_element(contour.begin(), contour.end(), less) - contour.begin());
     const bool forward = !less(contour[(first + n - 1) % n], contour[(first + 1) % n]);
     Polygon out;
     out.reserve(n);
@@ -162,7 +162,8 @@ PlaneReading readPlaneContours(std::vector<Polygon> contours, std::size_t maxWor
     for (std::size_t i = 0; i < contours.size(); ++i) {
         Polygon& contour = contours[i];
         counts.repeatedPoints += dropRepeats(contour);
-        counts.foldPoints += dropFolds(contour);
+        // A contour all on one line has no area to fold up.
+        if (contour.size() >= 3 && !allCollinear(contour)) counts.foldPoints += dropFolds(contour);
         if (contour.size() < 3 || allCollinear(contour)) {
             ++counts.zeroAreaContours;
             continue;

@@ -1,5 +1,7 @@
 #include "geometry/Polygon.hpp"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
 #include <algorithm>
 #include <limits>
 
@@ -41,19 +43,25 @@ double distanceToBoundary(Point2 p, const Polygon& polygon) {
     return best;
 }
 
-static int sign(double v) {
-    return (v > 0) - (v < 0);
-}
-
 // Is c within the bounding box of ab (used once c is known collinear with ab)?
 static bool withinSpan(Point2 a, Point2 b, Point2 c) {
     return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
            c.y <= std::max(a.y, b.y);
 }
 
+// Which side of line ab point c lies on (1 left, -1 right, 0 on it),
+// exactly: CGAL's filtered predicate. The rounded cross product took
+// pieces of one segment, split at a rounded crossing point and a few 1e-17
+// off the line, for segments crossing each other.
+static int orientation(Point2 a, Point2 b, Point2 c) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    return int(CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y),
+                                 Kernel::Point_2(c.x, c.y)));
+}
+
 SegmentContact segmentContact(Point2 a, Point2 b, Point2 c, Point2 d) {
-    const int o1 = sign(cross(b - a, c - a)), o2 = sign(cross(b - a, d - a));
-    const int o3 = sign(cross(d - c, a - c)), o4 = sign(cross(d - c, b - c));
+    const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
+    const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
 
     if (o1 == 0 && o2 == 0) {
         // Collinear: project on the dominant axis and compare the overlap.

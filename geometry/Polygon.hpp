@@ -80,7 +80,8 @@ enum class SegmentContact {
     Overlap,  // collinear with a shared piece of positive length
 };
 
-/// Classifies the contact of segments ab and cd with orientation tests.
+/// Classifies the contact of segments ab and cd with exact orientation tests
+/// (CGAL's filtered predicates: exact on the doubles given).
 SegmentContact segmentContact(Point2 a, Point2 b, Point2 c, Point2 d);
 
 struct Box2 {

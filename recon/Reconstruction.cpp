@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "cl/HostScratch.hpp"
+#include "contours/PlaneGaps.hpp"
 #include "geometry/CoreBudget.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/StackedMeshCheck.hpp"
@@ -599,7 +600,11 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
     // (intermediate contours, lids, refinement) may move in smooth mode.
     const std::size_t contourVertices = reconstructor.builder().soup().points.size();
     const SpacingStats spacing = spacingOf(roi);
-    const double endSpacing = spacing.meanMm > 0 ? spacing.meanMm : 1.0;
+    // A lone plane stands for the image planes' spacing, as its contour
+    // volume counts it (1 mm when nothing says what that is).
+    const double endSpacing = spacing.meanMm > 0              ? spacing.meanMm
+                              : lonePlaneThicknessMm(roi) > 0 ? lonePlaneThicknessMm(roi)
+                                                              : 1.0;
     auto capOffset = [&](std::size_t s, bool up) {
         const std::size_t neighbour = up ? s - 1 : s + 1;
         const double gap =
@@ -738,10 +743,101 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
 
 }  // namespace
 
+namespace {
+
+// The report of a surface made of disjoint parts from the parts' reports:
+// counts, volume and area add; the examples and defective triangles are
+// renumbered to the joined soup (each part's triangles follow the last).
+void addDisjointCheck(MeshCheckReport& whole, const MeshCheckReport& part,
+                      std::size_t triangleOffset) {
+    const bool closed = whole.genus >= 0 && part.genus >= 0;
+    whole.vertices += part.vertices;
+    whole.triangles += part.triangles;
+    whole.edges += part.edges;
+    whole.degenerateTriangles += part.degenerateTriangles;
+    whole.boundaryEdges += part.boundaryEdges;
+    whole.nonManifoldEdges += part.nonManifoldEdges;
+    whole.nonManifoldVertices += part.nonManifoldVertices;
+    whole.misorientedEdges += part.misorientedEdges;
+    whole.intersectingPairs += part.intersectingPairs;
+    whole.intersectingPairsCapped = whole.intersectingPairsCapped || part.intersectingPairsCapped;
+    for (const auto& [a, b] : part.intersectingExamples)
+        if (whole.intersectingExamples.size() < 10)
+            whole.intersectingExamples.push_back({a + triangleOffset, b + triangleOffset});
+    for (std::size_t t : part.defectiveTriangles)
+        whole.defectiveTriangles.push_back(t + triangleOffset);
+    whole.components += part.components;
+    whole.eulerCharacteristic += part.eulerCharacteristic;
+    whole.genus = closed ? whole.genus + part.genus : -1;
+    whole.volumeMm3 += part.volumeMm3;
+    whole.areaMm2 += part.areaMm2;
+}
+
+// An ROI with planes left empty: each run on its own, joined (see the
+// header). A lone plane's cap reaches half the plane's thickness
+// (lonePlaneThicknessMm), as its contour volume counts it.
+Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
+                               const ReconstructionOptions& requested,
+                               const std::function<void(double)>& progress) {
+    const std::vector<Roi> runs = planeRuns(roi);
+    Reconstruction whole;
+    whole.check.genus = 0;
+    ReconstructionStats& s = whole.stats;
+    s.runs = runs.size();
+    std::size_t pointsBefore = 0;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        const double done = double(k) / double(runs.size());
+        Reconstruction part = reconstructWithin(runtime, runs[k], requested, [&](double f) {
+            if (progress) progress(done + f / double(runs.size()));
+        });
+        const std::size_t trianglesBefore = whole.surface.triangles.size();
+        pointsBefore = whole.surface.points.size();
+        whole.surface.points.insert(whole.surface.points.end(), part.surface.points.begin(),
+                                    part.surface.points.end());
+        for (std::array<std::uint32_t, 3> t : part.surface.triangles) {
+            for (std::uint32_t& v : t) v += std::uint32_t(pointsBefore);
+            whole.surface.triangles.push_back(t);
+        }
+        addDisjointCheck(whole.check, part.check, trianglesBefore);
+        whole.brokenPieces.insert(whole.brokenPieces.end(), part.brokenPieces.begin(),
+                                  part.brokenPieces.end());
+        const ReconstructionStats& p = part.stats;
+        s.pixelMm = std::max(s.pixelMm, p.pixelMm);
+        s.slices += p.slices;
+        s.contourPoints += p.contourPoints;
+        s.slabs += p.slabs;
+        s.strips += p.strips;
+        s.rejectedStrips += p.rejectedStrips;
+        s.recursions += p.recursions;
+        s.deepestLevel = std::max(s.deepestLevel, p.deepestLevel);
+        s.limitClosings += p.limitClosings;
+        s.caps += p.caps;
+        s.fallbackSlabs += p.fallbackSlabs;
+        s.touchesOpened += p.touchesOpened;
+        s.repairedPieces += p.repairedPieces;
+        s.smoothedVertices += p.smoothedVertices;
+        s.smoothRevertedPieces += p.smoothRevertedPieces;
+        s.smoothUnbentVertices += p.smoothUnbentVertices;
+        s.smoothFellBack = s.smoothFellBack || p.smoothFellBack;
+        s.simplifySeconds += p.simplifySeconds;
+        s.fieldsSeconds += p.fieldsSeconds;
+        s.medialSeconds += p.medialSeconds;
+        s.triangulationSeconds += p.triangulationSeconds;
+        s.checkSeconds += p.checkSeconds;
+    }
+    std::sort(whole.check.defectiveTriangles.begin(), whole.check.defectiveTriangles.end());
+    std::sort(whole.brokenPieces.begin(), whole.brokenPieces.end());
+    return whole;
+}
+
+}  // namespace
+
 Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
                                   const ReconstructionOptions& requested,
                                   const std::function<void(double)>& progress) {
-    Reconstruction result = reconstructWithin(runtime, roi, requested, progress);
+    Reconstruction result = roi.restartsAt.empty()
+                                ? reconstructWithin(runtime, roi, requested, progress)
+                                : reconstructRuns(runtime, roi, requested, progress);
     // What the reconstruction freed stays resident in the heap arena of the
     // thread that ran it (a worker of `--all`, a slab helper), where the
     // next ROI on another thread cannot reuse it: with the head CT's three

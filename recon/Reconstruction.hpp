@@ -58,8 +58,9 @@ struct ReconstructionOptions {
 struct ReconstructionStats {
     double pixelMm = 0;
     std::size_t slices = 0, contourPoints = 0;  // after contour simplification
-    std::size_t slabs = 0;                      // pairs of neighbouring slices
-    std::size_t strips = 0;                     // contour pairs joined by tracing an axis
+    std::size_t runs = 1;    // pieces the ROI falls into where planes are left empty (PlaneGaps)
+    std::size_t slabs = 0;   // pairs of neighbouring slices
+    std::size_t strips = 0;  // contour pairs joined by tracing an axis
     std::size_t rejectedStrips = 0;    // strips that folded through themselves, solved again
     std::size_t recursions = 0;        // intermediate contour layers made
     int deepestLevel = 0;              // deepest recursion level used
@@ -103,6 +104,12 @@ struct Reconstruction {
 /// std::invalid_argument for an ROI without contours, ClError on device
 /// failure. Work: the fields, O(pixels) per slab for the axes, O(points)
 /// for the strips.
+/// An ROI that ends and starts again where planes are left empty
+/// (Roi::restartsAt) is reconstructed run by run, each run a closed solid
+/// capped at its ends like any ROI, and the runs' surfaces joined: an empty
+/// plane lies between any two, and each cap reaches at most half its gap
+/// beyond its end plane, so no two runs meet and the whole is valid when
+/// every run is (its check is the runs' checks summed).
 Reconstruction reconstructSurface(ocl::Runtime& runtime, const Roi& roi,
                                   const ReconstructionOptions& options = {},
                                   const std::function<void(double)>& progress = {});

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/Polygon.hpp"
+
 namespace dfrecon::testing {
 
 inline const std::string kHeader = "dfrecon-slices 1\nunits mm\n";
@@ -25,29 +27,38 @@ inline void PrintTo(const BadInput& input, std::ostream* out) {
 
 // Two meanders of `teeth` long strokes each over one square, one's strokes
 // upright, the other's lying: every upright stroke crosses every lying one
-// (teeth² crossings), as .slices contour lines.
-inline std::string crossingCombs(int teeth) {
-    const int top = 2 * teeth;  // strokes run from -1 to top + 1
+// (teeth² crossings), more than any reading combines from 224 teeth on.
+inline std::vector<Polygon> crossingMeanders(int teeth) {
+    const double top = 2.0 * teeth;  // strokes run from -1 to top + 1
     auto meander = [&](bool upright) {
-        std::vector<std::pair<double, double>> points;
+        Polygon points;
+        auto add = [&](double across, double along) {
+            points.push_back(upright ? Point2{across, along} : Point2{along, across});
+        };
         for (int k = 0; k < teeth; ++k) {
             const double across = upright ? 2 * k : 2 * k + 0.5;
-            const double from = k % 2 ? top + 1 : -1, to = k % 2 ? -1 : top + 1;
-            points.push_back({across, from});
-            points.push_back({across, to});
+            add(across, k % 2 ? top + 1 : -1);
+            add(across, k % 2 ? -1 : top + 1);
         }
         // Back to the start well outside the other meander's strokes.
-        const double end = points.back().second;
-        points.push_back({top + 3.0, end});
-        points.push_back({top + 3.0, -5});
-        points.push_back({-5, -5});
-        std::string text = "contour " + std::to_string(points.size()) + "\n";
-        for (auto [a, b] : points)
-            text += upright ? std::to_string(a) + " " + std::to_string(b) + "\n"
-                            : std::to_string(b) + " " + std::to_string(a) + "\n";
-        return text;
+        const double end = teeth % 2 ? top + 1 : -1;
+        add(top + 3, end);
+        add(top + 3, -5);
+        add(-5, -5);
+        return points;
     };
-    return meander(true) + meander(false);
+    return {meander(true), meander(false)};
+}
+
+// crossingMeanders as .slices contour lines.
+inline std::string crossingCombs(int teeth) {
+    std::string text;
+    for (const Polygon& contour : crossingMeanders(teeth)) {
+        text += "contour " + std::to_string(contour.size()) + "\n";
+        for (const Point2 p : contour)
+            text += std::to_string(p.x) + " " + std::to_string(p.y) + "\n";
+    }
+    return text;
 }
 
 inline std::vector<BadInput> badInputs() {

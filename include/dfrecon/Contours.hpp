@@ -40,13 +40,19 @@ struct ContoursRead {
     const RtStructRoiInfo* dicomInfo(const Roi& roi) const;
 };
 
-/// Reads `path` in the format contourFormatOf() finds. An ROI whose contours
-/// cannot be used (too few points, crossing contours) is kept with its
-/// `defect` and no slices, so the file's other ROIs load. Throws InputError
-/// naming the file (and line or tag) for bad input. O(input).
+/// Reads `path` in the format contourFormatOf() finds. Every plane is read
+/// as planning systems read it (geometry/PlaneReading: crossings by the
+/// even-odd rule, folds, duplicates and contours of no area dropped, each
+/// ROI's changes in Roi::reading), and where ROIs end and start again
+/// across planes left empty is found (contours/PlaneGaps), with warnings.
+/// An ROI whose contours cannot be used (a plane too complex to read,
+/// non-planar contours) is kept with its `defect` and no slices, so the
+/// file's other ROIs load. Throws InputError naming the file (and line or
+/// tag) for bad input. O(input).
 ContoursRead readContours(const std::string& path, const ReadContoursOptions& options = {});
 
-/// Reads .slices text from `in`; `name` labels messages. As readContours.
+/// Reads .slices text from `in`; `name` labels messages. As readContours
+/// (no option of `options` applies to .slices text).
 ContoursRead readSlicesStream(std::istream& in, const std::string& name,
                               const ReadContoursOptions& options = {});
 

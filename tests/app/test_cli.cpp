@@ -74,8 +74,8 @@ TEST(Cli, SelfCrossingContourIsReadByTheEvenOddRule) {
                            "slice 2\ncontour 4\n0 0\n10 10\n10 0\n0 10\n"
                            "slice 4\ncontour 4\n0 0\n10 0\n10 10\n0 10\n";
     for (const std::string flag : {"", "--repair-contours "}) {
-        const Result run = runDfrecon(flag + "reconstruct --json " + file.string() + " -o " +
-                                      mesh.string());
+        const Result run =
+            runDfrecon(flag + "reconstruct --json " + file.string() + " -o " + mesh.string());
         ASSERT_EQ(run.exitCode, 0) << run.err;
         EXPECT_NE(run.err.find(file.string() + ":3: warning: ROI 'tie' read as planning systems"),
                   std::string::npos)
@@ -88,6 +88,35 @@ TEST(Cli, SelfCrossingContourIsReadByTheEvenOddRule) {
         // each plane stands for 2 mm (an end plane takes its one gap).
         EXPECT_NEAR(report["contourVolumeMm3"].get<double>(), (100 + 50 + 100) * 2.0, 1e-9);
     }
+}
+
+// An ROI with planes left empty (other ROIs have contours there) ends and
+// starts again: two closed pieces, its volume the planning system's sum over
+// its planes (the gap counts nothing), and a warning naming the gap.
+TEST(Cli, AnRoiWithPlanesLeftEmptyIsTwoPieces) {
+    const fs::path file = scratch() / "gap.slices", dir = scratch() / "gap";
+    std::string text = "dfrecon-slices 1\nunits mm\nroi Body\n";
+    const std::string big = "contour 4\n-20 -20\n20 -20\n20 20\n-20 20\n";
+    const std::string small = "contour 4\n0 0\n10 0\n10 10\n0 10\n";
+    for (int z = 0; z <= 20; z += 2) text += "slice " + std::to_string(z) + "\n" + big;
+    text += "roi Node\n";
+    for (int z : {2, 4, 6, 14, 16}) text += "slice " + std::to_string(z) + "\n" + small;
+    std::ofstream(file) << text;
+    const Result run = runDfrecon("reconstruct --all --json --interpolation linear " +
+                                  file.string() + " -o " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.err.find("ROI 'Node' has planes left empty between 6 to 14 mm"),
+              std::string::npos)
+        << run.err;
+    const auto node = nlohmann::json::parse(run.out)["rois"][1];
+    EXPECT_TRUE(node["validSolid"].get<bool>());
+    EXPECT_EQ(node["pieces"], 2);
+    EXPECT_EQ(node["components"], 2);
+    EXPECT_EQ(node["planesLeftEmptyMm"], nlohmann::json::parse("[[6.0, 14.0]]"));
+    // Planes 2-6 stand for 6 mm, planes 14-16 for 4 mm; flat caps half a gap
+    // beyond each end make straight prisms hold exactly that.
+    EXPECT_NEAR(node["contourVolumeMm3"].get<double>(), 100 * (6 + 4), 1e-9);
+    EXPECT_NEAR(node["volumeMm3"].get<double>(), 100 * (6 + 4), 1e-3);
 }
 
 // One ROI of a .slices file whose contours cross in more places than any
@@ -103,7 +132,7 @@ TEST(Cli, OneBrokenRoiOfASlicesFileLeavesTheOthers) {
     const Result info = runDfrecon("info " + file.string());
     EXPECT_EQ(info.exitCode, 2);
     EXPECT_NE(info.out.find("\"good\""), std::string::npos) << info.out;
-    EXPECT_NE(info.err.find(file.string() + ":18:"), std::string::npos) << info.err;
+    EXPECT_NE(info.err.find(file.string() + ":17:"), std::string::npos) << info.err;
     const Result good = runDfrecon("-q reconstruct " + file.string() + " --roi good -o " +
                                    (scratch() / "good.ply").string());
     EXPECT_EQ(good.exitCode, 0) << good.err;
@@ -630,15 +659,16 @@ TEST(Cli, InfoSummarisesByDefaultAndListsPlanesOnRequest) {
 }
 
 TEST(Cli, OneBadRoiInAnRtStructDoesNotBlockTheOthers) {
-    // A clinical export with one contour loop crossing itself: that ROI is
-    // reported (exit 2), every other one is read, chosen and reconstructed.
+    // A clinical export with one ROI whose contours cross in more places
+    // than any reading combines: that ROI is reported (exit 2), every other
+    // one is read, chosen and reconstructed.
     dfrecon::ContourSet set;
-    const dfrecon::Polygon square{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
-    const dfrecon::Polygon bowTie{{0, 0}, {10, 10}, {10, 0}, {0, 10}};
-    for (const auto& [name, contour] : {std::pair{"loop", bowTie}, std::pair{"good", square}}) {
+    const std::vector<dfrecon::Polygon> square{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
+    const std::vector<dfrecon::Polygon> knot = dfrecon::testing::crossingMeanders(300);
+    for (const auto& [name, contours] : {std::pair{"loop", knot}, std::pair{"good", square}}) {
         dfrecon::Roi roi;
         roi.name = name;
-        for (double z : {0.0, 2.0, 4.0}) roi.slices.push_back({z, {contour}});
+        for (double z : {0.0, 2.0, 4.0}) roi.slices.push_back({z, contours});
         set.rois.push_back(roi);
     }
     const fs::path dcm = scratch() / "one-bad-roi.dcm";
