@@ -1,8 +1,10 @@
 #include "recon/PrismClosing.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "geometry/MeshCheck.hpp"
 #include "recon/PlanarRegion.hpp"
 
 namespace dfrecon {
@@ -38,43 +40,34 @@ bool sidesCoincide(const PlanarRegion& region, std::size_t lowerCount) {
     return false;
 }
 
-// The tiny shifts tried in turn for the upper contours' side of the lid when
-// the two sides coincide: a fraction of a micrometre, enough to survive
-// float coordinates in the output, in directions no pixel grid shares.
+// The shifts tried in turn for the upper contours' side of the lid: none
+// first (unless the sides coincide), then a fraction of a micrometre, enough
+// to survive float coordinates in the output, in directions no pixel grid
+// shares, then larger ones. A shifted outline leans the upper walls by that
+// much: the closing stays a valid solid (a shear of a prism), whatever the
+// shift.
 constexpr double kShiftMm = 5e-4;
 constexpr Point2 kShiftDirections[] = {{0.6, 0.8}, {-0.8, 0.6}, {0.28, -0.96}, {-0.96, -0.28}};
+constexpr double kShiftScales[] = {1, 8, 64};
 
-}  // namespace
+std::vector<Point2> upperShifts() {
+    std::vector<Point2> shifts{{0, 0}};
+    for (const double scale : kShiftScales)
+        for (const Point2 direction : kShiftDirections)
+            shifts.push_back((scale * kShiftMm) * direction);
+    return shifts;
+}
 
-void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
-                   double middleZMm) {
-    std::vector<WeightedContour> contours = weighted(lower, +1);
-    const std::size_t lowerCount = contours.size();
-    for (const WeightedContour& c : weighted(upper, -1)) contours.push_back(c);
-    if (contours.empty()) return;
-    PlanarRegion region = triangulateRegion(contours);
-    // Where the sides coincide, the upper side's lid outline is shifted
-    // sideways by a hair: the upper walls lean by that much, and what was a
-    // shared edge becomes two parallel ones (symbolic perturbation, the same
-    // rule everywhere). Crossings are fine as they are.
-    const std::vector<WeightedContour> unshifted = contours;
-    std::vector<Polygon> shifted(contours.size() - lowerCount);
-    if (lowerCount > 0 && lowerCount < contours.size())
-        for (const Point2 direction : kShiftDirections) {
-            if (!sidesCoincide(region, lowerCount)) break;
-            for (std::size_t c = lowerCount; c < contours.size(); ++c) {
-                Polygon& moved = shifted[c - lowerCount];
-                moved = *unshifted[c].polygon;
-                for (Point2& p : moved) p = p + kShiftMm * direction;
-                contours[c].polygon = &moved;
-            }
-            region = triangulateRegion(contours);
-        }
+// The walls and lid of a closing whose lid is `region` (lower contours'
+// chains first, then the upper ones').
+void addClosing(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
+                const PlanarRegion& region, double middleZMm) {
+    const std::size_t lowerCount = contourCount(lower);
     std::vector<std::uint32_t> lid;
     lid.reserve(region.points.size());
     for (Point2 p : region.points) lid.push_back(builder.addVertex(p, middleZMm));
 
-    for (std::size_t q = 0; q < contourCount(lower); ++q) {
+    for (std::size_t q = 0; q < lowerCount; ++q) {
         const std::vector<std::uint32_t>& ids = lower.layer->vertexIds[lower.contours[q]];
         const std::size_t n = ids.size();
         for (std::size_t k = 0; k < n; ++k) {
@@ -104,6 +97,61 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
         else
             builder.addTriangle(lid[tri[0]], lid[tri[2]], lid[tri[1]]);
     }
+}
+
+// Does the closing added since `before` hold as a mesh file stores it
+// (floats): no two of its triangles meeting, none flat, no edge used three
+// times or twice the same way? Exact arithmetic makes it a valid solid; a
+// crossing point or shifted corner a hair from another point makes slivers
+// that rounding can fold through their neighbours or flatten (a lung's
+// vessels, the same point on neighbouring planes). O(T log T) for its T
+// triangles.
+bool holdsAsFloats(const SurfaceBuilder& builder, std::size_t before) {
+    TriangleSoup triangles = builder.trianglesSince(before);
+    roundPointsToFloat(triangles);
+    const MeshCheckReport check = checkMesh(triangles);
+    return check.intersectingPairs == 0 && check.degenerateTriangles == 0 &&
+           check.nonManifoldEdges == 0 && check.misorientedEdges == 0;
+}
+
+}  // namespace
+
+void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
+                   double middleZMm) {
+    std::vector<WeightedContour> contours = weighted(lower, +1);
+    const std::size_t lowerCount = contours.size();
+    for (const WeightedContour& c : weighted(upper, -1)) contours.push_back(c);
+    if (contours.empty()) return;
+    // With one side only (a cap) there is nothing to shift.
+    const bool twoSides = lowerCount > 0 && lowerCount < contours.size();
+    const std::vector<Point2> shifts = twoSides ? upperShifts() : std::vector<Point2>{{0, 0}};
+    const std::vector<WeightedContour> unshifted = contours;
+    std::vector<Polygon> shifted(contours.size() - lowerCount);
+    const std::size_t before = builder.triangleCount();
+    std::optional<PlanarRegion> fallback;  // the last lid whose sides did not coincide
+    for (std::size_t k = 0; k < shifts.size(); ++k) {
+        // Where the sides coincide, the upper side's lid outline is shifted
+        // sideways: what was a shared edge becomes two parallel ones
+        // (symbolic perturbation, the same rule everywhere). Crossings are
+        // fine as they are, as long as they hold as floats.
+        for (std::size_t c = lowerCount; k > 0 && c < contours.size(); ++c) {
+            Polygon& moved = shifted[c - lowerCount];
+            moved = *unshifted[c].polygon;
+            for (Point2& p : moved) p = p + shifts[k];
+            contours[c].polygon = &moved;
+        }
+        PlanarRegion region = triangulateRegion(contours);
+        if (twoSides && sidesCoincide(region, lowerCount)) continue;
+        builder.truncateTriangles(before);
+        addClosing(builder, lower, upper, region, middleZMm);
+        if (holdsAsFloats(builder, before)) return;
+        fallback = std::move(region);
+    }
+    // No candidate holds as floats (or every shift left the sides
+    // coinciding): the last one stays, and the piece's check reports it.
+    builder.truncateTriangles(before);
+    addClosing(builder, lower, upper, fallback ? *fallback : triangulateRegion(contours),
+               middleZMm);
 }
 
 }  // namespace dfrecon
