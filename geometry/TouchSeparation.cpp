@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <cstdint>
+#include <utility>
 
 #include "geometry/ContourValidation.hpp"
 
@@ -44,6 +45,16 @@ Point2 leftBisector(const Polygon& contour, std::size_t k) {
     return (1 / length(m)) * m;
 }
 
+// How far a contour's copy of a touch point at vertex k moves: half the gap,
+// less where an adjacent edge is shorter than ten times that.
+double touchStep(const Polygon& contour, std::size_t k, double gapMm) {
+    const std::size_t n = contour.size();
+    const Point2 p = contour[k];
+    const double shortest =
+        std::min(length(p - contour[(k + 1) % n]), length(p - contour[(k + n - 1) % n]));
+    return std::min(0.5 * gapMm, 0.1 * shortest);
+}
+
 // Is contour `inner` inside the region `outer` encloses? Judged at the
 // vertex of `inner` farthest from the touch point (any other point of
 // inner lies strictly on one side of outer, as they only touch).
@@ -78,15 +89,28 @@ std::size_t separateTouchingContours(std::vector<Polygon>& contours, double gapM
                 intoA = -ccwA;  // a grows away from b inside it
             else if (enclosedBy(a, b, touch.at))
                 intoB = -ccwB;
-            for (auto [contour, segment, sign] :
-                 {std::tuple{&a, touch.segmentA, intoA}, std::tuple{&b, touch.segmentB, intoB}}) {
-                const std::size_t k = vertexAt(*contour, segment, touch.at);
-                const std::size_t n = contour->size();
-                const Point2 p = (*contour)[k];
-                const double shortest = std::min(length(p - (*contour)[(k + 1) % n]),
-                                                 length(p - (*contour)[(k + n - 1) % n]));
-                const double step = std::min(0.5 * gapMm, 0.1 * shortest);
-                (*contour)[k] = p + (sign * step) * leftBisector(*contour, k);
+            const std::size_t ka = vertexAt(a, touch.segmentA, touch.at);
+            const std::size_t kb = vertexAt(b, touch.segmentB, touch.at);
+            const Point2 pa = a[ka], pb = b[kb];
+            const std::size_t contactsBefore = countContourContacts({a, b}, SIZE_MAX - 1);
+            // The rule's directions first; where the nesting test misjudged
+            // (contours that touch at several points, a copy whose farthest
+            // point lies on the other), the other signs in turn: the first
+            // that opens this touch without a crossing, which is exact to
+            // test, is kept.
+            for (const auto& [signA, signB] : {std::pair{intoA, intoB}, std::pair{-intoA, intoB},
+                                              std::pair{intoA, -intoB}, std::pair{-intoA, -intoB}}) {
+                a[ka] = pa + (signA * touchStep(a, ka, gapMm)) * leftBisector(a, ka);
+                b[kb] = pb + (signB * touchStep(b, kb, gapMm)) * leftBisector(b, kb);
+                if (!findContourDefect({a, b}) &&
+                    countContourContacts({a, b}, SIZE_MAX - 1) < contactsBefore)
+                    break;
+                a[ka] = pa;
+                b[kb] = pb;
+            }
+            if (a[ka] == pa) {  // no sign left them apart: the rule's, for the checks to judge
+                a[ka] = pa + (intoA * touchStep(a, ka, gapMm)) * leftBisector(a, ka);
+                b[kb] = pb + (intoB * touchStep(b, kb, gapMm)) * leftBisector(b, kb);
             }
             changed[touch.contourA] = changed[touch.contourB] = true;
             ++opened;

@@ -8,6 +8,8 @@
 // moves the window.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -65,7 +67,10 @@ void expectEveryRoiASolid(CorpusKind kind, std::uint32_t seed) {
         for (const Vec3& p : result.surface.points) vertices.insert(asWritten(p));
         auto isVertex = [&](const Vec3& p) {
             if (axial) return vertices.count(asWritten(p)) > 0;
-            const float tolerance = 1e-5f;
+            // Two roundings to float: within two float steps of the largest
+            // coordinate.
+            const float tolerance = float(
+                3e-7 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})));
             const FloatPoint q = asWritten(p);
             for (auto it = vertices.lower_bound({std::get<0>(q) - tolerance, -1e30f, -1e30f});
                  it != vertices.end() && std::get<0>(*it) <= std::get<0>(q) + tolerance; ++it)
