@@ -76,7 +76,7 @@ std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
     std::vector<std::size_t> inside;
     for (const Roi& run : planeRuns(roi)) {
         std::vector<std::size_t> part =
-            voxelsInside(roiDistanceField3D(runtime, run, options), run.frame, grid);
+            voxelsInside(roiDistanceField3D(runtime, run, options), run.frame, grid, run.slices);
         std::vector<std::size_t> joined;
         joined.reserve(inside.size() + part.size());
         std::set_union(inside.begin(), inside.end(), part.begin(), part.end(),

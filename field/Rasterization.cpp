@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace dfrecon {
@@ -46,8 +47,79 @@ VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelM
     return g;
 }
 
+namespace {
+
+// Contours lie on image planes to this much (io's kSamePlaneToleranceMm).
+constexpr double kOnPlaneMm = 0.01;
+
+// The contours of one plane along one row y = const: where each edge
+// crosses it (Sunday's half-open rule: a.y <= y < b.y counts +1 upward,
+// b.y <= y < a.y counts -1 downward), sorted, so the winding number at any
+// x is the sum over the crossings to its right.
+class ContourRow {
+  public:
+    ContourRow(const Slice& slice, double y) : slice_(slice), y_(y) {
+        for (std::size_t c = 0; c < slice.contours.size(); ++c) {
+            const Polygon& contour = slice.contours[c];
+            for (std::size_t k = 0; k < contour.size(); ++k) {
+                const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
+                const int w = a.y <= y && b.y > y ? 1 : b.y <= y && a.y > y ? -1 : 0;
+                if (w == 0) continue;
+                const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                crossings_.push_back({x, w, c, k});
+            }
+        }
+        std::sort(crossings_.begin(), crossings_.end(),
+                  [](const Crossing& l, const Crossing& r) { return l.x < r.x; });
+        suffix_.assign(crossings_.size() + 1, 0);
+        for (std::size_t i = crossings_.size(); i-- > 0;)
+            suffix_[i] = suffix_[i + 1] + crossings_[i].winding;
+    }
+    double y() const { return y_; }
+    const Slice& slice() const { return slice_; }
+
+    /// Is (x, y) inside: winding number summed over the contours non-zero?
+    /// Crossings a hair from x are judged by the exact side test
+    /// (windingCrossing) instead of their rounded x. O(log e).
+    bool inside(double x) const {
+        const double hair = 1e-9 * (1 + std::abs(x));
+        auto from = std::lower_bound(crossings_.begin(), crossings_.end(), x - hair,
+                                     [](const Crossing& c, double v) { return c.x < v; });
+        auto to = std::upper_bound(from, crossings_.end(), x + hair,
+                                   [](double v, const Crossing& c) { return v < c.x; });
+        int winding = suffix_[std::size_t(to - crossings_.begin())];
+        for (auto it = from; it != to; ++it) {
+            const Polygon& contour = slice_.contours[it->contour];
+            winding += windingCrossing({x, y_}, contour[it->edge],
+                                       contour[(it->edge + 1) % contour.size()]);
+        }
+        return winding != 0;
+    }
+
+  private:
+    struct Crossing {
+        double x;
+        int winding;
+        std::size_t contour, edge;
+    };
+    const Slice& slice_;
+    double y_;
+    std::vector<Crossing> crossings_;
+    std::vector<int> suffix_;  // suffix_[i]: Σ winding of crossings i..end
+};
+
+// The plane of `planes` (sorted by z) within kOnPlaneMm of z, or nullptr.
+const Slice* planeAt(const std::vector<Slice>& planes, double z) {
+    auto it = std::lower_bound(planes.begin(), planes.end(), z - kOnPlaneMm,
+                               [](const Slice& s, double v) { return s.zMm < v; });
+    return it != planes.end() && it->zMm <= z + kOnPlaneMm ? &*it : nullptr;
+}
+
+}  // namespace
+
 std::vector<std::size_t> voxelsInside(const DistanceField3D& field, const PlaneFrame& frame,
-                                      const VolumeGeometry& grid) {
+                                      const VolumeGeometry& grid,
+                                      const std::vector<Slice>& planes) {
     // Beyond the field's layers and pixels everything is outside; within,
     // the interpolated field decides (its zero set is the surface the
     // reconstruction follows, the flat caps included).
@@ -66,10 +138,18 @@ std::vector<std::size_t> voxelsInside(const DistanceField3D& field, const PlaneF
         }
     }
     std::vector<std::size_t> inside;
+    // A row of voxels on a contour plane is judged by the contours; on a
+    // grid aligned with the planes the row's crossings are found once.
+    std::optional<ContourRow> row;
     for (int k = first[2]; k <= last[2]; ++k)
         for (int j = first[1]; j <= last[1]; ++j)
             for (int i = first[0]; i <= last[0]; ++i) {
                 const Vec3 p = frame.fromPatient(grid.worldOfIndex(i, j, k));
+                if (const Slice* plane = planeAt(planes, p.z)) {
+                    if (!row || &row->slice() != plane || row->y() != p.y) row.emplace(*plane, p.y);
+                    if (row->inside(p.x)) inside.push_back(grid.linearIndex(i, j, k));
+                    continue;
+                }
                 if (p.z < lo[2] || p.z > hi[2] || p.x < lo[0] || p.x > hi[0] || p.y < lo[1] ||
                     p.y > hi[1])
                     continue;

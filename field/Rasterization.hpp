@@ -26,8 +26,15 @@ VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelM
 /// The linear indices (VolumeGeometry::linearIndex) of the voxels of `grid`
 /// whose centres lie where `field` (of an ROI in plane frame `frame`) is
 /// negative, in increasing order. Voxels beyond the field's box are outside;
-/// only the voxels of that box are visited. O(voxels in the box).
+/// only the voxels of that box are visited. A voxel centre on one of
+/// `planes` (within 0.01 mm, as planning systems put contours on image
+/// planes) is inside exactly when it is inside that plane's contours (their
+/// winding numbers summed, Sunday's half-open rule at vertices), whatever
+/// the field's pixel size: sampled fields put centres a few micrometres from
+/// a contour on the wrong side. O(voxels in the box), plus O(e log e) per
+/// row of voxels on a plane for its e contour edges.
 std::vector<std::size_t> voxelsInside(const DistanceField3D& field, const PlaneFrame& frame,
-                                      const VolumeGeometry& grid);
+                                      const VolumeGeometry& grid,
+                                      const std::vector<Slice>& planes = {});
 
 }  // namespace dfrecon

@@ -93,24 +93,28 @@ std::size_t separateTouchingContours(std::vector<Polygon>& contours, double gapM
             const std::size_t kb = vertexAt(b, touch.segmentB, touch.at);
             const Point2 pa = a[ka], pb = b[kb];
             const std::size_t contactsBefore = countContourContacts({a, b}, SIZE_MAX - 1);
+            const double stepA = touchStep(a, ka, gapMm), stepB = touchStep(b, kb, gapMm);
             // The rule's directions first; where the nesting test misjudged
             // (contours that touch at several points, a copy whose farthest
             // point lies on the other), the other signs in turn: the first
-            // that opens this touch without a crossing, which is exact to
-            // test, is kept.
-            for (const auto& [signA, signB] : {std::pair{intoA, intoB}, std::pair{-intoA, intoB},
-                                              std::pair{intoA, -intoB}, std::pair{-intoA, -intoB}}) {
-                a[ka] = pa + (signA * touchStep(a, ka, gapMm)) * leftBisector(a, ka);
-                b[kb] = pb + (signB * touchStep(b, kb, gapMm)) * leftBisector(b, kb);
-                if (!findContourDefect({a, b}) &&
+            // that opens this touch without a crossing (an exact test) and
+            // leaves the copies apart by at least half the gap they were
+            // given (moved the same way, they were a few nanometres apart,
+            // which rounding to float closes) is kept.
+            for (const auto& [signA, signB] :
+                 {std::pair{intoA, intoB}, std::pair{-intoA, intoB}, std::pair{intoA, -intoB},
+                  std::pair{-intoA, -intoB}}) {
+                a[ka] = pa + (signA * stepA) * leftBisector(a, ka);
+                b[kb] = pb + (signB * stepB) * leftBisector(b, kb);
+                if (length(a[ka] - b[kb]) >= 0.5 * (stepA + stepB) && !findContourDefect({a, b}) &&
                     countContourContacts({a, b}, SIZE_MAX - 1) < contactsBefore)
                     break;
                 a[ka] = pa;
                 b[kb] = pb;
             }
             if (a[ka] == pa) {  // no sign left them apart: the rule's, for the checks to judge
-                a[ka] = pa + (intoA * touchStep(a, ka, gapMm)) * leftBisector(a, ka);
-                b[kb] = pb + (intoB * touchStep(b, kb, gapMm)) * leftBisector(b, kb);
+                a[ka] = pa + (intoA * stepA) * leftBisector(a, ka);
+                b[kb] = pb + (intoB * stepB) * leftBisector(b, kb);
             }
             changed[touch.contourA] = changed[touch.contourB] = true;
             ++opened;

@@ -68,7 +68,10 @@ DistanceField3D roiDistanceField3D(ocl::Runtime& runtime, const Roi& roi,
 
 /// The voxels of `grid` (any reference grid: a CT's, a NIfTI's; or
 /// gridAroundRois) whose centres lie inside `roi`, where its 3D field is
-/// negative (field/Rasterization), as increasing linear indices. Throws as
+/// negative (field/Rasterization), as increasing linear indices; a centre
+/// on a contour plane (within 0.01 mm) is inside exactly when it is inside
+/// the plane's contours. Where the ROI ends and starts again (planes left
+/// empty, contours/PlaneGaps) each run's voxels are joined. Throws as
 /// roiSliceFields. O(field + voxels in its box).
 std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
                                          const VolumeGeometry& grid,

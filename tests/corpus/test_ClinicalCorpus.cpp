@@ -4,7 +4,8 @@
 // check as written, floats in patient coordinates) through every contour
 // point as read, with the volume planning systems count for it within a few
 // per cent. Seeds 0 .. DFRECON_CORPUS_SEEDS - 1 of every kind (default 3;
-// the long run in docs/testing.md takes 1000); DFRECON_CORPUS_FIRST_SEED
+// the long run in docs/building.md, "The clinical corpus", takes 1000);
+// DFRECON_CORPUS_FIRST_SEED
 // moves the window.
 #include <gtest/gtest.h>
 
@@ -54,8 +55,7 @@ void expectEveryRoiASolid(CorpusKind kind, std::uint32_t seed) {
         ASSERT_TRUE(result.check.validSolid())
             << "intersecting pairs " << result.check.intersectingPairs << ", boundary edges "
             << result.check.boundaryEdges << ", non-manifold edges "
-            << result.check.nonManifoldEdges << ", degenerate "
-            << result.check.degenerateTriangles;
+            << result.check.nonManifoldEdges << ", degenerate " << result.check.degenerateTriangles;
         // Every contour point as read is a vertex (as the file holds it),
         // but for the few moved a micrometre where contours of a plane
         // touched.
@@ -69,8 +69,8 @@ void expectEveryRoiASolid(CorpusKind kind, std::uint32_t seed) {
             if (axial) return vertices.count(asWritten(p)) > 0;
             // Two roundings to float: within two float steps of the largest
             // coordinate.
-            const float tolerance = float(
-                3e-7 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})));
+            const float tolerance =
+                float(3e-7 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})));
             const FloatPoint q = asWritten(p);
             for (auto it = vertices.lower_bound({std::get<0>(q) - tolerance, -1e30f, -1e30f});
                  it != vertices.end() && std::get<0>(*it) <= std::get<0>(q) + tolerance; ++it)
