@@ -53,9 +53,8 @@ namespace {
 constexpr double kOnPlaneMm = 0.01;
 
 // The contours of one plane along one row y = const: where each edge
-// crosses it (Sunday's half-open rule: a.y <= y < b.y counts +1 upward,
-// b.y <= y < a.y counts -1 downward), sorted, so the winding number at any
-// x is the sum over the crossings to its right.
+// crosses it (Sunday's half-open rule: an edge counts when a.y <= y < b.y
+// or b.y <= y < a.y), sorted, so the crossings right of any x are a suffix.
 class ContourRow {
   public:
     ContourRow(const Slice& slice, double y) : slice_(slice), y_(y) {
@@ -63,49 +62,48 @@ class ContourRow {
             const Polygon& contour = slice.contours[c];
             for (std::size_t k = 0; k < contour.size(); ++k) {
                 const Point2 a = contour[k], b = contour[(k + 1) % contour.size()];
-                const int w = a.y <= y && b.y > y ? 1 : b.y <= y && a.y > y ? -1 : 0;
-                if (w == 0) continue;
+                if (!((a.y <= y && b.y > y) || (b.y <= y && a.y > y))) continue;
                 const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
-                crossings_.push_back({x, w, c, k});
+                crossings_.push_back({x, c, k});
             }
         }
         std::sort(crossings_.begin(), crossings_.end(),
                   [](const Crossing& l, const Crossing& r) { return l.x < r.x; });
         suffix_.assign(crossings_.size() + 1, 0);
-        for (std::size_t i = crossings_.size(); i-- > 0;)
-            suffix_[i] = suffix_[i + 1] + crossings_[i].winding;
+        for (std::size_t i = crossings_.size(); i-- > 0;) suffix_[i] = suffix_[i + 1] + 1;
     }
     double y() const { return y_; }
     const Slice& slice() const { return slice_; }
 
-    /// Is (x, y) inside: winding number summed over the contours non-zero?
-    /// Crossings a hair from x are judged by the exact side test
-    /// (windingCrossing) instead of their rounded x. O(log e).
+    /// Is (x, y) inside: an odd number of crossings to its right (the
+    /// even-odd rule the contours were read by, which no contour's
+    /// orientation can turn over)? Crossings a hair from x are judged by the
+    /// exact side test (windingCrossing) instead of their rounded x.
+    /// O(log e).
     bool inside(double x) const {
         const double hair = 1e-9 * (1 + std::abs(x));
         auto from = std::lower_bound(crossings_.begin(), crossings_.end(), x - hair,
                                      [](const Crossing& c, double v) { return c.x < v; });
         auto to = std::upper_bound(from, crossings_.end(), x + hair,
                                    [](double v, const Crossing& c) { return v < c.x; });
-        int winding = suffix_[std::size_t(to - crossings_.begin())];
+        int crossed = suffix_[std::size_t(to - crossings_.begin())];
         for (auto it = from; it != to; ++it) {
             const Polygon& contour = slice_.contours[it->contour];
-            winding += windingCrossing({x, y_}, contour[it->edge],
-                                       contour[(it->edge + 1) % contour.size()]);
+            crossed += windingCrossing({x, y_}, contour[it->edge],
+                                       contour[(it->edge + 1) % contour.size()]) != 0;
         }
-        return winding != 0;
+        return crossed % 2 == 1;
     }
 
   private:
     struct Crossing {
         double x;
-        int winding;
         std::size_t contour, edge;
     };
     const Slice& slice_;
     double y_;
     std::vector<Crossing> crossings_;
-    std::vector<int> suffix_;  // suffix_[i]: Σ winding of crossings i..end
+    std::vector<int> suffix_;  // suffix_[i]: how many crossings from i to the end
 };
 
 // The plane of `planes` (sorted by z) within kOnPlaneMm of z, or nullptr.

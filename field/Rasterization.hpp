@@ -28,8 +28,9 @@ VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelM
 /// negative, in increasing order. Voxels beyond the field's box are outside;
 /// only the voxels of that box are visited. A voxel centre on one of
 /// `planes` (within 0.01 mm, as planning systems put contours on image
-/// planes) is inside exactly when it is inside that plane's contours (their
-/// winding numbers summed, Sunday's half-open rule at vertices), whatever
+/// planes) is inside exactly when it is inside that plane's contours (the
+/// even-odd rule they were read by, Sunday's half-open rule at vertices,
+/// the exact side test near an edge), whatever
 /// the field's pixel size: sampled fields put centres a few micrometres from
 /// a contour on the wrong side. O(voxels in the box), plus O(e log e) per
 /// row of voxels on a plane for its e contour edges.

@@ -806,13 +806,7 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
         s.slices += p.slices;
         s.contourPoints += p.contourPoints;
         s.slabs += p.slabs;
-        s.strips += p.strips;
-        s.rejectedStrips += p.rejectedStrips;
-        s.recursions += p.recursions;
-        s.deepestLevel = std::max(s.deepestLevel, p.deepestLevel);
-        s.limitClosings += p.limitClosings;
-        s.caps += p.caps;
-        s.fallbackSlabs += p.fallbackSlabs;
+        addSlabStats(s, p);  // strips, closings, caps, fields' and axes' seconds
         s.touchesOpened += p.touchesOpened;
         s.repairedPieces += p.repairedPieces;
         s.smoothedVertices += p.smoothedVertices;
@@ -820,8 +814,6 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
         s.smoothUnbentVertices += p.smoothUnbentVertices;
         s.smoothFellBack = s.smoothFellBack || p.smoothFellBack;
         s.simplifySeconds += p.simplifySeconds;
-        s.fieldsSeconds += p.fieldsSeconds;
-        s.medialSeconds += p.medialSeconds;
         s.triangulationSeconds += p.triangulationSeconds;
         s.checkSeconds += p.checkSeconds;
     }

