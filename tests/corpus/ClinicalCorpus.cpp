@@ -93,7 +93,8 @@ ContourSet vesselHoles(Random& random) {
     for (int v = 0; v < vessels; ++v) {
         const std::size_t first = std::size_t(integer(random, 2, int(z.size()) - 3));
         const std::size_t count = std::size_t(integer(random, 1, 3));
-        const double angle = uniform(random, 0, 2 * kPi), reach = uniform(random, 0, 0.75);
+        // Some reach the outline, where even-odd makes notches of them.
+        const double angle = uniform(random, 0, 2 * kPi), reach = uniform(random, 0, 1.05);
         const Point2 centre{-20 + reach * 35 * std::cos(angle), reach * 25 * std::sin(angle)};
         const int points = integer(random, 4, 8);
         const double radius = uniform(random, 0.25, 1.5);
@@ -104,8 +105,16 @@ ContourSet vesselHoles(Random& random) {
             planeContours[k].push_back(std::move(hole));
         }
     }
-    for (std::size_t k = 0; k < z.size(); ++k)
-        if (!planeContours[k].empty()) lung.slices.push_back({z[k], planeContours[k]});
+    // Half the lungs come from a segmentation: every point on a 0.25 mm
+    // lattice, so neighbouring planes share many points.
+    const bool lattice = integer(random, 0, 1) == 1;
+    for (std::size_t k = 0; k < z.size(); ++k) {
+        if (planeContours[k].empty()) continue;
+        if (lattice)
+            for (Polygon& contour : planeContours[k])
+                for (Point2& p : contour) p = {std::round(p.x * 4) / 4, std::round(p.y * 4) / 4};
+        lung.slices.push_back({z[k], planeContours[k]});
+    }
     set.rois.push_back(std::move(lung));
     return set;
 }
