@@ -143,7 +143,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     // are listed, not failures: no voxel tool fills them either.
     if (!empty.empty() && !global.quiet && !args.json) {
         std::string names;
-        for (const auto& name : empty) names += (names.empty() ? "" : ", ") + name.get<std::string>();
+        for (const auto& name : empty)
+            names += (names.empty() ? "" : ", ") + name.get<std::string>();
         std::cerr << "dfrecon: no closed contour, nothing written: " << names << "\n";
     }
     if (args.json)

@@ -194,9 +194,9 @@ std::size_t countContourContacts(const std::vector<Polygon>& contours, std::size
     std::unordered_set<std::uint64_t> pairs;
     const bool complete = visitContacts(
         segments, pairBudget, [&](const Segment& s, const Segment& t, SegmentContact contact) {
-            if (s.contour == t.contour &&
-                (counted == ContactsCounted::BetweenContours ||
-                 (adjacent(s, t, contours[s.contour].size()) && contact != SegmentContact::Overlap)))
+            if (s.contour == t.contour && (counted == ContactsCounted::BetweenContours ||
+                                           (adjacent(s, t, contours[s.contour].size()) &&
+                                            contact != SegmentContact::Overlap)))
                 return false;
             std::uint64_t i = std::uint64_t(&s - segments.data()),
                           j = std::uint64_t(&t - segments.data());

@@ -23,8 +23,8 @@ struct PlaneReadingCounts {
     std::size_t zeroAreaContours = 0;   // contours left with no area (all on one line): dropped
     std::size_t duplicateContours = 0;  // repeating another contour of the plane point for point
     std::size_t keyholeCuts = 0;        // a contour touching itself, split into loops
-    std::size_t resolvedContours = 0;   // crossed itself or another: replaced by the even-odd region
-    std::size_t planesResolved = 0;     // planes where contours were replaced so
+    std::size_t resolvedContours = 0;  // crossed itself or another: replaced by the even-odd region
+    std::size_t planesResolved = 0;    // planes where contours were replaced so
 
     PlaneReadingCounts& operator+=(const PlaneReadingCounts& other);
     /// Whether anything but keyhole cuts (a hole convention, not a defect)

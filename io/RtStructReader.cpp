@@ -454,11 +454,11 @@ class Reader {
         bool anyHole = false;
         for (const Slice& slice : roi.slices)
             for (int depth : nestingDepths(slice)) anyHole = anyHole || depth % 2 == 1;
-        info.holes = anyXor                            ? HoleConvention::Xor
-                     : roi.reading.keyholeCuts > 0     ? HoleConvention::Keyhole
+        info.holes = anyXor                           ? HoleConvention::Xor
+                     : roi.reading.keyholeCuts > 0    ? HoleConvention::Keyhole
                      : roi.reading.planesResolved > 0 ? HoleConvention::Xor
-                     : anyHole                         ? HoleConvention::Nested
-                                                       : HoleConvention::None;
+                     : anyHole                        ? HoleConvention::Nested
+                                                      : HoleConvention::None;
         if (roi.reading.changedShape())
             warn(roiLabel(r) + ": read as planning systems read it: " + roi.reading.summary());
         const SpacingStats spacing = spacingOf(roi);
@@ -489,7 +489,8 @@ class Reader {
                                          : 0;
         PlaneReading reading;
         try {
-            reading = readPlaneContours(std::move(drawn), std::min(limits_.maxXorCrossings, fileLeft));
+            reading =
+                readPlaneContours(std::move(drawn), std::min(limits_.maxXorCrossings, fileLeft));
         } catch (const TooManyCrossings& e) {
             std::ostringstream plane;
             plane << slice.zMm;

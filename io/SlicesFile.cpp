@@ -415,8 +415,8 @@ class Parser {
         try {
             reading = readPlaneContours(std::move(drawn), kMaxXorCrossingsPerPlane);
         } catch (const TooManyCrossings& e) {
-            fail(slice.line, "slice z=" + formatNumber(slice.zMm) + " of ROI '" + name +
-                                 "': " + e.what());
+            fail(slice.line,
+                 "slice z=" + formatNumber(slice.zMm) + " of ROI '" + name + "': " + e.what());
         }
         counts += reading.counts;
         std::vector<SlicesContour> out;
@@ -427,8 +427,8 @@ class Parser {
                 out.push_back(std::move(slice.contours[source]));
                 continue;
             }
-            const int line = source == kResolvedContour ? slice.line
-                                                        : slice.contours[source].keywordLine;
+            const int line =
+                source == kResolvedContour ? slice.line : slice.contours[source].keywordLine;
             out.push_back({line, std::move(points), std::vector<int>(points.size(), line)});
         }
         slice.contours = std::move(out);

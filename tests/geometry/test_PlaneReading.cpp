@@ -137,8 +137,8 @@ TEST(PlaneReading, SimplePlaneKeepsItsContoursAsDrawn) {
 TEST(PlaneReading, FoldsRepeatsDuplicatesAndLinesAreDropped) {
     // A square with a spike drawn out and back along one line over two
     // points, and a repeated point.
-    const Polygon folded{{0, 0}, {10, 0}, {10, 5}, {14, 5}, {17, 5}, {14, 5},
-                         {10, 5}, {10, 5}, {10, 10}, {0, 10}};
+    const Polygon folded{{0, 0},  {10, 0}, {10, 5}, {14, 5},  {17, 5},
+                         {14, 5}, {10, 5}, {10, 5}, {10, 10}, {0, 10}};
     const Polygon square{{20, 0}, {30, 0}, {30, 10}, {20, 10}};
     Polygon again = square;  // the same contour, stored twice, the other way round
     std::reverse(again.begin(), again.end());
@@ -187,8 +187,8 @@ TEST(PlaneReading, RandomMessyPlanesAreValidAndFollowTheRule) {
     for (int trial = 0; trial < 60; ++trial) {
         std::vector<Polygon> drawn;
         for (int c = 0; c < 1 + trial % 4; ++c) {
-            Polygon p = circlePolygon({jitter(random) * 3, jitter(random) * 3}, 4 + unit(random) * 6,
-                                      8 + trial % 20);
+            Polygon p = circlePolygon({jitter(random) * 3, jitter(random) * 3},
+                                      4 + unit(random) * 6, 8 + trial % 20);
             for (Point2& q : p) q = q + Point2{jitter(random), jitter(random)};  // may cross itself
             if (unit(random) < 0.3) {  // a fold: out to a tip and back over the same points
                 const std::size_t at = std::size_t(unit(random) * double(p.size()));

@@ -114,15 +114,16 @@ TEST(SlicesParser, PlanningSystemDrawingsAreReadByTheEvenOddRule) {
 }
 
 TEST(SlicesParser, AnRoiOfNothingButLinesIsEmptyNotBroken) {
-    const SlicesLoad load =
-        parseText(kHeader + "roi a\nslice 0\ncontour 3\n0 0\n1 1\n2 2\nslice 1\ncontour 2\n0 0\n1 1\n");
+    const SlicesLoad load = parseText(
+        kHeader + "roi a\nslice 0\ncontour 3\n0 0\n1 1\n2 2\nslice 1\ncontour 2\n0 0\n1 1\n");
     const Roi& roi = load.contours.rois[0];
     EXPECT_FALSE(roi.defect.has_value());
     EXPECT_TRUE(roi.slices.empty());
     EXPECT_EQ(roi.reading.zeroAreaContours, 2u);
     ASSERT_EQ(load.warnings.size(), 1u);
-    EXPECT_NE(load.warnings[0].message.find("read as planning systems read it: 2 contours of no area"),
-              std::string::npos)
+    EXPECT_NE(
+        load.warnings[0].message.find("read as planning systems read it: 2 contours of no area"),
+        std::string::npos)
         << load.warnings[0].message;
 }
 
