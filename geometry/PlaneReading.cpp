@@ -172,11 +172,14 @@ PlaneReading readPlaneContours(std::vector<Polygon> contours, std::size_t maxWor
             ++counts.duplicateContours;
             continue;
         }
-        // A contour that only touches itself is a keyhole (or a pinch);
-        // one that crosses or runs along itself is left whole for the fill.
+        // A contour that touches itself or runs back along itself is a
+        // keyhole (a hole joined to its outline by a channel drawn in and
+        // out, as mask converters write them) or a pinch: split there, which
+        // keeps every point; one that crosses itself is left whole for the
+        // fill, and so is whatever the split leaves crossing.
         const std::optional<ContourDefect> self = findContourDefect({contour});
         if (self && self->kind == ContourDefect::Kind::SelfIntersection &&
-            self->contact == SegmentContact::Touch) {
+            self->contact != SegmentContact::Cross) {
             KeyholeSplit split = splitKeyholes(contour);
             counts.keyholeCuts += split.cuts;
             for (Polygon& loop : split.loops) {
