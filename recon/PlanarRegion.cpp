@@ -6,6 +6,7 @@
 #include <CGAL/Handle_hash_function.h>
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -28,11 +29,18 @@ PlanarRegion triangulateRegion(const std::vector<WeightedContour>& contours,
     std::vector<std::vector<Cdt::Vertex_handle>> corners(contours.size());
     for (std::size_t c = 0; c < contours.size(); ++c)
         for (Point2 p : *contours[c].polygon) corners[c].push_back(cdt.insert({p.x, p.y}));
-    std::vector<std::vector<Cdt::Constraint_id>> constraints(contours.size());
+    // An edge whose ends are one vertex (two equal points in a row, as an
+    // intermediate contour can have once rounded) is no constraint: CGAL
+    // gives it a null id, whose vertices must not be asked for (a crash on
+    // a generated lung, corpus VesselHoles seed 274).
+    std::vector<std::vector<std::optional<Cdt::Constraint_id>>> constraints(contours.size());
     for (std::size_t c = 0; c < contours.size(); ++c) {
         const std::size_t n = corners[c].size();
-        for (std::size_t k = 0; k < n; ++k)
-            constraints[c].push_back(cdt.insert_constraint(corners[c][k], corners[c][(k + 1) % n]));
+        for (std::size_t k = 0; k < n; ++k) {
+            const Cdt::Vertex_handle from = corners[c][k], to = corners[c][(k + 1) % n];
+            constraints[c].push_back(from == to ? std::nullopt
+                                                : std::optional(cdt.insert_constraint(from, to)));
+        }
     }
     for (Point2 p : steinerPoints) cdt.insert({p.x, p.y});
 
@@ -50,8 +58,12 @@ PlanarRegion triangulateRegion(const std::vector<WeightedContour>& contours,
         const std::size_t n = corners[c].size();
         for (std::size_t k = 0; k < n; ++k) {
             std::vector<std::uint32_t> chain;
-            for (auto it = cdt.vertices_in_constraint_begin(constraints[c][k]);
-                 it != cdt.vertices_in_constraint_end(constraints[c][k]); ++it)
+            if (!constraints[c][k]) {  // a point: the edge's chain is its one vertex
+                region.edgeChains[c].push_back({indexOf(corners[c][k])});
+                continue;
+            }
+            for (auto it = cdt.vertices_in_constraint_begin(*constraints[c][k]);
+                 it != cdt.vertices_in_constraint_end(*constraints[c][k]); ++it)
                 chain.push_back(indexOf(*it));
             if (chain.empty()) throw std::logic_error("triangulateRegion: lost a constraint");
             if (chain.front() != indexOf(corners[c][k])) chain.assign(chain.rbegin(), chain.rend());
