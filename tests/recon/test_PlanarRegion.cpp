@@ -33,6 +33,19 @@ TEST(PlanarRegion, SquareWithHoleKeepsTheRing) {
         for (const auto& chain : chains) EXPECT_EQ(chain.size(), 2u) << "nothing crosses";
 }
 
+// Two equal points in a row (an intermediate contour once rounded) make an
+// edge of no length: its chain is its one point, and the region is the
+// contour's (CGAL gave the edge a null constraint, which crashed).
+TEST(PlanarRegion, AnEdgeOfNoLengthIsItsOnePoint) {
+    const Polygon repeated{{0, 0}, {10, 0}, {10, 0}, {10, 10}, {0, 10}};
+    const Polygon other = square(2, 2, 3);  // counted against: a hole in the region
+    const PlanarRegion region = triangulateRegion({{&repeated, 1}, {&other, -1}});
+    EXPECT_NEAR(weightedArea(region), 100 - 9, 1e-9);
+    ASSERT_EQ(region.edgeChains[0].size(), 5u);
+    EXPECT_EQ(region.edgeChains[0][1].size(), 1u);
+    EXPECT_EQ(region.edgeChains[0][0].back(), region.edgeChains[0][1].front());
+}
+
 TEST(PlanarRegion, CrossingContoursGiveTheSymmetricDifferenceWithSigns) {
     // X (weight +1) and Y (weight -1) overlap in a 5 x 5 square.
     const Polygon x = square(0, 0, 10), y = square(5, 5, 10);
