@@ -100,28 +100,28 @@ void addClosing(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart
 }
 
 // Does the closing added since `before` hold as a mesh file stores it
-// (floats): no two of its triangles meeting, none flat, no edge used three
-// times or twice the same way? Exact arithmetic makes it a valid solid; a
-// crossing point or shifted corner a hair from another point makes slivers
-// that rounding can fold through their neighbours or flatten (a lung's
-// vessels, the same point on neighbouring planes). O(T log T) for its T
-// triangles.
+// (floats): no triangle flat, no two meeting? Exact arithmetic makes it a
+// valid solid; a crossing point or shifted corner a hair from another
+// point makes slivers that rounding can fold through their neighbours or
+// flatten (a lung's vessels, the same point on neighbouring planes). Its
+// topology is by vertex index, which rounding cannot change, so only the
+// geometry is tested. O(T log T) for its T triangles.
 bool holdsAsFloats(const SurfaceBuilder& builder, std::size_t before) {
     TriangleSoup triangles = builder.trianglesSince(before);
     roundPointsToFloat(triangles);
-    const MeshCheckReport check = checkMesh(triangles);
-    return check.intersectingPairs == 0 && check.degenerateTriangles == 0 &&
-           check.nonManifoldEdges == 0 && check.misorientedEdges == 0;
+    for (const auto& t : triangles.triangles)
+        if (isDegenerate(triangles, t)) return false;
+    return countSelfIntersections(triangles) == 0;
 }
 
 }  // namespace
 
-void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
+bool closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
                    double middleZMm) {
     std::vector<WeightedContour> contours = weighted(lower, +1);
     const std::size_t lowerCount = contours.size();
     for (const WeightedContour& c : weighted(upper, -1)) contours.push_back(c);
-    if (contours.empty()) return;
+    if (contours.empty()) return true;
     // With one side only (a cap) there is nothing to shift.
     const bool twoSides = lowerCount > 0 && lowerCount < contours.size();
     const std::vector<Point2> shifts = twoSides ? upperShifts() : std::vector<Point2>{{0, 0}};
@@ -144,7 +144,10 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
         if (twoSides && sidesCoincide(region, lowerCount)) continue;
         builder.truncateTriangles(before);
         addClosing(builder, lower, upper, region, middleZMm);
-        if (holdsAsFloats(builder, before)) return;
+        if (holdsAsFloats(builder, before)) {
+            builder.markSearchedTogetherSince(before);
+            return true;
+        }
         fallback = std::move(region);
     }
     // No candidate holds as floats (or every shift left the sides
@@ -152,6 +155,7 @@ void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerP
     builder.truncateTriangles(before);
     addClosing(builder, lower, upper, fallback ? *fallback : triangulateRegion(contours),
                middleZMm);
+    return false;
 }
 
 }  // namespace dfrecon

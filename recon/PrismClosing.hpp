@@ -23,8 +23,12 @@ struct LayerPart {
 /// Adds the walls and lid described above at height `middleZMm` (strictly
 /// between the two layers' planes; either part may be empty). Every edge of
 /// the parts' contours gets exactly one wall triangle fan, so the piece
-/// joins watertight to whatever lies beyond those contours.
-void closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
+/// joins watertight to whatever lies beyond those contours. The closing is
+/// checked with its points rounded to float (shifted lids tried in turn,
+/// see the .cpp); true when it holds, and then its triangles are one clean
+/// group of the builder (SurfaceBuilder::markSearchedTogetherSince), so no
+/// later check searches their pairs again. O(T log T) for its T triangles.
+bool closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
                    double middleZMm);
 
 }  // namespace dfrecon

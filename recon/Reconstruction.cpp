@@ -112,7 +112,9 @@ class SurfaceReconstructor final : public CapSite {
         // instead, which is valid by construction and stays within the slab.
         if (!built || !isCleanPiece(before, {&x, &y})) {
             builder_.truncateTriangles(before);
-            closeSlabByPrisms(lower, upper);
+            // The closing is then the whole piece, its pairs searched as
+            // floats by closeByPrisms when it holds.
+            if (closeSlabByPrisms(lower, upper)) markSearched();
             ++stats_.fallbackSlabs;
         } else {
             markSearched();
@@ -141,10 +143,11 @@ class SurfaceReconstructor final : public CapSite {
     }
 
     /// The guaranteed closing of the slab between two layers: one prism
-    /// piece over all their contours.
-    void closeSlabByPrisms(const Layer& lower, const Layer& upper) {
-        closeByPrisms(builder_, part(lower, all(lower)), part(upper, all(upper)),
-                      0.5 * (lower.zMm + upper.zMm));
+    /// piece over all their contours. True when it holds as floats
+    /// (closeByPrisms).
+    bool closeSlabByPrisms(const Layer& lower, const Layer& upper) {
+        return closeByPrisms(builder_, part(lower, all(lower)), part(upper, all(upper)),
+                             0.5 * (lower.zMm + upper.zMm));
     }
 
     /// Caps every contour of `end` (up or down from its plane) by `offsetMm`
