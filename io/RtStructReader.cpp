@@ -267,7 +267,10 @@ class Reader {
             readSlab(item, r, where);
             // A contour of one or two points bounds nothing: counted with
             // the contours of no area that reading drops (one warning per ROI).
-            if (!dropRepeatedPoints(contour.points)) {
+            const std::size_t drawn = contour.points.size();
+            const bool enough = dropRepeatedPoints(contour.points);
+            out_.contours.rois[r].reading.repeatedPoints += drawn - contour.points.size();
+            if (!enough) {
                 ++out_.contours.rois[r].reading.zeroAreaContours;
                 continue;
             }

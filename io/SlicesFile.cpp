@@ -335,8 +335,9 @@ class Parser {
         std::vector<SourceSlice>& slices = source.slices;
         const std::string name = source.roi.name;
 
+        std::size_t repeated = 0;
         for (SourceSlice& slice : slices)
-            for (SlicesContour& c : slice.contours) dropRepeatedPoints(c);
+            for (SlicesContour& c : slice.contours) repeated += dropRepeatedPoints(c);
 
         if (!std::is_sorted(
                 slices.begin(), slices.end(),
@@ -349,6 +350,7 @@ class Parser {
         mergeDuplicateZ(slices, name);
 
         Roi roi = std::move(source.roi);
+        roi.reading.repeatedPoints += repeated;
         for (SourceSlice& slice : slices) {
             if (slice.contours.empty()) {
                 warn(slice.line, "slice z=" + formatNumber(slice.zMm) + " of ROI '" + name +
@@ -371,7 +373,8 @@ class Parser {
         return roi;
     }
 
-    void dropRepeatedPoints(SlicesContour& c) {
+    // Returns how many points were dropped (the ROI's reading counts them).
+    std::size_t dropRepeatedPoints(SlicesContour& c) {
         std::size_t kept = 0;
         for (std::size_t i = 0; i < c.points.size(); ++i) {
             if (kept > 0 && c.points[i] == c.points[kept - 1]) continue;
@@ -387,6 +390,7 @@ class Parser {
         if (dropped > 0)
             warn(c.keywordLine,
                  "dropped " + std::to_string(dropped) + " repeated consecutive point(s)");
+        return dropped;
     }
 
     void mergeDuplicateZ(std::vector<SourceSlice>& slices, const std::string& name) {
