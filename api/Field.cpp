@@ -86,6 +86,14 @@ std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
     return inside;
 }
 
+std::vector<std::size_t> roiSolidVoxelsInside(const Roi& roi, const RoiSurface& solid,
+                                              const VolumeGeometry& grid) {
+    if (!solid.check.validSolid())
+        throw std::invalid_argument("the reconstructed surface of ROI '" + roi.name +
+                                    "' is not a valid closed solid, so it has no inside");
+    return voxelsInsideSolid(solid.surface, roi.frame, grid, roi.slices);
+}
+
 RoiDistanceVolume roiDistanceVolume(ocl::Runtime& runtime, const Roi& roi,
                                     const RoiFieldOptions& options) {
     RoiDistanceVolume out;

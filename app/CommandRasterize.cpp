@@ -1,18 +1,23 @@
 // dfrecon rasterize IN [--roi NAME | --all] --like REF -o OUT: ROIs as one
-// label map on a reference grid, each read from its 3D distance field
-// (inside where the field is negative), for 3D Slicer, ITK-SNAP and the
-// NIfTI tools, with a label table naming and colouring the labels.
+// label map on a reference grid, each voxel inside an ROI when its centre is
+// inside the ROI's reconstructed solid (or, with --inside field, where its
+// 3D distance field is negative), for 3D Slicer, ITK-SNAP and the NIfTI
+// tools, with a label table naming and colouring the labels. A .seg.nrrd
+// keeps overlapping ROIs whole on layers; the single-label formats give a
+// voxel two ROIs share to the smaller.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
+#include "app/EnumNames.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
 #include "app/Inputs.hpp"
@@ -21,6 +26,7 @@
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Field.hpp"
+#include "dfrecon/Reconstruct.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/DicomImageSeries.hpp"
 #include "io/FileNames.hpp"
@@ -33,12 +39,82 @@ namespace dfrecon::app {
 
 namespace {
 
+// What decides that a voxel centre is inside an ROI.
+enum class InsideRule { Surface, Field };
+constexpr EnumNames<InsideRule, 2> kInsideRuleNames{
+    {{"surface", InsideRule::Surface}, {"field", InsideRule::Field}}};
+
 struct RasterizeArgs {
     std::string input, output, roi, like, table;
     bool all = false;
     double voxelMm = 0, pixelMm = 0;
+    InsideRule inside = InsideRule::Surface;
+    CapMode cap = CapMode::Flat;
+    Interpolation interpolation = Interpolation::Smooth;
     bool json = false;
 };
+
+// One ROI's voxels, and the volume of the solid they came from (surface
+// rule only).
+struct RoiVoxels {
+    std::vector<std::size_t> inside;
+    std::optional<double> surfaceVolumeMm3;
+};
+
+// The voxels of `roi` on `grid` by args' rule: its reconstructed solid
+// (reconstructed as `dfrecon reconstruct` would with these settings) or its
+// 3D field. Throws InvalidResult when the solid is not valid (no inside).
+RoiVoxels roiVoxels(ocl::Runtime& runtime, const Roi& roi, const VolumeGeometry& grid,
+                    const RasterizeArgs& args, const GlobalOptions& global) {
+    RoiVoxels out;
+    if (args.inside == InsideRule::Field) {
+        Progress progress("field of " + roi.name, !global.quiet);
+        RoiFieldOptions options;
+        options.pixelMm = args.pixelMm;
+        options.progress = [&](double f) { progress.update(f); };
+        out.inside = roiVoxelsInside(runtime, roi, grid, options);
+        return out;
+    }
+    Progress progress("surface of " + roi.name, !global.quiet);
+    RoiReconstructOptions options;
+    options.reconstruction.pixelMm = args.pixelMm;
+    options.reconstruction.cap = args.cap;
+    options.reconstruction.interpolation = args.interpolation;
+    const RoiSurface solid =
+        reconstructRoi(runtime, roi, options, [&](const std::string&, double f) {
+            if (f >= 0) progress.update(f);
+        });
+    if (!solid.check.validSolid())
+        throw InvalidResult("ROI " + roi.name +
+                            ": its reconstructed surface is not a valid closed solid (" +
+                            std::to_string(solid.check.intersectingPairs) +
+                            " intersecting pairs, " + std::to_string(solid.check.boundaryEdges) +
+                            " open edges; `dfrecon reconstruct` says where), so it has no inside "
+                            "to rasterize; --inside field rasterizes its distance field");
+    out.inside = roiSolidVoxelsInside(roi, solid, grid);
+    out.surfaceVolumeMm3 = solid.check.volumeMm3;
+    return out;
+}
+
+// The layer of each ROI in a segmentation that keeps overlapping ROIs whole:
+// ROIs in `order` (largest first) each go to the first layer where no ROI
+// before it has a voxel of its own. O(voxels of the ROIs · layers).
+std::vector<int> layersOf(const std::vector<std::vector<std::size_t>>& inside,
+                          const std::vector<std::size_t>& order, std::size_t voxelCount) {
+    std::vector<int> layer(inside.size(), 0);
+    std::vector<std::vector<bool>> taken;
+    for (std::size_t r : order) {
+        std::size_t l = 0;
+        for (; l < taken.size(); ++l)
+            if (std::none_of(inside[r].begin(), inside[r].end(),
+                             [&](std::size_t v) { return bool(taken[l][v]); }))
+                break;
+        if (l == taken.size()) taken.emplace_back(voxelCount, false);
+        for (std::size_t v : inside[r]) taken[l][v] = true;
+        layer[r] = int(l);
+    }
+    return layer;
+}
 
 // Each ROI's label: its number where every selected ROI has a distinct
 // positive one (DICOM ROI numbers, a label volume's values), else its
@@ -102,37 +178,55 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         throw InputError(args.like, 0, "its grid has " + problem);
     }
 
-    // Larger structures are painted first so that a structure inside
-    // another (an organ inside the body outline) keeps its voxels: a label
-    // map holds one label per voxel.
+    // Larger structures are painted first so that, in a single-label map, a
+    // structure inside another (an organ inside the body outline) keeps its
+    // voxels; a segmentation puts ROIs that overlap on different layers.
     ocl::Runtime runtime(global.device);
     const std::vector<std::int32_t> labels = labelsOf(rois);
     std::vector<std::vector<std::size_t>> inside(rois.size());
+    std::vector<std::optional<double>> surfaceVolumeMm3(rois.size());
+    std::vector<std::string> invalid;
+    std::vector<bool> done(rois.size(), false);
     for (std::size_t r = 0; r < rois.size(); ++r) {
-        Progress progress("field of " + rois[r]->name, !global.quiet);
-        RoiFieldOptions options;
-        options.pixelMm = args.pixelMm;
-        options.progress = [&](double f) { progress.update(f); };
-        inside[r] = roiVoxelsInside(runtime, *rois[r], grid, options);
+        try {
+            RoiVoxels voxels = roiVoxels(runtime, *rois[r], grid, args, global);
+            inside[r] = std::move(voxels.inside);
+            surfaceVolumeMm3[r] = voxels.surfaceVolumeMm3;
+            done[r] = true;
+        } catch (const InvalidResult& e) {
+            if (!args.all) throw;
+            std::cerr << "dfrecon: " << e.what() << "\n";
+            invalid.push_back(rois[r]->name);
+        }
     }
-    std::vector<std::size_t> order(rois.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::vector<std::size_t> order;
+    for (std::size_t r = 0; r < rois.size(); ++r)
+        if (done[r]) order.push_back(r);
+    if (order.empty()) throw InvalidResult("no ROI could be rasterized");
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return inside[a].size() > inside[b].size();
     });
     LabelVolume map;
     map.geometry = grid;
-    map.labels.assign(grid.voxelCount(), 0);
+    std::vector<int> layer(rois.size(), 0);
+    if (segmentation) {
+        layer = layersOf(inside, order, grid.voxelCount());
+        for (std::size_t r : order) map.layerCount = std::max(map.layerCount, layer[r] + 1);
+    }
+    map.labels.assign(grid.voxelCount() * std::size_t(map.layerCount), 0);
     std::vector<std::int32_t> owner(grid.voxelCount(), -1);
     for (std::size_t r : order)
         for (std::size_t v : inside[r]) {
-            map.labels[v] = labels[r];
-            owner[v] = std::int32_t(r);
+            map.labels[std::size_t(layer[r]) * grid.voxelCount() + v] = labels[r];
+            if (!segmentation || layer[r] == 0 || owner[v] < 0) owner[v] = std::int32_t(r);
         }
     LabelTable table;
-    for (std::size_t r = 0; r < rois.size(); ++r)
+    std::map<std::int32_t, int> layerOfLabel;
+    for (std::size_t r : order) {
         table[labels[r]] = LabelEntry{rois[r]->name, rois[r]->colour};
-    if (segmentation) map.keyValues = segmentationKeys(table, grid.size);
+        layerOfLabel[labels[r]] = layer[r];
+    }
+    if (segmentation) map.keyValues = segmentationKeys(table, grid.size, layerOfLabel);
     const std::string tablePath = !args.table.empty() ? args.table
                                   : segmentation      ? std::string()
                                                       : labelVolumeStem(args.output) + ".txt";
@@ -142,21 +236,38 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     const double voxelMm3 = grid.spacingMm[0] * grid.spacingMm[1] * grid.spacingMm[2];
     nlohmann::ordered_json roiReports = nlohmann::ordered_json::array();
     for (std::size_t r = 0; r < rois.size(); ++r) {
+        if (!done[r]) continue;
+        // A segmentation keeps every ROI whole on its layer; a single-label
+        // map gives a shared voxel to the smaller ROI.
         const std::size_t kept =
-            std::size_t(std::count_if(inside[r].begin(), inside[r].end(),
-                                      [&](std::size_t v) { return owner[v] == std::int32_t(r); }));
+            segmentation
+                ? inside[r].size()
+                : std::size_t(std::count_if(inside[r].begin(), inside[r].end(), [&](std::size_t v) {
+                      return owner[v] == std::int32_t(r);
+                  }));
         // volumeCc is the ROI's own, before overlaps go to the smaller ROI;
         // labelledVolumeCc what the map holds under its label.
-        roiReports.push_back({{"roi", rois[r]->name},
-                              {"label", labels[r]},
-                              {"insideVoxels", inside[r].size()},
-                              {"volumeCc", double(inside[r].size()) * voxelMm3 / 1000},
-                              {"voxelsGivenToSmallerRois", inside[r].size() - kept},
-                              {"labelledVoxels", kept},
-                              {"labelledVolumeCc", double(kept) * voxelMm3 / 1000}});
+        nlohmann::ordered_json report{
+            {"roi", rois[r]->name},
+            {"label", labels[r]},
+            {"layer", layer[r]},
+            {"insideVoxels", inside[r].size()},
+            {"volumeCc", double(inside[r].size()) * voxelMm3 / 1000},
+            {"surfaceVolumeCc", surfaceVolumeMm3[r]
+                                    ? nlohmann::ordered_json(*surfaceVolumeMm3[r] / 1000)
+                                    : nlohmann::ordered_json(nullptr)},
+            {"voxelsGivenToSmallerRois", inside[r].size() - kept},
+            {"labelledVoxels", kept},
+            {"labelledVolumeCc", double(kept) * voxelMm3 / 1000}};
+        roiReports.push_back(std::move(report));
         if (!args.json)
             std::cout << rois[r]->name << ": label " << labels[r] << ", " << inside[r].size()
-                      << " voxels inside (" << double(inside[r].size()) * voxelMm3 / 1000 << " cc)"
+                      << " voxels inside (" << double(inside[r].size()) * voxelMm3 / 1000 << " cc"
+                      << (surfaceVolumeMm3[r]
+                              ? "; surface " + CLI::detail::to_string(*surfaceVolumeMm3[r] / 1000) +
+                                    " cc"
+                              : std::string())
+                      << ")" << (segmentation ? ", layer " + std::to_string(layer[r]) : "")
                       << (kept < inside[r].size() ? ", " + std::to_string(inside[r].size() - kept) +
                                                         " of them labelled as a smaller ROI"
                                                   : std::string())
@@ -171,10 +282,13 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
                              {"labelTable", tablePath.empty() ? nlohmann::ordered_json(nullptr)
                                                               : nlohmann::ordered_json(tablePath)},
                              {"grid", args.like.empty() ? "around the ROIs" : args.like},
+                             {"inside", nameOf(kInsideRuleNames, args.inside)},
+                             {"layers", map.layerCount},
                              {"size", xyzJson(grid.size)},
                              {"spacingMm", xyzJson(grid.spacingMm)},
                              {"rois", roiReports},
                              {"notRead", notRead},
+                             {"invalid", invalid},
                              {"seconds", watch.total()}},
                          2)
                   << "\n";
@@ -184,6 +298,10 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
         throw ItemsFailed(std::to_string(notRead.size()) +
                               " ROI(s) could not be read; the others were rasterized",
                           kExitBadInput);
+    if (!invalid.empty())
+        throw ItemsFailed(std::to_string(invalid.size()) +
+                              " ROI(s) have no valid solid to rasterize; the others were",
+                          kExitInvalidResult);
 }
 
 }  // namespace
@@ -194,18 +312,29 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         "rasterize",
         "Write ROIs as a label map (NRRD, Slicer .seg.nrrd or NIfTI) on a reference grid");
     cmd->footer(
-        "A voxel is inside an ROI when the ROI's 3D distance field (as `dfrecon field` computes "
-        "it) is negative at its centre: on a contour plane that is the exact inside of the "
-        "contours, between planes the field's interpolation, at the ends the flat caps half a "
-        "spacing out. Each ROI's label is its number where the ROIs have distinct positive "
-        "numbers (DICOM ROI Number, a label volume's value), else its position 1, 2, ...; where "
-        "ROIs overlap the smaller one keeps the voxel (an organ inside the body outline). "
-        "Outputs (gzip, LPS geometry): .nrrd (a label map for 3D Slicer, ITK-SNAP), .seg.nrrd "
-        "(a 3D Slicer segmentation with each ROI's name and colour), .nii / .nii.gz (NIfTI-1, "
-        "RAS sform and qform, for FSL, ANTs, ITK-SNAP). Except for .seg.nrrd a label table "
-        "(ITK-SNAP format, names and colours) is written beside it as STEM.txt, which dfrecon "
-        "and ITK-SNAP read back. Exit codes: 0 done, 1 usage, 2 bad input (with --all: some "
-        "ROIs could not be read; the others are in the map), 3 runtime failure.");
+        "By default (--inside surface) each ROI is reconstructed as `dfrecon reconstruct` "
+        "reconstructs it (the same --pixel-mm, --cap and --interpolation) and a voxel is inside "
+        "when its centre is inside that solid (ray parity against its triangles), so the label "
+        "map's volume converges to the surface's as voxels shrink; an ROI whose surface is not a "
+        "valid closed solid is an error (exit 4; with --all the others are written). With "
+        "--inside field a voxel is inside where the ROI's 3D distance field (as `dfrecon field` "
+        "computes it) is negative: faster, but between planes it follows the field's straight "
+        "interpolation, smaller than the smooth surface. Either way a centre on a contour plane "
+        "(within 0.01 mm) is inside exactly when it is inside the plane's contours, whatever "
+        "--pixel-mm. Each ROI's label is its number where the ROIs have distinct positive "
+        "numbers (DICOM ROI Number, a label volume's value), else its position 1, 2, ... "
+        "Overlapping ROIs: a .seg.nrrd keeps every ROI whole, putting ROIs that overlap on "
+        "separate layers (3D Slicer's SegmentN_Layer; a 4-D file when there is more than one "
+        "layer); the single-label formats (.nrrd, .nii, .nii.gz) hold one label per voxel and "
+        "give a voxel two ROIs share to the smaller one (an organ inside the body outline), "
+        "which the report counts (voxelsGivenToSmallerRois). Outputs (gzip, LPS geometry): "
+        ".nrrd (a label map for 3D Slicer, ITK-SNAP), .seg.nrrd (a 3D Slicer segmentation with "
+        "each ROI's name and colour), .nii / .nii.gz (NIfTI-1, RAS sform and qform, for FSL, "
+        "ANTs, ITK-SNAP). Except for .seg.nrrd a label table (ITK-SNAP format, names and "
+        "colours) is written beside it as STEM.txt, which dfrecon and ITK-SNAP read back. Exit "
+        "codes: 0 done, 1 usage, 2 bad input (with --all: some ROIs could not be read; the "
+        "others are in the map), 3 runtime failure, 4 an ROI's surface is not a valid solid "
+        "(with --all: the others are in the map).");
     cmd->add_option("file", args->input, contourInputHelp())->required();
     cmd->add_option("-o,--output", args->output,
                     "Output label map: .nrrd, .seg.nrrd, .nii or .nii.gz")
@@ -225,10 +354,39 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--label-table-out", args->table,
                     "Label table to write (.txt ITK-SNAP, .ctbl or .lut VALUE NAME R G B A; "
                     "default: STEM.txt beside the map, none for .seg.nrrd)");
+    cmd->add_option_function<std::string>(
+           "--inside",
+           [args](const std::string& name) {
+               args->inside = parseEnum(kInsideRuleNames, name, "--inside");
+           },
+           "What makes a voxel inside an ROI: 'surface', its centre inside the reconstructed "
+           "solid; 'field', its centre where the 3D distance field is negative")
+        ->default_str(nameOf(kInsideRuleNames, args->inside))
+        ->check(CLI::IsMember(namesOf(kInsideRuleNames)));
     cmd->add_option("--pixel-mm", args->pixelMm,
-                    "Field pixel size in mm (default 0: each ROI's extent fits 512 px)")
+                    "Field pixel size in mm, of the reconstruction or of the field (default 0: "
+                    "each ROI's extent fits 512 px)")
         ->capture_default_str()
         ->check(kNonNegative);
+    cmd->add_option_function<std::string>(
+           "--cap",
+           [args](const std::string& name) {
+               args->cap = parseEnum(kCapModeNames, name, "--cap");
+               if (args->cap == CapMode::None)
+                   throw CLI::ValidationError("--cap", "none leaves no closed solid to rasterize");
+           },
+           "--inside surface: end caps of the reconstruction, flat or dome")
+        ->default_str(nameOf(kCapModeNames, args->cap))
+        ->check(CLI::IsMember(namesOf(kCapModeNames)));
+    cmd->add_option_function<std::string>(
+           "--interpolation",
+           [args](const std::string& name) {
+               args->interpolation = parseEnum(kInterpolationNames, name, "--interpolation");
+           },
+           "--inside surface: the reconstruction between planes, smooth or linear (as "
+           "`dfrecon reconstruct`)")
+        ->default_str(nameOf(kInterpolationNames, args->interpolation))
+        ->check(CLI::IsMember(namesOf(kInterpolationNames)));
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runRasterize(*args, global); });
 }

@@ -1,6 +1,7 @@
 #include "field/Rasterization.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -18,6 +19,7 @@ PlaneFrame sharedFrame(const std::vector<const Roi*>& rois) {
 VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelMm) {
     const PlaneFrame frame = sharedFrame(rois);
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double lowestCap = INFINITY;
     for (const Roi* roi : rois) {
         // sharedFrame gives the ROI's own frame or, where frames differ, LPS.
         const bool ownFrame = roi->frame.u == frame.u && roi->frame.v == frame.v;
@@ -26,12 +28,24 @@ VolumeGeometry gridAroundRois(const std::vector<const Roi*>& rois, double voxelM
         const double reach = 0.5 * (spacing.maxMm > 0 ? spacing.maxMm : 1.0);
         // The caps reach half a spacing out along the ROI's own normal.
         const bool alongZ = std::abs(dot(roi->frame.n, frame.n)) > 0.5;
+        // Contours drawn on a lattice (along image rows, from label maps) put
+        // their extremes on lines of the lattice; half a voxel more keeps
+        // those lines between centres rather than through them.
         for (int a = 0; a < 3; ++a) {
-            const double margin = voxelMm + (alongZ ? (a == 2 ? reach : 0) : reach);
+            const double margin = 1.5 * voxelMm + (alongZ ? (a == 2 ? reach : 0) : reach);
             lo[a] = std::min(lo[a], extent.min[a] - margin);
             hi[a] = std::max(hi[a], extent.max[a] + margin);
         }
+        if (alongZ && ownFrame) lowestCap = std::min(lowestCap, extent.min[2] - reach);
     }
+    // A flat cap is a large face across the layers: a layer of centres on it
+    // would count its whole area or none of it (half a voxel's depth of the
+    // cap's area too much or too little). So the layers are placed to have
+    // the lowest cap between two of them; on planes evenly spaced every end
+    // cap is then as far from the layers, and for an odd number of voxels
+    // per half spacing (3 mm planes, 1 mm voxels) the layers fall on the
+    // contour planes, where the contours decide exactly.
+    if (std::isfinite(lowestCap)) lo[2] = lowestCap - 1.5 * voxelMm;
     VolumeGeometry g;
     for (int a = 0; a < 3; ++a) {
         const double span = hi[a] - lo[a];
@@ -106,11 +120,53 @@ class ContourRow {
     std::vector<int> suffix_;  // suffix_[i]: how many crossings from i to the end
 };
 
-// The plane of `planes` (sorted by z) within kOnPlaneMm of z, or nullptr.
-const Slice* planeAt(const std::vector<Slice>& planes, double z) {
-    auto it = std::lower_bound(planes.begin(), planes.end(), z - kOnPlaneMm,
-                               [](const Slice& s, double v) { return s.zMm < v; });
-    return it != planes.end() && it->zMm <= z + kOnPlaneMm ? &*it : nullptr;
+// Centres on a contour plane, judged by the plane's contours. Centres come
+// row by row, so on a grid aligned with the planes one ContourRow serves a
+// whole row of voxels.
+class ContourPlanes {
+  public:
+    explicit ContourPlanes(const std::vector<Slice>& planes) : planes_(planes) {}
+
+    /// For a centre at `p` (plane frame): inside or outside its plane's
+    /// contours, or nothing when it lies on no plane (beyond kOnPlaneMm).
+    std::optional<bool> inside(const Vec3& p) {
+        const Slice* plane = planeAt(p.z);
+        if (!plane) return std::nullopt;
+        if (!row_ || &row_->slice() != plane || row_->y() != p.y) row_.emplace(*plane, p.y);
+        return row_->inside(p.x);
+    }
+
+  private:
+    // The plane of planes_ (sorted by z) within kOnPlaneMm of z, or nullptr.
+    const Slice* planeAt(double z) const {
+        auto it = std::lower_bound(planes_.begin(), planes_.end(), z - kOnPlaneMm,
+                                   [](const Slice& s, double v) { return s.zMm < v; });
+        return it != planes_.end() && it->zMm <= z + kOnPlaneMm ? &*it : nullptr;
+    }
+
+    const std::vector<Slice>& planes_;
+    std::optional<ContourRow> row_;
+};
+
+// Does a row through a point of edge a→b of a counter-clockwise triangle
+// count as covered by it? As if the row were moved by (ε, ε²) (symbolic
+// perturbation): then it lies off every line, left of this edge exactly
+// when the edge runs down, or runs along the first axis forwards. Two
+// triangles on either side of a shared edge run it in opposite directions,
+// so exactly one of them takes the row.
+bool takesRowOnEdge(Point2 a, Point2 b) {
+    return b.y < a.y || (b.y == a.y && b.x > a.x);
+}
+
+// Is the row at p (j, k) covered by the counter-clockwise triangle abc in
+// that perturbed sense? Exact.
+bool rowCovered(Point2 p, const Point2 (&corner)[3]) {
+    for (int e = 0; e < 3; ++e) {
+        const Point2 a = corner[e], b = corner[(e + 1) % 3];
+        const int side = exactOrientation(a, b, p);
+        if (side < 0 || (side == 0 && !takesRowOnEdge(a, b))) return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -136,16 +192,13 @@ std::vector<std::size_t> voxelsInside(const DistanceField3D& field, const PlaneF
         }
     }
     std::vector<std::size_t> inside;
-    // A row of voxels on a contour plane is judged by the contours; on a
-    // grid aligned with the planes the row's crossings are found once.
-    std::optional<ContourRow> row;
+    ContourPlanes onPlanes(planes);
     for (int k = first[2]; k <= last[2]; ++k)
         for (int j = first[1]; j <= last[1]; ++j)
             for (int i = first[0]; i <= last[0]; ++i) {
                 const Vec3 p = frame.fromPatient(grid.worldOfIndex(i, j, k));
-                if (const Slice* plane = planeAt(planes, p.z)) {
-                    if (!row || &row->slice() != plane || row->y() != p.y) row.emplace(*plane, p.y);
-                    if (row->inside(p.x)) inside.push_back(grid.linearIndex(i, j, k));
+                if (const std::optional<bool> on = onPlanes.inside(p)) {
+                    if (*on) inside.push_back(grid.linearIndex(i, j, k));
                     continue;
                 }
                 if (p.z < lo[2] || p.z > hi[2] || p.x < lo[0] || p.x > hi[0] || p.y < lo[1] ||
@@ -154,6 +207,100 @@ std::vector<std::size_t> voxelsInside(const DistanceField3D& field, const PlaneF
                 if (sampleField(field, p.x, p.y, p.z) < 0)
                     inside.push_back(grid.linearIndex(i, j, k));
             }
+    return inside;
+}
+
+std::vector<std::size_t> voxelsInsideSolid(const TriangleSoup& solid, const PlaneFrame& frame,
+                                           const VolumeGeometry& grid,
+                                           const std::vector<Slice>& planes) {
+    if (solid.triangles.empty()) return {};
+    // In index coordinates the rows of centres are the lines of integer
+    // (j, k) along the first axis. Each point is mapped once, so triangles
+    // sharing an edge see the same rounded ends.
+    std::vector<std::array<double, 3>> q(solid.points.size());
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t v = 0; v < q.size(); ++v) {
+        q[v] = grid.indexOfWorld(solid.points[v]);
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], q[v][a]);
+            hi[a] = std::max(hi[a], q[v][a]);
+        }
+    }
+    // The contours lie on the surface, so its box holds every centre inside.
+    int first[3], last[3];
+    for (int a = 0; a < 3; ++a) {
+        first[a] = int(std::max(std::ceil(lo[a]), 0.0));
+        last[a] = int(std::min(std::floor(hi[a]), grid.size[a] - 1.0));
+        if (first[a] > last[a]) return {};
+    }
+    const std::size_t rowsAlongJ = std::size_t(last[1] - first[1] + 1);
+    auto rowOf = [&](int j, int k) {
+        return std::size_t(k - first[2]) * rowsAlongJ + std::size_t(j - first[1]);
+    };
+
+    struct Crossing {
+        std::size_t row;
+        double i;
+    };
+    std::vector<Crossing> crossings;
+    for (const auto& t : solid.triangles) {
+        const std::array<double, 3>* c[3] = {&q[t[0]], &q[t[1]], &q[t[2]]};
+        Point2 shadow[3] = {
+            {(*c[0])[1], (*c[0])[2]}, {(*c[1])[1], (*c[1])[2]}, {(*c[2])[1], (*c[2])[2]}};
+        const int turn = exactOrientation(shadow[0], shadow[1], shadow[2]);
+        if (turn == 0) continue;  // parallel to the rows: its neighbours count
+        if (turn < 0) {
+            std::swap(shadow[1], shadow[2]);
+            std::swap(c[1], c[2]);
+        }
+        const std::array<double, 3>& a = *c[0];
+        const Vec3 n = cross(Vec3{(*c[1])[0] - a[0], (*c[1])[1] - a[1], (*c[1])[2] - a[2]},
+                             Vec3{(*c[2])[0] - a[0], (*c[2])[1] - a[1], (*c[2])[2] - a[2]});
+        const double iLo = std::min({a[0], (*c[1])[0], (*c[2])[0]});
+        const double iHi = std::max({a[0], (*c[1])[0], (*c[2])[0]});
+        const int jFrom =
+            std::max(first[1], int(std::ceil(std::min({shadow[0].x, shadow[1].x, shadow[2].x}))));
+        const int jTo =
+            std::min(last[1], int(std::floor(std::max({shadow[0].x, shadow[1].x, shadow[2].x}))));
+        const int kFrom =
+            std::max(first[2], int(std::ceil(std::min({shadow[0].y, shadow[1].y, shadow[2].y}))));
+        const int kTo =
+            std::min(last[2], int(std::floor(std::max({shadow[0].y, shadow[1].y, shadow[2].y}))));
+        for (int k = kFrom; k <= kTo; ++k)
+            for (int j = jFrom; j <= jTo; ++j) {
+                if (!rowCovered({double(j), double(k)}, shadow)) continue;
+                // The triangle's plane at (j, k); kept within its span where
+                // it is nearly parallel to the row.
+                const double i = a[0] - (n.y * (j - a[1]) + n.z * (k - a[2])) / n.x;
+                crossings.push_back({rowOf(j, k), std::clamp(i, iLo, iHi)});
+            }
+    }
+    std::sort(crossings.begin(), crossings.end(), [](const Crossing& l, const Crossing& r) {
+        return l.row != r.row ? l.row < r.row : l.i < r.i;
+    });
+
+    std::vector<std::size_t> inside;
+    ContourPlanes onPlanes(planes);
+    auto next = crossings.begin();
+    for (int k = first[2]; k <= last[2]; ++k)
+        for (int j = first[1]; j <= last[1]; ++j) {
+            const std::size_t row = rowOf(j, k);
+            auto passed = next;  // crossings of this row at or before the centre
+            auto end = std::find_if(next, crossings.end(),
+                                    [row](const Crossing& c) { return c.row != row; });
+            for (int i = first[0]; i <= last[0]; ++i) {
+                const std::size_t voxel = grid.linearIndex(i, j, k);
+                if (!planes.empty())
+                    if (const std::optional<bool> on =
+                            onPlanes.inside(frame.fromPatient(grid.worldOfIndex(i, j, k)))) {
+                        if (*on) inside.push_back(voxel);
+                        continue;
+                    }
+                while (passed != end && passed->i <= i) ++passed;
+                if ((end - passed) % 2 == 1) inside.push_back(voxel);
+            }
+            next = end;
+        }
     return inside;
 }
 

@@ -49,19 +49,18 @@ static bool withinSpan(Point2 a, Point2 b, Point2 c) {
            c.y <= std::max(a.y, b.y);
 }
 
-// Which side of line ab point c lies on (1 left, -1 right, 0 on it),
-// exactly: CGAL's filtered predicate. The rounded cross product took
-// pieces of one segment, split at a rounded crossing point and a few 1e-17
-// off the line, for segments crossing each other.
-static int orientation(Point2 a, Point2 b, Point2 c) {
+// The rounded cross product took pieces of one segment, split at a rounded
+// crossing point and a few 1e-17 off the line, for segments crossing each
+// other.
+int exactOrientation(Point2 a, Point2 b, Point2 c) {
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     return int(CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y),
                                  Kernel::Point_2(c.x, c.y)));
 }
 
 SegmentContact segmentContact(Point2 a, Point2 b, Point2 c, Point2 d) {
-    const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
-    const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+    const int o1 = exactOrientation(a, b, c), o2 = exactOrientation(a, b, d);
+    const int o3 = exactOrientation(c, d, a), o4 = exactOrientation(c, d, b);
 
     if (o1 == 0 && o2 == 0) {
         // Collinear: project on the dominant axis and compare the overlap.

@@ -57,6 +57,11 @@ inline int windingCrossing(Point2 p, Point2 a, Point2 b) {
     return b.y <= p.y && side < 0 ? -1 : 0;
 }
 
+/// The side of c from the line a→b, exactly for the doubles given (CGAL's
+/// filtered predicate): 1 left (abc counter-clockwise), -1 right, 0 on it.
+/// O(1); a rounded cross product gets points a hair from the line wrong.
+int exactOrientation(Point2 a, Point2 b, Point2 c);
+
 /// Winding number of `polygon` around `p` (non-zero inside, 0 outside): the
 /// sum of windingCrossing over its edges; undefined for p exactly on the
 /// boundary. O(n).

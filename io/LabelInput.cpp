@@ -34,7 +34,7 @@ std::optional<std::string> intensityImageEvidence(const LabelVolume& volume) {
     const auto& labels = volume.labels;
     std::unordered_set<std::int32_t> values;
     std::size_t pairs = 0, changes = 0;
-    for (std::size_t at = 0; at < labels.size(); ++at) {
+    for (std::size_t at = 0; at < g.voxelCount(); ++at) {  // the first layer
         const std::int32_t v = labels[at];
         if (v == 0) continue;
         if (values.size() < kIntensityMinValues) values.insert(v);
@@ -85,11 +85,28 @@ ContourSet readLabelContours(const std::string& path, const LabelInputOptions& o
             throw InputError(path, 0, *evidence);
     if (!options.labelTablePath.empty())
         applyTable(readLabelTable(options.labelTablePath), contouring);
-    else if (hasSegments(volume))
+    else if (hasSegments(volume) && volume.layerCount == 1)
         applyTable(labelTableFromSegmentation(path, volume.keyValues), contouring);
-    else if (const auto beside = labelTableBeside(path))
+    else if (const auto beside = labelTableBeside(path); beside && !hasSegments(volume))
         applyTable(readLabelTable(*beside), contouring);
-    return contoursFromLabels(volume, contouring);
+    if (volume.layerCount == 1) return contoursFromLabels(volume, contouring);
+    // A segmentation whose segments overlap: each layer a label map of its
+    // own segments, named by them (a label value may recur on another
+    // layer), the ROIs of all layers in one set.
+    ContourSet set;
+    LabelVolume layer;
+    layer.geometry = volume.geometry;
+    for (int l = 0; l < volume.layerCount; ++l) {
+        const std::int32_t* labels = layerLabels(volume, l);
+        layer.labels.assign(labels, labels + volume.geometry.voxelCount());
+        MaskContourOptions layerContouring = contouring;
+        if (options.labelTablePath.empty() && hasSegments(volume))
+            applyTable(labelTableFromSegmentation(path, volume.keyValues, l, volume.layerCount),
+                       layerContouring);
+        ContourSet part = contoursFromLabels(layer, layerContouring);
+        for (Roi& roi : part.rois) set.rois.push_back(std::move(roi));
+    }
+    return set;
 }
 
 }  // namespace dfrecon

@@ -43,21 +43,25 @@ inline constexpr std::size_t kMaxLabelNameBytes = kMaxRoiNameBytes;
 /// O(file size · log entries).
 LabelTable readLabelTable(const std::string& path);
 
-/// The table a 3D Slicer segmentation's header holds (NRRD key/value pairs
-/// `SegmentN_LabelValue`, `SegmentN_Name`, `SegmentN_Color` with components
-/// in 0..1, `SegmentN_Layer`); empty when there are no segments. Throws
-/// InputError(path, 0, what) for a malformed entry, segments on more than
-/// one layer (a 4-D segmentation, which readLabelVolume refuses anyway) or
-/// two segments with one label value. O(pairs · log pairs).
+/// The table of layer `layer` of a 3D Slicer segmentation of `layerCount`
+/// layers, from its header (NRRD key/value pairs `SegmentN_LabelValue`,
+/// `SegmentN_Name`, `SegmentN_Color` with components in 0..1,
+/// `SegmentN_Layer`, 0 when missing): the segments on that layer; empty
+/// when there are none. Throws InputError(path, 0, what) for a malformed
+/// entry, a segment on a layer the volume does not have, or two segments of
+/// one layer with one label value. O(pairs · log pairs).
 LabelTable labelTableFromSegmentation(const std::string& path,
-                                      const std::vector<std::pair<std::string, std::string>>& keys);
+                                      const std::vector<std::pair<std::string, std::string>>& keys,
+                                      int layer = 0, int layerCount = 1);
 
 /// The NRRD header pairs of a Slicer segmentation for `table`, as Slicer
-/// writes them for one layer: one segment per entry in value order, with
-/// its label value, name, colour (a generated one where the entry has none)
-/// and extent `0 size0-1 0 size1-1 0 size2-1`. O(entries).
-std::vector<std::pair<std::string, std::string>> segmentationKeys(const LabelTable& table,
-                                                                  const std::array<int, 3>& size);
+/// writes them: one segment per entry in value order, with its label value,
+/// layer (`layerOf`'s entry, 0 for a value it lacks), name, colour (a
+/// generated one where the entry has none) and extent
+/// `0 size0-1 0 size1-1 0 size2-1`. O(entries · log entries).
+std::vector<std::pair<std::string, std::string>> segmentationKeys(
+    const LabelTable& table, const std::array<int, 3>& size,
+    const std::map<std::int32_t, int>& layerOf = {});
 
 /// Writes `table` atomically by the extension of `path`: .txt an ITK-SNAP
 /// label description (with "Clear Label" 0 first, as ITK-SNAP writes it),

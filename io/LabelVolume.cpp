@@ -275,6 +275,24 @@ std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void*
     return labels;
 }
 
+std::vector<std::int32_t> layersFromInterleaved(const std::vector<std::int32_t>& interleaved,
+                                                std::uint64_t layerCount) {
+    const std::size_t layers = std::size_t(layerCount), voxels = interleaved.size() / layers;
+    std::vector<std::int32_t> out(interleaved.size());
+    for (std::size_t v = 0; v < voxels; ++v)
+        for (std::size_t l = 0; l < layers; ++l) out[l * voxels + v] = interleaved[v * layers + l];
+    return out;
+}
+
+std::vector<std::int32_t> interleavedFromLayers(const std::vector<std::int32_t>& layers,
+                                                std::uint64_t layerCount) {
+    const std::size_t count = std::size_t(layerCount), voxels = layers.size() / count;
+    std::vector<std::int32_t> out(layers.size());
+    for (std::size_t l = 0; l < count; ++l)
+        for (std::size_t v = 0; v < voxels; ++v) out[v * count + l] = layers[l * voxels + v];
+    return out;
+}
+
 }  // namespace labelvolume
 
 LabelVolume readLabelVolume(const std::string& path) {
@@ -317,24 +335,31 @@ namespace {
 // `write(data, type)`. The narrowest type keeps files small and is what
 // Slicer writes for label maps (unsigned char, short); the values never
 // change.
+// Layers are written with a layer index fastest, as a NRRD list axis runs.
 template <class Write>
 void writeNarrowest(const std::string& path, const char* function, const LabelVolume& volume,
                     Write write) {
     using labelvolume::SampleType;
     const std::string problem = labelvolume::geometryProblem(volume.geometry);
     if (!problem.empty()) throw std::invalid_argument(std::string(function) + ": " + problem);
-    if (volume.labels.size() != volume.geometry.voxelCount())
+    if (volume.layerCount < 1 || std::uint64_t(volume.layerCount) > kMaxLabelLayers ||
+        volume.labels.size() != volume.geometry.voxelCount() * std::size_t(volume.layerCount))
         throw std::invalid_argument(std::string(function) + ": " + path +
-                                    ": label count does not match the geometry");
-    const auto [low, high] = std::minmax_element(volume.labels.begin(), volume.labels.end());
+                                    ": label count does not match the geometry and layers");
+    const std::vector<std::int32_t> interleaved =
+        volume.layerCount > 1
+            ? labelvolume::interleavedFromLayers(volume.labels, std::uint64_t(volume.layerCount))
+            : std::vector<std::int32_t>();
+    const std::vector<std::int32_t>& labels = volume.layerCount > 1 ? interleaved : volume.labels;
+    const auto [low, high] = std::minmax_element(labels.begin(), labels.end());
     if (*low >= 0 && *high <= 255) {
-        write(narrowed<std::uint8_t>(volume.labels).data(), SampleType::UInt8);
+        write(narrowed<std::uint8_t>(labels).data(), SampleType::UInt8);
     } else if (*low >= 0 && *high <= 65535) {
-        write(narrowed<std::uint16_t>(volume.labels).data(), SampleType::UInt16);
+        write(narrowed<std::uint16_t>(labels).data(), SampleType::UInt16);
     } else if (*low >= -32768 && *high <= 32767) {
-        write(narrowed<std::int16_t>(volume.labels).data(), SampleType::Int16);
+        write(narrowed<std::int16_t>(labels).data(), SampleType::Int16);
     } else {
-        write(volume.labels.data(), SampleType::Int32);
+        write(labels.data(), SampleType::Int32);
     }
 }
 
@@ -343,10 +368,11 @@ void writeNarrowest(const std::string& path, const char* function, const LabelVo
 void writeLabelNrrd(const std::string& path, const LabelVolume& volume) {
     if (!endsWithIgnoringCase(path, ".nrrd"))
         throw std::invalid_argument("writeLabelNrrd: " + path + " does not end in .nrrd");
-    writeNarrowest(
-        path, "writeLabelNrrd", volume, [&](const void* data, labelvolume::SampleType type) {
-            labelvolume::writeNrrdSamples(path, volume.geometry, data, type, volume.keyValues);
-        });
+    writeNarrowest(path, "writeLabelNrrd", volume,
+                   [&](const void* data, labelvolume::SampleType type) {
+                       labelvolume::writeNrrdSamples(path, volume.geometry, data, type,
+                                                     volume.keyValues, volume.layerCount);
+                   });
 }
 
 void writeLabelVolume(const std::string& path, const LabelVolume& volume) {
@@ -354,6 +380,9 @@ void writeLabelVolume(const std::string& path, const LabelVolume& volume) {
     if (!endsWithIgnoringCase(path, ".nii") && !endsWithIgnoringCase(path, ".nii.gz"))
         throw std::invalid_argument("label map '" + path +
                                     "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
+    if (volume.layerCount != 1)
+        throw std::invalid_argument("label map '" + path + "': NIfTI holds one layer, not " +
+                                    std::to_string(volume.layerCount));
     writeNarrowest(path, "writeLabelVolume", volume,
                    [&](const void* data, labelvolume::SampleType type) {
                        labelvolume::writeNiftiSamples(path, volume.geometry, data, type);

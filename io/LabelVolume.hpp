@@ -20,19 +20,37 @@ namespace dfrecon {
 /// rejected before anything is allocated.
 inline constexpr std::uint64_t kMaxLabelVolumeVoxels = std::uint64_t(1) << 31;
 
-/// One integer label per voxel; 0 is conventionally background.
+/// The most layers a segmentation may have (3D Slicer makes one per set of
+/// segments that overlap one another).
+inline constexpr std::uint64_t kMaxLabelLayers = 256;
+
+/// One integer label per voxel and layer; 0 is conventionally background.
+/// A label map has one layer. A 3D Slicer segmentation whose segments
+/// overlap keeps them on several layers (`SegmentN_Layer`; a 4-D .seg.nrrd
+/// with the layers as its first, list axis), each layer a label map of
+/// segments that do not overlap.
 struct LabelVolume {
     VolumeGeometry geometry;
-    std::vector<std::int32_t> labels;  // geometry.voxelCount() values, x fastest
+    /// layerCount · geometry.voxelCount() values: layer 0's voxels x
+    /// fastest, then layer 1's, ...
+    std::vector<std::int32_t> labels;
+    int layerCount = 1;
     /// NRRD header key/value pairs (`key:=value`: a 3D Slicer
     /// segmentation's segment names and colours), in file order; read from
     /// and written to NRRD only.
     std::vector<std::pair<std::string, std::string>> keyValues;
 };
 
+/// The labels of layer `layer` of `volume` (its voxelCount() values). O(1).
+inline const std::int32_t* layerLabels(const LabelVolume& volume, int layer) {
+    return volume.labels.data() + std::size_t(layer) * volume.geometry.voxelCount();
+}
+
 /// Reads a 3-D label volume, choosing the format by the name's ending
 /// (case-insensitive): .nrrd / .nhdr (NRRD, through teem: raw, gzip, ascii
-/// or hex encoding, attached or detached header with one data file) or
+/// or hex encoding, attached or detached header with one data file; a 4-D
+/// file whose first axis is of kind `list` is read as that many layers, as
+/// 3D Slicer writes segmentations whose segments overlap) or
 /// .nii / .nii.gz (single-file NIfTI-1 or NIfTI-2, through niftilib).
 /// Samples may be any integer type, or floating point holding integral
 /// values within int32 (NIfTI scl_slope/scl_inter applied first).
@@ -73,13 +91,18 @@ void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
                    const std::vector<std::uint8_t>& mask);
 
 /// Same for a label map, stored in the smallest of uchar, ushort, short and
-/// int that holds every label, with volume.keyValues in the header. O(voxels).
+/// int that holds every label, with volume.keyValues in the header; a
+/// volume of several layers as a 4-D NRRD whose first axis (`kinds: list
+/// domain domain domain`, space direction `none`) runs over the layers, as
+/// 3D Slicer writes a segmentation with overlapping segments. O(voxels ·
+/// layers).
 void writeLabelNrrd(const std::string& path, const LabelVolume& volume);
 
 /// Writes a label map by the extension of `path`: .nrrd as writeLabelNrrd,
 /// .nii or .nii.gz as single-file NIfTI-1 (niftilib) in the same narrowest
 /// type, sform and qform both set (code 1, scanner anatomical) to the
-/// geometry in NIfTI's RAS, units mm; keyValues are not written there.
+/// geometry in NIfTI's RAS, units mm; keyValues are not written there, and
+/// a volume of several layers is refused (std::invalid_argument).
 /// Atomic; throws std::invalid_argument for another extension or a volume
 /// that does not fit, std::runtime_error on a failed write. O(voxels).
 void writeLabelVolume(const std::string& path, const LabelVolume& volume);

@@ -83,11 +83,21 @@ std::vector<std::int32_t> labelsFromSamples(const std::string& path, const void*
 /// and arguments are checked.
 LabelVolume readNrrdLabelVolume(const std::string& path);
 LabelVolume readNiftiLabelVolume(const std::string& path);
-/// Writes geometry.voxelCount() samples of `type` (UInt8, UInt16, Int16 or
-/// Int32) as an attached gzip NRRD in LPS, atomically.
+/// Writes geometry.voxelCount() · layerCount samples of `type` (UInt8,
+/// UInt16, Int16 or Int32; a layer index fastest when layerCount > 1) as an
+/// attached gzip NRRD in LPS, atomically: 3-D, or 4-D with the layers as a
+/// first axis of kind list.
 void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
                       SampleType type,
-                      const std::vector<std::pair<std::string, std::string>>& keyValues = {});
+                      const std::vector<std::pair<std::string, std::string>>& keyValues = {},
+                      int layerCount = 1);
+
+/// Layer-after-layer labels from labels with a layer index fastest (a
+/// NRRD's list axis), and back. O(values).
+std::vector<std::int32_t> layersFromInterleaved(const std::vector<std::int32_t>& interleaved,
+                                                std::uint64_t layerCount);
+std::vector<std::int32_t> interleavedFromLayers(const std::vector<std::int32_t>& layers,
+                                                std::uint64_t layerCount);
 /// The same as a single-file NIfTI-1 (.nii or .nii.gz by the name), RAS
 /// sform and qform, atomically.
 void writeNiftiSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,

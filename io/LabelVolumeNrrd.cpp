@@ -246,10 +246,13 @@ std::uint64_t decodableBytes(const NrrdEncoding* encoding, std::uint64_t fileByt
     return 0;
 }
 
-VolumeGeometry geometryOf(const std::string& path, const Nrrd& nrrd,
+// The geometry of the three spatial axes, nrrd.axis[first] on (first is 1
+// past a segmentation's list axis of layers).
+VolumeGeometry geometryOf(const std::string& path, const Nrrd& nrrd, unsigned first,
                           const std::array<int, 3>& size) {
+    const NrrdAxisInfo* axis = nrrd.axis + first;
     for (int a = 0; a < 3; ++a) {
-        const int kind = nrrd.axis[a].kind;
+        const int kind = axis[a].kind;
         if (kind != nrrdKindUnknown && kind != nrrdKindDomain && kind != nrrdKindSpace)
             throw InputError(path, 0,
                              "axis " + std::to_string(a) + " is of kind " +
@@ -261,7 +264,7 @@ VolumeGeometry geometryOf(const std::string& path, const Nrrd& nrrd,
         // No orientation at all: axes along LPS x, y, z with the
         // "spacings" field, or 1 mm.
         for (int a = 0; a < 3; ++a) {
-            const double spacing = nrrd.axis[a].spacing;
+            const double spacing = axis[a].spacing;
             steps[a][a] = std::isnan(spacing) ? 1.0 : spacing;
             if (!(steps[a][a] > 0) || !std::isfinite(steps[a][a]))
                 throw InputError(path, 0,
@@ -292,7 +295,7 @@ VolumeGeometry geometryOf(const std::string& path, const Nrrd& nrrd,
     }
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
-            const double v = nrrd.axis[a].spaceDirection[c];
+            const double v = axis[a].spaceDirection[c];
             if (std::isnan(v))
                 throw InputError(path, 0, "axis " + std::to_string(a) + " has no space direction");
             steps[a][c] = toLps[c] * v;
@@ -319,15 +322,27 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
     headerIo->skipData = AIR_TRUE;
     if (nrrdLoad(header.get(), path.c_str(), headerIo.get()))
         throw InputError(path, 0, "not a readable NRRD header: " + teemError());
+    // A 4-D file whose first axis is a list holds layers (3D Slicer's
+    // segmentation with overlapping segments); the other three are space.
+    const bool layered = header->dim == 4 && header->axis[0].kind == nrrdKindList;
+    if (header->dim != 3 && !layered)
+        throw InputError(path, 0,
+                         std::to_string(header->dim) +
+                             "-D image; a label volume needs 3 dimensions (or 4 with layers "
+                             "first, kind list, as 3D Slicer segmentations have)");
+    const unsigned first = layered ? 1 : 0;
+    const std::uint64_t layerCount = layered ? header->axis[0].size : 1;
+    if (layerCount == 0 || layerCount > kMaxLabelLayers)
+        throw InputError(path, 0,
+                         std::to_string(layerCount) + " layers; a segmentation may have 1 to " +
+                             std::to_string(kMaxLabelLayers));
     std::vector<std::uint64_t> sizes;
-    for (unsigned a = 0; a < header->dim; ++a) sizes.push_back(header->axis[a].size);
-    if (header->dim != 3)
-        throw InputError(
-            path, 0, std::to_string(header->dim) + "-D image; a label volume needs 3 dimensions");
+    for (unsigned a = first; a < header->dim; ++a) sizes.push_back(header->axis[a].size);
     const std::array<int, 3> size = checkedSizes(path, sizes);
     const SampleType type = nrrdSampleType(path, header->type);
+    // sizes are checked above, layers just now: no overflow
     const std::string memory =
-        memoryProblem(sizes[0] * sizes[1] * sizes[2], sampleBytes(type));  // sizes checked above
+        memoryProblem(sizes[0] * sizes[1] * sizes[2] * layerCount, sampleBytes(type));
     if (!memory.empty()) throw InputError(path, 0, memory);
     const NrrdEncoding* encoding = headerIo->encoding;
     if (encoding != nrrdEncodingRaw && encoding != nrrdEncodingGzip &&
@@ -335,7 +350,7 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
         throw InputError(path, 0,
                          std::string("encoding ") + encoding->name +
                              " is not supported (raw, gzip, ascii and hex are)");
-    const VolumeGeometry geometry = geometryOf(path, *header, size);
+    const VolumeGeometry geometry = geometryOf(path, *header, first, size);
 
     // The file must be able to hold the samples before they are allocated.
     std::error_code ec;
@@ -343,7 +358,7 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
     if (ec) throw InputError(path, 0, "cannot measure " + location.path);
     const std::uint64_t dataFileBytes =
         fileBytes > location.offset ? fileBytes - location.offset : 0;
-    std::uint64_t needed = std::uint64_t(geometry.voxelCount()) * sampleBytes(type);
+    std::uint64_t needed = std::uint64_t(geometry.voxelCount()) * layerCount * sampleBytes(type);
     if (encoding == nrrdEncodingRaw && headerIo->byteSkip > 0)
         needed += std::uint64_t(headerIo->byteSkip);
     requireBytes(path, needed, decodableBytes(encoding, dataFileBytes, sampleBytes(type)),
@@ -356,14 +371,20 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
     if (nrrdLoad(full.get(), path.c_str(), fullIo.get()))
         throw InputError(path, 0, "cannot read the data: " + teemError());
     // The same file read twice; a change in between is not trusted.
-    if (full->dim != 3 || full->type != header->type || !full->data ||
-        full->axis[0].size != sizes[0] || full->axis[1].size != sizes[1] ||
-        full->axis[2].size != sizes[2])
+    if (full->dim != header->dim || full->type != header->type || !full->data ||
+        full->axis[0].size != header->axis[0].size || full->axis[first].size != sizes[0] ||
+        full->axis[first + 1].size != sizes[1] || full->axis[first + 2].size != sizes[2])
         throw InputError(path, 0, "changed while being read");
     LabelVolume volume;
     volume.geometry = geometry;
+    volume.layerCount = int(layerCount);
     nrrdStateKeyValueReturnInternalPointers = AIR_FALSE;
-    volume.labels = labelsFromSamples(path, full->data, type, geometry, LinearScale{});
+    // The samples as one run (a layer index fastest where there are layers),
+    // then layer after layer.
+    VolumeGeometry samples = geometry;
+    samples.size[0] *= int(layerCount);  // within the voxel limit, checked above
+    volume.labels = labelsFromSamples(path, full->data, type, samples, LinearScale{});
+    if (layered) volume.labels = layersFromInterleaved(volume.labels, layerCount);
     for (unsigned i = 0; i < nrrdKeyValueSize(full.get()); ++i) {
         char* key = nullptr;
         char* value = nullptr;
@@ -377,7 +398,8 @@ LabelVolume readNrrdLabelVolume(const std::string& path) {
 
 void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, const void* data,
                       SampleType type,
-                      const std::vector<std::pair<std::string, std::string>>& keyValues) {
+                      const std::vector<std::pair<std::string, std::string>>& keyValues,
+                      int layerCount) {
     const int teemType = teemTypeOf(type);
     std::lock_guard<std::mutex> lock(teemMutex());
     nrrdStateVerboseIO = 0;
@@ -388,20 +410,37 @@ void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, c
         IoState io(nrrdIoStateNew());
         if (!nrrd || !io) throw std::bad_alloc();
         // teem's wrap takes a non-const pointer but only reads on save.
-        if (nrrdWrap_va(nrrd.get(), const_cast<void*>(data), teemType, 3,
-                        std::size_t(geometry.size[0]), std::size_t(geometry.size[1]),
-                        std::size_t(geometry.size[2])) ||
-            nrrdSpaceSet(nrrd.get(), nrrdSpaceLeftPosteriorSuperior) ||
+        const bool layered = layerCount > 1;
+        const int wrapped =
+            layered ? nrrdWrap_va(nrrd.get(), const_cast<void*>(data), teemType, 4,
+                                  std::size_t(layerCount), std::size_t(geometry.size[0]),
+                                  std::size_t(geometry.size[1]), std::size_t(geometry.size[2]))
+                    : nrrdWrap_va(nrrd.get(), const_cast<void*>(data), teemType, 3,
+                                  std::size_t(geometry.size[0]), std::size_t(geometry.size[1]),
+                                  std::size_t(geometry.size[2]));
+        if (wrapped || nrrdSpaceSet(nrrd.get(), nrrdSpaceLeftPosteriorSuperior) ||
             nrrdSpaceOriginSet(nrrd.get(), geometry.originMm.data()))
             throw std::runtime_error("cannot write " + path + ": " + teemError());
-        double steps[3][3];
+        double steps[4][3];
+        const int first = layered ? 1 : 0;
+        // The list axis of layers has no space direction ("none").
+        for (int c = 0; c < 3; ++c) steps[0][c] = AIR_NAN;
         for (int a = 0; a < 3; ++a)
             for (int c = 0; c < 3; ++c)
-                steps[a][c] = geometry.spacingMm[a] * geometry.direction[a][c];
-        nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoSpaceDirection, steps[0], steps[1], steps[2]);
-        // "domain" on every axis is what Slicer writes for (label) volumes.
-        nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoKind, nrrdKindDomain, nrrdKindDomain,
-                           nrrdKindDomain);
+                steps[first + a][c] = geometry.spacingMm[a] * geometry.direction[a][c];
+        // "domain" on every spatial axis is what Slicer writes for (label)
+        // volumes, "list" for the layers of a segmentation.
+        if (layered) {
+            nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoSpaceDirection, steps[0], steps[1], steps[2],
+                               steps[3]);
+            nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoKind, nrrdKindList, nrrdKindDomain,
+                               nrrdKindDomain, nrrdKindDomain);
+        } else {
+            nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoSpaceDirection, steps[0], steps[1],
+                               steps[2]);
+            nrrdAxisInfoSet_va(nrrd.get(), nrrdAxisInfoKind, nrrdKindDomain, nrrdKindDomain,
+                               nrrdKindDomain);
+        }
         for (int c = 0; c < 3; ++c) nrrd->spaceUnits[c] = airStrdup("mm");
         for (const auto& [key, value] : keyValues)
             if (nrrdKeyValueAdd(nrrd.get(), key.c_str(), value.c_str()))

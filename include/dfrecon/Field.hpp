@@ -77,6 +77,17 @@ std::vector<std::size_t> roiVoxelsInside(ocl::Runtime& runtime, const Roi& roi,
                                          const VolumeGeometry& grid,
                                          const RoiFieldOptions& options = {});
 
+/// The voxels of `grid` whose centres lie inside `solid`, the ROI's
+/// reconstructed surface (reconstructRoi of `roi`), as increasing linear
+/// indices: ray parity against its triangles (field/Rasterization's
+/// voxelsInsideSolid), so the voxels' volume converges to the surface's as
+/// they shrink; a centre on a contour plane (within 0.01 mm) is inside
+/// exactly when it is inside the plane's contours. Throws
+/// std::invalid_argument when `solid` is not a valid closed solid (no
+/// inside to find). O(triangles + voxels in the surface's box).
+std::vector<std::size_t> roiSolidVoxelsInside(const Roi& roi, const RoiSurface& solid,
+                                              const VolumeGeometry& grid);
+
 struct RoiDistanceVolume {
     /// Values x fastest, then y, then z; origin and voxel in the ROI's plane
     /// frame (the identity for axial stacks; roi.frame maps to patient LPS).

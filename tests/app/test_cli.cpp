@@ -18,6 +18,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/LabelInput.hpp"
 #include "io/LabelVolume.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
@@ -893,12 +894,15 @@ TEST(Cli, RasterizeAllOnTheLabelVolumeGivesBackTheLabels) {
     // (test_DicomImageSeries: the same grid), into one NIfTI map: the contour planes hold the
     // voxel centres, so every voxel of the labels away from the image's
     // border (4, 5, 6) agrees. ROI numbers start at 0 here, so labels are
-    // positions: label_N gets N + 1.
+    // positions: label_N gets N + 1. Every centre lies on a plane, where both
+    // rules are the contours' inside: the field's is the quicker here
+    // (test_RasterizeOnPlanes holds the solid's to the same on planes).
     const fs::path study = fs::path(DFRECON_FIXTURES) / "kmeans_axial";
     ASSERT_TRUE(fs::exists(study / "rtstruct.dcm")) << "run make setup";
     const fs::path out = scratch() / "kmeans-all.nii.gz";
-    const Result run = runDfrecon("rasterize -q --json --all " + (study / "rtstruct.dcm").string() +
-                                  " --like " + (study / "dicom").string() + " -o " + out.string());
+    const Result run =
+        runDfrecon("rasterize -q --json --all --inside field " + (study / "rtstruct.dcm").string() +
+                   " --like " + (study / "dicom").string() + " -o " + out.string());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const dfrecon::LabelVolume map = dfrecon::readLabelVolume(out.string());
     const dfrecon::LabelVolume labels =
@@ -960,7 +964,9 @@ TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
                       std::to_string(halfMm) + "\n";
         return slices;
     };
-    text += "roi Body 10 200 30\n" + square(20) + "roi Organ\n" + square(5) +
+    // Sides half a voxel from the centres (20.5, 5.5 mm), so no centre lies
+    // on a wall.
+    text += "roi Body 10 200 30\n" + square(20.5) + "roi Organ\n" + square(5.5) +
             "roi Knot\nslice 0\n" + dfrecon::testing::crossingCombs(300);
     const fs::path slices = scratch() / "nested.slices", out = scratch() / "nested.seg.nrrd";
     std::ofstream(slices) << text;
@@ -972,17 +978,47 @@ TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
     EXPECT_EQ(report["notRead"], nlohmann::json::array({"Knot"}));
     EXPECT_TRUE(report["labelTable"].is_null());  // the segmentation holds its names
     const nlohmann::json &body = report["rois"][0], &organ = report["rois"][1];
-    // The flat caps lie half a spacing beyond the end planes, at z = -1 and
-    // 11, where the grid (a voxel plus half a spacing around the contours)
-    // puts voxel centres: on the surface, so not inside. Inside are the 11
-    // planes of centres from 0 to 10.
-    EXPECT_NEAR(body["volumeCc"].get<double>(), 40 * 40 * 11 / 1000.0, 0.03 * 17.6);
-    EXPECT_NEAR(organ["volumeCc"].get<double>(), 10 * 10 * 11 / 1000.0, 0.15 * 1.1);
+    // Each voxel is inside when its centre is inside the reconstructed solid
+    // (the prisms, flat caps half a spacing beyond the end planes: 12 mm
+    // tall, between layers of centres): 41 x 41 x 12 and 11 x 11 x 12
+    // centres, the surfaces' volumes.
+    EXPECT_EQ(report["inside"], "surface");
+    EXPECT_NEAR(body["surfaceVolumeCc"].get<double>(), 41 * 41 * 12 / 1000.0, 0.002 * 20.172);
+    EXPECT_EQ(body["insideVoxels"], 41 * 41 * 12);
+    EXPECT_EQ(organ["insideVoxels"], 11 * 11 * 12);
+    // The segmentation keeps both whole, the organ on a layer of its own.
+    EXPECT_EQ(report["layers"], 2);
+    EXPECT_EQ(body["layer"], 0);
+    EXPECT_EQ(organ["layer"], 1);
+    EXPECT_EQ(body["voxelsGivenToSmallerRois"], 0);
     EXPECT_EQ(organ["voxelsGivenToSmallerRois"], 0);
-    EXPECT_EQ(body["voxelsGivenToSmallerRois"], organ["insideVoxels"]);
     const dfrecon::LabelVolume map = dfrecon::readLabelVolume(out.string());
-    EXPECT_EQ(std::count(map.labels.begin(), map.labels.end(), 2),
+    ASSERT_EQ(map.layerCount, 2);
+    const std::size_t voxels = map.geometry.voxelCount();
+    EXPECT_EQ(std::count(map.labels.begin(), map.labels.begin() + long(voxels), 1),
+              body["insideVoxels"].get<long>());
+    EXPECT_EQ(std::count(map.labels.begin() + long(voxels), map.labels.end(), 2),
               organ["insideVoxels"].get<long>());
+    // Read back, each layer gives its ROIs: the body whole, hole-free.
+    const dfrecon::ContourSet back = dfrecon::readLabelContours(out.string());
+    ASSERT_EQ(back.rois.size(), 2u);
+    EXPECT_EQ(back.rois[0].name, "Body");
+    EXPECT_EQ(back.rois[1].name, "Organ");
+    for (const dfrecon::Slice& slice : back.rois[0].slices) EXPECT_EQ(slice.contours.size(), 1u);
+
+    // A single-label map holds one label per voxel: the organ keeps its
+    // voxels and the body gives them up, as the report says.
+    const fs::path flat = scratch() / "nested.nrrd";
+    const Result single = runDfrecon("rasterize -q --json --all " + slices.string() +
+                                     " --voxel-mm 1 -o " + flat.string());
+    ASSERT_EQ(single.exitCode, 2) << single.err;
+    const nlohmann::json singleReport = nlohmann::json::parse(single.out);
+    EXPECT_EQ(singleReport["layers"], 1);
+    EXPECT_EQ(singleReport["rois"][0]["voxelsGivenToSmallerRois"],
+              singleReport["rois"][1]["insideVoxels"]);
+    const dfrecon::LabelVolume flatMap = dfrecon::readLabelVolume(flat.string());
+    EXPECT_EQ(std::count(flatMap.labels.begin(), flatMap.labels.end(), 2),
+              singleReport["rois"][1]["insideVoxels"].get<long>());
 
     const Result info = runDfrecon("info --json " + out.string());
     ASSERT_EQ(info.exitCode, 0) << info.err;

@@ -105,9 +105,15 @@ TEST(LabelTable, SegmentationKeysRoundTrip) {
                         std::pair<std::string, std::string>{"Segment1_Extent", "0 9 0 19 0 29"}),
               keys.end());
 
-    auto twoLayers = keys;
-    for (auto& [key, value] : twoLayers)
-        if (key == "Segment1_Layer") value = "1";
+    // Segments on two layers: each layer's own table; a layer the volume
+    // lacks is refused.
+    const auto twoLayers = segmentationKeys(table, {10, 20, 30}, {{4, 1}});
+    const LabelTable first = labelTableFromSegmentation("s.seg.nrrd", twoLayers, 0, 2);
+    const LabelTable second = labelTableFromSegmentation("s.seg.nrrd", twoLayers, 1, 2);
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(first.at(1).name, "Liver");
+    ASSERT_EQ(second.size(), 1u);
+    EXPECT_EQ(second.at(4).name, "Tumour");
     EXPECT_THROW(labelTableFromSegmentation("s.seg.nrrd", twoLayers), InputError);
     auto badColour = keys;
     for (auto& [key, value] : badColour)

@@ -219,6 +219,36 @@ TEST(LabelVolume, LabelMapRoundTripsInTheNarrowestType) {
     expectGeometryNear(read.geometry, volume.geometry, 1e-12);
 }
 
+TEST(LabelVolume, LayersRoundTripAsSlicersFourDimensionalSegmentation) {
+    // Two overlapping segments on two layers, written as 3D Slicer writes
+    // them (a first axis of kind list, no space direction) and read back.
+    TempDir dir("labelvolume");
+    LabelVolume volume;
+    volume.geometry = obliqueGeometry();
+    volume.geometry.size = {6, 5, 4};
+    const std::size_t voxels = volume.geometry.voxelCount();
+    volume.layerCount = 2;
+    volume.labels.assign(2 * voxels, 0);
+    for (std::size_t n = 0; n < voxels; ++n) {
+        volume.labels[n] = n % 3 == 0 ? 7 : 0;      // layer 0
+        volume.labels[voxels + n] = n % 2 ? 9 : 0;  // layer 1, overlapping it
+    }
+    const std::string path = dir / "two.seg.nrrd";
+    writeLabelNrrd(path, volume);
+    const std::string text = readFile(path);
+    const std::string header = text.substr(0, text.find("\n\n"));
+    EXPECT_NE(header.find("dimension: 4"), std::string::npos) << header;
+    EXPECT_NE(header.find("sizes: 2 6 5 4"), std::string::npos) << header;
+    EXPECT_NE(header.find("kinds: list domain domain domain"), std::string::npos) << header;
+    EXPECT_NE(header.find("space directions: none ("), std::string::npos) << header;
+    const LabelVolume read = readLabelVolume(path);
+    EXPECT_EQ(read.layerCount, 2);
+    expectGeometryNear(read.geometry, volume.geometry, 1e-12);
+    EXPECT_EQ(read.labels, volume.labels);
+    // NIfTI has no layers.
+    EXPECT_THROW(writeLabelVolume(dir / "two.nii.gz", volume), std::invalid_argument);
+}
+
 TEST(LabelVolume, KeyValuePairsRoundTripThroughNrrd) {
     TempDir dir("labelvolume");
     LabelVolume volume;
@@ -394,6 +424,16 @@ TEST(LabelVolume, RefusesImagesThatAreNotThreeDimensional) {
               "NRRD0004\ntype: uint8\ndimension: 2\nsizes: 4 4\nencoding: raw\n\n" +
                   std::string(16, '\1'));
     expectInputError(dir / "flat.nrrd", "2-D image");
+    // Four axes are layers only when the first is a list, and not too many.
+    writeFile(dir / "time.nrrd",
+              "NRRD0004\ntype: uint8\ndimension: 4\nsizes: 2 2 2 3\nencoding: raw\n\n" +
+                  std::string(24, '\1'));
+    expectInputError(dir / "time.nrrd", "4-D image");
+    writeFile(dir / "layers.nrrd",
+              "NRRD0004\ntype: uint8\ndimension: 4\nsizes: 300 2 2 2\nkinds: list domain "
+              "domain domain\nencoding: raw\n\n" +
+                  std::string(2400, '\1'));
+    expectInputError(dir / "layers.nrrd", "300 layers");
     writeNifti(dir / "flat.nii", {4, 4}, DT_UINT8, std::string(16, '\1'), [](nifti_image&) {});
     expectInputError(dir / "flat.nii", "2-D image");
     writeNifti(dir / "series.nii", {2, 2, 2, 3}, DT_UINT8, std::string(24, '\1'),
