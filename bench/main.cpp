@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
         "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|margin|"
+        "label-maps|"
         "all "
         "[--device SPEC] [--truth-sets DIR] [--truth-set NAME]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
@@ -38,7 +39,9 @@ int main(int argc, char** argv) {
         "  margin     exact margins of spheres and cubes vs the exact offset, voxel EDT margins "
         "(1, 0.5 mm) and plastimatch's distance map\n"
         "  compare    Dice and Hausdorff of offset balls: surfaces (exact overlap) vs voxels, "
-        "against the exact values\n";
+        "against the exact values\n"
+        "  label-maps label maps of the shared structure sets' ROIs (1 cc or more) from the "
+        "reconstructed solid vs from the 3D distance field: volume against the surface's\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -64,11 +67,12 @@ int main(int argc, char** argv) {
         if (suite == "structure-set") return benchStructureSet(device, route);
         if (suite == "compare") return benchCompare(device);
         if (suite == "margin") return benchMargin(device);
+        if (suite == "label-maps") return benchLabelMaps(device);
         if (suite == "all")
             return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                    benchTruth(device, truthSets, truthSet) | benchSimplify(device) |
                    benchSdm(device) | benchSegment(device) | benchStructureSet(device) |
-                   benchCompare(device) | benchMargin(device);
+                   benchCompare(device) | benchMargin(device) | benchLabelMaps(device);
     } catch (const std::exception& e) {
         std::cerr << "dfrecon-bench " << suite << ": " << e.what() << "\n";
         return 1;
