@@ -11,6 +11,7 @@
 #include "field/Rasterization.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
+#include "tests/TestMeshes.hpp"
 
 namespace dfrecon {
 namespace {
@@ -123,25 +124,6 @@ TEST(VoxelsInsideSolid, RotatedGridsAgreeWithTheOctahedronsInside) {
     }
 }
 
-// A torus (tube radius r around a circle of radius R in the xy plane),
-// m × n quads cut in two.
-TriangleSoup torus(double R, double r, int m, int n) {
-    TriangleSoup soup;
-    for (int a = 0; a < m; ++a)
-        for (int b = 0; b < n; ++b) {
-            const double u = 2 * kPi * a / m, v = 2 * kPi * b / n;
-            soup.points.push_back({(R + r * std::cos(v)) * std::cos(u),
-                                   (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-        }
-    auto id = [&](int a, int b) { return std::uint32_t((a % m) * n + (b % n)); };
-    for (int a = 0; a < m; ++a)
-        for (int b = 0; b < n; ++b) {
-            soup.triangles.push_back({id(a, b), id(a + 1, b), id(a + 1, b + 1)});
-            soup.triangles.push_back({id(a, b), id(a + 1, b + 1), id(a, b + 1)});
-        }
-    return soup;
-}
-
 // The winding number of a closed surface about p: the sum of its
 // triangles' solid angles (Van Oosterom and Strackee) over 4π.
 double windingNumber(const TriangleSoup& soup, const Vec3& p) {
@@ -156,7 +138,7 @@ double windingNumber(const TriangleSoup& soup, const Vec3& p) {
 }
 
 TEST(VoxelsInsideSolid, TorusMatchesItsWindingNumber) {
-    TriangleSoup solid = torus(9, 3.5, 40, 20);
+    TriangleSoup solid = dfrecon::testing::torusMesh(9, 3.5, 40, 20);
     ASSERT_TRUE(checkMesh(solid).validSolid());
     for (const double spacingMm : {1.0, 0.5}) {
         VolumeGeometry grid = cube(int(14 / spacingMm), spacingMm);

@@ -14,6 +14,7 @@
 
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
+#include "tests/TestMeshes.hpp"
 #include "tests/geometry/RandomSoup.hpp"
 
 using namespace dfrecon;
@@ -29,22 +30,8 @@ TriangleSoup octahedron(Vec3 c = {}, double r = 1) {
     return s;
 }
 
-// A torus (major R, minor r) as an n × m grid of quads, outward normals.
 TriangleSoup torus(double R, double r, int n, int m) {
-    TriangleSoup s;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < m; ++j) {
-            const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-            s.points.push_back({(R + r * std::cos(v)) * std::cos(u),
-                                (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-        }
-    auto at = [&](int i, int j) { return std::uint32_t(((i + n) % n) * m + (j + m) % m); };
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < m; ++j) {
-            s.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            s.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    return s;
+    return dfrecon::testing::torusMesh(R, r, n, m);
 }
 
 TriangleSoup merged(TriangleSoup a, const TriangleSoup& b) {
