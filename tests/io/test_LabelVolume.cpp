@@ -702,7 +702,7 @@ TEST(LabelVolume, WritersRefuseInconsistentArgumentsAndLeaveNothingOnFailure) {
                  std::invalid_argument);
     VolumeGeometry negative = geometry;
     negative.spacingMm[2] = -1;
-    EXPECT_THROW(writeLabelNrrd(dir / "m.nrrd", {negative, std::vector<std::int32_t>(8), {}}),
+    EXPECT_THROW(writeLabelNrrd(dir / "m.nrrd", {negative, std::vector<std::int32_t>(8), 1, {}}),
                  std::invalid_argument);
     EXPECT_FALSE(fs::exists(dir / "m.nrrd"));
     EXPECT_THROW(
