@@ -110,6 +110,7 @@ nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
                    {"medialAxes", s.medialSeconds},
                    {"triangulation", s.triangulationSeconds},
                    {"check", result.checkSeconds},
+                   {"smooth", s.smoothSeconds},
                    {"write", writing.seconds}}}});
     return report;
 }

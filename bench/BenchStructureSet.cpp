@@ -4,7 +4,8 @@
 // the same run: rasterise each ROI onto a grid of 0.5 mm pixels and the
 // planes' spacing, then marching cubes (rasterBaseline in
 // recon/MarchingCubesBaselines). Lines per set: dfrecon
-// (seconds, valid solids, worst deviation from the contour-implied volume)
+// (seconds, valid solids, worst deviation from the contour-implied volume,
+// triangles per second, and the reconstruction's stages summed over ROIs)
 // and rasterise+mc (seconds, valid solids, the same deviation), each with
 // the peak memory of the process that ran that route: every route of every
 // case runs in a process of its own (this program again, with --route), as
@@ -48,7 +49,18 @@ struct SetResult {
     double worstVolumeDeviation = 0;  // |volume / contour volume - 1|, worst ROI
     std::size_t within1Pct = 0;       // ROIs within 1 % of their contour volume
     double peakMemoryMb = 0;          // of the route's own process
+    /// dfrecon: the reconstruction's stages summed over ROIs (thread
+    /// seconds: the slabs of one ROI run on the cores left free, so they
+    /// can add up to more than `seconds`), in ReconstructionStats' order.
+    std::vector<std::pair<std::string, double>> phases;
 };
+
+// The stages a reconstruction times, by name (ReconstructionStats).
+std::vector<std::pair<std::string, double>> phasesOf(const ReconstructionStats& s) {
+    return {{"simplify", s.simplifySeconds}, {"fields", s.fieldsSeconds},
+            {"medialAxes", s.medialSeconds}, {"triangulation", s.triangulationSeconds},
+            {"check", s.checkSeconds},       {"smooth", s.smoothSeconds}};
+}
 
 nlohmann::ordered_json toJson(const SetResult& r) {
     return {{"seconds", r.seconds},
@@ -57,7 +69,8 @@ nlohmann::ordered_json toJson(const SetResult& r) {
             {"triangles", r.triangles},
             {"worstVolumeDeviation", r.worstVolumeDeviation},
             {"within1Pct", r.within1Pct},
-            {"peakMemoryMb", r.peakMemoryMb}};
+            {"peakMemoryMb", r.peakMemoryMb},
+            {"phases", r.phases}};
 }
 
 SetResult fromJson(const nlohmann::json& j) {
@@ -69,6 +82,7 @@ SetResult fromJson(const nlohmann::json& j) {
     r.worstVolumeDeviation = j.at("worstVolumeDeviation").get<double>();
     r.within1Pct = j.at("within1Pct").get<std::size_t>();
     r.peakMemoryMb = j.at("peakMemoryMb").get<double>();
+    r.phases = j.at("phases").get<std::vector<std::pair<std::string, double>>>();
     return r;
 }
 
@@ -158,10 +172,17 @@ SetResult reconstructionRoute(const std::string& device, const ContourSet& set) 
         app::forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t worker) {
-                return reconstructSurface(runtimes[worker], *rois[i]).check;
+                Reconstruction made = reconstructSurface(runtimes[worker], *rois[i]);
+                return std::pair{made.check, made.stats};
             },
-            [&](std::size_t i, const MeshCheckReport& check) {
-                addRoi(r, check, contourVolumeMm3(*rois[i]));
+            [&](std::size_t i, const std::pair<MeshCheckReport, ReconstructionStats>& made) {
+                addRoi(r, made.first, contourVolumeMm3(*rois[i]));
+                const auto phases = phasesOf(made.second);
+                if (r.phases.empty())
+                    r.phases = phases;
+                else
+                    for (std::size_t p = 0; p < phases.size(); ++p)
+                        r.phases[p].second += phases[p].second;
             });
     });
     r.peakMemoryMb = peakMemoryMb();
@@ -235,7 +256,13 @@ void printLine(const std::string& name, const char* system, const SetResult& r,
                              {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
                              {"within1Pct", r.within1Pct},
                              {"jobs", app::defaultJobs(r.rois)},
-                             {"peakMemoryMb", r.peakMemoryMb}};
+                             {"peakMemoryMb", r.peakMemoryMb},
+                             {"trianglesPerSecond", double(r.triangles) / r.seconds}};
+    if (!r.phases.empty()) {
+        nlohmann::ordered_json phases;
+        for (const auto& [phase, seconds] : r.phases) phases[phase] = seconds;
+        j["phaseThreadSeconds"] = phases;
+    }
     if (baseline) j["speedupOverBaseline"] = baseline->seconds / r.seconds;
     std::cout << j.dump() << std::endl;
 }

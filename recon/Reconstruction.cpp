@@ -737,7 +737,7 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
         stats.smoothRevertedPieces = smooth.revertedPieces;
         stats.smoothUnbentVertices = smooth.unbentVertices;
         stats.smoothFellBack = smooth.fellBack;
-        stats.checkSeconds += secondsSince(start);
+        stats.smoothSeconds = secondsSince(start);
     }
     // Intermediate contours of discarded pieces leave points behind.
     removeUnusedPoints(result.surface);
@@ -819,6 +819,7 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
         s.simplifySeconds += p.simplifySeconds;
         s.triangulationSeconds += p.triangulationSeconds;
         s.checkSeconds += p.checkSeconds;
+        s.smoothSeconds += p.smoothSeconds;
     }
     std::sort(whole.check.defectiveTriangles.begin(), whole.check.defectiveTriangles.end());
     std::sort(whole.brokenPieces.begin(), whole.brokenPieces.end());

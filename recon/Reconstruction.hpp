@@ -79,6 +79,10 @@ struct ReconstructionStats {
     // to more than the wall time.
     double simplifySeconds = 0, fieldsSeconds = 0, medialSeconds = 0, triangulationSeconds = 0,
            checkSeconds = 0;
+    /// Smooth mode: bending the strips onto the interpolant and bringing
+    /// slabs to their volumes, with the checks and repairs that keeps them
+    /// valid (not in checkSeconds).
+    double smoothSeconds = 0;
 };
 
 struct Reconstruction {

@@ -330,7 +330,7 @@ TEST(Cli, ReconstructWritesACheckedSolidAndReportsIt) {
     EXPECT_EQ(report["genus"], 1);
     EXPECT_EQ(report["cap"], "flat");
     EXPECT_NEAR(report["volumeCc"].get<double>(), report["volumeMm3"].get<double>() / 1000, 1e-12);
-    for (const char* stage : {"fields", "medialAxes", "triangulation", "write"})
+    for (const char* stage : {"fields", "medialAxes", "triangulation", "check", "smooth", "write"})
         EXPECT_GE(report["seconds"][stage].get<double>(), 0.0) << stage;
     // What was written is what was reported.
     const Result check = runDfrecon("check --json " + mesh.string());
