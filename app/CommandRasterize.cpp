@@ -22,9 +22,11 @@
 #include "app/Failure.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OrderedParallel.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
+#include "app/WorkerRuntimes.hpp"
 #include "dfrecon/Field.hpp"
 #include "dfrecon/Reconstruct.hpp"
 #include "io/ContourFormat.hpp"
@@ -49,6 +51,7 @@ struct RasterizeArgs {
     bool all = false;
     double voxelMm = 0, pixelMm = 0;
     InsideRule inside = InsideRule::Surface;
+    unsigned jobs = 0;  // ROIs at once; 0: defaultJobs()
     CapMode cap = CapMode::Flat;
     Interpolation interpolation = Interpolation::Smooth;
     bool json = false;
@@ -59,23 +62,24 @@ struct RasterizeArgs {
 struct RoiVoxels {
     std::vector<std::size_t> inside;
     std::optional<double> surfaceVolumeMm3;
+    std::string invalid;  // with --all: why the ROI has no solid to rasterize, else ""
 };
 
 // The voxels of `roi` on `grid` by args' rule: its reconstructed solid
 // (reconstructed as `dfrecon reconstruct` would with these settings) or its
 // 3D field. Throws InvalidResult when the solid is not valid (no inside).
 RoiVoxels roiVoxels(ocl::Runtime& runtime, const Roi& roi, const VolumeGeometry& grid,
-                    const RasterizeArgs& args, const GlobalOptions& global) {
+                    const RasterizeArgs& args, bool showProgress) {
     RoiVoxels out;
     if (args.inside == InsideRule::Field) {
-        Progress progress("field of " + roi.name, !global.quiet);
+        Progress progress("field of " + roi.name, showProgress);
         RoiFieldOptions options;
         options.pixelMm = args.pixelMm;
         options.progress = [&](double f) { progress.update(f); };
         out.inside = roiVoxelsInside(runtime, roi, grid, options);
         return out;
     }
-    Progress progress("surface of " + roi.name, !global.quiet);
+    Progress progress("surface of " + roi.name, showProgress);
     RoiReconstructOptions options;
     options.reconstruction.pixelMm = args.pixelMm;
     options.reconstruction.cap = args.cap;
@@ -181,24 +185,44 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     // Larger structures are painted first so that, in a single-label map, a
     // structure inside another (an organ inside the body outline) keeps its
     // voxels; a segmentation puts ROIs that overlap on different layers.
-    ocl::Runtime runtime(global.device);
     const std::vector<std::int32_t> labels = labelsOf(rois);
     std::vector<std::vector<std::size_t>> inside(rois.size());
     std::vector<std::optional<double>> surfaceVolumeMm3(rois.size());
     std::vector<std::string> invalid;
     std::vector<bool> done(rois.size(), false);
-    for (std::size_t r = 0; r < rois.size(); ++r) {
-        try {
-            RoiVoxels voxels = roiVoxels(runtime, *rois[r], grid, args, global);
+    // Several ROIs at once, each worker with its own OpenCL queue, as
+    // reconstruct --all runs them; with several workers one bar counts ROIs.
+    const std::size_t jobs =
+        args.jobs > 0 ? std::min<std::size_t>(args.jobs, rois.size()) : defaultJobs(rois.size());
+    WorkerRuntimes runtimes(global.device, jobs);
+    Progress overall("rasterizing " + std::to_string(rois.size()) + " ROIs",
+                     jobs > 1 && !global.quiet);
+    forEachInOrder(
+        rois.size(), jobs,
+        [&](std::size_t r, std::size_t worker) {
+            try {
+                return roiVoxels(runtimes[worker], *rois[r], grid, args,
+                                 jobs <= 1 && !global.quiet);
+            } catch (const InvalidResult& e) {
+                if (!args.all) throw;
+                RoiVoxels none;
+                none.invalid = e.what();
+                return none;
+            }
+        },
+        [&](std::size_t r, RoiVoxels voxels) {
+            overall.update(double(r + 1) / double(rois.size()));
+            if (!voxels.invalid.empty()) {
+                overall.finish();
+                std::cerr << "dfrecon: " << voxels.invalid << "\n";
+                invalid.push_back(rois[r]->name);
+                return;
+            }
             inside[r] = std::move(voxels.inside);
             surfaceVolumeMm3[r] = voxels.surfaceVolumeMm3;
             done[r] = true;
-        } catch (const InvalidResult& e) {
-            if (!args.all) throw;
-            std::cerr << "dfrecon: " << e.what() << "\n";
-            invalid.push_back(rois[r]->name);
-        }
-    }
+        });
+    overall.finish();
     std::vector<std::size_t> order;
     for (std::size_t r = 0; r < rois.size(); ++r)
         if (done[r]) order.push_back(r);
@@ -387,6 +411,12 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
            "`dfrecon reconstruct`)")
         ->default_str(nameOf(kInterpolationNames, args->interpolation))
         ->check(CLI::IsMember(namesOf(kInterpolationNames)));
+    cmd->add_option("-j,--jobs", args->jobs,
+                    "ROIs reconstructed (or their fields computed) at once, each with its own "
+                    "OpenCL queue (default 0: one per CPU core, at most one per ROI; 1: one after "
+                    "the other, each with its own progress bar); the map is the same either way")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     cmd->callback([args, &global] { runRasterize(*args, global); });
 }

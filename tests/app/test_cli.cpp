@@ -1006,6 +1006,14 @@ TEST(Cli, RasterizeAllKeepsSmallerRoisAndNamesThem) {
     EXPECT_EQ(back.rois[1].name, "Organ");
     for (const dfrecon::Slice& slice : back.rois[0].slices) EXPECT_EQ(slice.contours.size(), 1u);
 
+    // ROIs one after another give the same file as ROIs at once.
+    const fs::path serial = scratch() / "nested-serial.seg.nrrd";
+    ASSERT_EQ(runDfrecon("rasterize -q -j 1 --all " + slices.string() + " --voxel-mm 1 -o " +
+                         serial.string())
+                  .exitCode,
+              2);
+    EXPECT_EQ(slurp(serial), slurp(out));
+
     // A single-label map holds one label per voxel: the organ keeps its
     // voxels and the body gives them up, as the report says.
     const fs::path flat = scratch() / "nested.nrrd";
