@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compare/OverlapRatios.hpp"
+#include "contours/PlaneGaps.hpp"
 #include "geometry/BoxGrid.hpp"
 #include "geometry/PolygonXor.hpp"
 
@@ -209,6 +210,49 @@ double lengthOutsideTolerance(const std::vector<Polygon>& test,
     return outside;
 }
 
+// Does `roi` go on across the planes between lo and hi: is there a run of
+// its planes (Roi::restartsAt) with one at or below lo and one at or above
+// hi? A run's planes stand for the space between them; planes left empty
+// inside an ROI do not (contours/PlaneGaps). O(runs).
+bool runCrosses(const Roi& roi, double lo, double hi, double matchMm) {
+    std::size_t begin = 0;
+    for (std::size_t k = 0; k <= roi.restartsAt.size(); ++k) {
+        const std::size_t end = k < roi.restartsAt.size() ? roi.restartsAt[k] : roi.slices.size();
+        if (end > begin && roi.slices[begin].zMm <= lo + matchMm &&
+            roi.slices[end - 1].zMm >= hi - matchMm)
+            return true;
+        begin = end;
+    }
+    return false;
+}
+
+// The thickness each matched plane stands for: planeThicknessesMm over the
+// runs of the planes of both, the planes of both running on across a gap
+// where either ROI does, ending where neither does (planes left empty in
+// both); a plane alone in such a run stands for its ROI's image spacing, as
+// contourVolumeMm3 counts it. So each ROI's volume here is its contour
+// volume wherever the two share their runs. O(planes · runs).
+std::vector<double> matchedThicknessesMm(const std::vector<MatchedPlane>& planes, const Roi& a,
+                                         const Roi& b, double slabMm, double matchMm) {
+    std::vector<double> thickness(planes.size(), 0);
+    std::size_t begin = 0;
+    for (std::size_t i = 1; i <= planes.size(); ++i) {
+        const bool runEnds =
+            i == planes.size() || !(runCrosses(a, planes[i - 1].zMm, planes[i].zMm, matchMm) ||
+                                    runCrosses(b, planes[i - 1].zMm, planes[i].zMm, matchMm));
+        if (!runEnds) continue;
+        std::vector<double> zMm;
+        for (std::size_t k = begin; k < i; ++k) zMm.push_back(planes[k].zMm);
+        std::vector<double> run = planeThicknessesMm(zMm, slabMm);
+        if (run.size() == 1)
+            run[0] = std::max(planes[begin].a ? lonePlaneThicknessMm(a) : 0.0,
+                              planes[begin].b ? lonePlaneThicknessMm(b) : 0.0);
+        std::copy(run.begin(), run.end(), thickness.begin() + std::ptrdiff_t(begin));
+        begin = i;
+    }
+    return thickness;
+}
+
 PlaneComparison comparePlanes(const Roi& a, const Roi& bIn, const PlaneComparisonOptions& options) {
     PlaneComparison result;
     result.toleranceMm = options.toleranceMm;
@@ -238,7 +282,8 @@ PlaneComparison comparePlanes(const Roi& a, const Roi& bIn, const PlaneCompariso
         return result;
     }
     const double slab = a.slabThicknessMm == b.slabThicknessMm ? a.slabThicknessMm : 0;
-    const std::vector<double> thickness = planeThicknessesMm(planeZMm, slab);
+    const std::vector<double> thickness =
+        matchedThicknessesMm(planes, a, b, slab, options.planeMatchMm);
     result.samePlanes = true;
     result.planes = planes.size();
     for (std::size_t i = 0; i < planes.size(); ++i) {

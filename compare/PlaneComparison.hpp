@@ -33,7 +33,10 @@ struct PlaneComparison {
     std::size_t planes = 0;
     /// Σ area × thickness over the planes of either: the planning system's
     /// volume; each plane's thickness by planeThicknessesMm over the planes
-    /// of both, so that all three volumes weigh a plane alike.
+    /// of both, so that all three volumes weigh a plane alike, in runs that
+    /// end where both ROIs leave planes empty (contours/PlaneGaps; a plane
+    /// alone in its run stands for the image spacing), as contourVolumeMm3
+    /// counts each ROI.
     double volumeAMm3 = 0, volumeBMm3 = 0, intersectionMm3 = 0;
     /// Total contour length of each, mm.
     double pathLengthAMm = 0, pathLengthBMm = 0;

@@ -137,7 +137,13 @@ void changeFrame(Roi& roi, const PlaneFrame& target) {
         // Not through the rotation: the plane position stays the file's value.
         if (mirrored) slice.zMm = -slice.zMm;
     }
-    if (mirrored) std::reverse(roi.slices.begin(), roi.slices.end());
+    if (mirrored) {
+        std::reverse(roi.slices.begin(), roi.slices.end());
+        // A run that restarted at plane r (between r - 1 and r) restarts,
+        // counted from the other end, at n - r.
+        for (std::size_t& r : roi.restartsAt) r = roi.slices.size() - r;
+        std::reverse(roi.restartsAt.begin(), roi.restartsAt.end());
+    }
     roi.frame = target;
 }
 

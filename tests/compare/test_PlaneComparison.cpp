@@ -97,6 +97,27 @@ TEST(PlaneComparison, PlanesOneLacksCountAsEmpty) {
     EXPECT_NEAR(c.addedPathLengthAMm, 2 * 40, 1e-9);
 }
 
+TEST(PlaneComparison, PlanesLeftEmptyInBothEndTheRunAsTheContourVolumeDoes) {
+    // Planes 0-2 and 8-9 (1 mm apart, planes 3-7 left empty): each run
+    // weighs its planes on its own, so the per-plane volumes are the
+    // contour volumes, not 4 mm planes either side of the gap.
+    Roi a = stack({square(0, 0, 10)}, {0, 1, 2, 8, 9});
+    a.restartsAt = {3};
+    Roi b = stack({square(5, 0, 10)}, {0, 1, 2, 8, 9});
+    b.restartsAt = {3};
+    const PlaneComparison c = comparePlanes(a, b, {});
+    ASSERT_TRUE(c.samePlanes) << c.whyNot;
+    EXPECT_NEAR(c.volumeAMm3, contourVolumeMm3(a), 1e-9);
+    EXPECT_NEAR(c.volumeAMm3, 100.0 * 5, 1e-9);  // 3 + 2 planes of 1 mm
+    EXPECT_NEAR(c.volumeBMm3, contourVolumeMm3(b), 1e-9);
+    EXPECT_NEAR(c.intersectionMm3, 50.0 * 5, 1e-9);
+    // Where B goes on across the gap, the planes of both run on there: the
+    // planes next to it stand for half of it each, for A as for B.
+    const Roi full = stack({square(5, 0, 10)}, {0, 1, 2, 8, 9});
+    const PlaneComparison across = comparePlanes(a, full, {});
+    EXPECT_NEAR(across.volumeAMm3, 100.0 * (1 + 1 + 3.5 + 3.5 + 1), 1e-9);
+}
+
 TEST(PlaneComparison, HolesAndIdenticalContours) {
     // A ring (r 10 with a hole of r 5) against the full disc of r 10: the
     // intersection is the ring; the hole's contour is all added path for A

@@ -67,3 +67,17 @@ TEST(PlaneGaps, OnlyPlanesOfTheSameStackCount) {
     EXPECT_TRUE(set.rois[2].restartsAt.empty());
     EXPECT_DOUBLE_EQ(set.rois[2].imagePlaneSpacingMm, 1);
 }
+
+TEST(PlaneGaps, TurningAStackOverKeepsItsRuns) {
+    // Planes 0, 1, 2 | 6, 7 seen along the opposite normal are -7, -6 | -2,
+    // -1, 0: the run restarts at the third plane instead of the fourth.
+    Roi roi;
+    for (double z : {0.0, 1.0, 2.0, 6.0, 7.0})
+        roi.slices.push_back({z, {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}});
+    roi.restartsAt = {3};
+    const double before = contourVolumeMm3(roi);
+    changeFrame(roi, PlaneFrame{{0, 1, 0}, {1, 0, 0}, {0, 0, -1}});
+    EXPECT_EQ(roi.restartsAt, std::vector<std::size_t>{2});
+    EXPECT_DOUBLE_EQ(roi.slices[2].zMm, -2);
+    EXPECT_NEAR(contourVolumeMm3(roi), before, 1e-12);
+}
