@@ -236,6 +236,17 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     if (segmentation) {
         layer = layersOf(inside, order, grid.voxelCount());
         for (std::size_t r : order) map.layerCount = std::max(map.layerCount, layer[r] + 1);
+        // Each layer is a whole label map (and the writer interleaves them
+        // in a copy): refused before they are allocated.
+        const std::string problem = std::uint64_t(map.layerCount) > kMaxLabelLayers
+                                        ? std::to_string(map.layerCount) + " layers (at most " +
+                                              std::to_string(kMaxLabelLayers) + ")"
+                                        : labelGridProblem(grid, 8 * std::size_t(map.layerCount));
+        if (!problem.empty())
+            throw std::invalid_argument(
+                "the ROIs overlap so that the segmentation needs " +
+                std::to_string(map.layerCount) + " layers, and the grid with them has " + problem +
+                "; write a single-label .nrrd or .nii instead, or fewer ROIs");
     }
     map.labels.assign(grid.voxelCount() * std::size_t(map.layerCount), 0);
     std::vector<std::int32_t> owner(grid.voxelCount(), -1);
