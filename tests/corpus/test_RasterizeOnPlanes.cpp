@@ -106,21 +106,28 @@ TEST(RasterizeOnPlanes, PlanesLeftEmptyFillNothing) {
     grid.size = {25, 25, 21};
     grid.spacingMm = {1, 1, 0.5};
     grid.originMm = {-12.5, -12.5, -0.5};
-    const std::vector<std::size_t> inside = roiVoxelsInside(cpuRuntime(), set.rois[1], grid);
-    // Voxel layers at z = 3, 4 and 5 mm lie in the gap: nothing there.
-    for (std::size_t v : inside) {
-        const double z = grid.worldOfIndex(0, 0, int(v / (25 * 25))).z;
-        EXPECT_TRUE(z < 2.6 || z > 5.4) << z;
+    const RoiSurface solid = reconstructRoi(cpuRuntime(), set.rois[1]);
+    ASSERT_TRUE(solid.check.validSolid());
+    for (const bool fromSolid : {false, true}) {
+        const std::vector<std::size_t> inside =
+            fromSolid ? roiSolidVoxelsInside(set.rois[1], solid, grid)
+                      : roiVoxelsInside(cpuRuntime(), set.rois[1], grid);
+        // Voxel layers at z = 3, 4 and 5 mm lie in the gap: nothing there
+        // (the caps reach half a plane spacing, 0.5 mm, into it).
+        for (std::size_t v : inside) {
+            const double z = grid.worldOfIndex(0, 0, int(v / (25 * 25))).z;
+            EXPECT_TRUE(z < 2.6 || z > 5.4) << z << (fromSolid ? " (solid)" : " (field)");
+        }
+        // The runs' own planes are filled: 10 × 10 centres on each.
+        const auto onLayer = [&](double zMm) {
+            const int k = int(std::lround((zMm + 0.5) / 0.5));
+            return std::count_if(inside.begin(), inside.end(),
+                                 [&](std::size_t v) { return int(v / (25 * 25)) == k; });
+        };
+        EXPECT_EQ(onLayer(1), 100);
+        EXPECT_EQ(onLayer(7), 100);
+        EXPECT_EQ(onLayer(4), 0);
     }
-    // The runs' own planes are filled: 10 × 10 centres on each.
-    const auto onLayer = [&](double zMm) {
-        const int k = int(std::lround((zMm + 0.5) / 0.5));
-        return std::count_if(inside.begin(), inside.end(),
-                             [&](std::size_t v) { return int(v / (25 * 25)) == k; });
-    };
-    EXPECT_EQ(onLayer(1), 100);
-    EXPECT_EQ(onLayer(7), 100);
-    EXPECT_EQ(onLayer(4), 0);
 }
 
 // Blobs of anatomy on 3 mm planes (an ellipsoid with a wobbling outline,
