@@ -405,14 +405,12 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(kNonNegative);
     cmd->add_option_function<std::string>(
            "--cap",
-           [args](const std::string& name) {
-               args->cap = parseEnum(kCapModeNames, name, "--cap");
-               if (args->cap == CapMode::None)
-                   throw CLI::ValidationError("--cap", "none leaves no closed solid to rasterize");
-           },
-           "--inside surface: end caps of the reconstruction, flat or dome")
+           [args](const std::string& name) { args->cap = parseEnum(kCapModeNames, name, "--cap"); },
+           "--inside surface: end caps of the reconstruction, flat or dome (not none: an open "
+           "surface has no inside)")
         ->default_str(nameOf(kCapModeNames, args->cap))
-        ->check(CLI::IsMember(namesOf(kCapModeNames)));
+        ->check(CLI::IsMember(
+            {nameOf(kCapModeNames, CapMode::Flat), nameOf(kCapModeNames, CapMode::Dome)}));
     cmd->add_option_function<std::string>(
            "--interpolation",
            [args](const std::string& name) {
