@@ -136,6 +136,15 @@ class ContourPlanes {
         return row_->inside(p.x);
     }
 
+    /// Does a plane lie within kOnPlaneMm of [zLo, zHi]? A row of centres
+    /// whose ends are zLo and zHi (plane frame) meets no plane otherwise.
+    /// O(log planes).
+    bool anyNear(double zLo, double zHi) const {
+        auto it = std::lower_bound(planes_.begin(), planes_.end(), zLo - kOnPlaneMm,
+                                   [](const Slice& s, double v) { return s.zMm < v; });
+        return it != planes_.end() && it->zMm <= zHi + kOnPlaneMm;
+    }
+
   private:
     // The plane of planes_ (sorted by z) within kOnPlaneMm of z, or nullptr.
     const Slice* planeAt(double z) const {
@@ -288,9 +297,14 @@ std::vector<std::size_t> voxelsInsideSolid(const TriangleSoup& solid, const Plan
             auto passed = next;  // crossings of this row at or before the centre
             auto end = std::find_if(next, crossings.end(),
                                     [row](const Crossing& c) { return c.row != row; });
+            // Only a row that comes near a plane asks each centre for it.
+            const double zFirst = frame.fromPatient(grid.worldOfIndex(first[0], j, k)).z;
+            const double zLast = frame.fromPatient(grid.worldOfIndex(last[0], j, k)).z;
+            const bool nearPlane = !planes.empty() && onPlanes.anyNear(std::min(zFirst, zLast),
+                                                                       std::max(zFirst, zLast));
             for (int i = first[0]; i <= last[0]; ++i) {
                 const std::size_t voxel = grid.linearIndex(i, j, k);
-                if (!planes.empty())
+                if (nearPlane)
                     if (const std::optional<bool> on =
                             onPlanes.inside(frame.fromPatient(grid.worldOfIndex(i, j, k)))) {
                         if (*on) inside.push_back(voxel);
