@@ -59,9 +59,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     }
     fs::create_directories(args.output);
 
-    const std::size_t jobs = mine.empty()    ? 1
-                             : args.jobs > 0 ? std::min<std::size_t>(args.jobs, mine.size())
-                                             : defaultJobs(mine.size());
+    const std::size_t jobs = jobsFor(args.jobs, mine.size());
     if (!global.quiet)
         std::cerr << "dfrecon batch: shard " << shard.index << "/" << shard.count << " ("
                   << shard.source << "): " << mine.size() << " of " << entries.size()

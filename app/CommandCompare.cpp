@@ -206,8 +206,7 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                       const ContourInput& inputA, const ContourInput& inputB) {
     const RoiMatching matching = matchRois(inputA.contours, inputB.contours, args.matches);
     const std::size_t count = matching.pairs.size();
-    const std::size_t jobs =
-        args.jobs > 0 ? std::min<std::size_t>(args.jobs, count) : defaultJobs(count);
+    const std::size_t jobs = jobsFor(args.jobs, count);
     WorkerRuntimes runtimes(global.device, jobs);
     nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
     std::optional<Failure> firstFailure;

@@ -192,8 +192,7 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     std::vector<bool> done(rois.size(), false);
     // Several ROIs at once, each worker with its own OpenCL queue, as
     // reconstruct --all runs them; with several workers one bar counts ROIs.
-    const std::size_t jobs =
-        args.jobs > 0 ? std::min<std::size_t>(args.jobs, rois.size()) : defaultJobs(rois.size());
+    const std::size_t jobs = jobsFor(args.jobs, rois.size());
     WorkerRuntimes runtimes(global.device, jobs);
     Progress overall("rasterizing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);

@@ -83,8 +83,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     std::string leftOut;  // surfaces past the report's triangle budget
     // With several workers each ROI's own bar would fight for the line, so
     // the bar counts ROIs instead.
-    const std::size_t jobs =
-        args.jobs > 0 ? std::min<std::size_t>(args.jobs, rois.size()) : defaultJobs(rois.size());
+    const std::size_t jobs = jobsFor(args.jobs, rois.size());
     WorkerRuntimes runtimes(global.device, jobs);
     Progress overall("reconstructing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);

@@ -24,6 +24,13 @@ inline std::size_t defaultJobs(std::size_t items) {
     return std::max<std::size_t>(1, std::min(cores, items));
 }
 
+/// The workers for `items` when the user asked for `asked` (--jobs; 0: the
+/// default): at most one per item, at least one.
+inline std::size_t jobsFor(unsigned asked, std::size_t items) {
+    return asked > 0 ? std::max<std::size_t>(1, std::min<std::size_t>(asked, items))
+                     : defaultJobs(items);
+}
+
 /// Calls `work(item, worker)` for every item in [0, count) on `jobs` threads
 /// (worker in [0, jobs) says which thread, so each can keep its own state,
 /// e.g. an OpenCL queue), and `take(item, result)` on the calling thread in
