@@ -235,12 +235,13 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     if (segmentation) {
         layer = layersOf(inside, order, grid.voxelCount());
         for (std::size_t r : order) map.layerCount = std::max(map.layerCount, layer[r] + 1);
-        // Each layer is a whole label map (and the writer interleaves them
-        // in a copy): refused before they are allocated.
+        // Each layer is a whole label map (4 bytes a voxel, and the writer's
+        // copy in the file's type, 2 bytes for labels up to 65535): refused
+        // before they are allocated.
         const std::string problem = std::uint64_t(map.layerCount) > kMaxLabelLayers
                                         ? std::to_string(map.layerCount) + " layers (at most " +
                                               std::to_string(kMaxLabelLayers) + ")"
-                                        : labelGridProblem(grid, 8 * std::size_t(map.layerCount));
+                                        : labelGridProblem(grid, 6 * std::size_t(map.layerCount));
         if (!problem.empty())
             throw std::invalid_argument(
                 "the ROIs overlap so that the segmentation needs " +

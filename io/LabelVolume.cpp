@@ -284,15 +284,6 @@ std::vector<std::int32_t> layersFromInterleaved(const std::vector<std::int32_t>&
     return out;
 }
 
-std::vector<std::int32_t> interleavedFromLayers(const std::vector<std::int32_t>& layers,
-                                                std::uint64_t layerCount) {
-    const std::size_t count = std::size_t(layerCount), voxels = layers.size() / count;
-    std::vector<std::int32_t> out(layers.size());
-    for (std::size_t l = 0; l < count; ++l)
-        for (std::size_t v = 0; v < voxels; ++v) out[v * count + l] = layers[l * voxels + v];
-    return out;
-}
-
 }  // namespace labelvolume
 
 LabelVolume readLabelVolume(const std::string& path) {
@@ -322,9 +313,19 @@ void writeMaskNrrd(const std::string& path, const VolumeGeometry& geometry,
 
 namespace {
 
+// The samples a file holds, in type T (which holds every label): the labels
+// as they are for one layer, else with a layer index fastest, as a NRRD list
+// axis runs. One copy, made in the file's type (a large segmentation's
+// layers are most of its memory).
 template <class T>
-std::vector<T> narrowed(const std::vector<std::int32_t>& labels) {
-    return std::vector<T>(labels.begin(), labels.end());
+std::vector<T> samplesOf(const LabelVolume& volume) {
+    const std::vector<std::int32_t>& labels = volume.labels;
+    if (volume.layerCount == 1) return std::vector<T>(labels.begin(), labels.end());
+    const std::size_t layers = std::size_t(volume.layerCount), voxels = labels.size() / layers;
+    std::vector<T> out(labels.size());
+    for (std::size_t l = 0; l < layers; ++l)
+        for (std::size_t v = 0; v < voxels; ++v) out[v * layers + l] = T(labels[l * voxels + v]);
+    return out;
 }
 
 }  // namespace
@@ -346,20 +347,17 @@ void writeNarrowest(const std::string& path, const char* function, const LabelVo
         volume.labels.size() != volume.geometry.voxelCount() * std::size_t(volume.layerCount))
         throw std::invalid_argument(std::string(function) + ": " + path +
                                     ": label count does not match the geometry and layers");
-    const std::vector<std::int32_t> interleaved =
-        volume.layerCount > 1
-            ? labelvolume::interleavedFromLayers(volume.labels, std::uint64_t(volume.layerCount))
-            : std::vector<std::int32_t>();
-    const std::vector<std::int32_t>& labels = volume.layerCount > 1 ? interleaved : volume.labels;
-    const auto [low, high] = std::minmax_element(labels.begin(), labels.end());
+    const auto [low, high] = std::minmax_element(volume.labels.begin(), volume.labels.end());
     if (*low >= 0 && *high <= 255) {
-        write(narrowed<std::uint8_t>(labels).data(), SampleType::UInt8);
+        write(samplesOf<std::uint8_t>(volume).data(), SampleType::UInt8);
     } else if (*low >= 0 && *high <= 65535) {
-        write(narrowed<std::uint16_t>(labels).data(), SampleType::UInt16);
+        write(samplesOf<std::uint16_t>(volume).data(), SampleType::UInt16);
     } else if (*low >= -32768 && *high <= 32767) {
-        write(narrowed<std::int16_t>(labels).data(), SampleType::Int16);
+        write(samplesOf<std::int16_t>(volume).data(), SampleType::Int16);
+    } else if (volume.layerCount == 1) {
+        write(volume.labels.data(), SampleType::Int32);
     } else {
-        write(labels.data(), SampleType::Int32);
+        write(samplesOf<std::int32_t>(volume).data(), SampleType::Int32);
     }
 }
 

@@ -93,10 +93,8 @@ void writeNrrdSamples(const std::string& path, const VolumeGeometry& geometry, c
                       int layerCount = 1);
 
 /// Layer-after-layer labels from labels with a layer index fastest (a
-/// NRRD's list axis), and back. O(values).
+/// NRRD's list axis). O(values).
 std::vector<std::int32_t> layersFromInterleaved(const std::vector<std::int32_t>& interleaved,
-                                                std::uint64_t layerCount);
-std::vector<std::int32_t> interleavedFromLayers(const std::vector<std::int32_t>& layers,
                                                 std::uint64_t layerCount);
 /// The same as a single-file NIfTI-1 (.nii or .nii.gz by the name), RAS
 /// sform and qform, atomically.
