@@ -172,8 +172,8 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     if (rois.empty()) throw InputError(args.input, 0, "no ROI could be read");
     const VolumeGeometry grid =
         args.like.empty() ? gridAroundRois(rois, args.voxelMm) : referenceGrid(args.like);
-    // Each voxel takes a label and its owner: refused before either is
-    // allocated, whoever described the grid.
+    // Each voxel takes a label (and the writer's copy of it): refused before
+    // it is allocated, whoever described the grid.
     if (const std::string problem = labelGridProblem(grid, sizeof(std::int32_t));
         !problem.empty()) {
         if (args.like.empty())
@@ -249,12 +249,9 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
                 "; write a single-label .nrrd or .nii instead, or fewer ROIs");
     }
     map.labels.assign(grid.voxelCount() * std::size_t(map.layerCount), 0);
-    std::vector<std::int32_t> owner(grid.voxelCount(), -1);
     for (std::size_t r : order)
-        for (std::size_t v : inside[r]) {
+        for (std::size_t v : inside[r])
             map.labels[std::size_t(layer[r]) * grid.voxelCount() + v] = labels[r];
-            if (!segmentation || layer[r] == 0 || owner[v] < 0) owner[v] = std::int32_t(r);
-        }
     LabelTable table;
     std::map<std::int32_t, int> layerOfLabel;
     for (std::size_t r : order) {
@@ -272,14 +269,14 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     nlohmann::ordered_json roiReports = nlohmann::ordered_json::array();
     for (std::size_t r = 0; r < rois.size(); ++r) {
         if (!done[r]) continue;
-        // A segmentation keeps every ROI whole on its layer; a single-label
-        // map gives a shared voxel to the smaller ROI.
+        // What the map holds under the ROI's label (labels are distinct): all
+        // of it on its layer of a segmentation; in a single-label map less
+        // where a smaller ROI, painted after it, took a voxel.
+        const std::size_t layerStart = std::size_t(layer[r]) * grid.voxelCount();
         const std::size_t kept =
-            segmentation
-                ? inside[r].size()
-                : std::size_t(std::count_if(inside[r].begin(), inside[r].end(), [&](std::size_t v) {
-                      return owner[v] == std::int32_t(r);
-                  }));
+            std::size_t(std::count_if(inside[r].begin(), inside[r].end(), [&](std::size_t v) {
+                return map.labels[layerStart + v] == labels[r];
+            }));
         // volumeCc is the ROI's own, before overlaps go to the smaller ROI;
         // labelledVolumeCc what the map holds under its label.
         nlohmann::ordered_json report{
