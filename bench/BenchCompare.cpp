@@ -37,6 +37,7 @@
 #include "compare/SurfaceDistances.hpp"
 #include "dfrecon/Algebra.hpp"
 #include "dfrecon/Contours.hpp"
+#include "field/Rasterization.hpp"
 #include "geometry/Box3.hpp"
 #include "io/LabelInput.hpp"
 #include "recon/Reconstruction.hpp"
@@ -74,50 +75,16 @@ VoxelGrid gridAround(const TriangleSoup& a, const TriangleSoup& b, double voxelM
     return grid;
 }
 
-// Voxels whose centre is inside the closed surface: along each column of
-// centres (a line in z) the surface's crossings, sorted, bound the inside
-// between pairs. Columns are moved by 1e-7 mm off the grid so that no line
-// passes exactly through a mesh edge or vertex (contours on voxel planes put
-// many there). O(T · columns a triangle covers + voxels).
+// Voxels whose centre is inside the closed surface, as label-map tools fill
+// them: field/Rasterization's ray parity (exact where a row of centres runs
+// through a mesh edge or vertex, as contours on voxel planes put many).
 std::vector<std::uint8_t> voxelise(const TriangleSoup& soup, const VoxelGrid& g) {
-    std::vector<std::vector<double>> crossings(std::size_t(g.n[0]) * g.n[1]);
-    const double jitterX = 1e-7 * std::sqrt(2.0), jitterY = 1e-7 * std::sqrt(3.0);
-    for (const auto& t : soup.triangles) {
-        const Vec3 p = soup.points[t[0]], q = soup.points[t[1]], r = soup.points[t[2]];
-        const double area = (q.x - p.x) * (r.y - p.y) - (r.x - p.x) * (q.y - p.y);
-        if (area == 0) continue;
-        const int i0 =
-            std::max(0, int(std::floor((std::min({p.x, q.x, r.x}) - g.origin.x) / g.voxelMm)));
-        const int i1 = std::min(
-            g.n[0] - 1, int(std::ceil((std::max({p.x, q.x, r.x}) - g.origin.x) / g.voxelMm)));
-        const int j0 =
-            std::max(0, int(std::floor((std::min({p.y, q.y, r.y}) - g.origin.y) / g.voxelMm)));
-        const int j1 = std::min(
-            g.n[1] - 1, int(std::ceil((std::max({p.y, q.y, r.y}) - g.origin.y) / g.voxelMm)));
-        for (int j = j0; j <= j1; ++j)
-            for (int i = i0; i <= i1; ++i) {
-                const double x = g.origin.x + i * g.voxelMm + jitterX,
-                             y = g.origin.y + j * g.voxelMm + jitterY;
-                // Barycentric coordinates of (x, y) in the projected triangle.
-                const double u = ((q.x - x) * (r.y - y) - (r.x - x) * (q.y - y)) / area;
-                const double v = ((r.x - x) * (p.y - y) - (p.x - x) * (r.y - y)) / area;
-                const double w = 1 - u - v;
-                if (u < 0 || v < 0 || w < 0) continue;
-                crossings[std::size_t(j) * g.n[0] + i].push_back(u * p.z + v * q.z + w * r.z);
-            }
-    }
+    VolumeGeometry grid;  // the same box, LPS axes
+    grid.size = {g.n[0], g.n[1], g.n[2]};
+    grid.spacingMm = {g.voxelMm, g.voxelMm, g.voxelMm};
+    grid.originMm = {g.origin.x, g.origin.y, g.origin.z};
     std::vector<std::uint8_t> inside(g.size(), 0);
-    for (int j = 0; j < g.n[1]; ++j)
-        for (int i = 0; i < g.n[0]; ++i) {
-            std::vector<double>& z = crossings[std::size_t(j) * g.n[0] + i];
-            std::sort(z.begin(), z.end());
-            for (std::size_t c = 0; c + 1 < z.size(); c += 2) {
-                const int k0 = std::max(0, int(std::ceil((z[c] - g.origin.z) / g.voxelMm)));
-                const int k1 =
-                    std::min(g.n[2] - 1, int(std::floor((z[c + 1] - g.origin.z) / g.voxelMm)));
-                for (int k = k0; k <= k1; ++k) inside[g.index(i, j, k)] = 1;
-            }
-        }
+    for (const std::size_t v : voxelsInsideSolid(soup, PlaneFrame{}, grid)) inside[v] = 1;
     return inside;
 }
 
