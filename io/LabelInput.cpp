@@ -83,27 +83,31 @@ ContourSet readLabelContours(const std::string& path, const LabelInputOptions& o
     if (!options.acceptIntensityImages)
         if (const auto evidence = intensityImageEvidence(volume))
             throw InputError(path, 0, *evidence);
+    // Names: the table given, else a segmentation's own segments (each
+    // layer's, below), else the table beside the volume.
+    const bool segmentNames = options.labelTablePath.empty() && hasSegments(volume);
     if (!options.labelTablePath.empty())
         applyTable(readLabelTable(options.labelTablePath), contouring);
-    else if (hasSegments(volume) && volume.layerCount == 1)
-        applyTable(labelTableFromSegmentation(path, volume.keyValues), contouring);
-    else if (const auto beside = labelTableBeside(path); beside && !hasSegments(volume))
+    else if (const auto beside = labelTableBeside(path); beside && !segmentNames)
         applyTable(readLabelTable(*beside), contouring);
-    if (volume.layerCount == 1) return contoursFromLabels(volume, contouring);
+    auto contourLayer = [&](const LabelVolume& labels, int layer) {
+        MaskContourOptions layerContouring = contouring;
+        if (segmentNames)
+            applyTable(labelTableFromSegmentation(path, volume.keyValues, layer, volume.layerCount),
+                       layerContouring);
+        return contoursFromLabels(labels, layerContouring);
+    };
+    if (volume.layerCount == 1) return contourLayer(volume, 0);
     // A segmentation whose segments overlap: each layer a label map of its
-    // own segments, named by them (a label value may recur on another
-    // layer), the ROIs of all layers in one set.
+    // own segments (a label value may recur on another layer), the ROIs of
+    // all layers in one set.
     ContourSet set;
     LabelVolume layer;
     layer.geometry = volume.geometry;
     for (int l = 0; l < volume.layerCount; ++l) {
         const std::int32_t* labels = layerLabels(volume, l);
         layer.labels.assign(labels, labels + volume.geometry.voxelCount());
-        MaskContourOptions layerContouring = contouring;
-        if (options.labelTablePath.empty() && hasSegments(volume))
-            applyTable(labelTableFromSegmentation(path, volume.keyValues, l, volume.layerCount),
-                       layerContouring);
-        ContourSet part = contoursFromLabels(layer, layerContouring);
+        ContourSet part = contourLayer(layer, l);
         for (Roi& roi : part.rois) set.rois.push_back(std::move(roi));
     }
     return set;
