@@ -44,11 +44,33 @@ nlohmann::ordered_json surfaceJson(const ReportSurface& s, double valueScaleMm) 
     return out;
 }
 
-// Text that may sit inside a <script> element: "</" would end it.
-std::string scriptSafe(std::string text) {
-    for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3)
-        text.replace(at, 2, "<\\/");
-    return text;
+// JSON text made inert inside a <script> element. The HTML parser reads a
+// script's content as raw text that ends at "</script" and changes state at
+// "<!--" and "<script" (a name a planning system lets a user type can hold
+// any of them), so no '<' may reach it; '>' and '&' go too, so nothing in
+// the block reads as markup to any tool, and U+2028/U+2029, which older
+// JavaScript engines took as line ends. JSON has these characters only
+// inside strings, where \uXXXX is the same character to JSON.parse.
+std::string scriptSafe(const std::string& json) {
+    std::string out;
+    out.reserve(json.size());
+    for (std::size_t i = 0; i < json.size(); ++i) {
+        const char c = json[i];
+        if (c == '<')
+            out += "\\u003c";
+        else if (c == '>')
+            out += "\\u003e";
+        else if (c == '&')
+            out += "\\u0026";
+        else if (c == '\xE2' && i + 2 < json.size() && json[i + 1] == '\x80' &&
+                 (json[i + 2] == '\xA8' || json[i + 2] == '\xA9')) {
+            out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+            i += 2;
+        } else {
+            out += c;
+        }
+    }
+    return out;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 
@@ -229,4 +230,43 @@ TEST(HtmlReport, SegmentPageDrawsEachRegionInItsColour) {
     }
     // A view from one side shows at least two of the regions.
     EXPECT_GE(coloured, 2u);
+}
+
+TEST(HtmlReport, HostileNamesStayTextAndThePageDraws) {
+    // Names a planning system lets a user type: each would end the page's
+    // data block or change the HTML parser's state if written raw.
+    const std::string hostile[] = {"</script><script>document.title='ran'</script>", "<!--<script>",
+                                   "A&B>C \xE2\x80\xA8 line"};
+    std::string slices =
+        dfrecon::testing::slurp(std::string(DFRECON_EXAMPLES) + "/two-rois.slices");
+    slices.replace(slices.find("\"Left Kidney\""), 13, "\"" + hostile[0] + "\"");
+    slices.replace(slices.find("roi PTV"), 7, "roi \"" + hostile[1] + hostile[2] + "\"");
+    const fs::path input = scratch() / "hostile.slices";
+    std::ofstream(input) << slices;
+    const fs::path page = scratch() / "hostile.html";
+    const CliResult run = runDfrecon("-q reconstruct " + input.string() + " --all -o " +
+                                     (scratch() / "out").string() + " --report " + page.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    // The data block holds no markup at all: no '<', '>' or '&', no raw
+    // line separator.
+    const std::string html = dfrecon::testing::slurp(page.string());
+    const std::string open = "<script id=\"dfrecon-data\" type=\"application/json\">";
+    const std::size_t begin = html.find(open) + open.size();
+    const std::string data = html.substr(begin, html.find("</script>", begin) - begin);
+    EXPECT_EQ(data.find_first_of("<>&"), std::string::npos);
+    EXPECT_EQ(data.find("\xE2\x80\xA8"), std::string::npos);
+    // JSON.parse gives the names back as they were.
+    const nlohmann::json parsed = nlohmann::json::parse(data);
+    const std::string names = parsed["rows"].dump();
+    EXPECT_NE(names.find(nlohmann::json(hostile[0]).dump()), std::string::npos) << names;
+    if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " missing (make setup installs it)";
+    const CliResult dom = browse(page, "--dump-dom");
+    ASSERT_EQ(dom.exitCode, 0) << dom.err;
+    // The page drew both surfaces, no injected script ran, and the table
+    // shows the names as text (escaped in the dumped DOM).
+    EXPECT_EQ(bodyData(dom.out, "surfaces"), "2") << dom.out.substr(0, 3000);
+    EXPECT_EQ(dom.out.find("<title>ran</title>"), std::string::npos);
+    EXPECT_NE(dom.out.find("&lt;/script&gt;&lt;script&gt;document.title='ran'&lt;/script&gt;"),
+              std::string::npos);
+    EXPECT_NE(dom.out.find("&lt;!--&lt;script&gt;A&amp;B&gt;C"), std::string::npos);
 }
