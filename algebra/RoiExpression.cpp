@@ -72,6 +72,12 @@ class Parser {
         return at_ < text_.size() && text_[at_] == c;
     }
     std::size_t add(ExpressionNode node) {
+        // Every node costs a field or a surface when evaluated: an
+        // expression of thousands would run out of memory, not answer.
+        if (nodes_->size() >= kMaxExpressionNodes)
+            fail("more than " + std::to_string(kMaxExpressionNodes) +
+                 " ROIs, margins and operations in one expression; define parts first (one "
+                 "combine each)");
         nodes_->push_back(std::move(node));
         return nodes_->size() - 1;
     }
@@ -116,10 +122,15 @@ class Parser {
         skipSpaces();
         std::size_t node;
         if (peek('(')) {
+            // The parser recurses once per parenthesis: bounded here, not by
+            // the stack.
+            if (++depth_ > kMaxExpressionDepth)
+                fail("parentheses nested deeper than " + std::to_string(kMaxExpressionDepth));
             ++at_;
             node = expr();
             if (!peek(')')) fail("expected ')'");
             ++at_;
+            --depth_;
         } else {
             node = roi();
         }
@@ -246,6 +257,7 @@ class Parser {
     const std::vector<std::string>& names_;
     std::vector<ExpressionNode>* nodes_ = nullptr;
     std::size_t at_ = 0;
+    std::size_t depth_ = 0;  // parentheses open at at_
 };
 
 std::string numberText(double v) {
@@ -370,7 +382,13 @@ RoiExpression marginsOnRois(const RoiExpression& expression) {
                                                  " around a margin of " + n.margin.text() +
                                                  " is not one margin; name the inner result first "
                                                  "(one combine), then add the outer margin");
-                return lower(n.left, DirectionalMargin::uniform(margin.mm[0] + n.margin.mm[0]));
+                const double sumMm = margin.mm[0] + n.margin.mm[0];
+                if (std::abs(sumMm) > kMaxMarginMm)
+                    throw ExpressionError(0, "margins of " + margin.text() + " and " +
+                                                 n.margin.text() + " add up to " +
+                                                 numberText(sumMm) +
+                                                 " mm, beyond the 200 mm allowed");
+                return lower(n.left, DirectionalMargin::uniform(sumMm));
             }
             case Kind::Union:
             case Kind::Intersection:

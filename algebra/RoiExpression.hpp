@@ -79,11 +79,18 @@ class ExpressionError : public std::invalid_argument {
     std::size_t column_;
 };
 
+/// Most ROIs, margins and operations in one expression, and deepest
+/// nesting of parentheses: far beyond what planning systems write, well
+/// within memory and stack.
+inline constexpr std::size_t kMaxExpressionNodes = 1000;
+inline constexpr std::size_t kMaxExpressionDepth = 100;
+
 /// Parses "NAME = EXPR" against the names of a structure set. Throws
 /// ExpressionError for a syntax error, an unknown ROI (naming the closest
 /// known ones), a margin whose values mix growth and shrinkage, a margin
-/// beyond ±200 mm, or an empty or over-long (> 64 bytes) name. O(length ×
-/// names).
+/// beyond ±200 mm, more than kMaxExpressionNodes nodes or parentheses
+/// nested deeper than kMaxExpressionDepth, or an empty or over-long (> 64
+/// bytes) name. O(length × names).
 RoiExpression parseRoiExpression(const std::string& definition,
                                  const std::vector<std::string>& roiNames);
 
@@ -91,7 +98,8 @@ RoiExpression parseRoiExpression(const std::string& definition,
 /// union becomes the union of margins (any growth or shrink), a shrink of an
 /// intersection the intersection of shrinks, and two nested margins of one
 /// sense and uniform add up; afterwards every Kind::Margin node's operand is
-/// a Kind::Roi node. Throws ExpressionError (column 0) for a margin of
+/// a Kind::Roi node. Throws ExpressionError (column 0) for nested margins
+/// that add up beyond ±200 mm, and for a margin of
 /// anything else (a difference, an exclusive or, a growth of an
 /// intersection, a shrink of a union, a shrink of a growth), none of which
 /// is a level of the operands' distances: give that result a name first,

@@ -13,6 +13,7 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
@@ -22,6 +23,7 @@
 #include "io/FileNames.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "io/RoiName.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
@@ -82,6 +84,25 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
         throw std::invalid_argument("--step must be within 0.01 .. 5 mm");
     if (!(args.meshVoxelMm >= 0.05 && args.meshVoxelMm <= 5))
         throw std::invalid_argument("--mesh-voxel must be within 0.05 .. 5 mm");
+    // A name every format can hold, refused here rather than at the write.
+    auto checkName = [](const std::string& name, const std::string& where) {
+        const std::string problem = roiNameProblem(name);
+        if (!problem.empty())
+            throw std::invalid_argument(where + ": the new ROI's name " + problem +
+                                        " (ROI names are UTF-8 text of at most " +
+                                        std::to_string(kMaxRoiNameBytes) +
+                                        " bytes, no control characters)");
+    };
+    if (!args.name.empty()) checkName(args.name, "--name");
+    if (!margin) {
+        const std::size_t equals = args.expression.find('=');
+        if (equals != std::string::npos) {
+            std::string name = args.expression.substr(0, equals);
+            name.erase(0, name.find_first_not_of(" \t"));
+            name.erase(name.find_last_not_of(" \t") + 1);
+            if (!name.empty()) checkName(name, "--expr");
+        }
+    }
     const ContourInput input = loadContours(args.input, global);
 
     StructureAlgebraOptions options;
@@ -342,6 +363,8 @@ void addOutputOptions(CLI::App* cmd, AlgebraArgs& args) {
                   "Compute distances with the C++ reference instead of the OpenCL kernel (slower; "
                   "for checking)");
     cmd->add_flag("--json", args.json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
+    asOutput(cmd->get_option("--mesh"), OutputKind::File);
 }
 
 const char* kAlgebraFooter =

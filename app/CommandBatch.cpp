@@ -17,6 +17,7 @@
 #include "app/Commands.hpp"
 #include "app/ExitCodes.hpp"
 #include "app/OrderedParallel.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/ReconstructSettings.hpp"
 #include "app/WorkerRuntimes.hpp"
@@ -191,11 +192,13 @@ void addBatchCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::Range(std::size_t(1), kMaxShards));
     cmd->add_option("-j,--jobs", args->jobs,
                     "Entries run at once, each with its own OpenCL queue (default 0: one per CPU "
-                    "core, at most one per entry); an entry's ROIs run one after the other")
+                    "core; never more than one per core or per entry); an entry's ROIs run one "
+                    "after the other")
         ->capture_default_str()
         ->check(CLI::Range(0, 256));
     addReconstructSettingsOptions(*cmd, args->settings);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of a line per entry");
+    asOutput(cmd->get_option("--output"), OutputKind::Folder);
     cmd->callback([args, &global] { runBatch(*args, global); });
 }
 

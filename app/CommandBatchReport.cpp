@@ -10,6 +10,7 @@
 #include "app/BatchReport.hpp"
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
+#include "app/OutputOptions.hpp"
 #include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/Colours.hpp"
@@ -123,6 +124,7 @@ void addBatchReportCommand(CLI::App& root, const GlobalOptions&) {
                     "Also write FILE.html: the table beside an interactive 3D view of every "
                     "written mesh (one self-contained page, no network needed to open it)");
     cmd->add_flag("--json", args->json, "Print a JSON summary instead of a line");
+    asOutput(cmd->get_option("--html"), OutputKind::File);
     cmd->callback([args] { runBatchReport(*args); });
 }
 

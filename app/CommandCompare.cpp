@@ -20,6 +20,7 @@
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/OrderedParallel.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/RoiMatching.hpp"
 #include "app/WorkerRuntimes.hpp"
@@ -158,6 +159,9 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
     auto structure = [&](const std::string& path, const ContourInput* input,
                          const std::string& roi) {
         if (!input) return readSolid(path);
+        if (roi.empty() && std::none_of(input->contours.rois.begin(), input->contours.rois.end(),
+                                        [](const Roi& r) { return isComparable(r); }))
+            throw InputError(path, 0, "no ROI with contours to compare");
         return reconstructed(runtime, path, *selectRois(input->contours, roi, false).front());
     };
     const ComparedSolid a = structure(args.a, inputA, args.roiA);
@@ -171,6 +175,8 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
     if (b.contours) report["roiB"] = b.contours->name;
     report.update(comparisonJson(r));
     report["seconds"]["load"] = loadSeconds;
+    report["exitCode"] = 0;  // the CSV row's, as in a structure-set comparison
+    report["error"] = nullptr;
     if (!args.csvPath.empty()) writeCsv(args.csvPath, nlohmann::ordered_json::array({report}));
     if (args.json)
         std::cout << jsonText(report, 2) << "\n";
@@ -242,7 +248,11 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                                                      {"b", args.b},
                                                      {"pairs", pairs},
                                                      {"unmatchedA", names(matching.onlyA)},
-                                                     {"unmatchedB", names(matching.onlyB)}},
+                                                     {"unmatchedB", names(matching.onlyB)},
+                                                     {"duplicateA", names(matching.duplicateA)},
+                                                     {"duplicateB", names(matching.duplicateB)},
+                                                     {"emptyA", names(matching.emptyA)},
+                                                     {"emptyB", names(matching.emptyB)}},
                               2)
                   << "\n";
     } else {
@@ -263,6 +273,14 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
         }
         for (const Roi* roi : matching.onlyA) std::cout << "only in A: " << roi->name << "\n";
         for (const Roi* roi : matching.onlyB) std::cout << "only in B: " << roi->name << "\n";
+        for (const Roi* roi : matching.duplicateA)
+            std::cout << "name used twice in A (not paired; --match pairs the first): " << roi->name
+                      << "\n";
+        for (const Roi* roi : matching.duplicateB)
+            std::cout << "name used twice in B (not paired; --match pairs the first): " << roi->name
+                      << "\n";
+        for (const Roi* roi : matching.emptyA) std::cout << "empty in A: " << roi->name << "\n";
+        for (const Roi* roi : matching.emptyB) std::cout << "empty in B: " << roi->name << "\n";
     }
     if (firstFailure)
         throw ItemsFailed(std::to_string(failures) + " of " + std::to_string(pairs.size()) +
@@ -341,10 +359,12 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(kNonNegative);
     cmd->add_option("-j,--jobs", args->jobs,
                     "Pairs of two structure sets compared at once (0: one per hardware "
-                    "thread); the rows are the same for any value but for their seconds and the "
+                    "thread; never more than one per thread or per pair); the rows are the same "
+                    "for any value but for their seconds and the "
                     "overlap's last digits (CGAL orders faces by memory address)")
         ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--csv"), OutputKind::File);
     cmd->callback([args, &global] { runCompare(*args, global); });
 }
 

@@ -9,6 +9,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/FileNames.hpp"
 #include "io/JsonText.hpp"
@@ -145,6 +146,7 @@ void addConvertCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("--label", args->label, "Structure Set Label of DICOM output")
         ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
     cmd->callback([args, &global, roiType] {
         args->roiTypeGiven = roiType->count() > 0;
         runConvert(*args, global);

@@ -8,6 +8,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
@@ -136,6 +137,7 @@ void addFieldCommand(CLI::App& root, const GlobalOptions& global) {
                   "Exact Euclidean signed distance to the reconstructed surface instead of the "
                   "propagated field (slower: one nearest-triangle query per voxel)");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
     cmd->callback([args, &global] {
         if (args->output.size() < 4 || args->output.substr(args->output.size() - 4) != ".vdb")
             throw std::invalid_argument("output '" + args->output + "' must end in .vdb");

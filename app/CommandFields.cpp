@@ -11,6 +11,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
@@ -245,6 +246,7 @@ void addFieldsCommand(CLI::App& root, const GlobalOptions& global) {
         ->capture_default_str()
         ->check(kNonNegative);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::Folder);
     cmd->callback([args, &global] { runFields(*args, global); });
 }
 

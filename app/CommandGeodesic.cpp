@@ -13,6 +13,7 @@
 #include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/JsonText.hpp"
@@ -169,6 +170,7 @@ void addGeodesicCommand(CLI::App& root, const GlobalOptions& global) {
                   "Use obtuse triangles as they are (less accurate; for comparison)");
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
     cmd->callback([args, &global] { runGeodesic(*args, global); });
 }
 

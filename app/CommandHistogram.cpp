@@ -10,6 +10,7 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
@@ -156,6 +157,8 @@ void addHistogramCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_flag("--reference", args->reference,
                   "Compute distances with the C++ reference instead of the OpenCL kernel");
     cmd->add_flag("--json", args->json, "Print a JSON report (summary and every row)");
+    asOutput(cmd->get_option("--csv"), OutputKind::File);
+    asOutput(cmd->get_option("--plot"), OutputKind::File);
     cmd->callback([args, &global] { runHistogram(*args, global); });
 }
 

@@ -23,6 +23,7 @@
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
 #include "app/OrderedParallel.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
@@ -419,11 +420,14 @@ void addRasterizeCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::IsMember(namesOf(kInterpolationNames)));
     cmd->add_option("-j,--jobs", args->jobs,
                     "ROIs reconstructed (or their fields computed) at once, each with its own "
-                    "OpenCL queue (default 0: one per CPU core, at most one per ROI; 1: one after "
+                    "OpenCL queue (default 0: one per CPU core; never more than one per core or "
+                    "per ROI; 1: one after "
                     "the other, each with its own progress bar); the map is the same either way")
         ->capture_default_str()
         ->check(CLI::Range(0, 256));
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
+    asOutput(cmd->get_option("--label-table-out"), OutputKind::File);
     cmd->callback([args, &global] { runRasterize(*args, global); });
 }
 

@@ -11,6 +11,7 @@
 #include "app/HtmlReport.hpp"
 #include "app/Inputs.hpp"
 #include "app/OrderedParallel.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/ReconstructSettings.hpp"
 #include "app/RoiReconstruction.hpp"
@@ -205,7 +206,8 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
     addReconstructSettingsOptions(*cmd, args->settings);
     cmd->add_option("-j,--jobs", args->jobs,
                     "ROIs reconstructed at once, each with its own OpenCL queue (default 0: one "
-                    "per CPU core, at most one per ROI; 1: one after the other, each with its own "
+                    "per CPU core; never more than one per core or per ROI; 1: one after the "
+                    "other, each with its own "
                     "progress bar). Results and reports come in ROI order either way")
         ->capture_default_str()
         ->check(CLI::Range(0, 256));
@@ -215,6 +217,8 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "triangles, seconds) beside an interactive 3D view of the surfaces in "
                     "their ROI colours (three.js, embedded)");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::FileOrFolder);
+    asOutput(cmd->get_option("--report"), OutputKind::File);
     cmd->callback([args, &global] { runReconstruct(*args, global); });
 }
 

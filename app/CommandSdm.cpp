@@ -2,12 +2,14 @@
 // (paper surface-distance-maps): at every vertex and atlas texel of each
 // mesh, the signed distance to the nearest other mesh and which one it is;
 // plus pairwise separation, collision and penetration with their bounds.
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +17,7 @@
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
@@ -50,15 +53,23 @@ nlohmann::ordered_json meshFiles(const std::string& name, const std::vector<std:
     return files;
 }
 
-// File stems of the inputs, made unique with _2, _3... when they repeat.
+// File stems of the inputs, unique even on file systems that ignore letter
+// case (lung.ply and LUNG.ply would be one file there): a stem that repeats
+// gets _2, _3... on its second and later uses, skipping names taken.
 std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
-    std::map<std::string, int> seen;
+    auto key = [](std::string stem) {
+        for (char& c : stem) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return stem;
+    };
+    std::set<std::string> taken;
     std::vector<std::string> names;
     for (const std::string& input : inputs) {
         std::string stem = std::filesystem::path(input).stem().string();
         if (stem.empty()) stem = "mesh";
-        const int n = ++seen[stem];
-        names.push_back(n == 1 ? stem : stem + "_" + std::to_string(n));
+        std::string name = stem;
+        for (int k = 2; taken.count(key(name)); ++k) name = stem + "_" + std::to_string(k);
+        taken.insert(key(name));
+        names.push_back(name);
     }
     return names;
 }
@@ -302,6 +313,8 @@ void addSdmCommand(CLI::App& root, const GlobalOptions& global) {
                     "vertex's signed distance to the nearest other mesh (blue inside it, white "
                     "touching, red away)");
     cmd->add_flag("--json", args->json, "Print the JSON report to stdout too");
+    asOutput(cmd->get_option("--output"), OutputKind::Folder);
+    asOutput(cmd->get_option("--report"), OutputKind::File);
     cmd->callback([args, &global] { runSdm(*args, global); });
 }
 

@@ -17,6 +17,7 @@
 #include "app/GeodesicOutput.hpp"
 #include "app/HtmlReport.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/Colours.hpp"
@@ -186,6 +187,8 @@ void addSegmentCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(kNotStandardStream);
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
+    asOutput(cmd->get_option("--report"), OutputKind::File);
     cmd->callback([args, &global] { runSegment(*args, global); });
 }
 

@@ -10,6 +10,7 @@
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/SimplifyReport.hpp"
@@ -132,6 +133,7 @@ void addSimplifyCommand(CLI::App& root, const GlobalOptions& global) {
         ->check(CLI::Range(1.0, 90.0));
     cmd->add_flag("--ascii", args->ascii, "ASCII PLY/STL instead of binary");
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
     cmd->callback([args, &global] { runSimplify(*args, global); });
 }
 

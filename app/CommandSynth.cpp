@@ -6,6 +6,7 @@
 
 #include "app/Commands.hpp"
 #include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/JsonText.hpp"
 #include "io/SlicesFile.hpp"
@@ -108,6 +109,7 @@ void addSynthCommand(CLI::App& root, const GlobalOptions&) {
         ->capture_default_str()
         ->check(kPositive);
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
+    asOutput(cmd->get_option("--output"), OutputKind::File);
     cmd->callback([args] { runSynth(*args); });
 }
 

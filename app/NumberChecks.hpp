@@ -21,6 +21,18 @@ CLI::Validator numberCheck(Accept accept, const std::string& rule, const std::st
         name);
 }
 
+/// Any finite number. CLI11 reads "nan", "inf" and "1e999" as numbers,
+/// which no length, area or count here means: the program adds this check
+/// to every floating-point option (no description: --help is unchanged).
+inline const CLI::Validator kFiniteNumber(
+    [](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value))
+            return "'" + text + "' is not a finite number";
+        return "";
+    },
+    "");
+
 /// A finite number >= 0 ("must be at least 0").
 inline const CLI::Validator kNonNegative =
     numberCheck([](double v) { return v >= 0; }, "must be at least 0", "NUMBER >= 0");

@@ -25,9 +25,11 @@ inline std::size_t defaultJobs(std::size_t items) {
 }
 
 /// The workers for `items` when the user asked for `asked` (--jobs; 0: the
-/// default): at most one per item, at least one.
+/// default): at most one per item and one per core (more threads than cores
+/// only share them, each with its OpenCL queue and scratch), at least one.
 inline std::size_t jobsFor(unsigned asked, std::size_t items) {
-    return asked > 0 ? std::max<std::size_t>(1, std::min<std::size_t>(asked, items))
+    const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    return asked > 0 ? std::max<std::size_t>(1, std::min<std::size_t>({asked, items, cores}))
                      : defaultJobs(items);
 }
 

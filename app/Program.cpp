@@ -8,7 +8,10 @@
 #include "app/ExitCodes.hpp"
 #include "app/Failure.hpp"
 #include "app/HeapArenas.hpp"
+#include "app/NumberChecks.hpp"
+#include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
+#include "io/OutputTarget.hpp"
 
 namespace dfrecon::app {
 
@@ -62,6 +65,16 @@ int runProgram(int argc, char** argv) {
     addGeodesicCommand(root, global);
     addCheckCommand(root, global);
     addCompareCommand(root, global);
+    // Outputs checked together once the chosen command's line is parsed,
+    // before its work; every write is checked again against the files read.
+    for (CLI::App* command : root.get_subcommands({})) {
+        command->parse_complete_callback([command, &root] { checkOutputOptions(*command, root); });
+        // Every floating-point option (CLI11 names their type FLOAT) takes
+        // finite numbers only.
+        for (CLI::Option* option : command->get_options())
+            if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(kFiniteNumber);
+    }
+    guardInputsFromOutputs(true);
 
     // CLI11 reports a mistyped subcommand as a missing one; name it instead.
     // The first word that is neither an option nor a global option's value

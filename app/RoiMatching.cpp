@@ -9,13 +9,6 @@ namespace dfrecon::app {
 
 namespace {
 
-std::vector<const Roi*> usableRois(const ContourSet& set) {
-    std::vector<const Roi*> rois;
-    for (const Roi& roi : set.rois)
-        if (isComparable(roi)) rois.push_back(&roi);
-    return rois;
-}
-
 const Roi& namedRoi(const ContourSet& set, const std::string& name, const char* side) {
     const Roi* roi = set.findRoi(name);
     if (!roi || !isComparable(*roi))
@@ -82,10 +75,23 @@ RoiMatching matchRois(const ContourSet& a, const ContourSet& b,
             throw std::invalid_argument("--match '" + entry + "': an ROI is matched twice");
         matching.pairs.push_back({&roiA, &roiB, "map"});
     }
-    for (const Roi* roi : usableRois(a))
-        if (!mapped.count(roi)) matching.onlyA.push_back(roi);
-    for (const Roi* roi : usableRois(b))
-        if (!mapped.count(roi)) matching.onlyB.push_back(roi);
+    // Sorted into: mapped above, empty, duplicate name, or to be paired.
+    auto place = [&](const ContourSet& set, std::vector<const Roi*>& only,
+                     std::vector<const Roi*>& duplicates, std::vector<const Roi*>& empty) {
+        std::map<std::string, int> uses;
+        for (const Roi& roi : set.rois) ++uses[roi.name];
+        for (const Roi& roi : set.rois) {
+            if (mapped.count(&roi)) continue;
+            if (!isComparable(roi))
+                empty.push_back(&roi);
+            else if (uses[roi.name] > 1)
+                duplicates.push_back(&roi);
+            else
+                only.push_back(&roi);
+        }
+    };
+    place(a, matching.onlyA, matching.duplicateA, matching.emptyA);
+    place(b, matching.onlyB, matching.duplicateB, matching.emptyB);
     pairByKey(
         matching.onlyA, matching.onlyB, [](const std::string& n) { return n; }, "name",
         matching.pairs);

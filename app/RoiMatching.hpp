@@ -18,9 +18,16 @@ struct RoiPair {
     const char* matchedBy = "name";
 };
 
+/// Every ROI of both sets in exactly one place.
 struct RoiMatching {
     std::vector<RoiPair> pairs;            // in A's order
     std::vector<const Roi*> onlyA, onlyB;  // unmatched, in their sets' order
+    /// ROIs whose name another ROI of the same set also has: no name can say
+    /// which is meant, so none of them is paired by name (--match pairs the
+    /// first of a name); in their sets' order.
+    std::vector<const Roi*> duplicateA, duplicateB;
+    /// ROIs with neither contours nor a defect: nothing to compare.
+    std::vector<const Roi*> emptyA, emptyB;
 };
 
 /// Whether `roi` takes part in a comparison: it has contours, or a defect
@@ -35,7 +42,8 @@ std::string foldedRoiName(const std::string& name);
 /// `map` ("NAME_IN_A=NAME_IN_B", split at the first '='), then equal
 /// names, then equal folded names where the folded name is one ROI's alone
 /// on each side (an ambiguous one stays unmatched, to be mapped). ROIs
-/// without slices or defect are left out. Throws std::invalid_argument
+/// without slices or defect are listed as empty, ROIs sharing their exact
+/// name with another of their set as duplicates (neither is paired). Throws std::invalid_argument
 /// (a usage error) for a map entry without '=', naming an ROI its set
 /// lacks, or naming an ROI twice. O(R log R) for R ROIs.
 RoiMatching matchRois(const ContourSet& a, const ContourSet& b,

@@ -17,6 +17,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/OutputTarget.hpp"
+
 namespace dfrecon {
 
 namespace fs = std::filesystem;
@@ -239,6 +241,7 @@ void writeAtomically(const std::string& path,
     // what was meant.
     if (path == "-")
         throw std::invalid_argument("this output cannot go to standard output ('-'): give a file");
+    checkOutputTarget(path);
     Stage stage(path);
     if (!write(stage.stagePath())) fail(path, "the writer failed");
     stage.commit();

@@ -32,7 +32,8 @@ namespace dfrecon {
 /// left behind, `path` is untouched, and the error propagates
 /// (std::runtime_error "cannot write PATH: reason" for our own failures).
 /// Throws std::invalid_argument for the path "-", which names standard
-/// output on the command line.
+/// output on the command line, and for a target io/OutputTarget refuses (a
+/// folder, device, FIFO or socket; an input of the run), before any write.
 /// Memory: the file's size, held until it is copied. Thread-safe.
 void writeAtomically(const std::string& path, const std::function<bool(const std::string&)>& write);
 

@@ -113,13 +113,32 @@ std::string shapeText(const py::array& a) {
     return text + (a.ndim() == 1 ? ",)" : ")");
 }
 
+// Most rows of a vertex or face array: indices are 32-bit and read as
+// int32 by the views (below 2^31), and each row is made in C++ memory.
+constexpr py::ssize_t kMaxRows = (py::ssize_t(1) << 31) - 1;
+
+// `given` as a C-ordered array of T, converted (a copy) where it is not one
+// already: sizes checked before the copy, which numpy makes in full even for
+// a broadcast view of one row, and the copy checked (pybind11's ensure()
+// returns nothing, not an exception, when numpy cannot make it).
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> rowsOf(const py::array& given,
+                                                                 const std::string& what) {
+    if (given.shape(0) > kMaxRows)
+        throw py::value_error(what + ": " + std::to_string(given.shape(0)) +
+                              " rows, more than the 2^31 - 1 a mesh may have");
+    auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(given);
+    if (!a) throw std::bad_alloc();  // MemoryError in Python
+    return a;
+}
+
 // Points (n, 3) as float64 from any array of integers or reals.
 std::vector<Vec3> pointsOf(const py::handle& object, const std::string& what) {
     const py::array given = numericArray(object, what, "iuf");
     if (given.ndim() != 2 || given.shape(1) != 3)
         throw py::value_error(what + ": expected an array of shape (n, 3), got shape " +
                               shapeText(given));
-    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
+    const auto a = rowsOf<double>(given, what);
     std::vector<Vec3> points(std::size_t(a.shape(0)));
     const double* data = a.data();
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -169,8 +188,7 @@ TriangleSoup soupOf(const py::handle& vertices, const py::handle& faces) {
     if (f.ndim() != 2 || f.shape(1) != 3)
         throw py::value_error("faces: expected an integer array of shape (m, 3), got shape " +
                               shapeText(f));
-    const auto indices =
-        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(f);
+    const auto indices = rowsOf<std::int64_t>(f, "faces");
     const std::int64_t* data = indices.data();
     soup.triangles.resize(std::size_t(f.shape(0)));
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)

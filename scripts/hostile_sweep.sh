@@ -660,8 +660,70 @@ case_manifest_nul() {
 
 # The cases in table order; "bg:" marks those that only wait (run at once in
 # the background).
+# ---- issue 63: outputs that would lose data, numbers that are none, expressions
+# without bounds, names that break a report page.
+
+check_unchanged() {  # the file named by KEEP equals its copy KEEP.orig
+    cmp -s "$KEEP" "$KEEP.orig" || echo "$KEEP was changed"
+}
+check_char_device() { [ -c /dev/null ] || echo "/dev/null is no longer a device"; }
+check_both_sdm_maps() {
+    [ -f sdm-case/lung.ply ] && [ -f sdm-case/LUNG_2.ply ] || echo "sdm names collide ignoring case"
+}
+check_inert_report() {
+    [ -n "$PY" ] || return 0
+    "$PY" - hostile-names.html <<'EOF' 2>&1 | tail -n 1
+import sys
+html = open(sys.argv[1], encoding="utf-8").read()
+tag = '<script id="dfrecon-data" type="application/json">'
+start = html.index(tag) + len(tag)
+block = html[start:html.index("</script>", start)]
+if any(c in block for c in "<>&"):
+    print("markup in the report's data block")
+EOF
+}
+
+case_outputs() {
+    cp two-rois.slices hin.slices && cp hin.slices hin.slices.orig
+    KEEP=hin.slices CHECK=check_unchanged \
+        run_case out-histogram-onto-input 1 "" dfr histogram hin.slices --roi "Left Kidney" --to PTV -o hin.slices
+    KEEP=hin.slices CHECK=check_unchanged \
+        run_case out-reconstruct-onto-input 1 "" dfr reconstruct hin.slices --all -o hin.slices
+    cp y.ply yin.ply && cp yin.ply yin.ply.orig
+    KEEP=yin.ply CHECK=check_unchanged \
+        run_case out-compare-csv-onto-mesh 1 "" dfr compare yin.ply yin.ply --csv yin.ply
+    CHECK=check_char_device \
+        run_case out-reconstruct-to-device 1 "" dfr reconstruct y.slices -o /dev/null
+    CHECK=check_char_device \
+        run_case out-histogram-to-device 1 "" dfr histogram two-rois.slices --roi "Left Kidney" --to PTV -o /dev/null
+    rm -f out-fifo.ply && mkfifo out-fifo.ply
+    run_case out-reconstruct-to-fifo 1 "" dfr reconstruct y.slices -o out-fifo.ply
+    run_case out-same-mesh-and-report 1 "" dfr reconstruct y.slices -o same.ply --report same.ply
+    run_case out-same-csv-and-plot 1 "" dfr histogram two-rois.slices --roi "Left Kidney" --to PTV -o same.csv --plot same.csv
+    run_case out-case-only-differs 1 "" dfr histogram two-rois.slices --roi "Left Kidney" --to PTV -o case.csv --plot CASE.csv
+    mkdir -p sdm-a sdm-b && cp y.ply sdm-a/lung.ply && cp y.ply sdm-b/LUNG.ply
+    CHECK=check_both_sdm_maps \
+        run_case out-sdm-names-by-case 0 "" dfr sdm sdm-a/lung.ply sdm-b/LUNG.ply --size 256 --no-images -o sdm-case
+    sed 's/^roi "Left Kidney"/roi "<\/script><!--<script>x"/' two-rois.slices >hostile-names.slices
+    CHECK=check_inert_report \
+        run_case report-hostile-names 0 "" dfr reconstruct hostile-names.slices --all -o hostile-out --report hostile-names.html
+}
+
+case_numbers_and_expressions() {
+    run_case margin-mm-nan 1 "" dfr margin two-rois.slices --roi PTV --mm nan -o m.slices
+    run_case margin-min-area-nan 1 "" dfr margin two-rois.slices --roi PTV --mm 2 --min-area nan -o m.slices
+    run_case histogram-bin-inf 1 "" dfr histogram two-rois.slices --roi "Left Kidney" --to PTV --bin inf
+    run_case compare-jobs-huge 0 "" dfr compare two-rois.slices two-rois.slices -j 4294967295
+    run_case combine-nested-60000 1 "" dfr combine two-rois.slices --expr "X = $(printf '(%.0s' $(seq 60000))PTV$(printf ')%.0s' $(seq 60000))" -o c.slices
+    run_case combine-union-10000 1 "" dfr combine two-rois.slices --expr "X = PTV$(printf ' | PTV%.0s' $(seq 10000))" -o c.slices
+    run_case combine-margins-past-200 1 "" dfr combine two-rois.slices --expr "X = PTV + 150 + 150" -o c.slices
+    run_case combine-name-control-char 1 "" dfr combine two-rois.slices --expr $'X\x01Y = PTV + 1' -o c.slices
+}
+
 CASES=(
     case_max_error
+    case_outputs
+    case_numbers_and_expressions
     case_batch_max_error
     case_batch_worker_crash
     case_record_nested

@@ -49,6 +49,39 @@ TEST(RoiMatching, MapThenNameThenFoldedName) {
     EXPECT_EQ(m.onlyA[0]->name, "Lung");
     ASSERT_EQ(m.onlyB.size(), 3u);
     EXPECT_EQ(m.onlyB[2]->name, "Only B");
+    ASSERT_EQ(m.emptyB.size(), 1u);  // listed, not lost
+    EXPECT_EQ(m.emptyB[0]->name, "Empty");
+}
+
+TEST(RoiMatching, EveryRoiIsInExactlyOnePlace) {
+    // Planning systems allow one name twice; neither copy can be paired by
+    // name, and both are reported as such, not as "only in".
+    ContourSet a = setOf({"GTV", "GTV", "Cord", "Brain"});
+    ContourSet b = setOf({"GTV", "Cord", "Cord", "brain"});
+    Roi empty;
+    empty.name = "Nothing";
+    a.rois.push_back(empty);
+    const RoiMatching m = matchRois(a, b, {});
+    ASSERT_EQ(m.pairs.size(), 1u);
+    EXPECT_EQ(m.pairs[0].a->name, "Brain");
+    ASSERT_EQ(m.duplicateA.size(), 2u);
+    ASSERT_EQ(m.duplicateB.size(), 2u);
+    EXPECT_EQ(m.duplicateB[0]->name, "Cord");
+    ASSERT_EQ(m.emptyA.size(), 1u);
+    // Every ROI of each set is in one list.
+    for (const auto& [set, lists] :
+         {std::pair{&a, std::vector{&m.onlyA, &m.duplicateA, &m.emptyA}},
+          std::pair{&b, std::vector{&m.onlyB, &m.duplicateB, &m.emptyB}}}) {
+        std::size_t placed = m.pairs.size();
+        for (const auto* list : lists) placed += list->size();
+        EXPECT_EQ(placed, set->rois.size());
+    }
+    EXPECT_EQ(m.onlyA.size(), 1u);  // Cord of A: B's two are duplicates
+    EXPECT_EQ(m.onlyB.size(), 1u);  // GTV of B: A's two are duplicates
+    // --match pairs the first of a repeated name; the other stays a duplicate.
+    const RoiMatching mapped = matchRois(a, b, {"GTV=GTV"});
+    EXPECT_EQ(mapped.pairs.size(), 2u);
+    EXPECT_EQ(mapped.duplicateA.size(), 1u);
 }
 
 TEST(RoiMatching, BadMapsAreUsageErrors) {

@@ -343,3 +343,13 @@ def test_meshes_write_and_read_back(tmp_path):
     np.testing.assert_allclose(again.vertices, mesh.vertices, atol=0)
     np.testing.assert_array_equal(again.faces, mesh.faces)
     assert math.isclose(again.volume_cc, mesh.volume_cc, rel_tol=1e-12)
+
+
+def test_huge_array_views_are_refused_before_any_copy():
+    # Broadcast views cost nothing in Python; a copy of 2^31 rows would be
+    # 48 GB. Refused by size, never a crash.
+    rows = 2 ** 31
+    with pytest.raises(ValueError, match="rows"):
+        dfrecon.Mesh(np.broadcast_to(np.zeros(3), (rows, 3)), np.array([[0, 1, 2]]))
+    with pytest.raises(ValueError, match="rows"):
+        dfrecon.Mesh(np.eye(3), np.broadcast_to(np.array([0, 1, 2]), (rows, 3)))
