@@ -8,6 +8,7 @@
 #include "contours/PlaneGaps.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/LabelInput.hpp"
+#include "io/RoiName.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace dfrecon {
@@ -192,6 +193,16 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
             break;
     }
     if (read.format != ContourFormat::Slices) findGaps(read, path);
+    // Every reader makes names by the rule (io/RoiName); this is the one
+    // place that holds for all of them, so that no name read here can fail
+    // at a write or fail to read back.
+    for (Roi& roi : read.contours.rois) {
+        const std::string problem = roiNameProblem(roi.name);
+        if (problem.empty()) continue;
+        std::string mended = mendedRoiName(roi.name);
+        read.warnings.push_back({path, 0, "an ROI name " + problem + "; read as '" + mended + "'"});
+        roi.name = std::move(mended);
+    }
     return read;
 }
 

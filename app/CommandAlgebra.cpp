@@ -162,6 +162,7 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                               (m.isUniform() ? std::to_string(int(std::lround(std::abs(m.mm[0]))))
                                              : std::string("margin"))
                         : args.name;
+                if (args.name.empty()) checkName(name, "--roi '" + source.name + "' + margin");
                 const PlaneFrame frame = source.frame;
                 if (writeOptions.imageSeries)
                     options.planesMm = planesOfSeries(writeOptions, frame);

@@ -24,4 +24,17 @@ std::string roiNameProblem(std::string_view name) {
     return "";
 }
 
+std::string mendedRoiName(std::string_view name) {
+    if (roiNameProblem(name).empty()) return std::string(name);
+    std::string mended = utf8FromLegacyText(name);
+    for (char& c : mended)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '_';
+    if (mended.size() > kMaxRoiNameBytes) {
+        std::size_t cut = kMaxRoiNameBytes;  // at a character's start
+        while (cut > 0 && (static_cast<unsigned char>(mended[cut]) & 0xC0) == 0x80) --cut;
+        mended.resize(cut);
+    }
+    return mended.empty() ? "_" : mended;
+}
+
 }  // namespace dfrecon

@@ -15,4 +15,9 @@ namespace dfrecon {
 /// the 256 a name may have"). O(length).
 std::string roiNameProblem(std::string_view name);
 
+/// `name` made valid: read as Windows-1252 where it is not UTF-8, control
+/// characters as '_', cut at a character's start to kMaxRoiNameBytes, "_"
+/// when empty. A valid name is returned as it is. O(length).
+std::string mendedRoiName(std::string_view name);
+
 }  // namespace dfrecon

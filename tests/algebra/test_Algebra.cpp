@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include "algebra/DistanceHistograms.hpp"
@@ -18,6 +21,7 @@
 #include "field/ClosestPrimitives.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "shapes/MeshShapes.hpp"
+#include "tests/fuzz/ExpressionOracle.hpp"
 
 using namespace dfrecon;
 
@@ -419,4 +423,21 @@ TEST(EuclideanDistanceVolume, IsTheExactDistanceToTheReconstructedBox) {
                 worst = std::max(worst, std::abs(value - boxDistance(p, box.lo, box.hi)));
             }
     EXPECT_LT(worst, 1e-4);  // float values, exact distances
+}
+
+TEST(RoiExpressionFuzzing, EveryKeptDefinitionHoldsTheOracle) {
+    // tests/data/fuzz-expression: the fuzz target's seeds and findings
+    // (tests/fuzz/fuzz_roi_expression.cpp), replayed here and so under the
+    // sanitizers in CI.
+    namespace fs = std::filesystem;
+    int files = 0;
+    for (const auto& entry :
+         fs::directory_iterator(fs::path(DFRECON_TEST_DATA) / "fuzz-expression")) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::string definition((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+        EXPECT_TRUE(fuzzing::expressionHolds(definition)) << entry.path();
+        ++files;
+    }
+    EXPECT_GE(files, 10);
 }
