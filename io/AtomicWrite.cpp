@@ -245,6 +245,7 @@ void writeAtomically(const std::string& path,
     Stage stage(path);
     if (!write(stage.stagePath())) fail(path, "the writer failed");
     stage.commit();
+    noteOutputWritten(path);
 }
 
 void writeStreamAtomically(const std::string& path,

@@ -6,7 +6,10 @@
 #include <atomic>
 #include <cctype>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "io/InputsInUse.hpp"
 
@@ -17,6 +20,18 @@ namespace fs = std::filesystem;
 namespace {
 
 std::atomic<bool> inputsGuarded{false};
+
+// Files this process has written: reading one back (to verify it) does not
+// make it an input that a second write may not replace.
+std::mutex writtenMutex;
+std::vector<std::string> writtenFiles;
+
+bool writtenHere(const std::string& path) {
+    std::lock_guard<std::mutex> lock(writtenMutex);
+    for (const std::string& written : writtenFiles)
+        if (sameFile(path, written)) return true;
+    return false;
+}
 
 // The path made absolute and normal, without touching the file system
 // beyond the current folder (a missing file has no canonical form).
@@ -68,7 +83,7 @@ void checkOutputTarget(const std::string& path) {
                                     " (give a file name)");
     if (!inputsGuarded) return;
     for (const std::string& input : inputsInUse().inputs)
-        if (sameFile(path, input))
+        if (sameFile(path, input) && !writtenHere(input))
             throw std::invalid_argument(path + ": refused as an output: it is an input of " +
                                         "this command" +
                                         (input == path ? "" : " (read as " + input + ")") +
@@ -77,6 +92,11 @@ void checkOutputTarget(const std::string& path) {
 
 void guardInputsFromOutputs(bool on) {
     inputsGuarded = on;
+}
+
+void noteOutputWritten(const std::string& path) {
+    std::lock_guard<std::mutex> lock(writtenMutex);
+    writtenFiles.push_back(path);
 }
 
 }  // namespace dfrecon

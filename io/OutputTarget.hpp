@@ -28,13 +28,19 @@ bool sameFileIgnoringCase(const std::string& a, const std::string& b);
 
 /// Throws std::invalid_argument (a usage error, exit 1) naming `path` when
 /// it cannot be replaced by a file (whyNotAFileTarget) or, while inputs are
-/// guarded, when it is a file this process has read (io/InputsInUse).
-/// io/AtomicWrite calls it before every write.
+/// guarded, when it is a file this process has read (io/InputsInUse) and
+/// not written itself before (a command may read back what it wrote, to
+/// check it, and write it again). io/AtomicWrite calls it before every
+/// write.
 void checkOutputTarget(const std::string& path);
 
 /// Turns on the check of outputs against the files read so far. The program
 /// does (one process is one command); a library or Python user's process
 /// reads and writes files across many calls, so it is off by default.
 void guardInputsFromOutputs(bool on);
+
+/// Records that this process wrote `path` (io/AtomicWrite, after each
+/// write). Thread-safe.
+void noteOutputWritten(const std::string& path);
 
 }  // namespace dfrecon
