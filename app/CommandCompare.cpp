@@ -5,9 +5,12 @@
 // on the surfaces and contours (compare/), not on voxels, with the
 // distances' error bound stated. Two structure sets are compared ROI by ROI
 // (app/RoiMatching), one row per pair.
+#include <initializer_list>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -211,6 +214,17 @@ nlohmann::ordered_json pairRow(const RoiPair& pair, const CompareArgs& args,
 void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                       const ContourInput& inputA, const ContourInput& inputB) {
     const RoiMatching matching = matchRois(inputA.contours, inputB.contours, args.matches);
+    if (matching.pairs.empty()) {
+        // An empty table is no comparison: say why and what pairs them.
+        auto list = [](const std::vector<const Roi*>& rois) {
+            std::string text;
+            for (const Roi* roi : rois) text += (text.empty() ? "'" : ", '") + roi->name + "'";
+            return text.empty() ? std::string("none") : text;
+        };
+        throw std::invalid_argument("no ROI of A pairs with one of B by name (A: " +
+                                    list(matching.onlyA) + "; B: " + list(matching.onlyB) +
+                                    "): pair them with --match NAME_IN_A=NAME_IN_B (repeatable)");
+    }
     const std::size_t count = matching.pairs.size();
     const std::size_t jobs = jobsFor(args.jobs, count);
     WorkerRuntimes runtimes(global.device, jobs);
@@ -256,8 +270,8 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                               2)
                   << "\n";
     } else {
-        std::cout << "ROI A | ROI B | Dice | HD95 mm | mean mm | surface Dice | plane Dice | "
-                     "added path mm\n";
+        std::cout << "ROI A | ROI B | Dice | Hausdorff mm | HD95 mm | mean mm | surface Dice | "
+                     "plane Dice | added path mm\n";
         for (const nlohmann::ordered_json& pair : pairs) {
             const nlohmann::ordered_json row = flatRow(pair);
             std::cout << pair["roiA"].get<std::string>() << " | "
@@ -266,9 +280,24 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                 std::cout << " | failed: " << row["error"].get<std::string>() << "\n";
                 continue;
             }
-            for (const char* key : {"dice", "hd95Mm", "meanSurfaceDistanceMm", "surfaceDice",
-                                    "planeDice", "addedPathLengthMm"})
-                std::cout << " | " << (row[key].is_null() ? std::string("-") : jsonText(row[key]));
+            // Ratios to four decimals, lengths to a hundredth of a mm: what a
+            // table is read for (--json and --csv keep every digit).
+            for (const auto& [key, decimals] :
+                 std::initializer_list<std::pair<const char*, int>>{{"dice", 4},
+                                                                    {"hausdorffMm", 2},
+                                                                    {"hd95Mm", 2},
+                                                                    {"meanSurfaceDistanceMm", 2},
+                                                                    {"surfaceDice", 4},
+                                                                    {"planeDice", 4},
+                                                                    {"addedPathLengthMm", 1}}) {
+                const nlohmann::ordered_json& value = row[key];
+                std::ostringstream cell;
+                if (value.is_number())
+                    cell << std::fixed << std::setprecision(decimals) << value.get<double>();
+                else
+                    cell << "-";
+                std::cout << " | " << cell.str();
+            }
             std::cout << "\n";
         }
         for (const Roi* roi : matching.onlyA) std::cout << "only in A: " << roi->name << "\n";

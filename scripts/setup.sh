@@ -60,11 +60,14 @@ test_packages=(
 # theirs (pydicom's would add python3-pil, dicom3tools' ghostscript and
 # netpbm). The Slurm daemons, client and munge run the array-job test
 # (tests/app/slurm_array_test.sh) on a single-node Slurm; their recommends
-# are the plugin development headers. mricron-data holds the atlases the
+# are the plugin development headers. python3-venv, -setuptools, -wheel and
+# -pip let the pip test install the module into a venv offline
+# (tests/python/pip_install.sh). mricron-data holds the atlases the
 # truth benchmark cuts (scripts/truth_sets.sh, dfrecon-bench truth) and the
 # compare tests read; its recommends are mricron itself.
 test_packages_no_recommends=(
   chromium python3-vtk9 python3-pytest
+  python3-venv python3-setuptools python3-wheel python3-pip
   python3-pydicom python3-numpy plastimatch insighttoolkit5-examples dicom3tools
   libcgal-demo
   slurmctld slurmd slurm-client munge

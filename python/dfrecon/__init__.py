@@ -29,7 +29,15 @@ except ImportError:  # pragma: no cover - depends on the interpreter
         _sys.path.append(_debian)
     import numpy as _np
 
-from . import _dfrecon as _core_module
+try:
+    from . import _dfrecon as _core_module
+except ImportError as _error:  # the package folder without its extension
+    raise ImportError(
+        "dfrecon's compiled extension (_dfrecon) is not in %s: build it with "
+        "`make build` and put build/python on PYTHONPATH, or install the package "
+        "with `pip install .` from the source tree (docs/python.md)"
+        % _os.path.dirname(_os.path.abspath(__file__))
+    ) from _error
 from ._dfrecon import DeviceError, InputError, InvalidResultError
 
 __version__ = _core_module.__version__

@@ -2,8 +2,10 @@
 distances, the program's own reports on the same input, brute-force
 distances; and bad input refused with clear exceptions."""
 import math
+import os
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -353,3 +355,16 @@ def test_huge_array_views_are_refused_before_any_copy():
         dfrecon.Mesh(np.broadcast_to(np.zeros(3), (rows, 3)), np.array([[0, 1, 2]]))
     with pytest.raises(ValueError, match="rows"):
         dfrecon.Mesh(np.eye(3), np.broadcast_to(np.array([0, 1, 2]), (rows, 3)))
+
+
+def test_a_package_without_its_extension_says_what_to_build(tmp_path):
+    # The package folder as `make build-program` leaves it: the Python files,
+    # no compiled module. The error names the way out, not a circular import.
+    import shutil
+    source = os.path.join(os.environ["DFRECON_SOURCE"], "python", "dfrecon")
+    shutil.copytree(source, tmp_path / "dfrecon")
+    run = subprocess.run([sys.executable, "-c", "import dfrecon"], cwd=tmp_path,
+                         capture_output=True, text=True, env={**os.environ, "PYTHONPATH": ""})
+    assert run.returncode != 0
+    assert "make build" in run.stderr and "pip install" in run.stderr, run.stderr
+    assert "circular import" not in run.stderr.splitlines()[-1]
