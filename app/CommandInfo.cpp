@@ -44,6 +44,10 @@ nlohmann::ordered_json roiJson(const Roi& roi, const RtStructRoiInfo* dicom) {
                                 {"contours", roi.contourCount()},
                                 {"holes", holes},
                                 {"points", roi.pointCount()},
+                                // The volume the text line shows: what the
+                                // planning system's Σ area × spacing gives.
+                                {"contourVolumeMm3", contourVolumeMm3(roi)},
+                                {"contourVolumeCc", contourVolumeMm3(roi) / 1000},
                                 {"spacingMm",
                                  {{"min", spacing.minMm},
                                   {"max", spacing.maxMm},

@@ -55,17 +55,16 @@ nlohmann::ordered_json roiReportRow(const nlohmann::ordered_json& report) {
     return row;
 }
 
-// The colour an ROI is drawn in: its own, else the one `convert` gives it
-// in an RTSTRUCT (io/RtStruct.hpp's palette, by position).
-Rgb displayColour(const Roi& roi, std::size_t position) {
-    return roi.colour.value_or(kDefaultRoiColours[position % kDefaultRoiColours.size()]);
-}
-
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const Stopwatch watch;
     const ContourInput load = loadContours(args.input, global);
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
+    // The colour an ROI is drawn in: the one `convert` gives it in an RTSTRUCT.
+    const std::vector<Rgb> colours = displayColours(load.contours);
+    auto colourOf = [&](const Roi& roi) {
+        return colours[std::size_t(&roi - load.contours.rois.data())];
+    };
     const bool several = rois.size() > 1 || (args.all && !isMeshOutputPath(args.output) &&
                                              !isStandardStream(args.output));
     MeshOutput single;
@@ -116,9 +115,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                 invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
             }
             if (!args.reportPath.empty() && outcome.failure == 0 &&
-                !addSurface(
-                    page,
-                    {rois[i]->name, displayColour(*rois[i], i), std::move(outcome.surface), {}}))
+                !addSurface(page,
+                            {rois[i]->name, colourOf(*rois[i]), std::move(outcome.surface), {}}))
                 leftOut += (leftOut.empty() ? "" : ", ") + rois[i]->name;
             reports.push_back(std::move(outcome.report));
             overall.update(double(i + 1) / double(rois.size()));

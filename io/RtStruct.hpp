@@ -105,9 +105,8 @@ inline constexpr std::array<const char*, 24> kRoiInterpretedTypes{"EXTERNAL",
 /// Whether `type` is one of kRoiInterpretedTypes (exactly, upper case). O(1).
 bool isRoiInterpretedType(const std::string& type);
 
-/// The display colours of ROIs that come without one, in order: ROI i (its
-/// position in the written set, from 0) gets kDefaultRoiColours[i % 12].
-/// Twelve hues far apart (red, green, blue, yellow, magenta, cyan, orange,
+/// The display colours of ROIs that come without one, in order
+/// (displayColours): twelve hues far apart (red, green, blue, yellow, magenta, cyan, orange,
 /// violet, spring green, pink, sky blue, olive), so that neighbouring
 /// structures differ in a planning system's view.
 inline constexpr std::array<Rgb, 12> kDefaultRoiColours{{{255, 0, 0},
@@ -122,6 +121,14 @@ inline constexpr std::array<Rgb, 12> kDefaultRoiColours{{{255, 0, 0},
                                                          {255, 105, 180},
                                                          {100, 180, 255},
                                                          {128, 128, 0}}};
+
+/// Every ROI's display colour, as a written RTSTRUCT (and a report) gives
+/// it: its own where it has one; else the first of kDefaultRoiColours that
+/// no ROI of the set has and no ROI before it was given, then colours of
+/// io/Colours' categorical scheme unused so far. So no two ROIs share a
+/// colour unless the input gave them the same one: a margin is not drawn in
+/// the yellow of another structure. O(R · (R + palette)).
+std::vector<Rgb> displayColours(const ContourSet& set);
 
 /// What an RTSTRUCT written by dfrecon refers to. Empty UIDs are generated:
 /// without a study UID the structure set makes a study of its own, dated

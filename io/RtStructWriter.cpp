@@ -12,12 +12,45 @@
 #include <stdexcept>
 
 #include "io/AtomicWrite.hpp"
+#include "io/Colours.hpp"
 #include "io/DicomAttributes.hpp"
 #include "io/DicomNesting.hpp"
 #include "io/InputsInUse.hpp"
 #include "io/RtStruct.hpp"
 
 namespace dfrecon {
+
+std::vector<Rgb> displayColours(const ContourSet& set) {
+    std::vector<Rgb> used;
+    for (const Roi& roi : set.rois)
+        if (roi.colour) used.push_back(*roi.colour);
+    auto isUsed = [&](const Rgb& c) {
+        return std::find(used.begin(), used.end(), c) != used.end();
+    };
+    std::vector<Rgb> colours;
+    std::size_t nextDefault = 0;
+    std::int64_t nextCategorical = 0;
+    for (const Roi& roi : set.rois) {
+        if (roi.colour) {
+            colours.push_back(*roi.colour);
+            continue;
+        }
+        while (nextDefault < kDefaultRoiColours.size() && isUsed(kDefaultRoiColours[nextDefault]))
+            ++nextDefault;
+        Rgb colour;
+        if (nextDefault < kDefaultRoiColours.size()) {
+            colour = kDefaultRoiColours[nextDefault++];
+        } else {
+            // 2^24 colours: an unused one comes within as many tries as
+            // there are ROIs.
+            do colour = categoricalColour(nextCategorical++);
+            while (isUsed(colour));
+        }
+        used.push_back(colour);
+        colours.push_back(colour);
+    }
+    return colours;
+}
 
 bool isRoiInterpretedType(const std::string& type) {
     return std::any_of(kRoiInterpretedTypes.begin(), kRoiInterpretedTypes.end(),
@@ -309,11 +342,11 @@ RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string
     if (series) addReferencedSeries(*frame, studyUid, *series);
 
     RtStructWriteSummary summary;
+    const std::vector<Rgb> colours = displayColours(contours);
     for (std::size_t i = 0; i < contours.rois.size(); ++i) {
         const Roi& roi = contours.rois[i];
         const RoiToWrite what{
-            roi, roi.number.value_or(int(i) + 1),
-            roi.colour.value_or(kDefaultRoiColours[i % kDefaultRoiColours.size()]),
+            roi, roi.number.value_or(int(i) + 1), colours[i],
             roi.interpretedType.empty() ? options.defaultRoiType : roi.interpretedType};
         addRoi(rt, what, frameUid, series, summary);
     }

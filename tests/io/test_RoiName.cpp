@@ -29,6 +29,6 @@ TEST(RoiName, MendedNamesPassTheRule) {
     longName += "\xc3\xa9";
     const std::string cut = mendedRoiName(longName);
     EXPECT_EQ(cut.size(), kMaxRoiNameBytes - 1);
-    for (const std::string name : {std::string("caf\xe9\x01"), longName, std::string("\x01\x02")})
+    for (const std::string& name : {std::string("caf\xe9\x01"), longName, std::string("\x01\x02")})
         EXPECT_EQ(roiNameProblem(mendedRoiName(name)), "") << name;
 }

@@ -688,7 +688,7 @@ TEST(RtStruct, ContoursReferToTheImagesOfTheirPlanes) {
             types[r]);
     EXPECT_EQ(itemText(*itemOf(data, DCM_ROIContourSequence, 0), DCM_ROIDisplayColor), "1\\2\\3");
     for (unsigned long r = 1; r < 3; ++r) {
-        const Rgb c = kDefaultRoiColours[r];
+        const Rgb c = kDefaultRoiColours[r - 1];  // the palette in order for ROIs without one
         EXPECT_EQ(itemText(*itemOf(data, DCM_ROIContourSequence, r), DCM_ROIDisplayColor),
                   std::to_string(c[0]) + "\\" + std::to_string(c[1]) + "\\" + std::to_string(c[2]));
     }
@@ -705,7 +705,7 @@ TEST(RtStruct, ContoursReferToTheImagesOfTheirPlanes) {
     EXPECT_NE(all.find("RTStructureSet"), std::string::npos) << all;
 }
 
-TEST(RtStruct, DefaultColoursDifferAndCycle) {
+TEST(RtStruct, DefaultColoursDifferFromEveryColourOfTheSet) {
     for (std::size_t i = 0; i < kDefaultRoiColours.size(); ++i)
         for (std::size_t j = 0; j < i; ++j) {
             const Rgb a = kDefaultRoiColours[i], b = kDefaultRoiColours[j];
@@ -716,13 +716,20 @@ TEST(RtStruct, DefaultColoursDifferAndCycle) {
         }
     ContourSet set;
     for (int i = 0; i < 14; ++i) set.rois.push_back(squaresAt("r" + std::to_string(i), {0}));
+    // One ROI with a colour of the palette: no other ROI gets it.
+    set.rois[5].colour = kDefaultRoiColours[0];
     const std::string path = tempPath("palette");
     writeRtStruct(set, path);
     const RtStructLoad load = readRtStruct(path);
+    std::vector<Rgb> seen;
     for (std::size_t i = 0; i < 14; ++i) {
         ASSERT_TRUE(load.contours.rois[i].colour.has_value());
-        const Rgb want = kDefaultRoiColours[i % 12], got = *load.contours.rois[i].colour;
-        EXPECT_EQ(got, want) << i;
+        const Rgb got = *load.contours.rois[i].colour;
+        // The palette in order, skipping the colour ROI 5 has, then others.
+        if (i < 5) EXPECT_EQ(got, kDefaultRoiColours[i + 1]) << i;
+        if (i == 5) EXPECT_EQ(got, kDefaultRoiColours[0]);
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), got), 0) << i;  // no two alike
+        seen.push_back(got);
         EXPECT_EQ(load.contours.rois[i].interpretedType, "ORGAN");
     }
     fs::remove(path);
