@@ -51,6 +51,12 @@ struct PlaneSectionOptions {
     std::size_t maxSamplesPerBatch = std::size_t(1) << 22;
 };
 
+/// The lattice shifts tried in turn where the sections of one lattice do
+/// not reconstruct into a valid solid (reconstruction still folds on some
+/// pairs of planes whose sections nearly coincide): the default first.
+/// `dfrecon margin`/`combine` and Python's margin()/combine() alike.
+inline constexpr double kLatticeShifts[] = {0.381966, 0.618034, 0.145898};
+
 /// The field at points given in plane coordinates (x, y on the plane, z
 /// along its normal): negative inside, 1-Lipschitz along the planes.
 using PlaneField = std::function<std::vector<double>(const std::vector<Vec3>& planePoints)>;

@@ -128,7 +128,6 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
     // The sections are exact at any lattice; where the ones of one lattice
     // do not reconstruct (reconstruction still folds on some pairs of
     // planes whose sections nearly coincide), the next lattice is tried.
-    constexpr double kLatticeShifts[] = {0.381966, 0.618034, 0.145898};
     StructureAlgebraResult result;
     RtStructWriteSummary summary;
     std::optional<ContourInput> back;

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -22,7 +23,10 @@
 #include "app/WorkerRuntimes.hpp"
 #include "cl/ClError.hpp"
 #include "dfrecon/dfrecon.hpp"
+#include "io/ContourFormat.hpp"
 #include "io/MeshIO.hpp"
+#include "io/RoiName.hpp"
+#include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
 
 namespace py = pybind11;
@@ -421,6 +425,84 @@ ComparedSolid solidOf(const PyMesh& mesh, const char* side) {
 
 }  // namespace
 
+// ---- structure algebra -----------------------------------------------------
+
+// What margin() and combine() take besides the expression, as the program's
+// options of the same names.
+StructureAlgebraOptions algebraOptions(double stepMm, double minAreaMm2, const py::object& colour,
+                                       const std::string& roiType, const std::string& what) {
+    if (!(stepMm >= 0.01 && stepMm <= 5))
+        throw py::value_error(what + ": step_mm must be within 0.01 .. 5 mm");
+    if (!(minAreaMm2 >= 0 && minAreaMm2 <= 1e6))
+        throw py::value_error(what + ": min_area_mm2 must be within 0 .. 1e6 mm²");
+    StructureAlgebraOptions options;
+    options.sections.stepMm = stepMm;
+    options.sections.minContourAreaMm2 = minAreaMm2;
+    if (!colour.is_none()) {
+        const auto c = py::cast<std::vector<int>>(colour);
+        if (c.size() != 3 ||
+            std::any_of(c.begin(), c.end(), [](int v) { return v < 0 || v > 255; }))
+            throw py::value_error(what + ": colour must be three integers 0-255");
+        options.colour = Rgb{std::uint8_t(c[0]), std::uint8_t(c[1]), std::uint8_t(c[2])};
+    }
+    if (!roiType.empty() && !isRoiInterpretedType(roiType))
+        throw py::value_error(what + ": roi_type '" + roiType +
+                              "' is not an RT ROI Interpreted Type");
+    options.interpretedType = roiType;
+    return options;
+}
+
+// `evaluate(options)` on each lattice of kLatticeShifts in turn until the new
+// ROI reconstructs into a valid closed solid, as the program's margin and
+// combine do; the last one otherwise (its report says it is not valid).
+template <class Evaluate>
+std::pair<StructureAlgebraResult, RoiSurface> onLattices(StructureAlgebraOptions options,
+                                                         Evaluate&& evaluate) {
+    return onDevice([&](ocl::Runtime& device) {
+        std::pair<StructureAlgebraResult, RoiSurface> made;
+        for (const double shift : kLatticeShifts) {
+            options.sections.latticeShift = shift;
+            made.first = evaluate(device, options);
+            made.second = reconstructRoi(device, made.first.roi, options.surfaces);
+            if (made.second.check.validSolid()) break;
+        }
+        return made;
+    });
+}
+
+// The set with the new ROI added last, numbered after every other, and a
+// report of it as the program's --json gives one.
+py::tuple withNewRoi(const PyStructureSet& set, std::pair<StructureAlgebraResult, RoiSurface> made,
+                     const std::string& what) {
+    Roi& roi = made.first.roi;
+    const std::string problem = roiNameProblem(roi.name);
+    if (!problem.empty()) throw py::value_error(what + ": the new ROI's name " + problem);
+    if (set.read.contours.findRoi(roi.name))
+        throw py::value_error(what + ": the structure set already has an ROI named '" + roi.name +
+                              "' (name=... gives another)");
+    PyStructureSet out = set;
+    // After every number a written RTSTRUCT gives (an ROI without one is
+    // numbered by its position).
+    int next = 1;
+    for (std::size_t k = 0; k < out.read.contours.rois.size(); ++k)
+        next = std::max(next, out.read.contours.rois[k].number.value_or(int(k) + 1) + 1);
+    roi.number = next;
+    const MeshCheckReport& check = made.second.check;
+    py::dict report;
+    report["roi"] = roi.name;
+    report["expression"] = made.first.expression.text();
+    report["planes"] = roi.slices.size();
+    report["contourVolumeCc"] = contourVolumeMm3(roi) / app::kCubicMmPerCc;
+    report["surfaceVolumeCc"] = check.volumeMm3 / app::kCubicMmPerCc;
+    report["validSolid"] = check.validSolid();
+    py::dict sources;
+    for (const auto& [name, mm3] : made.first.surfaceVolumesMm3)
+        sources[py::str(name)] = mm3 / app::kCubicMmPerCc;
+    report["sourceSurfaceVolumesCc"] = sources;
+    out.read.contours.rois.push_back(std::move(roi));
+    return py::make_tuple(std::move(out), report);
+}
+
 PYBIND11_MODULE(_dfrecon, m) {
     m.doc() = "dfrecon's C++ core; use the documented API of the dfrecon package";
     m.attr("__version__") = version();
@@ -479,13 +561,112 @@ PYBIND11_MODULE(_dfrecon, m) {
                  for (const Roi& roi : s.read.contours.rois) rois.append(roiDict(roi));
                  return rois;
              })
-        .def("_write_slices", [](const PyStructureSet& s, const std::string& path) {
-            writeSlicesFile(s.read.contours, path);
-        });
+        .def("_write_slices",
+             [](const PyStructureSet& s, const std::string& path) {
+                 writeSlicesFile(s.read.contours, path);
+             })
+        .def("_write_rtstruct",
+             [](const PyStructureSet& s, const std::string& path, const std::string& like) {
+                 // The references of `like` (a CT folder or an RTSTRUCT), else of
+                 // the set's own source when it is an RTSTRUCT: a structure set
+                 // that goes back to the planning system stays on its images.
+                 RtStructWriteOptions options;
+                 if (!like.empty())
+                     options = referenceFrom(like);
+                 else if (s.read.format == ContourFormat::RtStruct)
+                     options = referenceFrom(s.source);
+                 options.structureSetLabel = "dfrecon";
+                 py::gil_scoped_release release;
+                 writeRtStruct(s.read.contours, path, options);
+             });
 
     m.def("_read_contours", &readSet, py::arg("path"), py::arg("label_table"),
           py::arg("accept_intensity"));
     m.def("_from_contours", &setFromContours, py::arg("rois"), py::arg("colours"));
+
+    m.def("_margin", [](const PyStructureSet& set, const py::object& roiChoice,
+                        const std::vector<double>& mm, const std::string& name, double stepMm,
+                        double minAreaMm2, const py::object& colour, const std::string& roiType) {
+        const Roi& source = chooseRoi(set.read, roiChoice);
+        if (mm.size() != 1 && mm.size() != 6)
+            throw py::value_error("margin(): mm is one number or six (R, L, A, P, S, I)");
+        DirectionalMargin margin = DirectionalMargin::uniform(mm[0]);
+        if (mm.size() == 6) std::copy(mm.begin(), mm.end(), margin.mm.begin());
+        for (const double v : margin.mm)
+            if (!std::isfinite(v) || std::abs(v) > 200)
+                throw py::value_error("margin(): mm must be finite and within ±200 mm");
+        if (margin.isZero() || (margin.grows() && margin.shrinks()))
+            throw py::value_error("margin(): mm must all grow (> 0) or all shrink (< 0)");
+        const std::string newName =
+            !name.empty()
+                ? name
+                : source.name + (margin.shrinks() ? "-" : "+") +
+                      (margin.isUniform() ? std::to_string(int(std::lround(std::abs(margin.mm[0]))))
+                                          : std::string("margin"));
+        StructureAlgebraOptions options =
+            algebraOptions(stepMm, minAreaMm2, colour, roiType, "margin()");
+        if (options.interpretedType.empty()) options.interpretedType = source.interpretedType;
+        auto made =
+            onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
+                return marginRoi(device, set.read.contours, source.name, margin, newName, o);
+            });
+        return withNewRoi(set, std::move(made), "margin()");
+    });
+
+    m.def("_combine", [](const PyStructureSet& set, const std::string& definition, double stepMm,
+                         double minAreaMm2, const py::object& colour, const std::string& roiType) {
+        StructureAlgebraOptions options = algebraOptions(
+            stepMm, minAreaMm2, colour, roiType.empty() ? "CONTROL" : roiType, "combine()");
+        std::vector<std::string> names;
+        for (const Roi& roi : set.read.contours.rois) names.push_back(roi.name);
+        RoiExpression expression;
+        try {
+            expression = parseRoiExpression(definition, names);
+        } catch (const ExpressionError& e) {
+            throw py::value_error(std::string("combine(): ") + e.what());
+        }
+        const std::string problem = roiNameProblem(expression.name);
+        if (!problem.empty()) throw py::value_error("combine(): the new ROI's name " + problem);
+        auto made =
+            onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
+                return evaluateRoiExpression(device, set.read.contours, expression, o);
+            });
+        return withNewRoi(set, std::move(made), "combine()");
+    });
+
+    m.def("_histogram",
+          [](const PyStructureSet& set, const py::object& oarChoice, const py::object& targetChoice,
+             double volumeStepMm, double surfaceSpacingMm) {
+              const Roi& oar = chooseRoi(set.read, oarChoice);
+              const Roi& target = chooseRoi(set.read, targetChoice);
+              if (!(volumeStepMm > 0) || !std::isfinite(volumeStepMm) || !(surfaceSpacingMm > 0) ||
+                  !std::isfinite(surfaceSpacingMm))
+                  throw py::value_error(
+                      "histogram(): volume_step_mm and surface_spacing_mm must be finite and > 0");
+              DistanceHistogramOptions options;
+              options.volumeStepMm = volumeStepMm;
+              options.surfaceSpacingMm = surfaceSpacingMm;
+              const DistanceHistograms h = onDevice([&](ocl::Runtime& device) {
+                  return roiDistanceHistograms(device, set.read.contours, oar.name, target.name, {},
+                                               options);
+              });
+              auto weighted = [](const WeightedDistances& w) {
+                  py::dict d;
+                  d["distance_mm"] =
+                      py::array_t<double>(py::ssize_t(w.distanceMm.size()), w.distanceMm.data());
+                  d["weight"] = py::array_t<double>(py::ssize_t(w.weight.size()), w.weight.data());
+                  d["total"] = w.total;
+                  return d;
+              };
+              py::dict out;
+              out["volume"] = weighted(h.volume);
+              out["surface"] = weighted(h.surface);
+              out["volume_step_mm"] = h.volumeStepMm;
+              out["surface_spacing_mm"] = h.surfaceSpacingMm;
+              out["oar_volume_cc"] = h.oarVolumeMm3 / app::kCubicMmPerCc;
+              out["oar_area_mm2"] = h.oarAreaMm2;
+              return out;
+          });
 
     py::class_<PyMesh>(m, "_Mesh")
         .def(py::init([](const py::object& vertices, const py::object& faces) {

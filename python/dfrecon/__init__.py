@@ -53,6 +53,9 @@ __all__ = [
     "read_contours",
     "read_mesh",
     "reconstruct",
+    "margin",
+    "combine",
+    "histogram",
     "slice_fields",
     "distance_field",
     "simplify",
@@ -176,6 +179,22 @@ class StructureSet:
         """Writes the contours as a .slices file (exact: every number reads back the same)."""
         self._core._write_slices(_os.fspath(path))
 
+    def write(self, path, *, like=None):
+        """Writes the set to `path`: a DICOM RT Structure Set for ``.dcm``
+        (what ``dfrecon convert``/``margin`` write), else a ``.slices`` file.
+        An RTSTRUCT refers to the images of `like` (a CT series folder or
+        another RTSTRUCT), else, where the set was read from an RTSTRUCT, to
+        that file's study, frame of reference and series, so it goes back to
+        the planning system on the same images. ROIs without a colour get
+        one no other ROI of the set has. Written atomically."""
+        path = _os.fspath(path)
+        if path.lower().endswith(".dcm"):
+            self._core._write_rtstruct(path, _os.fspath(like) if like is not None else "")
+        elif like is not None:
+            raise ValueError("write(): like= is for DICOM output (.dcm)")
+        else:
+            self._core._write_slices(path)
+
     def __repr__(self):
         return "StructureSet(%s, %d ROIs: %s)" % (
             self.format, len(self.rois), ", ".join(self.names))
@@ -191,6 +210,51 @@ def read_contours(path, *, label_table=None, accept_intensity=False):
     return StructureSet(_core_module._read_contours(
         _os.fspath(path), _os.fspath(label_table) if label_table else "",
         bool(accept_intensity)))
+
+
+def margin(src, roi, mm, *, name=None, step_mm=0.25, min_area_mm2=1e-4, colour=None,
+           roi_type=None):
+    """ROI `roi` of `src` grown (``mm`` > 0) or shrunk (< 0) by an exact 3D
+    margin, as ``dfrecon margin`` computes it: ``mm`` one number, or six
+    (R, L, A, P, S, I) for a margin per patient direction (all of one sign;
+    at most 200 mm). Returns ``(StructureSet, report)``: `src`'s ROIs with
+    the new one last (named `name`, default ``ROI+MM``/``ROI-MM``; its type
+    `roi_type`, default the source's), and a dict with its contour and
+    surface volumes, planes and validity. ``step_mm`` and ``min_area_mm2``
+    are the program's ``--step`` and ``--min-area``. Write the set with
+    :meth:`StructureSet.write`."""
+    ss = _structure_set(src)
+    values = [float(mm)] if isinstance(mm, (int, float)) else [float(v) for v in mm]
+    core, report = _core_module._margin(ss._core, _roi_key(roi), values, name or "",
+                                        float(step_mm), float(min_area_mm2), colour,
+                                        roi_type or "")
+    return StructureSet(core), report
+
+
+def combine(src, definition, *, step_mm=0.25, min_area_mm2=1e-4, colour=None, roi_type=None):
+    """A new ROI from an expression of `src`'s ROIs, as ``dfrecon combine
+    --expr``: ``"Ring = (PTV + 20) - (PTV + 3)"`` (``|``/``+`` union, ``&``
+    intersection, ``-`` difference, ``^`` exclusive or, ``ROI + 5`` a margin;
+    docs/cli.md). Returns ``(StructureSet, report)`` as :func:`margin`; the
+    new ROI's type defaults to CONTROL. An expression that does not parse
+    raises ValueError with its column."""
+    ss = _structure_set(src)
+    core, report = _core_module._combine(ss._core, str(definition), float(step_mm),
+                                         float(min_area_mm2), colour, roi_type or "")
+    return StructureSet(core), report
+
+
+def histogram(src, oar, target, *, volume_step_mm=0.5, surface_spacing_mm=0.5):
+    """The overlap-volume histogram of ROI `oar` against ROI `target`, as
+    ``dfrecon histogram``: returns a dict whose ``volume`` and ``surface``
+    hold NumPy arrays ``distance_mm`` (signed distance of each cell of the
+    OAR's volume or surface to the target's surface, < 0 inside it, sorted)
+    and ``weight`` (each cell's mm³ or mm²) with their ``total``; the
+    fraction of the OAR within d of the target is
+    ``weight[distance_mm <= d].sum() / total``."""
+    ss = _structure_set(src)
+    return _core_module._histogram(ss._core, _roi_key(oar), _roi_key(target),
+                                   float(volume_step_mm), float(surface_spacing_mm))
 
 
 def _structure_set(src):

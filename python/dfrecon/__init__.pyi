@@ -53,6 +53,7 @@ class StructureSet:
     def __getitem__(self, key: Union[str, int]) -> Roi: ...
     def __contains__(self, key: Union[str, int]) -> bool: ...
     def write_slices(self, path: _Path) -> None: ...
+    def write(self, path: _Path, *, like: Optional[_Path] = ...) -> None: ...
 
 def read_contours(
     path: _Path,
@@ -93,6 +94,35 @@ def reconstruct(
 def reconstruct(
     src: Union[StructureSet, _Path], roi: None = ..., *, jobs: int = ..., **options: Any
 ) -> Union[Mesh, Dict[str, Mesh]]: ...
+
+def margin(
+    src: Union[StructureSet, _Path],
+    roi: Union[str, int, Roi],
+    mm: Union[float, Sequence[float]],
+    *,
+    name: Optional[str] = ...,
+    step_mm: float = ...,
+    min_area_mm2: float = ...,
+    colour: Optional[Tuple[int, int, int]] = ...,
+    roi_type: Optional[str] = ...,
+) -> Tuple[StructureSet, Dict[str, Any]]: ...
+def combine(
+    src: Union[StructureSet, _Path],
+    definition: str,
+    *,
+    step_mm: float = ...,
+    min_area_mm2: float = ...,
+    colour: Optional[Tuple[int, int, int]] = ...,
+    roi_type: Optional[str] = ...,
+) -> Tuple[StructureSet, Dict[str, Any]]: ...
+def histogram(
+    src: Union[StructureSet, _Path],
+    oar: Union[str, int, Roi],
+    target: Union[str, int, Roi],
+    *,
+    volume_step_mm: float = ...,
+    surface_spacing_mm: float = ...,
+) -> Dict[str, Any]: ...
 
 class Field:
     values: npt.NDArray[np.float32]

@@ -368,3 +368,37 @@ def test_a_package_without_its_extension_says_what_to_build(tmp_path):
     assert run.returncode != 0
     assert "make build" in run.stderr and "pip install" in run.stderr, run.stderr
     assert "circular import" not in run.stderr.splitlines()[-1]
+
+
+def test_margin_combine_and_histogram_give_the_programs_numbers(cli, examples, tmp_path):
+    path = examples / "two-rois.slices"
+    # margin: the same new ROI as `dfrecon margin`, read back from its file.
+    out = tmp_path / "margin.slices"
+    report = cli("margin", path, "--roi", "PTV", "--mm", "3", "--json", "-o", out)
+    grown, mine = dfrecon.margin(path, "PTV", 3)
+    assert grown.names[-1] == "PTV+3" and mine["validSolid"]
+    written = dfrecon.read_contours(out)["PTV+3"]
+    assert grown["PTV+3"].contour_volume_cc == pytest.approx(written.contour_volume_cc, rel=1e-9)
+    assert mine["contourVolumeCc"] == pytest.approx(report["contourVolumeCc"], rel=1e-9)
+    # The new ROI's colour is none of the others'; the set writes and reads back.
+    grown.write(tmp_path / "grown.dcm")
+    back = dfrecon.read_contours(tmp_path / "grown.dcm")
+    colours = [r.colour for r in back.rois]
+    assert len(set(colours)) == len(colours), colours
+    assert back.names == grown.names
+    # combine: an expression, the same volume as the program's.
+    out = tmp_path / "ring.slices"
+    report = cli("combine", path, "--expr", "Ring = (PTV + 4) - PTV", "--json", "-o", out)
+    ring, mine = dfrecon.combine(path, "Ring = (PTV + 4) - PTV")
+    assert mine["contourVolumeCc"] == pytest.approx(report["contourVolumeCc"], rel=1e-9)
+    with pytest.raises(ValueError, match="column"):
+        dfrecon.combine(path, "Ring = (PTV + 4 - ")
+    with pytest.raises(ValueError, match="control character"):
+        dfrecon.margin(path, "PTV", 2, name="bad\tname")
+    # histogram: the OAR's whole volume within its farthest distance.
+    h = dfrecon.histogram(path, "Left Kidney", "PTV")
+    v = h["volume"]
+    assert v["distance_mm"].shape == v["weight"].shape and np.all(np.diff(v["distance_mm"]) >= 0)
+    assert v["weight"].sum() == pytest.approx(v["total"])
+    assert h["oar_volume_cc"] == pytest.approx(
+        dfrecon.reconstruct(path, "Left Kidney").volume_cc, rel=1e-6)
