@@ -217,7 +217,9 @@ py::dict roiDict(const Roi& roi) {
                       ? py::object(py::make_tuple(int((*roi.colour)[0]), int((*roi.colour)[1]),
                                                   int((*roi.colour)[2])))
                       : py::none();
-    d["interpreted_type"] = roi.interpretedType;
+    // None where the file gives none, as --json's null.
+    d["interpreted_type"] = roi.interpretedType.empty() ? py::object(py::none())
+                                                        : py::object(py::str(roi.interpretedType));
     d["defect"] = roi.defect ? py::object(py::str(roi.defect->what())) : py::none();
     py::array_t<double> planes(py::ssize_t(roi.slices.size()));
     py::list contours;

@@ -94,8 +94,8 @@ class Roi:
     """One structure of a structure set.
 
     Attributes: ``name`` (str), ``number`` (DICOM ROI Number or None),
-    ``colour`` ((r, g, b) 0-255 or None), ``interpreted_type`` (str, DICOM
-    RTROIInterpretedType or ''), ``planes`` (float64 array: each plane's
+    ``colour`` ((r, g, b) 0-255 or None), ``interpreted_type`` (str or None, DICOM
+    RTROIInterpretedType; None where the file gives none), ``planes`` (float64 array: each plane's
     position along the stack's normal, mm), ``contours`` (list of (n, 3)
     float64 arrays, one closed contour each, patient mm), ``orientation``
     ('axial', 'sagittal', 'coronal' or 'oblique'), ``contour_volume_cc``
@@ -417,13 +417,30 @@ def reconstruct(src, roi=None, *, jobs=0, **options):
             continue
         given.append((_OPTION_ALIASES[key], _option_text(value)))
     ss = _structure_set(src)
-    if roi is None and len(ss.rois) > 1:
-        names = [r.name for r in ss.rois if len(r.contours) > 0 or r.defect]
-        if len(set(names)) != len(names):
-            raise ValueError("the structure set has ROIs of one name; reconstruct them by number")
-        cores = _core_module._reconstruct_many(ss._core, names, given, int(jobs))
-        return {name: Mesh(_core=core) for name, core in zip(names, cores)}
-    return Mesh(_core=_core_module._reconstruct(ss._core, _roi_key(roi), given))
+    try:
+        if roi is None and len(ss.rois) > 1:
+            names = [r.name for r in ss.rois if len(r.contours) > 0 or r.defect]
+            if len(set(names)) != len(names):
+                raise ValueError("the structure set has ROIs of one name; reconstruct them by number")
+            cores = _core_module._reconstruct_many(ss._core, names, given, int(jobs))
+            return {name: Mesh(_core=core) for name, core in zip(names, cores)}
+        return Mesh(_core=_core_module._reconstruct(ss._core, _roi_key(roi), given))
+    except ValueError as error:
+        if isinstance(error, InputError):
+            raise
+        raise ValueError(_keywords_for_flags(str(error))) from None
+
+
+# The program's option names in messages, as this module's keywords: a
+# Python user never typed "--pixel-mm".
+_KEYWORD_OF_FLAG = {"--" + flag: keyword for keyword, flag in _OPTION_ALIASES.items()
+                    if keyword.endswith("_mm") or keyword in ("max_depth", "cap", "interpolation")}
+
+
+def _keywords_for_flags(message):
+    for flag in sorted(_KEYWORD_OF_FLAG, key=len, reverse=True):
+        message = message.replace(flag, _KEYWORD_OF_FLAG[flag])
+    return message
 
 
 # ---- fields ------------------------------------------------------------------

@@ -24,7 +24,7 @@ class Roi:
     name: str
     number: Optional[int]
     colour: Optional[_Colour]
-    interpreted_type: str
+    interpreted_type: Optional[str]
     planes: npt.NDArray[np.float64]
     contours: List[npt.NDArray[np.float64]]
     orientation: str

@@ -160,6 +160,11 @@ def test_options_are_checked_as_the_program_checks_them():
     ss = dfrecon.StructureSet.from_contours(box_set())
     with pytest.raises(ValueError, match="cap"):
         dfrecon.reconstruct(ss, cap="round")
+    # Errors name this module's keywords, not the program's flags.
+    with pytest.raises(ValueError, match="pixel_mm") as error:
+        dfrecon.reconstruct(ss, pixel_mm=float("nan"))
+    assert "--" not in str(error.value)
+    assert ss.rois[0].interpreted_type is None  # the file gives none: None, as --json's null
     with pytest.raises(TypeError, match="unexpected option"):
         dfrecon.reconstruct(ss, capp="flat")
     with pytest.raises(KeyError):
