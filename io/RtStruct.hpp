@@ -146,6 +146,12 @@ struct RtStructWriteOptions {
     /// points all lie within kSamePlaneToleranceMm of an image's plane refers
     /// to that image in its own Contour Image Sequence.
     std::optional<DicomImageSeries> imageSeries;
+    /// Without imageSeries: the series a reference RTSTRUCT refers to (its
+    /// RT Referenced Series, UIDs only: seriesInstanceUid and each image's
+    /// SOP class and instance, no geometry), listed again in the frame of
+    /// reference so that a structure set written back to the planning system
+    /// stays on the images of its source. Contours are not matched to them.
+    std::optional<DicomImageSeries> referencedSeries;
 };
 
 /// What `--like PATH` refers the output to. A folder, or a file that is an
@@ -153,7 +159,8 @@ struct RtStructWriteOptions {
 /// (readDicomImageSeries): its patient, study and frame of reference, and
 /// the series itself. Any other DICOM file (an RTSTRUCT, an RT Plan) gives
 /// its patient, study and frame of reference (FrameOfReferenceUID, else the
-/// first ReferencedFrameOfReferenceSequence item's), and no images. Throws
+/// first ReferencedFrameOfReferenceSequence item's) and, for an RTSTRUCT,
+/// the first series its frame refers to (referencedSeries). Throws
 /// InputError naming the file and tag when it is not DICOM, has no frame of
 /// reference or study, or is not a readable series.
 RtStructWriteOptions referenceFrom(const std::string& dicomPath);

@@ -231,6 +231,30 @@ void addReferencedSeries(DRTReferencedFrameOfReferenceSequence::Item& frame,
         addImageReference(referenced->getContourImageSequence(), image);
 }
 
+// The first RT Referenced Series of an RTSTRUCT's frame of reference item:
+// its SeriesInstanceUID and the SOP class and instance UIDs of its Contour
+// Image Sequence; none where the file names no series.
+std::optional<DicomImageSeries> referencedSeriesOf(DcmItem& frame) {
+    DcmItem* study = nullptr;
+    DcmItem* series = nullptr;
+    if (frame.findAndGetSequenceItem(DCM_RTReferencedStudySequence, study, 0).bad() ||
+        study->findAndGetSequenceItem(DCM_RTReferencedSeriesSequence, series, 0).bad())
+        return std::nullopt;
+    DicomImageSeries referenced;
+    referenced.seriesInstanceUid = dicomText(*series, DCM_SeriesInstanceUID);
+    if (referenced.seriesInstanceUid.empty()) return std::nullopt;
+    DcmSequenceOfItems* images = nullptr;
+    if (series->findAndGetSequence(DCM_ContourImageSequence, images).good() && images)
+        for (unsigned long i = 0; i < images->card(); ++i) {
+            DicomImage image;
+            image.sopClassUid = dicomText(*images->getItem(i), DCM_ReferencedSOPClassUID);
+            image.sopInstanceUid = dicomText(*images->getItem(i), DCM_ReferencedSOPInstanceUID);
+            if (!image.sopClassUid.empty() && !image.sopInstanceUid.empty())
+                referenced.images.push_back(std::move(image));
+        }
+    return referenced;
+}
+
 }  // namespace
 
 RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
@@ -254,9 +278,9 @@ RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
             options.patientStudy = dicomPatientStudy(data);
             options.frameOfReferenceUid = dicomText(data, DCM_FrameOfReferenceUID);
             DcmItem* frame = nullptr;
-            if (options.frameOfReferenceUid.empty() &&
-                data.findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0)
-                    .good())
+            if (data.findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, frame, 0).bad())
+                frame = nullptr;
+            if (options.frameOfReferenceUid.empty() && frame)
                 options.frameOfReferenceUid = dicomText(*frame, DCM_FrameOfReferenceUID);
             if (options.frameOfReferenceUid.empty())
                 throw InputError(dicomPath, 0,
@@ -264,6 +288,7 @@ RtStructWriteOptions referenceFrom(const std::string& dicomPath) {
             if (options.patientStudy.studyInstanceUid.empty())
                 throw InputError(dicomPath, 0,
                                  "no " + dicomTagName(DCM_StudyInstanceUID) + " to refer to");
+            if (frame) options.referencedSeries = referencedSeriesOf(*frame);
             return options;
         }
     }
@@ -339,7 +364,10 @@ RtStructWriteSummary writeRtStruct(const ContourSet& contours, const std::string
           "ReferencedFrameOfReferenceSequence");
     check(frame->setFrameOfReferenceUID(frameUid.c_str()), "FrameOfReferenceUID");
     const DicomImageSeries* series = options.imageSeries ? &*options.imageSeries : nullptr;
-    if (series) addReferencedSeries(*frame, studyUid, *series);
+    if (series)
+        addReferencedSeries(*frame, studyUid, *series);
+    else if (options.referencedSeries)
+        addReferencedSeries(*frame, studyUid, *options.referencedSeries);
 
     RtStructWriteSummary summary;
     const std::vector<Rgb> colours = displayColours(contours);

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <tuple>
 
 #include "io/RtStruct.hpp"
@@ -703,6 +704,48 @@ TEST(RtStruct, ContoursReferToTheImagesOfTheirPlanes) {
     const auto [errors, all] = dciodvfyErrors(path);
     EXPECT_EQ(errors, 0u) << all;
     EXPECT_NE(all.find("RTStructureSet"), std::string::npos) << all;
+}
+
+TEST(RtStruct, AStructureSetWrittenLikeAnRtStructKeepsItsSeries) {
+    // margin/combine write back beside their source RTSTRUCT: the new file
+    // must refer to the same images, or the planning system cannot place it.
+    dfrecon::testing::TempDir dir("rt-series-again");
+    const std::string ct = dir / "ct";
+    fs::create_directories(ct);
+    dfrecon::testing::writeSyntheticSeries(ct, 5, 0, 2);
+    ContourSet set;
+    set.rois.push_back(squaresAt("tumour", {2, 4}));
+    const RtStructWriteOptions fromCt = referenceFrom(ct);
+    const std::string first = dir / "first.dcm";
+    writeRtStruct(set, first, fromCt);
+    const RtStructWriteOptions like = referenceFrom(first);
+    EXPECT_FALSE(like.imageSeries.has_value());
+    ASSERT_TRUE(like.referencedSeries.has_value());
+    EXPECT_EQ(like.referencedSeries->seriesInstanceUid, fromCt.imageSeries->seriesInstanceUid);
+    ASSERT_EQ(like.referencedSeries->images.size(), 5u);
+    set.rois.push_back(squaresAt("tumour+3", {2, 4}));
+    const std::string second = dir / "second.dcm";
+    writeRtStruct(set, second, like);
+    DcmFileFormat file;
+    ASSERT_TRUE(file.loadFile(second.c_str()).good());
+    DcmItem* frame = itemOf(*file.getDataset(), DCM_ReferencedFrameOfReferenceSequence);
+    ASSERT_NE(frame, nullptr);
+    EXPECT_EQ(itemText(*frame, DCM_FrameOfReferenceUID), fromCt.frameOfReferenceUid);
+    DcmItem* study = itemOf(*frame, DCM_RTReferencedStudySequence);
+    ASSERT_NE(study, nullptr);
+    DcmItem* series = itemOf(*study, DCM_RTReferencedSeriesSequence);
+    ASSERT_NE(series, nullptr);
+    EXPECT_EQ(itemText(*series, DCM_SeriesInstanceUID), fromCt.imageSeries->seriesInstanceUid);
+    ASSERT_EQ(itemCount(*series, DCM_ContourImageSequence), 5u);
+    std::set<std::string> images, referenced;
+    for (const DicomImage& image : fromCt.imageSeries->images) images.insert(image.sopInstanceUid);
+    DcmSequenceOfItems* sequence = nullptr;
+    ASSERT_TRUE(series->findAndGetSequence(DCM_ContourImageSequence, sequence).good());
+    for (unsigned long i = 0; i < sequence->card(); ++i)
+        referenced.insert(itemText(*sequence->getItem(i), DCM_ReferencedSOPInstanceUID));
+    EXPECT_EQ(referenced, images);
+    const auto [errors, all] = dciodvfyErrors(second);
+    EXPECT_EQ(errors, 0u) << all;
 }
 
 TEST(RtStruct, DefaultColoursDifferFromEveryColourOfTheSet) {
