@@ -270,3 +270,79 @@ TEST(HtmlReport, HostileNamesStayTextAndThePageDraws) {
               std::string::npos);
     EXPECT_NE(dom.out.find("&lt;!--&lt;script&gt;A&amp;B&gt;C"), std::string::npos);
 }
+
+namespace report_views_test {
+
+// A .slices file: a box ROI `name` of x × y on planes z0..z1 every 5 mm.
+std::string boxRoi(const std::string& name, const std::string& colour, double x, double y,
+                   double z0, double z1) {
+    std::string text = "roi " + name + " " + colour + "\n";
+    for (double z = z0; z <= z1 + 1e-9; z += 5) {
+        text += "slice " + std::to_string(z) + "\ncontour 4\n";
+        text += std::to_string(-x / 2) + " " + std::to_string(-y / 2) + "\n";
+        text += std::to_string(x / 2) + " " + std::to_string(-y / 2) + "\n";
+        text += std::to_string(x / 2) + " " + std::to_string(y / 2) + "\n";
+        text += std::to_string(-x / 2) + " " + std::to_string(y / 2) + "\n";
+    }
+    return text;
+}
+
+// Pixels of the view's half where green leads red and blue by 30.
+std::size_t greenPixels(const cv::Mat& image) {
+    std::size_t count = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = image.cols / 2; x < image.cols; ++x) {
+            const cv::Vec3b bgr = image.at<cv::Vec3b>(y, x);
+            if (bgr[1] > bgr[2] + 30 && bgr[1] > bgr[0] + 30) ++count;
+        }
+    return count;
+}
+
+// Pixels of the view's half that are not its background (0x20242a).
+std::size_t drawnPixels(const cv::Mat& image) {
+    std::size_t count = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = image.cols / 2; x < image.cols; ++x) {
+            const cv::Vec3b bgr = image.at<cv::Vec3b>(y, x);
+            if (std::abs(int(bgr[2]) - 0x20) + std::abs(int(bgr[1]) - 0x24) +
+                    std::abs(int(bgr[0]) - 0x2a) >
+                40)
+                ++count;
+        }
+    return count;
+}
+
+}  // namespace report_views_test
+
+TEST(HtmlReport, OutlinesAreTranslucentAndViewsAreAnatomical) {
+    if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " missing (make setup installs it)";
+    using namespace report_views_test;
+    // A wide, shallow body (60 × 20 × 40 mm) around a green organ.
+    const fs::path input = scratch() / "nested.slices";
+    std::ofstream(input) << "dfrecon-slices 1\nunits mm\n"
+                         << boxRoi("Body", "230 40 40", 60, 20, 0, 40)
+                         << boxRoi("Organ", "0 200 0", 10, 8, 10, 30);
+    const fs::path page = scratch() / "nested.html";
+    ASSERT_EQ(runDfrecon("-q reconstruct " + input.string() + " --all -o " +
+                         (scratch() / "nested").string() + " --report " + page.string())
+                  .exitCode,
+              0);
+    // Anterior by default, named on the page; the organ shows through the
+    // body, which starts translucent because it holds the organ.
+    const CliResult dom = browse(page, "--dump-dom");
+    EXPECT_EQ(bodyData(dom.out, "view"), "anterior");
+    EXPECT_EQ(bodyData(dom.out, "surfaces"), "2");
+    const fs::path front = scratch() / "anterior.png";
+    ASSERT_EQ(browse(page, "--screenshot=" + front.string()).exitCode, 0);
+    const cv::Mat anterior = cv::imread(front.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(anterior.empty());
+    EXPECT_GT(greenPixels(anterior), 200u);
+    // From above the body shows its 60 × 20 face instead of 60 × 40.
+    const fs::path top = scratch() / "superior.png";
+    const fs::path superiorPage = scratch() / "nested.html#view=superior";
+    ASSERT_EQ(browse(superiorPage, "--screenshot=" + top.string()).exitCode, 0);
+    const cv::Mat superior = cv::imread(top.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(superior.empty());
+    EXPECT_LT(double(drawnPixels(superior)), 0.75 * double(drawnPixels(anterior)));
+    EXPECT_EQ(bodyData(browse(superiorPage, "--dump-dom").out, "view"), "superior");
+}
