@@ -85,9 +85,10 @@ void printPair(const Comparison& r, std::ostream& out) {
                                 std::to_string(o.intersectionBoundMm3) + " mm3"
                           : std::string("exact"))
         << ")\n"
-        << "Hausdorff " << d.hausdorffMm() << " mm, HD95 " << d.hd95Mm() << " mm (pooled "
-        << d.hd95PooledMm << " mm), mean surface distance " << d.meanMm() << " mm (each within "
-        << d.spacingMm << " mm)\n"
+        << "Hausdorff " << d.hausdorffMm() << " mm (A to B " << d.aToB.maxMm << " mm, B to A "
+        << d.bToA.maxMm << " mm), HD95 " << d.hd95Mm() << " mm (pooled " << d.hd95PooledMm
+        << " mm), mean surface distance " << d.meanMm() << " mm (each within " << d.spacingMm
+        << " mm)\n"
         << "surface Dice at " << d.toleranceMm << " mm " << d.surfaceDice()
         << ", centroid distance " << r.centroidDistanceMm << " mm\n";
     if (!r.planes) return;
@@ -111,6 +112,8 @@ const std::vector<std::string> kPairColumns{"roiA",
                                             "dice",
                                             "jaccard",
                                             "hausdorffMm",
+                                            "hausdorffAToBMm",
+                                            "hausdorffBToAMm",
                                             "hd95Mm",
                                             "hd95PooledMm",
                                             "meanSurfaceDistanceMm",
@@ -126,6 +129,10 @@ nlohmann::ordered_json flatRow(const nlohmann::ordered_json& pair) {
     nlohmann::ordered_json row;
     for (const std::string& column : kPairColumns)
         row[column] = pair.contains(column) ? pair[column] : nlohmann::ordered_json();
+    if (pair.contains("aToB")) {  // the directed distances, each way
+        row["hausdorffAToBMm"] = pair["aToB"]["hausdorffMm"];
+        row["hausdorffBToAMm"] = pair["bToA"]["hausdorffMm"];
+    }
     if (pair.contains("volumeAMm3")) {
         row["volumeACc"] = pair["volumeAMm3"].get<double>() / 1000;
         row["volumeBCc"] = pair["volumeBMm3"].get<double>() / 1000;
@@ -270,8 +277,8 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
                               2)
                   << "\n";
     } else {
-        std::cout << "ROI A | ROI B | Dice | Hausdorff mm | HD95 mm | mean mm | surface Dice | "
-                     "plane Dice | added path mm\n";
+        std::cout << "ROI A | ROI B | Dice | Hausdorff mm | A to B mm | B to A mm | HD95 mm | "
+                     "mean mm | surface Dice | plane Dice | added path mm\n";
         for (const nlohmann::ordered_json& pair : pairs) {
             const nlohmann::ordered_json row = flatRow(pair);
             std::cout << pair["roiA"].get<std::string>() << " | "
@@ -285,6 +292,8 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
             for (const auto& [key, decimals] :
                  std::initializer_list<std::pair<const char*, int>>{{"dice", 4},
                                                                     {"hausdorffMm", 2},
+                                                                    {"hausdorffAToBMm", 2},
+                                                                    {"hausdorffBToAMm", 2},
                                                                     {"hd95Mm", 2},
                                                                     {"meanSurfaceDistanceMm", 2},
                                                                     {"surfaceDice", 4},

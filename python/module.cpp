@@ -23,6 +23,7 @@
 #include "app/WorkerRuntimes.hpp"
 #include "cl/ClError.hpp"
 #include "dfrecon/dfrecon.hpp"
+#include "field/Rasterization.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RoiName.hpp"
@@ -634,6 +635,48 @@ PYBIND11_MODULE(_dfrecon, m) {
                 return evaluateRoiExpression(device, set.read.contours, expression, o);
             });
         return withNewRoi(set, std::move(made), "combine()");
+    });
+
+    m.def("_rasterize", [](const PyStructureSet& set, const py::object& roiChoice, double voxelMm,
+                           const std::vector<std::pair<std::string, std::string>>& given) {
+        const Roi& roi = chooseRoi(set.read, roiChoice);
+        if (!(voxelMm >= 0.05 && voxelMm <= 50))
+            throw py::value_error("rasterize(): voxel_mm must be within 0.05 .. 50 mm");
+        const app::ReconstructSettings settings = settingsOf(given);
+        const VolumeGeometry grid = gridAroundRois({&roi}, voxelMm);
+        if (grid.voxelCount() > (std::size_t(1) << 31))
+            throw py::value_error("rasterize(): " + std::to_string(grid.voxelCount()) +
+                                  " voxels at voxel_mm=" + std::to_string(voxelMm) +
+                                  " (more than 2^31): give a larger voxel_mm");
+        std::vector<std::size_t> inside;
+        double surfaceVolumeMm3 = 0;
+        onDevice([&](ocl::Runtime& device) {
+            const RoiSurface solid = reconstructRoi(
+                device, roi, RoiReconstructOptions{settings.options, settings.maxErrorMm});
+            surfaceVolumeMm3 = solid.check.volumeMm3;
+            inside = roiSolidVoxelsInside(roi, solid, grid);
+            return 0;
+        });
+        // (z, y, x): the array's axes are the grid's axes 2, 1, 0.
+        py::array_t<bool> mask(
+            {py::ssize_t(grid.size[2]), py::ssize_t(grid.size[1]), py::ssize_t(grid.size[0])});
+        bool* out = mask.mutable_data();
+        std::fill(out, out + grid.voxelCount(), false);
+        for (const std::size_t v : inside) out[v] = true;
+        py::dict result;
+        result["values"] = mask;
+        result["origin"] = py::make_tuple(grid.originMm[0], grid.originMm[1], grid.originMm[2]);
+        result["spacing"] = py::make_tuple(grid.spacingMm[2], grid.spacingMm[1], grid.spacingMm[0]);
+        py::list directions;
+        for (int axis = 2; axis >= 0; --axis)
+            directions.append(py::make_tuple(grid.direction[axis][0], grid.direction[axis][1],
+                                             grid.direction[axis][2]));
+        result["directions"] = directions;
+        result["voxels"] = inside.size();
+        result["volume_cc"] = double(inside.size()) * grid.spacingMm[0] * grid.spacingMm[1] *
+                              grid.spacingMm[2] / app::kCubicMmPerCc;
+        result["surface_volume_cc"] = surfaceVolumeMm3 / app::kCubicMmPerCc;
+        return result;
     });
 
     m.def("_histogram",

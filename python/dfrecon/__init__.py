@@ -56,6 +56,7 @@ __all__ = [
     "margin",
     "combine",
     "histogram",
+    "rasterize",
     "slice_fields",
     "distance_field",
     "simplify",
@@ -242,6 +243,33 @@ def combine(src, definition, *, step_mm=0.25, min_area_mm2=1e-4, colour=None, ro
     core, report = _core_module._combine(ss._core, str(definition), float(step_mm),
                                          float(min_area_mm2), colour, roi_type or "")
     return StructureSet(core), report
+
+
+def rasterize(src, roi=None, *, voxel_mm=1.0, **options):
+    """The voxels inside ROI `roi`'s reconstructed surface, as ``dfrecon
+    rasterize --roi ROI --voxel-mm MM`` finds them (the default ``--inside
+    surface``: exact ray parity against the same surface ``reconstruct``
+    makes with ``options``, its keywords): a dict with ``values``, a bool
+    array of shape (nz, ny, nx), and, in the array's own axis order (z, y,
+    x), ``spacing`` (mm per index step) and ``directions`` (the LPS unit
+    vector of each array axis); ``origin`` is the LPS position (x, y, z) of
+    the centre of voxel [0, 0, 0]; ``voxels``, ``volume_cc`` and the
+    surface's ``surface_volume_cc``. The grid is the program's for that
+    ROI: ``voxel_mm`` cubes around it with a margin."""
+    given = []
+    for key, value in options.items():
+        if key not in _OPTION_ALIASES:
+            raise TypeError("rasterize() got an unexpected option %r (options: %s)"
+                            % (key, ", ".join(sorted(_OPTION_ALIASES))))
+        if value is not None:
+            given.append((_OPTION_ALIASES[key], _option_text(value)))
+    ss = _structure_set(src)
+    try:
+        return _core_module._rasterize(ss._core, _roi_key(roi), float(voxel_mm), given)
+    except ValueError as error:
+        if isinstance(error, InputError):
+            raise
+        raise ValueError(_keywords_for_flags(str(error))) from None
 
 
 def histogram(src, oar, target, *, volume_step_mm=0.5, surface_spacing_mm=0.5):

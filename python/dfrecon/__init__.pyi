@@ -115,6 +115,9 @@ def combine(
     colour: Optional[Tuple[int, int, int]] = ...,
     roi_type: Optional[str] = ...,
 ) -> Tuple[StructureSet, Dict[str, Any]]: ...
+def rasterize(
+    src: Union[StructureSet, _Path], roi: _RoiKey = ..., *, voxel_mm: float = ..., **options: Any
+) -> Dict[str, Any]: ...
 def histogram(
     src: Union[StructureSet, _Path],
     oar: Union[str, int, Roi],
