@@ -256,13 +256,7 @@ def rasterize(src, roi=None, *, voxel_mm=1.0, **options):
     the centre of voxel [0, 0, 0]; ``voxels``, ``volume_cc`` and the
     surface's ``surface_volume_cc``. The grid is the program's for that
     ROI: ``voxel_mm`` cubes around it with a margin."""
-    given = []
-    for key, value in options.items():
-        if key not in _OPTION_ALIASES:
-            raise TypeError("rasterize() got an unexpected option %r (options: %s)"
-                            % (key, ", ".join(sorted(_OPTION_ALIASES))))
-        if value is not None:
-            given.append((_OPTION_ALIASES[key], _option_text(value)))
+    given = _given_options(options, "rasterize")
     ss = _structure_set(src)
     try:
         return _core_module._rasterize(ss._core, _roi_key(roi), float(voxel_mm), given)
@@ -420,6 +414,18 @@ def _option_text(value):
     return str(value)
 
 
+def _given_options(options, function):
+    """The reconstruction keywords as the program's option names and texts."""
+    given = []
+    for key, value in options.items():
+        if key not in _OPTION_ALIASES:
+            raise TypeError("%s() got an unexpected option %r (options: %s)"
+                            % (function, key, ", ".join(sorted(_OPTION_ALIASES))))
+        if value is not None:
+            given.append((_OPTION_ALIASES[key], _option_text(value)))
+    return given
+
+
 def reconstruct(src, roi=None, *, jobs=0, **options):
     """Reconstructs ROI `roi` of `src` (a :class:`StructureSet` or a path to
     contours) into a closed :class:`Mesh`, as ``dfrecon reconstruct`` does:
@@ -436,14 +442,7 @@ def reconstruct(src, roi=None, *, jobs=0, **options):
     worker with its own OpenCL queue, as ``reconstruct --all --jobs``; an ROI
     that cannot be reconstructed (its ``defect``) raises its error.
     """
-    given = []
-    for key, value in options.items():
-        if key not in _OPTION_ALIASES:
-            raise TypeError("reconstruct() got an unexpected option %r (options: %s)"
-                            % (key, ", ".join(sorted(_OPTION_ALIASES))))
-        if value is None:
-            continue
-        given.append((_OPTION_ALIASES[key], _option_text(value)))
+    given = _given_options(options, "reconstruct")
     ss = _structure_set(src)
     try:
         if roi is None and len(ss.rois) > 1:
