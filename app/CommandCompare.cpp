@@ -50,15 +50,6 @@ struct CompareArgs {
     bool json = false;
 };
 
-/// The surface of an ROI, reconstructed with reconstruct's defaults, in
-/// patient coordinates as compared.
-ComparedSolid reconstructed(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
-    RoiSurface result = dfrecon::reconstructRoi(runtime, roi);
-    if (!result.check.validSolid())
-        throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
-    return ComparedSolid{std::move(result.surface), result.check, &roi};
-}
-
 ComparedSolid readSolid(const std::string& path) {
     ComparedSolid s{readTriangleSoup(path), {}, nullptr};
     s.check = checkMesh(s.surface);
@@ -172,7 +163,7 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
         if (roi.empty() && std::none_of(input->contours.rois.begin(), input->contours.rois.end(),
                                         [](const Roi& r) { return isComparable(r); }))
             throw InputError(path, 0, "no ROI with contours to compare");
-        return reconstructed(runtime, path, *selectRois(input->contours, roi, false).front());
+        return reconstructedSolid(runtime, path, *selectRois(input->contours, roi, false).front());
     };
     const ComparedSolid a = structure(args.a, inputA, args.roiA);
     const ComparedSolid b = structure(args.b, inputB, args.roiB);
@@ -192,30 +183,6 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
         std::cout << jsonText(report, 2) << "\n";
     else
         printPair(r, std::cout);
-}
-
-// One pair of two structure sets as a row: the pair's report, or its
-// failure (exitCode, error) where either ROI or the comparison failed.
-nlohmann::ordered_json pairRow(const RoiPair& pair, const CompareArgs& args,
-                               ocl::Runtime& runtime) {
-    nlohmann::ordered_json row{
-        {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
-    try {
-        Stopwatch watch;
-        const ComparedSolid a = reconstructed(runtime, args.a, *pair.a);
-        const ComparedSolid b = reconstructed(runtime, args.b, *pair.b);
-        const double loadSeconds = watch.lap();
-        row.update(comparisonJson(
-            compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm})));
-        row["seconds"]["load"] = loadSeconds;
-        row["exitCode"] = 0;
-        row["error"] = nullptr;
-    } catch (...) {
-        const Failure failure = describeFailure(std::current_exception());
-        row["exitCode"] = failure.exitCode;
-        row["error"] = failure.message;
-    }
-    return row;
 }
 
 void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
@@ -242,7 +209,8 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
     forEachInOrder(
         count, jobs,
         [&](std::size_t item, std::size_t worker) {
-            return pairRow(matching.pairs[item], args, runtimes[worker]);
+            return comparedPairRow(runtimes[worker], matching.pairs[item], args.a, args.b,
+                                   CompareOptions{args.spacingMm, args.toleranceMm});
         },
         [&](std::size_t item, nlohmann::ordered_json row) {
             if (row["exitCode"] != 0) {
@@ -257,25 +225,12 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
             progress.update(double(item + 1) / double(count));
         });
     progress.finish();
-    auto names = [](const std::vector<const Roi*>& rois) {
-        nlohmann::ordered_json list = nlohmann::ordered_json::array();
-        for (const Roi* roi : rois) list.push_back(roi->name);
-        return list;
-    };
     if (!args.csvPath.empty()) writeCsv(args.csvPath, pairs);
     if (args.json) {
-        std::cout << jsonText(nlohmann::ordered_json{{"command", "compare"},
-                                                     {"a", args.a},
-                                                     {"b", args.b},
-                                                     {"pairs", pairs},
-                                                     {"unmatchedA", names(matching.onlyA)},
-                                                     {"unmatchedB", names(matching.onlyB)},
-                                                     {"duplicateA", names(matching.duplicateA)},
-                                                     {"duplicateB", names(matching.duplicateB)},
-                                                     {"emptyA", names(matching.emptyA)},
-                                                     {"emptyB", names(matching.emptyB)}},
-                              2)
-                  << "\n";
+        nlohmann::ordered_json report{
+            {"command", "compare"}, {"a", args.a}, {"b", args.b}, {"pairs", pairs}};
+        report.update(unpairedJson(matching));
+        std::cout << jsonText(report, 2) << "\n";
     } else {
         std::cout << "ROI A | ROI B | Dice | Hausdorff mm | A to B mm | B to A mm | HD95 mm | "
                      "mean mm | surface Dice | plane Dice | added path mm\n";

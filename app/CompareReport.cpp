@@ -1,5 +1,10 @@
 #include "app/CompareReport.hpp"
 
+#include "api/Stopwatch.hpp"
+#include "app/ExitCodes.hpp"
+#include "app/Failure.hpp"
+#include "dfrecon/Reconstruct.hpp"
+
 namespace dfrecon::app {
 
 nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes) {
@@ -54,6 +59,46 @@ nlohmann::ordered_json comparisonJson(const Comparison& r) {
              {{"overlap", r.overlapSeconds},
               {"distances", r.distanceSeconds},
               {"planes", r.planeSeconds}}}};
+}
+
+ComparedSolid reconstructedSolid(ocl::Runtime& runtime, const std::string& file, const Roi& roi) {
+    RoiSurface result = dfrecon::reconstructRoi(runtime, roi);
+    if (!result.check.validSolid())
+        throw InvalidResult(file + ": ROI '" + roi.name + "' gives no valid closed solid");
+    return ComparedSolid{std::move(result.surface), result.check, &roi};
+}
+
+nlohmann::ordered_json comparedPairRow(ocl::Runtime& runtime, const RoiPair& pair,
+                                       const std::string& fileA, const std::string& fileB,
+                                       const CompareOptions& options) {
+    nlohmann::ordered_json row{
+        {"roiA", pair.a->name}, {"roiB", pair.b->name}, {"matchedBy", pair.matchedBy}};
+    try {
+        Stopwatch watch;
+        const ComparedSolid a = reconstructedSolid(runtime, fileA, *pair.a);
+        const ComparedSolid b = reconstructedSolid(runtime, fileB, *pair.b);
+        const double loadSeconds = watch.lap();
+        row.update(comparisonJson(compareSolids(runtime, a, b, options)));
+        row["seconds"]["load"] = loadSeconds;
+        row["exitCode"] = 0;
+        row["error"] = nullptr;
+    } catch (...) {
+        const Failure failure = describeFailure(std::current_exception());
+        row["exitCode"] = failure.exitCode;
+        row["error"] = failure.message;
+    }
+    return row;
+}
+
+nlohmann::ordered_json unpairedJson(const RoiMatching& matching) {
+    auto names = [](const std::vector<const Roi*>& rois) {
+        nlohmann::ordered_json list = nlohmann::ordered_json::array();
+        for (const Roi* roi : rois) list.push_back(roi->name);
+        return list;
+    };
+    return {{"unmatchedA", names(matching.onlyA)},      {"unmatchedB", names(matching.onlyB)},
+            {"duplicateA", names(matching.duplicateA)}, {"duplicateB", names(matching.duplicateB)},
+            {"emptyA", names(matching.emptyA)},         {"emptyB", names(matching.emptyB)}};
 }
 
 }  // namespace dfrecon::app

@@ -18,6 +18,7 @@
 #include "app/OrderedParallel.hpp"
 #include "app/ReconstructSettings.hpp"
 #include "app/Reports.hpp"
+#include "app/RoiMatching.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/SimplifyReport.hpp"
 #include "app/WorkerRuntimes.hpp"
@@ -890,6 +891,24 @@ PYBIND11_MODULE(_dfrecon, m) {
         });
         return toPython(app::comparisonJson(comparison));
     });
+    m.def("_compare_sets",
+          [](const PyStructureSet& setA, const PyStructureSet& setB,
+             const std::vector<std::string>& matches, double spacingMm, double toleranceMm) {
+              const app::RoiMatching matching =
+                  app::matchRois(setA.read.contours, setB.read.contours, matches);
+              nlohmann::ordered_json report{{"a", setA.source}, {"b", setB.source}};
+              nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+              onDevice([&](ocl::Runtime& device) {
+                  for (const app::RoiPair& pair : matching.pairs)
+                      pairs.push_back(app::comparedPairRow(device, pair, setA.source, setB.source,
+                                                           CompareOptions{spacingMm, toleranceMm}));
+                  return 0;
+              });
+              report["pairs"] = pairs;
+              report.update(app::unpairedJson(matching));
+              return toPython(report);
+          });
+
     m.def("_compare_contours", [](const PyStructureSet& setA, const py::object& roiA,
                                   const PyStructureSet& setB, const py::object& roiB,
                                   double spacingMm, double toleranceMm) {

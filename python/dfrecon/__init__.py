@@ -62,6 +62,7 @@ __all__ = [
     "simplify",
     "surface_distance_maps",
     "compare",
+    "compare_sets",
     "check",
     "set_device",
     "device_name",
@@ -563,6 +564,21 @@ def compare(a, b, *, roi_a=None, roi_b=None, spacing_mm=0.2, tolerance_mm=1.0):
         return _mesh(x, what)
     ma, mb = solid(a, roi_a, "compare a"), solid(b, roi_b, "compare b")
     return _core_module._compare(ma._core, mb._core, float(spacing_mm), float(tolerance_mm))
+
+
+def compare_sets(a, b, *, match=None, spacing_mm=0.2, tolerance_mm=1.0):
+    """Two structure sets (or contour files) compared ROI by ROI, as ``dfrecon
+    compare A B`` does with several ROIs: ROIs paired by ``match`` (a dict
+    ``{name_in_a: name_in_b}``), then by equal names, then by names equal
+    with case, spaces and punctuation ignored. Returns a dict: ``pairs``, a
+    list of dicts with ``roiA``, ``roiB``, ``matchedBy`` and every key of
+    :func:`compare` (or ``error`` and ``exitCode`` where that pair failed),
+    and the ROIs in no pair: ``unmatchedA``/``B``, ``duplicateA``/``B``
+    (a name used twice in a set), ``emptyA``/``B`` (no contours)."""
+    sa, sb = _structure_set(a), _structure_set(b)
+    entries = ["%s=%s" % (k, v) for k, v in (match or {}).items()]
+    return _core_module._compare_sets(sa._core, sb._core, entries, float(spacing_mm),
+                                      float(tolerance_mm))
 
 
 def check(mesh):

@@ -149,6 +149,14 @@ def surface_distance_maps(
     sampling_mm: float = ...,
     pairs: bool = ...,
 ) -> Union[List[Dict[str, Any]], Tuple[List[Dict[str, Any]], List[Dict[str, Any]]]]: ...
+def compare_sets(
+    a: Union[StructureSet, _Path],
+    b: Union[StructureSet, _Path],
+    *,
+    match: Optional[Dict[str, str]] = ...,
+    spacing_mm: float = ...,
+    tolerance_mm: float = ...,
+) -> Dict[str, Any]: ...
 def compare(
     a: Union[Mesh, StructureSet, _Path],
     b: Union[Mesh, StructureSet, _Path],

@@ -427,3 +427,21 @@ def test_rasterize_gives_the_programs_voxels(cli, examples, tmp_path):
     assert mine["volume_cc"] == pytest.approx(mine["surface_volume_cc"], rel=0.1)
     with pytest.raises(ValueError, match="voxel_mm"):
         dfrecon.rasterize(path, "Left Kidney", voxel_mm=0)
+
+
+def test_compare_sets_gives_the_programs_rows(cli, examples, tmp_path):
+    path = examples / "two-rois.slices"
+    other = tmp_path / "other.slices"
+    text = (examples / "two-rois.slices").read_text().replace('roi PTV', 'roi "Target"')
+    other.write_text(text)
+    from_cli = cli("compare", path, other, "--match", "PTV=Target", "--json")
+    mine = dfrecon.compare_sets(path, other, match={"PTV": "Target"})
+    assert [(p["roiA"], p["roiB"], p["matchedBy"]) for p in mine["pairs"]] == \
+        [(p["roiA"], p["roiB"], p["matchedBy"]) for p in from_cli["pairs"]]
+    for m, c in zip(mine["pairs"], from_cli["pairs"]):
+        assert m["dice"] == pytest.approx(c["dice"], rel=1e-9)
+        assert m["hausdorffMm"] == pytest.approx(c["hausdorffMm"], rel=1e-9, abs=1e-9)
+    for key in ("unmatchedA", "unmatchedB", "duplicateA", "duplicateB", "emptyA", "emptyB"):
+        assert mine[key] == from_cli[key], key
+    unmatched = dfrecon.compare_sets(path, other)
+    assert unmatched["unmatchedA"] == ["PTV"] and unmatched["unmatchedB"] == ["Target"]
