@@ -12,16 +12,19 @@
 #include <cstdlib>
 #include <thread>
 
-#if defined(__GLIBC__)
+#include "geometry/GlibcHeap.hpp"
+
+#if defined(DFRECON_GLIBC_HEAP)
 #include <malloc.h>
 #endif
 
 namespace dfrecon::app {
 
-/// One malloc arena per core (glibc only; elsewhere nothing), unless the
-/// user set MALLOC_ARENA_MAX. Call first in main, before any thread starts.
+/// One malloc arena per core (glibc's heap only: geometry/GlibcHeap;
+/// elsewhere nothing), unless the user set MALLOC_ARENA_MAX. Call first in
+/// main, before any thread starts.
 inline void oneHeapArenaPerCore() {
-#if defined(__GLIBC__)
+#if defined(DFRECON_GLIBC_HEAP)
     if (std::getenv("MALLOC_ARENA_MAX")) return;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     mallopt(M_ARENA_MAX, int(cores));

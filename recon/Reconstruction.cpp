@@ -1,6 +1,8 @@
 #include "recon/Reconstruction.hpp"
 
-#if defined(__GLIBC__)
+#include "geometry/GlibcHeap.hpp"
+
+#if defined(DFRECON_GLIBC_HEAP)
 #include <malloc.h>
 #endif
 
@@ -540,7 +542,7 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const ReconstructionOptions& optio
 /// set's 41 small ROIs: a fifth more CPU trimmed after every ROI, 2 % more
 /// trimmed after every ROI's slabs). O(free heap) when it trims.
 void giveBackMuchFreedHeap() {
-#if defined(__GLIBC__)
+#if defined(DFRECON_GLIBC_HEAP)
     constexpr std::size_t kTrimFreedFromBytes = std::size_t(64) << 20;
     if (mallinfo2().fordblks > kTrimFreedFromBytes) malloc_trim(0);
 #endif
