@@ -293,6 +293,8 @@ std::vector<Slice> planeSections(const PlaneField& exactField, const std::vector
             }
             if (!slice.contours.empty()) out.push_back(std::move(slice));
         }
+        if (options.progress)
+            options.progress(double(std::min(zs.size(), first + perGroup)) / double(zs.size()));
     }
     stats.planesWithSection = out.size();
     if (statsOut) *statsOut = stats;

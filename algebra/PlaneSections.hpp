@@ -49,6 +49,9 @@ struct PlaneSectionOptions {
     double zeroToleranceMm = 1e-9;
     /// Samples held at once (bounds memory: planes are done in groups).
     std::size_t maxSamplesPerBatch = std::size_t(1) << 22;
+    /// Called with the fraction of planes done after each group (for a
+    /// progress bar); none: not called.
+    std::function<void(double)> progress;
 };
 
 /// The lattice shifts tried in turn where the sections of one lattice do

@@ -103,10 +103,17 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
 
     const Stopwatch watch;
     std::map<std::string, TriangleSoup> surfaces;
+    // Progress: the surfaces a third, the sections most of the rest.
+    const bool withSurface = options.surfaceVoxelMm > 0;
+    const double sectionsEnd = withSurface ? 0.85 : 1.0;
+    auto report = [&](double fraction) {
+        if (options.progress) options.progress(fraction);
+    };
     for (const Roi* roi : rois) {
         TriangleSoup s = solidOf(runtime, *roi, options.surfaces);
         out.surfaceVolumesMm3[roi->name] = measureSurface(s).volumeMm3;
         surfaces.emplace(roi->name, std::move(s));
+        report(0.33 * double(surfaces.size()) / double(rois.size()));
     }
     out.surfacesSeconds = watch.total();
 
@@ -151,6 +158,8 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
     const Stopwatch sectionWatch;
     PlaneSectionOptions sections = options.sections;
     sections.zeroToleranceMm = std::max(sections.zeroToleranceMm, field.toleranceMm());
+    if (options.progress)
+        sections.progress = [&](double planes) { report(0.33 + (sectionsEnd - 0.33) * planes); };
     out.roi.slices =
         planeSections(inPlanes, out.planesMm, {lo.x, hi.x, lo.y, hi.y}, sections, &out.sections);
     out.sectionsSeconds = sectionWatch.total();
@@ -182,6 +191,7 @@ StructureAlgebraResult evaluateRoiExpression(ocl::Runtime& runtime, const Contou
         }
         out.surfaceSeconds = surfaceWatch.total();
     }
+    report(1.0);
     out.roi.name = expression.name;
     out.roi.frame = frame;
     out.roi.colour = options.colour;

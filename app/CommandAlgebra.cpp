@@ -137,8 +137,13 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
         ++attempts;
         options.sections.latticeShift = shift;
         {
-            Progress progress(margin ? "margin" : "combine", !global.quiet);
-            progress.update(-1);
+            // A lattice tried again starts the bar again, named so.
+            Progress progress(
+                std::string(margin ? "margin" : "combine") +
+                    (attempts > 1 ? " (lattice " + std::to_string(attempts) + ")" : ""),
+                !global.quiet);
+            progress.update(0);
+            options.progress = [&progress](double fraction) { progress.update(fraction); };
             RoiExpression expression;
             if (margin) {
                 const Roi& source = *selectRois(input.contours, args.roi, false).front();
@@ -176,6 +181,7 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                         writeOptions, input.contours.findRoi(expression.rois().front())->frame);
                 result = evaluateRoiExpression(runtime, input.contours, expression, options);
             }
+            options.progress = nullptr;  // the bar ends here
         }
         Roi& made = result.roi;
 

@@ -14,6 +14,7 @@
 // exact distances, and algebra/PlaneSections draws its zero set on each
 // plane: every contour vertex lies on the exact boundary (within 1e-4 mm,
 // or 5 % of the lattice step where the boundary passes near a sample).
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -44,6 +45,10 @@ struct StructureAlgebraOptions {
     /// on voxels of this size (mm), where the field allows (no flat
     /// ellipsoid axis).
     double surfaceVoxelMm = 0;
+    /// Called with the fraction of the work done (the ROIs' surfaces, then
+    /// the planes' sections, then the surface in space), for a progress bar;
+    /// none: not called. Overrides sections.progress.
+    std::function<void(double)> progress;
     std::optional<Rgb> colour;    // of the new ROI; none: the writer's default
     std::string interpretedType;  // of the new ROI; empty: the writer's default
 };
