@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -23,6 +24,7 @@
 #include "app/SimplifyReport.hpp"
 #include "app/WorkerRuntimes.hpp"
 #include "cl/ClError.hpp"
+#include "dfrecon/Segment.hpp"
 #include "dfrecon/dfrecon.hpp"
 #include "field/Rasterization.hpp"
 #include "io/ContourFormat.hpp"
@@ -30,6 +32,8 @@
 #include "io/RoiName.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
+#include "segment/GeodesicDistances.hpp"
+#include "segment/SpeedFunctions.hpp"
 
 namespace py = pybind11;
 using namespace dfrecon;
@@ -891,6 +895,85 @@ PYBIND11_MODULE(_dfrecon, m) {
         });
         return toPython(app::comparisonJson(comparison));
     });
+    m.def("_segment", [](const PyMesh& mesh, int regions, const std::string& speed, bool disks) {
+        const MeshGraph graph = MeshGraph::fromSoup(mesh.surface);
+        if (regions < 1 || regions > graph.vertexCount())
+            throw py::value_error("segment(): regions must be from 1 to the mesh's " +
+                                  std::to_string(graph.vertexCount()) + " vertices");
+        SegmentOptions options;
+        options.regions = regions;
+        options.speed = parseSpeedKind(speed);
+        options.lloyd.diskConstraint = disks;
+        Segmentation result;
+        {
+            py::gil_scoped_release release;
+            result = segmentMesh(graph, options);
+        }
+        py::dict out;
+        out["vertex_region"] = py::array_t<std::int32_t>(py::ssize_t(result.vertexRegion.size()),
+                                                         result.vertexRegion.data());
+        out["face_region"] = py::array_t<std::int32_t>(py::ssize_t(result.faceRegion.size()),
+                                                       result.faceRegion.data());
+        out["seeds"] = result.seeds;
+        py::list reports;
+        for (std::size_t i = 0; i < result.regions.size(); ++i) {
+            const RegionReport& r = result.regions[i];
+            py::dict d;
+            d["region"] = i;
+            d["seedVertex"] = r.seed;
+            d["areaMm2"] = r.areaMm2;
+            d["perimeterMm"] = r.perimeterMm;
+            d["compactness"] = r.compactness;
+            d["faces"] = r.faces;
+            d["disk"] = r.disk;
+            reports.append(d);
+        }
+        out["regions"] = reports;
+        out["iterations"] = result.iterations;
+        out["converged"] = result.converged;
+        out["lloydEnergy"] = result.energy;
+        out["seedsAddedForDisks"] = result.seedsAdded;
+        out["curvatureWeightMm"] = result.curvatureWeightMm;
+        return out;
+    });
+
+    m.def("_geodesic", [](const PyMesh& mesh, const std::vector<int>& from,
+                          const std::string& speed, double curvatureWeightMm) {
+        const MeshGraph graph = MeshGraph::fromSoup(mesh.surface);
+        if (from.empty()) throw py::value_error("geodesic(): give at least one source vertex");
+        std::vector<GeodesicSource> sources;
+        for (const int v : from) {
+            if (v < 0 || v >= graph.vertexCount())
+                throw py::value_error("geodesic(): source vertex " + std::to_string(v) +
+                                      " is not one of the mesh's " +
+                                      std::to_string(graph.vertexCount()) + " vertices");
+            sources.push_back({v, 0.0, int(sources.size())});
+        }
+        const SpeedKind kind = parseSpeedKind(speed);
+        const double weight =
+            curvatureWeightMm > 0 ? curvatureWeightMm : defaultCurvatureWeight(graph);
+        // Fast marching on the host: the same distances as the program's
+        // default on meshes of this size, and no device needed.
+        GeodesicField field;
+        {
+            py::gil_scoped_release release;
+            const UpdateStencils stencils(graph, UnfoldOptions{});
+            const std::vector<double> speeds = curvatureSpeed(graph, kind, weight);
+            field =
+                geodesicDistances(stencils, sources, speeds, nullptr, GeodesicSolver::FastMarching);
+        }
+        py::array_t<double> distance(py::ssize_t(field.time.size()));
+        double* d = distance.mutable_data();
+        for (std::size_t v = 0; v < field.time.size(); ++v)
+            d[v] = field.time[v] >= kUnreached ? std::numeric_limits<double>::infinity()
+                                               : field.time[v];
+        py::dict out;
+        out["distance_mm"] = distance;
+        out["nearest_source"] =
+            py::array_t<std::int32_t>(py::ssize_t(field.label.size()), field.label.data());
+        return out;
+    });
+
     m.def("_compare_sets",
           [](const PyStructureSet& setA, const PyStructureSet& setB,
              const std::vector<std::string>& matches, double spacingMm, double toleranceMm) {

@@ -63,6 +63,8 @@ __all__ = [
     "surface_distance_maps",
     "compare",
     "compare_sets",
+    "segment",
+    "geodesic",
     "check",
     "set_device",
     "device_name",
@@ -579,6 +581,30 @@ def compare_sets(a, b, *, match=None, spacing_mm=0.2, tolerance_mm=1.0):
     entries = ["%s=%s" % (k, v) for k, v in (match or {}).items()]
     return _core_module._compare_sets(sa._core, sb._core, entries, float(spacing_mm),
                                       float(tolerance_mm))
+
+
+def segment(mesh, regions=10, *, speed="attractive", disks=True):
+    """Geodesic centroidal segmentation of a surface into about `regions`
+    patches, as ``dfrecon segment -k REGIONS`` (farthest-point seeds, geodesic
+    Voronoi regions, geodesic Lloyd, each region a topological disk unless
+    ``disks=False``). `speed` as ``--speed``: 'attractive' (borders settle on
+    creases, the default), 'repulsive' or 'uniform'. Returns a dict:
+    ``vertex_region`` and ``face_region`` (int32 arrays, -1 for none),
+    ``seeds``, ``regions`` (each with ``areaMm2``, ``perimeterMm``,
+    ``compactness``, ``faces``, ``disk``), ``iterations``, ``converged``."""
+    m = _mesh(mesh, "segment")
+    return _core_module._segment(m._core, int(regions), str(speed), bool(disks))
+
+
+def geodesic(mesh, sources, *, speed="uniform", curvature_weight_mm=0.0):
+    """Geodesic distances over the surface from the vertices `sources` (an
+    int or a list), as ``dfrecon geodesic --from ... --solver fm``: a dict
+    with ``distance_mm`` (float64 per vertex, inf where unreached; weighted
+    time for a speed other than 'uniform') and ``nearest_source`` (the
+    index into `sources` of each vertex's nearest, -1 where unreached)."""
+    m = _mesh(mesh, "geodesic")
+    vertices = [int(sources)] if isinstance(sources, int) else [int(v) for v in sources]
+    return _core_module._geodesic(m._core, vertices, str(speed), float(curvature_weight_mm))
 
 
 def check(mesh):

@@ -149,6 +149,16 @@ def surface_distance_maps(
     sampling_mm: float = ...,
     pairs: bool = ...,
 ) -> Union[List[Dict[str, Any]], Tuple[List[Dict[str, Any]], List[Dict[str, Any]]]]: ...
+def segment(
+    mesh: Union[Mesh, _Path], regions: int = ..., *, speed: str = ..., disks: bool = ...
+) -> Dict[str, Any]: ...
+def geodesic(
+    mesh: Union[Mesh, _Path],
+    sources: Union[int, Sequence[int]],
+    *,
+    speed: str = ...,
+    curvature_weight_mm: float = ...,
+) -> Dict[str, Any]: ...
 def compare_sets(
     a: Union[StructureSet, _Path],
     b: Union[StructureSet, _Path],

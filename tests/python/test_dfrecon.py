@@ -445,3 +445,35 @@ def test_compare_sets_gives_the_programs_rows(cli, examples, tmp_path):
         assert mine[key] == from_cli[key], key
     unmatched = dfrecon.compare_sets(path, other)
     assert unmatched["unmatchedA"] == ["PTV"] and unmatched["unmatchedB"] == ["Target"]
+
+
+def test_segment_and_geodesic_give_the_programs_numbers(cli, examples, tmp_path):
+    kidney = tmp_path / "kidney.ply"
+    cli("reconstruct", examples / "two-rois.slices", "--roi", "Left Kidney", "-o", kidney, "--json")
+    mesh = dfrecon.read_mesh(kidney)
+    # segment: the same regions as `dfrecon segment` on the same file.
+    from_cli = cli("segment", kidney, "-k", "4", "--json", "-o", tmp_path / "regions.ply")
+    mine = dfrecon.segment(kidney, 4)
+    assert len(mine["regions"]) == from_cli["regionCount"]
+    assert mine["iterations"] == from_cli["iterations"]
+    for a, b in zip(mine["regions"], from_cli["regions"]):
+        assert a["areaMm2"] == pytest.approx(b["areaMm2"], rel=1e-9)
+    assert mine["face_region"].shape == (mesh.faces.shape[0],)
+    assert set(np.unique(mine["face_region"])) == set(range(len(mine["regions"])))
+    # geodesic: fast marching, the program's largest and mean distance.
+    from_cli = cli("geodesic", kidney, "--from", "0", "--solver", "fm", "--json",
+                   "-o", tmp_path / "distances.ply")
+    mine = dfrecon.geodesic(mesh, 0)
+    d = mine["distance_mm"]
+    reached = np.isfinite(d)  # the kidney's island is another component
+    assert d[0] == 0 and np.all((mine["nearest_source"] == 0) == reached)
+    assert int((~reached).sum()) == from_cli["unreachedVertices"]
+    assert d[reached].max() == pytest.approx(from_cli["maxDistance"], rel=1e-12)
+    assert d[reached].mean() == pytest.approx(from_cli["meanDistance"], rel=1e-12)
+    # Never shorter than the straight line.
+    straight = np.linalg.norm(mesh.vertices - mesh.vertices[0], axis=1)
+    assert np.all(d[reached] >= straight[reached] - 1e-9)
+    with pytest.raises(ValueError, match="source vertex"):
+        dfrecon.geodesic(mesh, len(mesh.vertices))
+    with pytest.raises(ValueError, match="speed"):
+        dfrecon.segment(mesh, 3, speed="fast")
