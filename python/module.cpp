@@ -827,10 +827,12 @@ PYBIND11_MODULE(_dfrecon, m) {
         py::dict out;
         out["values"] = values;
         out["origin"] = py::make_tuple(origin.x, origin.y, origin.z);
-        out["spacing"] = py::make_tuple(v.voxelMm[0], v.voxelMm[1], v.voxelMm[2]);
-        out["axes"] = py::make_tuple(py::make_tuple(roi.frame.u.x, roi.frame.u.y, roi.frame.u.z),
-                                     py::make_tuple(roi.frame.v.x, roi.frame.v.y, roi.frame.v.z),
-                                     py::make_tuple(roi.frame.n.x, roi.frame.n.y, roi.frame.n.z));
+        // In the array's own axis order (z, y, x), as rasterize() gives them.
+        out["spacing"] = py::make_tuple(v.voxelMm[2], v.voxelMm[1], v.voxelMm[0]);
+        out["directions"] =
+            py::make_tuple(py::make_tuple(roi.frame.n.x, roi.frame.n.y, roi.frame.n.z),
+                           py::make_tuple(roi.frame.v.x, roi.frame.v.y, roi.frame.v.z),
+                           py::make_tuple(roi.frame.u.x, roi.frame.u.y, roi.frame.u.z));
         return out;
     });
 

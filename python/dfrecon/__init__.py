@@ -478,9 +478,11 @@ def _keywords_for_flags(message):
 
 class Field:
     """Distances on a regular grid: ``values`` (float32, mm, negative inside),
-    ``origin`` (the centre of the first sample), ``spacing`` (mm per index
-    step, in the order of ``values``' last axes reversed: x, y[, z]), and for
-    slice fields ``planes`` (each plane's position)."""
+    ``origin`` (the centre of the first sample, a point: x, y[, z]),
+    ``spacing`` (mm per index step: for :func:`distance_field` in the array's
+    axis order z, y, x, with ``directions`` likewise; slice fields have the
+    same step along both in-plane axes), and for slice fields ``planes``
+    (each plane's position)."""
 
     def __init__(self, d):
         self.__dict__.update(d)
@@ -502,9 +504,17 @@ def slice_fields(src, roi=None, *, pixel_mm=0.0):
 def distance_field(src, roi=None, *, pixel_mm=0.0, isotropic=False):
     """The ROI's 3D signed distance volume as ``dfrecon field`` computes it
     (in-plane Euclidean distance + |dz|: never below the Euclidean distance):
-    ``values`` of shape (nz, ny, nx), voxel (i, j, k) centred at origin +
-    i·spacing[0]·axes[0] + j·spacing[1]·axes[1] + k·spacing[2]·axes[2]
-    (patient mm; the axes are x, y, z for axial stacks)."""
+    ``values`` of shape (nz, ny, nx); ``spacing`` (mm per index step) and
+    ``directions`` (each axis's unit vector, patient LPS) in the array's own
+    axis order (z, y, x: the plane normal, then the planes' two axes; for an
+    axial stack (0, 0, 1), (0, 1, 0), (1, 0, 0)); ``origin`` the LPS point
+    (x, y, z) of voxel [0, 0, 0]'s centre, so voxel [k, j, i] is at origin +
+    k·spacing[0]·directions[0] + j·spacing[1]·directions[1] +
+    i·spacing[2]·directions[2]. In the planes the step is ``pixel_mm``; along
+    the normal it is half the smallest gap between planes, whatever
+    ``pixel_mm`` (so that every plane and both cap planes lie on a layer of
+    voxels: 0.667 mm where two planes are 1.33 mm apart), or ``pixel_mm``
+    itself with ``isotropic=True``."""
     ss = _structure_set(src)
     return Field(_core_module._distance_field(ss._core, _roi_key(roi), float(pixel_mm),
                                               bool(isotropic)))

@@ -132,7 +132,7 @@ class Field:
     origin: Tuple[float, ...]
     spacing: Tuple[float, ...]
     planes: npt.NDArray[np.float64]  # slice_fields only
-    axes: Tuple[Tuple[float, float, float], ...]  # distance_field only
+    directions: Tuple[Tuple[float, float, float], ...]  # distance_field only, array order (z, y, x)
     orientation: str  # slice_fields only
 
 def slice_fields(src: Union[StructureSet, _Path], roi: _RoiKey = ..., *, pixel_mm: float = ...) -> Field: ...

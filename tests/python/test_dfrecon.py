@@ -241,12 +241,13 @@ def test_distance_field_never_undercuts_the_euclidean_distance():
     ss = dfrecon.StructureSet.from_contours(box_set(side=20.0))
     f = dfrecon.distance_field(ss, pixel_mm=1.0)
     nz, ny, nx = f.values.shape
-    assert f.spacing[0] == 1.0 and f.spacing[2] == pytest.approx(1.0)  # half the 2 mm gap
-    np.testing.assert_array_equal(np.array(f.axes), np.eye(3))
+    # Spacing and directions in the array's axis order (z, y, x).
+    assert f.spacing[2] == 1.0 and f.spacing[0] == pytest.approx(1.0)  # half the 2 mm gap
+    np.testing.assert_array_equal(np.array(f.directions), np.eye(3)[::-1])
     k, j, i = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nx), indexing="ij")
-    x = f.origin[0] + f.spacing[0] * i
+    x = f.origin[0] + f.spacing[2] * i
     y = f.origin[1] + f.spacing[1] * j
-    z = f.origin[2] + f.spacing[2] * k
+    z = f.origin[2] + f.spacing[0] * k
     # The solid the field closes: the square from z = -1 to 5 (ends half a
     # spacing beyond the end planes, as flat caps).
     d = np.stack([np.abs(x) - 10, np.abs(y) - 10, np.abs(z - 2) - 3])
