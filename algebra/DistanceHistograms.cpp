@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "field/ClosestPrimitives.hpp"
+#include "field/Rasterization.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleCells.hpp"
 
@@ -95,16 +96,18 @@ DistanceHistograms distanceHistograms(const TriangleSoup& oar, const TriangleSou
     // Cells centred on the box's centre, so the grid sits symmetric in it.
     const Vec3 centre = 0.5 * (box.lo + box.hi);
     const Vec3 first = centre - 0.5 * step * Vec3{double(nx - 1), double(ny - 1), double(nz - 1)};
+    // Which centres are inside: ray parity against the OAR's triangles
+    // (field/Rasterization, exact but for centres within rounding of the
+    // surface), where a signed distance to the OAR per centre of its box
+    // cost as many closest-triangle queries as there are cells.
+    VolumeGeometry cells;
+    cells.size = {int(nx), int(ny), int(nz)};
+    cells.spacingMm = {step, step, step};
+    cells.originMm = {first.x, first.y, first.z};
     std::vector<Vec3> inside;
-    std::vector<Vec3> layer;
-    for (std::size_t k = 0; k < nz; ++k) {
-        layer.clear();
-        for (std::size_t j = 0; j < ny; ++j)
-            for (std::size_t i = 0; i < nx; ++i)
-                layer.push_back(first + step * Vec3{double(i), double(j), double(k)});
-        const std::vector<double> d = signedDistances(scene, kernel.get(), 0, layer);
-        for (std::size_t n = 0; n < layer.size(); ++n)
-            if (d[n] < 0) inside.push_back(layer[n]);
+    for (const std::size_t n : voxelsInsideSolid(oar, PlaneFrame{}, cells)) {
+        const std::size_t i = n % nx, j = (n / nx) % ny, k = n / (nx * ny);
+        inside.push_back(first + step * Vec3{double(i), double(j), double(k)});
     }
     const std::vector<double> toTarget = signedDistances(scene, kernel.get(), 1, inside);
     out.volume = sorted(toTarget, std::vector<double>(inside.size(), step * step * step));
