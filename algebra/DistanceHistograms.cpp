@@ -30,15 +30,28 @@ WeightedDistances sorted(const std::vector<double>& distance, const std::vector<
     return out;
 }
 
-// Signed distances from points to object `object` of `scene`.
+// Queries per batch: a progress bar moves between batches, and each
+// batch's results stay small.
+constexpr std::size_t kQueriesPerBatch = std::size_t(1) << 18;
+
+// Signed distances from points to object `object` of `scene`, in batches;
+// `done(k)` after each with the points done so far.
 std::vector<double> signedDistances(const SurfaceScene& scene, ClosestPrimitiveKernel* kernel,
-                                    std::size_t object, const std::vector<Vec3>& points) {
+                                    std::size_t object, const std::vector<Vec3>& points,
+                                    const std::function<void(std::size_t)>& done) {
     DistanceQuery query;
     query.target = int(object);
-    const std::vector<ClosestPrimitive> found =
-        kernel ? kernel->runAt(points, query) : closestPrimitivesAtReference(scene, points, query);
     std::vector<double> d(points.size());
-    for (std::size_t k = 0; k < points.size(); ++k) d[k] = found[k].distanceMm;
+    for (std::size_t first = 0; first < points.size(); first += kQueriesPerBatch) {
+        const std::size_t last = std::min(points.size(), first + kQueriesPerBatch);
+        const std::vector<Vec3> batch(points.begin() + std::ptrdiff_t(first),
+                                      points.begin() + std::ptrdiff_t(last));
+        const std::vector<ClosestPrimitive> found =
+            kernel ? kernel->runAt(batch, query)
+                   : closestPrimitivesAtReference(scene, batch, query);
+        for (std::size_t k = 0; k < batch.size(); ++k) d[first + k] = found[k].distanceMm;
+        done(last);
+    }
     return d;
 }
 
@@ -109,7 +122,13 @@ DistanceHistograms distanceHistograms(const TriangleSoup& oar, const TriangleSou
         const std::size_t i = n % nx, j = (n / nx) % ny, k = n / (nx * ny);
         inside.push_back(first + step * Vec3{double(i), double(j), double(k)});
     }
-    const std::vector<double> toTarget = signedDistances(scene, kernel.get(), 1, inside);
+    // Progress: the volume's queries to 80 %, then the surface's (fewer).
+    auto volumeDone = [&](std::size_t k) {
+        if (options.progress)
+            options.progress(0.8 * double(k) / double(std::max<std::size_t>(1, inside.size())));
+    };
+    const std::vector<double> toTarget =
+        signedDistances(scene, kernel.get(), 1, inside, volumeDone);
     out.volume = sorted(toTarget, std::vector<double>(inside.size(), step * step * step));
 
     // Surface: the centroids of cells of the OAR's triangles, by area.
@@ -123,7 +142,12 @@ DistanceHistograms distanceHistograms(const TriangleSoup& oar, const TriangleSou
                         samples.push_back(p);
                         areas.push_back(area);
                     });
-    out.surface = sorted(signedDistances(scene, kernel.get(), 1, samples), areas);
+    auto surfaceDone = [&](std::size_t k) {
+        if (options.progress)
+            options.progress(0.8 +
+                             0.2 * double(k) / double(std::max<std::size_t>(1, samples.size())));
+    };
+    out.surface = sorted(signedDistances(scene, kernel.get(), 1, samples, surfaceDone), areas);
     return out;
 }
 

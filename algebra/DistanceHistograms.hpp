@@ -11,6 +11,7 @@
 // (geometry/TriangleCells). The integrals converge as the cells shrink; the
 // distances themselves are exact.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "algebra/SolidField.hpp"
@@ -30,6 +31,9 @@ struct DistanceHistogramOptions {
     /// otherwise take memory without bound.
     std::size_t maxSurfaceCells = std::size_t(1) << 22;
     DistanceBackend backend = DistanceBackend::Device;
+    /// Called with the fraction of the distance queries done (in batches),
+    /// for a progress bar; none: not called.
+    std::function<void(double)> progress;
 };
 
 /// Samples with a signed distance each and a weight (mm³ or mm²), sorted by

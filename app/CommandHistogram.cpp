@@ -43,8 +43,10 @@ void runHistogram(const HistogramArgs& args, const GlobalOptions& global) {
     DistanceHistograms h;
     {
         Progress progress("histogram of " + oar.name, !global.quiet);
-        progress.update(-1);
+        progress.update(0);
+        options.progress = [&progress](double fraction) { progress.update(fraction); };
         h = roiDistanceHistograms(runtime, input.contours, oar.name, target.name, {}, options);
+        options.progress = nullptr;
     }
     // Rows every --bin mm from below the nearest sample to past the farthest.
     const double lo =
