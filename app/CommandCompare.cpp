@@ -165,11 +165,19 @@ void runOnePair(const CompareArgs& args, const GlobalOptions& global, const Cont
             throw InputError(path, 0, "no ROI with contours to compare");
         return reconstructedSolid(runtime, path, *selectRois(input->contours, roi, false).front());
     };
+    // A bar that moves with the work: the two surfaces, then the overlap,
+    // the distances and the planes.
+    Progress progress("compare", !global.quiet);
+    progress.update(0);
     const ComparedSolid a = structure(args.a, inputA, args.roiA);
+    progress.update(0.15);
     const ComparedSolid b = structure(args.b, inputB, args.roiB);
+    progress.update(0.3);
     const double loadSeconds = watch.lap();
-    const Comparison r =
-        compareSolids(runtime, a, b, CompareOptions{args.spacingMm, args.toleranceMm});
+    CompareOptions options{args.spacingMm, args.toleranceMm};
+    options.progress = [&progress](double done) { progress.update(0.3 + 0.7 * done); };
+    const Comparison r = compareSolids(runtime, a, b, options);
+    progress.finish();
     warnIfCoarsened(r.distances.spacingMm, args, global);
     nlohmann::ordered_json report{{"command", "compare"}, {"a", args.a}, {"b", args.b}};
     if (a.contours) report["roiA"] = a.contours->name;

@@ -5,6 +5,7 @@
 // points (compare/SurfaceDistances, each within the sample spacing), the
 // centroid distance, and for two contour stacks the planning system's
 // per-plane overlap and added path length (compare/PlaneComparison).
+#include <functional>
 #include <optional>
 
 #include "cl/Runtime.hpp"
@@ -26,8 +27,15 @@ struct ComparedSolid {
 };
 
 struct CompareOptions {
-    double spacingMm = 0.2;  // distance sample spacing: each distance within this of exact
-    double toleranceMm = 1;  // surface Dice and added path length tolerance
+    /// `{}`, `{spacing}` and `{spacing, tolerance}` (mm) as before a
+    /// progress callback was added. Not explicit: `= {}` defaults use it.
+    CompareOptions(double spacing = 0.2, double tolerance = 1)
+        : spacingMm(spacing), toleranceMm(tolerance) {}
+    double spacingMm;    // distance sample spacing: each distance within this of exact
+    double toleranceMm;  // surface Dice and added path length tolerance
+    /// Called with the fraction done after the overlap, the distances and
+    /// the planes, for a progress bar; none: not called.
+    std::function<void(double)> progress;
 };
 
 struct Comparison {
