@@ -11,7 +11,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$python" -m venv --system-site-packages "$work/venv"
 DFRECON_CMAKE_BUILD_DIR=$build DFRECON_PIP_BUILD_BASE=$work/pip-build \
-  "$work/venv/bin/pip" install --no-build-isolation --no-index --no-deps -q "$src"
+  "$work/venv/bin/pip" install --disable-pip-version-check --no-build-isolation --no-index \
+  --no-deps -q "$src"
 cd "$work"
 "$work/venv/bin/python" - <<'PY'
 import os, sys
@@ -26,4 +27,4 @@ mesh = dfrecon.reconstruct(rs, "Box")
 assert mesh.valid_solid
 print("installed", dfrecon.__version__, "in", where, "box", round(mesh.volume_cc, 3), "cc")
 PY
-"$work/venv/bin/pip" show -q dfrecon >/dev/null
+"$work/venv/bin/pip" --disable-pip-version-check show -q dfrecon >/dev/null
