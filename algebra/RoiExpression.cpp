@@ -337,13 +337,24 @@ std::string RoiExpression::text() const {
     return nodes.empty() ? std::string() : write(root);
 }
 
+std::string roiExpressionName(const std::string& definition) {
+    const std::size_t equals = definition.find('=');
+    return equals == std::string::npos ? std::string() : trimmed(definition.substr(0, equals));
+}
+
+std::string marginRoiName(const std::string& roi, const DirectionalMargin& margin) {
+    return roi + (margin.shrinks() ? "-" : "+") +
+           (margin.isUniform() ? std::to_string(int(std::lround(std::abs(margin.mm[0]))))
+                               : std::string("margin"));
+}
+
 RoiExpression parseRoiExpression(const std::string& definition,
                                  const std::vector<std::string>& roiNames) {
     const std::size_t equals = definition.find('=');
     if (equals == std::string::npos)
         throw ExpressionError(
             1, "expected NAME = EXPRESSION (e.g. \"Ring = (PTV + 20) - (PTV + 3)\")");
-    const std::string name = trimmed(definition.substr(0, equals));
+    const std::string name = roiExpressionName(definition);
     if (name.empty()) throw ExpressionError(1, "the new ROI has no name before '='");
     if (name.size() > kMaxNameBytes)
         throw ExpressionError(1, "the new ROI's name is longer than DICOM's 64 characters");

@@ -79,6 +79,15 @@ class ExpressionError : public std::invalid_argument {
     std::size_t column_;
 };
 
+/// The new ROI's name of a definition "NAME = EXPR" (trimmed), as
+/// parseRoiExpression reads it; "" without '='. For checking the name before
+/// the structure set is read. O(length).
+std::string roiExpressionName(const std::string& definition);
+
+/// The name `margin` and Python's margin() give a new ROI by default:
+/// "ROI+5", "ROI-3" (mm, rounded), "ROI+margin" for one per direction.
+std::string marginRoiName(const std::string& roi, const DirectionalMargin& margin);
+
 /// Most ROIs, margins and operations in one expression, and deepest
 /// nesting of parentheses: far beyond what planning systems write, well
 /// within memory and stack.

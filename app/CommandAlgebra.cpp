@@ -94,15 +94,8 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                                         " bytes, no control characters)");
     };
     if (!args.name.empty()) checkName(args.name, "--name");
-    if (!margin) {
-        const std::size_t equals = args.expression.find('=');
-        if (equals != std::string::npos) {
-            std::string name = args.expression.substr(0, equals);
-            name.erase(0, name.find_first_not_of(" \t"));
-            name.erase(name.find_last_not_of(" \t") + 1);
-            if (!name.empty()) checkName(name, "--expr");
-        }
-    }
+    if (!margin && !roiExpressionName(args.expression).empty())
+        checkName(roiExpressionName(args.expression), "--expr");
     const ContourInput input = loadContours(args.input, global);
 
     StructureAlgebraOptions options;
@@ -161,11 +154,7 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
                 options.interpretedType =
                     args.roiType.empty() ? source.interpretedType : args.roiType;
                 const std::string name =
-                    args.name.empty()
-                        ? source.name + (m.shrinks() ? "-" : "+") +
-                              (m.isUniform() ? std::to_string(int(std::lround(std::abs(m.mm[0]))))
-                                             : std::string("margin"))
-                        : args.name;
+                    args.name.empty() ? marginRoiName(source.name, m) : args.name;
                 if (args.name.empty()) checkName(name, "--roi '" + source.name + "' + margin");
                 const PlaneFrame frame = source.frame;
                 if (writeOptions.imageSeries)

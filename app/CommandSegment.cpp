@@ -19,6 +19,7 @@
 #include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
+#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/Colours.hpp"
 #include "io/JsonText.hpp"
@@ -98,17 +99,7 @@ void runSegment(SegmentArgs args, const GlobalOptions& global) {
     const double mean = std::accumulate(areas.begin(), areas.end(), 0.0) / double(areas.size());
     double variance = 0;
     for (double a : areas) variance += (a - mean) * (a - mean) / double(areas.size());
-    nlohmann::ordered_json regions = nlohmann::ordered_json::array();
-    for (std::size_t i = 0; i < s.regions.size(); ++i) {
-        const RegionReport& r = s.regions[i];
-        regions.push_back({{"region", i},
-                           {"seedVertex", r.seed},
-                           {"areaMm2", r.areaMm2},
-                           {"perimeterMm", r.perimeterMm},
-                           {"compactness", r.compactness},
-                           {"faces", r.faces},
-                           {"disk", r.disk}});
-    }
+    const nlohmann::ordered_json regions = segmentRegionsJson(s.regions);
     if (!args.reportPath.empty())
         writeSegmentPage(args.reportPath, input.mesh, s.faceRegion, regions);
     writeRegions(std::move(input.mesh), s.faceRegion, args.output, !args.ascii);

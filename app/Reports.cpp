@@ -73,4 +73,19 @@ nlohmann::ordered_json xyzJson(const Vec3& p) {
     return {p.x, p.y, p.z};
 }
 
+nlohmann::ordered_json segmentRegionsJson(const std::vector<RegionReport>& regions) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const RegionReport& r = regions[i];
+        out.push_back({{"region", i},
+                       {"seedVertex", r.seed},
+                       {"areaMm2", r.areaMm2},
+                       {"perimeterMm", r.perimeterMm},
+                       {"compactness", r.compactness},
+                       {"faces", r.faces},
+                       {"disk", r.disk}});
+    }
+    return out;
+}
+
 }  // namespace dfrecon::app

@@ -2,6 +2,7 @@
 // The JSON form of each result that more than one command reports, written
 // once so that a key means the same in every report (docs/cli.md).
 #include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -9,6 +10,7 @@
 #include "geometry/PlaneReading.hpp"
 #include "geometry/TriangleSoup.hpp"
 #include "geometry/Vec3.hpp"
+#include "segment/Segmentation.hpp"
 
 namespace dfrecon::app {
 
@@ -41,6 +43,10 @@ void appendItems(nlohmann::ordered_json& into, const nlohmann::ordered_json& ite
 
 /// A point or vector as [x, y, z]. O(1).
 nlohmann::ordered_json xyzJson(const Vec3& p);
+
+/// Each region of a segmentation as `segment --json` lists it (region,
+/// seedVertex, areaMm2, perimeterMm, compactness, faces, disk). O(regions).
+nlohmann::ordered_json segmentRegionsJson(const std::vector<RegionReport>& regions);
 
 /// Any three indexable values (sizes, spacings, an origin) as [a, b, c]. O(1).
 template <class Triple>

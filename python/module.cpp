@@ -605,12 +605,7 @@ PYBIND11_MODULE(_dfrecon, m) {
                 throw py::value_error("margin(): mm must be finite and within ±200 mm");
         if (margin.isZero() || (margin.grows() && margin.shrinks()))
             throw py::value_error("margin(): mm must all grow (> 0) or all shrink (< 0)");
-        const std::string newName =
-            !name.empty()
-                ? name
-                : source.name + (margin.shrinks() ? "-" : "+") +
-                      (margin.isUniform() ? std::to_string(int(std::lround(std::abs(margin.mm[0]))))
-                                          : std::string("margin"));
+        const std::string newName = !name.empty() ? name : marginRoiName(source.name, margin);
         StructureAlgebraOptions options =
             algebraOptions(stepMm, minAreaMm2, colour, roiType, "margin()");
         if (options.interpretedType.empty()) options.interpretedType = source.interpretedType;
@@ -917,20 +912,7 @@ PYBIND11_MODULE(_dfrecon, m) {
         out["face_region"] = py::array_t<std::int32_t>(py::ssize_t(result.faceRegion.size()),
                                                        result.faceRegion.data());
         out["seeds"] = result.seeds;
-        py::list reports;
-        for (std::size_t i = 0; i < result.regions.size(); ++i) {
-            const RegionReport& r = result.regions[i];
-            py::dict d;
-            d["region"] = i;
-            d["seedVertex"] = r.seed;
-            d["areaMm2"] = r.areaMm2;
-            d["perimeterMm"] = r.perimeterMm;
-            d["compactness"] = r.compactness;
-            d["faces"] = r.faces;
-            d["disk"] = r.disk;
-            reports.append(d);
-        }
-        out["regions"] = reports;
+        out["regions"] = toPython(app::segmentRegionsJson(result.regions));
         out["iterations"] = result.iterations;
         out["converged"] = result.converged;
         out["lloydEnergy"] = result.energy;
