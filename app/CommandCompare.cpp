@@ -70,12 +70,9 @@ void printPair(const Comparison& r, std::ostream& out) {
     const SurfaceDistances& d = r.distances;
     out << "volume A " << o.volumeAMm3 / 1000 << " cc, B " << o.volumeBMm3 / 1000 << " cc, both "
         << o.intersectionMm3 / 1000 << " cc\n"
-        << "Dice " << o.dice() << ", Jaccard " << o.jaccard() << " ("
-        << (o.shiftMm > 0 ? "exact with B shifted " + std::to_string(o.shiftMm) +
-                                " mm off the surfaces it shares with A: intersection within " +
-                                std::to_string(o.intersectionBoundMm3) + " mm3"
-                          : std::string("exact"))
-        << ")\n"
+        << "Dice " << o.dice() << ", Jaccard " << o.jaccard() << " (" << o.method;
+    if (o.shiftMm > 0) out << " " << o.shiftMm << " mm";
+    out << ": intersection within " << o.intersectionBoundMm3 << " mm3)\n"
         << "Hausdorff " << d.hausdorffMm() << " mm (A to B " << d.aToB.maxMm << " mm, B to A "
         << d.bToA.maxMm << " mm), HD95 " << d.hd95Mm() << " mm (pooled " << d.hd95PooledMm
         << " mm), mean surface distance " << d.meanMm() << " mm (each within " << d.spacingMm
@@ -314,12 +311,14 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->footer(
         "A and B are mesh files (.ply .stl .obj .off; valid closed solids) or contour files "
         "(.slices, DICOM RTSTRUCT, label volumes; each ROI is reconstructed with reconstruct's "
-        "defaults). Dice and Jaccard come from the exact volume of the intersection (CGAL "
-        "corefinement, exact constructions; where the surfaces coincide in part, B is shifted "
-        "1e-6 mm and the bound stated), so they carry no voxelisation error. Distances: every "
-        "triangle of each surface is cut into similar cells, every point of a cell within "
-        "--spacing of its centroid, and each centroid gets its exact distance to the other "
-        "surface (the closest-primitive kernel); Hausdorff is the larger directed "
+        "defaults). Dice and Jaccard come from the volume of the intersection found on the "
+        "surfaces (the flux through each surface's part inside the other: exact predicates, "
+        "crossing points in double precision, its bound stated as intersectionBoundMm3; where "
+        "the surfaces coincide in part, B is moved 1e-9 mm and area(B) x 1e-9 mm added to the "
+        "bound), so they carry no voxelisation error. Distances: every triangle of each "
+        "surface is cut into cells, every point of a cell within --spacing of its sample, and "
+        "each sample gets its exact distance to the other surface (the closest-primitive "
+        "kernel); Hausdorff is the larger directed "
         "maximum, HD95 the larger directed area-weighted 95th percentile (hd95PooledMm: of both "
         "directions pooled), the mean is area-weighted over both surfaces; surface Dice is the "
         "share of both surfaces' area within --tolerance of the other; the centroid distance is "
@@ -361,8 +360,7 @@ void addCompareCommand(CLI::App& root, const GlobalOptions& global) {
     cmd->add_option("-j,--jobs", args->jobs,
                     "Pairs of two structure sets compared at once (0: one per hardware "
                     "thread; never more than one per thread or per pair); the rows are the same "
-                    "for any value but for their seconds and the "
-                    "overlap's last digits (CGAL orders faces by memory address)")
+                    "for any value but for their seconds")
         ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print a JSON report instead of text");
     asOutput(cmd->get_option("--csv"), OutputKind::File);

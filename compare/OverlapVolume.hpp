@@ -1,8 +1,12 @@
 #pragma once
-// How much two solids overlap, exactly: the volume of their intersection by
-// CGAL's corefinement with exact constructions, so Dice and Jaccard carry no
-// voxelisation error (what plastimatch and Slicer's Segment Comparison
-// compute on label maps is off by the partial voxels along both surfaces).
+// How much two solids overlap, from their surfaces: the volume of their
+// intersection by the flux through each surface's part inside the other
+// (compare/IntersectionFlux: exact predicates, crossing points in double
+// with a stated bound far below any Dice digit that matters), with CGAL's
+// corefinement (exact constructions) kept as the independent route. Dice and
+// Jaccard carry no voxelisation error (what plastimatch and Slicer's Segment
+// Comparison compute on label maps is off by the partial voxels along both
+// surfaces).
 #include <optional>
 
 #include "geometry/MeshCheck.hpp"
@@ -13,12 +17,16 @@ namespace dfrecon {
 struct Overlap {
     double volumeAMm3 = 0, volumeBMm3 = 0;
     double intersectionMm3 = 0;
-    /// How intersectionMm3 was found: "exact" (corefinement of A and B), or
-    /// "exact, B shifted" where the surfaces coincide in part (shared faces,
-    /// edges or vertices, which corefinement cannot build a solid of): then
-    /// B is moved by shiftMm along a fixed generic direction and the result is
-    /// within intersectionBoundMm3 = area(B)·shift of the true one (the
-    /// volume B sweeps moving that far).
+    /// How intersectionMm3 was found: "surface flux" (A and B in general
+    /// position), or "surface flux, B shifted" where the surfaces coincide in
+    /// part (shared faces, edges or vertices, where no general position
+    /// exists): then B is moved by shiftMm along a fixed generic direction,
+    /// which changes the intersection by at most area(B)·shift (the volume B
+    /// sweeps moving that far). "exact" and "exact, B shifted" name the same
+    /// two cases decided by corefinement, the fallback where the flux finds
+    /// no general position even with B moved. Either way |intersectionMm3 −
+    /// the true intersection| ≤ intersectionBoundMm3: the flux's rounding
+    /// bound plus area(B)·shift.
     const char* method = "exact";
     double shiftMm = 0, intersectionBoundMm3 = 0;
     double unionMm3() const { return volumeAMm3 + volumeBMm3 - intersectionMm3; }
@@ -38,15 +46,13 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 /// The overlap of the solids bounded by `a` and `b`, which must be valid
 /// closed solids (dfrecon check): throws std::invalid_argument otherwise.
 /// Any two valid solids get an answer — touching, nested, identical,
-/// disjoint: exact where the surfaces are in general position (and for
-/// one surface given twice), else by the shift above (Overlap::method says
-/// which); surfaces sharing many points (at least 16 and 1 % of the
-/// smaller's) go to the shift at once, as corefinement of neighbours cut
-/// from one label map fails only after most of its work. Exact predicates and
-/// constructions; A's and B's volumes are summed in double from their
-/// points (the mesh check's), the intersection's from exact points rounded
-/// once. Work: O((n + k) log n) for n triangles and k intersecting
-/// pairs, with exact arithmetic's constant, up to four times over.
+/// disjoint: by the flux where the surfaces are in general position (one
+/// surface given twice is the solid itself), else with B moved (method says
+/// which; surfaces sharing many points — at least 16 and 1 % of the
+/// smaller's — are moved at once). A's and B's volumes are the mesh check's.
+/// Work: O((n + k) log n) for n triangles and k pairs of triangles whose
+/// boxes overlap, in double with exact predicates, up to four times over;
+/// corefinement's exact arithmetic only where all of those fail.
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b);
 
 /// The same where the caller has checked both solids already (checkA =
