@@ -76,61 +76,103 @@ SectionLattice latticeOver(const PlaneRect& region, const PlaneSectionOptions& o
     return l;
 }
 
-// Samples the planes of one group: coarse corners, then every sample of the
-// cells the Lipschitz bound cannot rule out.
+// A cell of the lattice, `size` samples wide, with its corner (i, j).
+struct LatticeCell {
+    std::size_t plane;
+    int i, j, size;
+};
+
+// Samples the planes of one group: the coarse corners, then, level by
+// level, the midpoints of the cells the Lipschitz bound cannot clear,
+// halving them until they are one step wide (a quadtree over each coarse
+// cell). A cleared cell's samples keep its corners' sign (no boundary can
+// reach into it), so the samples evaluated are the ones within a few cells
+// of the boundary at each level — about 4 per fine step of boundary, where
+// sampling whole coarse cells took about 40 — and every sample marching
+// squares reads on a cell the boundary crosses is exact.
 std::vector<PlaneSamples> samplePlanes(const PlaneField& field, const std::vector<double>& zs,
                                        const SectionLattice& l, PlaneSectionStats& stats) {
     const int w = l.width(), k = l.factor;
-    const int cw = l.cellsX + 1, ch = l.cellsY + 1;
-    std::vector<Vec3> points;
-    for (double z : zs)
-        for (int j = 0; j < ch; ++j)
-            for (int i = 0; i < cw; ++i) points.push_back({l.x(i * k), l.y(j * k), z});
-    const std::vector<double> coarse = field(points);
-    stats.coarseSamples += points.size();
-
-    // A boundary point inside a cell is within half its diagonal of a corner.
-    const double reach = 0.5 * std::sqrt(2.0) * k * l.step * (1 + 1e-9) + 1e-12;
     std::vector<PlaneSamples> planes(zs.size());
-    points.clear();
+    std::vector<Vec3> points;
     std::vector<std::size_t> where;  // plane · samples + sample of each point
-    for (std::size_t p = 0; p < zs.size(); ++p) {
+    auto mark = [&](std::size_t p, int i, int j) {
         PlaneSamples& s = planes[p];
-        s.z = zs[p];
-        s.value.assign(l.samples(), 0);
-        s.exact.assign(l.samples(), 0);
-        const double* c = &coarse[p * std::size_t(cw) * std::size_t(ch)];
+        const std::size_t at = std::size_t(j) * std::size_t(w) + std::size_t(i);
+        if (s.exact[at] != 0) return;
+        s.exact[at] = 1;
+        points.push_back({l.x(i), l.y(j), s.z});
+        where.push_back(p * l.samples() + at);
+    };
+    auto evaluate = [&](std::size_t& counter) {
+        if (points.empty()) return;
+        const std::vector<double> values = field(points);
+        counter += points.size();
+        for (std::size_t n = 0; n < points.size(); ++n)
+            planes[where[n] / l.samples()].value[where[n] % l.samples()] = values[n];
+        points.clear();
+        where.clear();
+    };
+    std::vector<LatticeCell> cells;
+    for (std::size_t p = 0; p < zs.size(); ++p) {
+        planes[p].z = zs[p];
+        planes[p].value.assign(l.samples(), 0);
+        planes[p].exact.assign(l.samples(), 0);
+        for (int cj = 0; cj <= l.cellsY; ++cj)
+            for (int ci = 0; ci <= l.cellsX; ++ci) mark(p, ci * k, cj * k);
         for (int cj = 0; cj < l.cellsY; ++cj)
-            for (int ci = 0; ci < l.cellsX; ++ci) {
-                const double f[4] = {c[cj * cw + ci], c[cj * cw + ci + 1], c[(cj + 1) * cw + ci],
-                                     c[(cj + 1) * cw + ci + 1]};
-                const bool mixed =
-                    std::any_of(f, f + 4, [&](double v) { return (v < 0) != (f[0] < 0); });
-                double nearest = INFINITY;
-                for (double v : f) nearest = std::min(nearest, std::abs(v));
-                const bool near = mixed || nearest <= reach;
-                for (int j = cj * k; j <= (cj + 1) * k; ++j)
-                    for (int i = ci * k; i <= (ci + 1) * k; ++i) {
-                        const std::size_t at = std::size_t(j) * std::size_t(w) + std::size_t(i);
-                        if (near) {
-                            if (s.exact[at] == 0) {
-                                s.exact[at] = 1;  // to evaluate
-                                points.push_back({l.x(i), l.y(j), s.z});
-                                where.push_back(p * l.samples() + at);
-                            }
-                        } else if (s.exact[at] == 0) {
-                            // No boundary in the cell: its corners' sign, at
-                            // least `nearest` from zero.
-                            s.value[at] = f[0] < 0 ? -nearest : nearest;
-                        }
-                    }
-            }
+            for (int ci = 0; ci < l.cellsX; ++ci) cells.push_back({p, ci * k, cj * k, k});
     }
-    const std::vector<double> fine = field(points);
-    stats.fineSamples += points.size();
-    for (std::size_t n = 0; n < points.size(); ++n) {
-        PlaneSamples& s = planes[where[n] / l.samples()];
-        s.value[where[n] % l.samples()] = fine[n];
+    evaluate(stats.coarseSamples);
+
+    std::vector<LatticeCell> near;
+    while (!cells.empty()) {
+        near.clear();
+        for (const LatticeCell& c : cells) {
+            // A boundary point inside a cell is within half its diagonal of
+            // a corner.
+            const int size = c.size;
+            const double reach = 0.5 * std::sqrt(2.0) * size * l.step * (1 + 1e-9) + 1e-12;
+            PlaneSamples& s = planes[c.plane];
+            const auto at = [&](int i, int j) {
+                return std::size_t(j) * std::size_t(w) + std::size_t(i);
+            };
+            const double f[4] = {s.value[at(c.i, c.j)], s.value[at(c.i + size, c.j)],
+                                 s.value[at(c.i, c.j + size)], s.value[at(c.i + size, c.j + size)]};
+            const bool mixed =
+                std::any_of(f, f + 4, [&](double v) { return (v < 0) != (f[0] < 0); });
+            double nearest = INFINITY;
+            for (double v : f) nearest = std::min(nearest, std::abs(v));
+            if (mixed || nearest <= reach) {
+                if (size > 1) near.push_back(c);
+                continue;
+            }
+            // No boundary in the cell: its corners' sign, at least
+            // `nearest` from zero.
+            for (int j = c.j; j <= c.j + size; ++j)
+                for (int i = c.i; i <= c.i + size; ++i)
+                    if (s.exact[at(i, j)] == 0) s.value[at(i, j)] = f[0] < 0 ? -nearest : nearest;
+        }
+        // The cells that may hold boundary, halved: their new corners.
+        cells.clear();
+        for (const LatticeCell& c : near) {
+            const int half = c.size / 2;
+            // A coarse factor that is not a power of two leaves odd sizes:
+            // those are sampled whole, as one-step cells.
+            if (c.size % 2 != 0) {
+                for (int j = c.j; j <= c.j + c.size; ++j)
+                    for (int i = c.i; i <= c.i + c.size; ++i) mark(c.plane, i, j);
+                for (int j = c.j; j < c.j + c.size; ++j)
+                    for (int i = c.i; i < c.i + c.size; ++i) cells.push_back({c.plane, i, j, 1});
+                continue;
+            }
+            for (int dj = 0; dj <= 2; ++dj)
+                for (int di = 0; di <= 2; ++di) mark(c.plane, c.i + di * half, c.j + dj * half);
+            for (int dj = 0; dj < 2; ++dj)
+                for (int di = 0; di < 2; ++di)
+                    cells.push_back({c.plane, c.i + di * half, c.j + dj * half, half});
+        }
+        evaluate(stats.fineSamples);
     }
     return planes;
 }
@@ -187,6 +229,13 @@ void refine(const PlaneField& field, std::vector<EdgeVertex>& vertices,
             // polygons touch.
             const double tc =
                 std::clamp(t, std::max(e.t0, kKeepOffSample), std::min(e.t1, 1 - kKeepOffSample));
+            // The root lies between a sample and the point kept off it, which
+            // was tried last time and is where the vertex stays: trying it
+            // again would change nothing.
+            if (tc == e.t0 || tc == e.t1) {
+                e.done = true;
+                continue;
+            }
             points.push_back(
                 {e.ax + tc * (e.bx - e.ax), e.ay + tc * (e.by - e.ay), planes[e.plane].z});
             active.push_back(n);
@@ -201,7 +250,10 @@ void refine(const PlaneField& field, std::vector<EdgeVertex>& vertices,
             Polygon& polygon = polygons[e.plane][e.polygon];
             polygon[e.vertex] = {points[m].x, points[m].y};
             const double width = std::abs(e.bx - e.ax) + std::abs(e.by - e.ay);
-            if (std::abs(v) <= o.toleranceMm || (e.t1 - e.t0) * width <= o.toleranceMm) {
+            // Values within the zero tolerance read as +tolerance (outside):
+            // such a point is on the boundary as far as the field can tell.
+            if (std::abs(v) <= std::max(o.toleranceMm, o.zeroToleranceMm) ||
+                (e.t1 - e.t0) * width <= o.toleranceMm) {
                 e.done = true;
                 continue;
             }

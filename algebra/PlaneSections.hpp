@@ -11,9 +11,13 @@
 // wide); because the field changes by at most the distance moved along a
 // plane (it is 1-Lipschitz there, as algebra/SolidField makes it), a cell
 // whose corners are all farther from zero than half its diagonal holds no
-// boundary and keeps its corners' sign. Only the other cells are sampled at
-// the fine step; marching squares (geometry/IsoLines) joins the crossings,
-// and each crossing is then moved along its lattice edge onto the zero set
+// boundary and keeps its corners' sign. The other cells are halved, level
+// by level (a quadtree), each level clearing what it can, down to the fine
+// step: the samples evaluated lie within a few cells of the boundary at
+// each level, a few per fine step of boundary (sampling whole uncleared
+// coarse cells took several times as many). Marching squares
+// (geometry/IsoLines) joins the crossings, whose cells' corners are all
+// evaluated, and each crossing is then moved along its lattice edge onto the zero set
 // by regula falsi (Illinois) on the field itself. Between vertices a
 // polygon is a chord of the true section: off it by at most step²/(8 r)
 // where the section bends with radius r, and by up to a step at a corner
@@ -28,8 +32,8 @@
 namespace dfrecon {
 
 struct PlaneSectionOptions {
-    double stepMm = 0.25;  // the fine lattice's step (mm)
-    int coarseFactor = 8;  // coarse cells are this many steps wide
+    double stepMm = 0.25;   // the fine lattice's step (mm)
+    int coarseFactor = 32;  // coarse cells are this many steps wide (a power of two halves evenly)
     int refineIterations = 12;
     /// Where the lattice starts off the region's corner, as a fraction of
     /// a step: off round coordinates (a box's faces miss its samples); a

@@ -286,6 +286,10 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
             {"sourceSurfaceVolumesCc", sources},
             {"distanceQueries", result.sections.coarseSamples + result.sections.fineSamples +
                                     result.sections.refinementSamples},
+            {"distanceQueriesByStage",
+             {{"coarseLattice", result.sections.coarseSamples},
+              {"nearBoundary", result.sections.fineSamples},
+              {"verticesOntoBoundary", result.sections.refinementSamples}}},
             {"surfacesSeconds", result.surfacesSeconds},
             {"sectionsSeconds", result.sectionsSeconds}};
         report["contoursReconstructed"] = {{"validSolid", rebuilt.check.validSolid()},
