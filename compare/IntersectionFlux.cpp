@@ -34,10 +34,17 @@ double det(const Vec3& a, const Vec3& b, const Vec3& c) {
     return dot(a, cross(b, c));
 }
 
-// A point with a bound on its distance from the true point it stands for.
+// A constructed crossing point and how far it may lie from the true one:
+// along its edge (the rounding of the plane test moves it there, up to the
+// whole edge where the edge runs nearly in the plane), of which only the
+// part along the crossed plane's normal changes the volume, and by rounding
+// in any direction.
 struct BoundedPoint {
-    Vec3 p;  // relative to the common origin
-    double errorMm = 0;
+    Vec3 p;                   // relative to the common origin
+    double alongMm = 0;       // along the edge
+    double offPlaneMm = 0;    // the same displacement's part normal to the crossed plane
+    double roundingMm = 0;    // in any direction
+    bool constructed = true;  // false: a corner of a triangle, only rounded to the origin
 };
 
 // Where segment pq crosses the plane of triangle abc, p and q lying strictly
@@ -57,10 +64,13 @@ BoundedPoint crossingPoint(const Vec3& p, const Vec3& q, const Vec3& a, const Ve
     const double slack = apart - errorP - errorQ;
     const double errorT = slack > 0 ? (errorP + errorQ) / slack + 4 * kEpsilon : 1.0;
     const Vec3 pq = q - p;
+    const double normal = length(cross(ab, ac));
     BoundedPoint x;
     x.p = (p + t * pq) - origin;
-    x.errorMm =
-        errorT * length(pq) + 4 * kEpsilon * (length(p) + length(q) + length(origin) + length(x.p));
+    x.alongMm = errorT * length(pq);
+    // The edge rises |dp − dq| / |n| over its length off the plane.
+    x.offPlaneMm = normal > 0 ? errorT * apart / normal : x.alongMm;
+    x.roundingMm = 4 * kEpsilon * (length(p) + length(q) + length(origin) + length(x.p));
     return x;
 }
 
@@ -92,9 +102,11 @@ struct Side {
     std::vector<std::array<std::uint32_t, 2>> edges;   // lower id first
     std::vector<std::array<std::uint32_t, 3>> edgeOf;  // per triangle, edge k joins corners k, k+1
     std::vector<std::uint32_t> ownerOf;                // per edge, the first triangle that has it
-    std::vector<Crossing> crossings;                   // sorted by edge, then t, once complete
-    std::vector<std::size_t> firstCrossing;            // per edge, into crossings (edges + 1)
-    std::vector<std::int8_t> inside;  // per point: 1 inside the other, 0 not, -1 unknown
+    std::vector<double> diameter2;                     // per triangle, its longest edge²
+    std::vector<double> edgeDiameter2;       // per edge, its triangles' largest diameter²
+    std::vector<Crossing> crossings;         // sorted by edge, then t, once complete
+    std::vector<std::size_t> firstCrossing;  // per edge, into crossings (edges + 1)
+    std::vector<std::int8_t> inside;         // per point: 1 inside the other, 0 not, -1 unknown
 
     Side(const TriangleSoup& s, const Vec3& shift) : soup(s) {
         points.reserve(s.points.size());
@@ -120,12 +132,20 @@ struct Side {
             return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
         });
         edgeOf.assign(n, {0, 0, 0});
+        diameter2.resize(n);
+        for (std::size_t t = 0; t < n; ++t) {
+            const Vec3 &a = points[soup.triangles[t][0]], &b = points[soup.triangles[t][1]],
+                       &c = points[soup.triangles[t][2]];
+            diameter2[t] = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+        }
         for (std::size_t i = 0; i < uses.size(); ++i) {
             if (i == 0 || uses[i].key != uses[i - 1].key) {
                 edges.push_back({std::uint32_t(uses[i].key >> 32), std::uint32_t(uses[i].key)});
                 ownerOf.push_back(uses[i].triangle);
+                edgeDiameter2.push_back(0);
             }
             edgeOf[uses[i].triangle][uses[i].corner] = std::uint32_t(edges.size() - 1);
+            edgeDiameter2.back() = std::max(edgeDiameter2.back(), diameter2[uses[i].triangle]);
         }
     }
 
@@ -225,18 +245,23 @@ void addEdgePieces(const Side& side, const Vec3& origin, CompensatedSum& volume,
         const auto& tri = side.soup.triangles[t];
         const Vec3 apex = side.points[tri[0]] - origin;
         const double apexLength = length(apex);
+        // The fan's triangles at a point move the volume by at most
+        // diameter²/6 per mm the point moves (the volume's gradient at a
+        // vertex is a third of its link's vector area). Constructed points'
+        // errors are counted once, where they are made.
+        const double fan = side.diameter2[t] / 6;
         auto add = [&](const BoundedPoint& a, const BoundedPoint& b) {
             volume.add(det(apex, a.p, b.p) / 6);
-            const double la = length(a.p), lb = length(b.p);
-            bound.add(apexLength * (lb * a.errorMm + la * b.errorMm + a.errorMm * b.errorMm) / 6 +
-                      2 * kEpsilon * apexLength * la * lb);
+            bound.add(
+                fan * ((a.constructed ? 0 : a.roundingMm) + (b.constructed ? 0 : b.roundingMm)) +
+                2 * kEpsilon * apexLength * length(a.p) * length(b.p) / 6);
         };
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t u = tri[k], w = tri[(k + 1) % 3];
             const std::uint32_t e = side.edgeOf[t][k];
             const Vec3 pu = side.points[u] - origin, pw = side.points[w] - origin;
-            const BoundedPoint from{pu, kEpsilon * (length(pu) + length(origin))},
-                to{pw, kEpsilon * (length(pw) + length(origin))};
+            const BoundedPoint from{pu, 0, 0, kEpsilon * (length(pu) + length(origin)), false},
+                to{pw, 0, 0, kEpsilon * (length(pw) + length(origin)), false};
             bool in = side.inside[u] == 1;
             const std::size_t count = side.crossingCount(e);
             if (count == 0) {
@@ -347,6 +372,13 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
             const std::uint32_t triangle = edgeOfA ? i : j;
             const std::uint32_t e = own.edgeOf[triangle][k];
             if (own.ownerOf[e] == triangle) {
+                // Its error moves the volume through the fans at it: the
+                // crossed triangle's (normal to it only: along the edge is
+                // within the edge's own triangles' planes) and, by rounding,
+                // those of the edge's triangles.
+                const double crossed2 = (edgeOfA ? sideB : sideA).diameter2[edgeOfA ? j : i];
+                bound.add(crossed2 / 3 * (x.offPlaneMm + x.roundingMm) +
+                          2 * own.edgeDiameter2[e] / 3 * x.roundingMm);
                 const Vec3 low = lowFirst ? p : q, high = lowFirst ? q : p;
                 const Vec3 lowToHigh = high - low;
                 const double span = dot(lowToHigh, lowToHigh);
@@ -373,8 +405,10 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         const double ls = length(start.p), le = length(end.p);
         volume.add(det(apexA, start.p, end.p) / 6);
         volume.add(det(apexB, end.p, start.p) / 6);
-        const double spread = ls * end.errorMm + le * start.errorMm + start.errorMm * end.errorMm;
-        bound.add((length(apexA) + length(apexB)) * (spread / 6 + 2 * kEpsilon * ls * le));
+        // Both ends moving at once: the one term of second order.
+        const double reach = std::sqrt(sideA.diameter2[i]) + std::sqrt(sideB.diameter2[j]);
+        bound.add(reach * start.alongMm * end.alongMm / 6 +
+                  2 * kEpsilon * (length(apexA) + length(apexB)) * ls * le / 6);
     };
     CGAL::box_intersection_d(boxesA.begin(), boxesA.end(), boxesB.begin(), boxesB.end(), cut);
     if (degenerate) return result;
