@@ -319,11 +319,13 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
     std::vector<Box> boxesA = boxesOf(sideA), boxesB = boxesOf(sideB);
 
     CompensatedSum volume, bound;
-    bool degenerate = false;
+    // Thrown out of the pair search at the first pair in no general
+    // position: the rest of the search would be wasted (the caller moves B
+    // and starts again).
+    struct Degenerate {};
     // One pair of triangles whose boxes overlap: do they cross, and if so
     // the segment, its direction, and the crossings of edges it ends on.
     auto cut = [&](const Box& boxA, const Box& boxB) {
-        if (degenerate) return;
         const std::uint32_t i = boxA.info(), j = boxB.info();
         const auto& ta = a.triangles[i];
         const auto& tb = b.triangles[j];
@@ -335,8 +337,7 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         for (int k = 0; k < 3; ++k) sb[k] = sideOf(pa[0], pa[1], pa[2], pb[k]);
         if ((sb[0] > 0 && sb[1] > 0 && sb[2] > 0) || (sb[0] < 0 && sb[1] < 0 && sb[2] < 0)) return;
         if (sa[0] * sa[1] * sa[2] == 0 || sb[0] * sb[1] * sb[2] == 0) {
-            degenerate = true;
-            return;
+            throw Degenerate{};
         }
         // Each end of the segment is an edge of one triangle through the
         // other's interior. Along d = nA × nB the part of A's triangle inside
@@ -389,13 +390,11 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         };
         for (int k = 0; k < 3; ++k)
             if (!edgeThrough(pa, sa, pb, k, true) || !edgeThrough(pb, sb, pa, k, false)) {
-                degenerate = true;
-                return;
+                throw Degenerate{};
             }
         if (count == 0) return;
         if (count != 2 || ends[0].starts == ends[1].starts) {
-            degenerate = true;
-            return;
+            throw Degenerate{};
         }
         const BoundedPoint& start = ends[0].starts ? ends[0].point : ends[1].point;
         const BoundedPoint& end = ends[0].starts ? ends[1].point : ends[0].point;
@@ -410,8 +409,11 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         bound.add(reach * start.alongMm * end.alongMm / 6 +
                   2 * kEpsilon * (length(apexA) + length(apexB)) * ls * le / 6);
     };
-    CGAL::box_intersection_d(boxesA.begin(), boxesA.end(), boxesB.begin(), boxesB.end(), cut);
-    if (degenerate) return result;
+    try {
+        CGAL::box_intersection_d(boxesA.begin(), boxesA.end(), boxesB.begin(), boxesB.end(), cut);
+    } catch (const Degenerate&) {
+        return result;
+    }
 
     sideA.sortCrossings();
     sideB.sortCrossings();
