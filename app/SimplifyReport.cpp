@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/Progress.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon::app {
 

@@ -28,7 +28,7 @@
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "shapes/SurfaceReference.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon::bench {
 
@@ -45,13 +45,13 @@ struct Truth {
     std::vector<double> planesMm;
 };
 
-struct SurfaceDistance {
+struct TruthDistance {
     double hausdorffMm = 0, meanMm = 0;
     std::vector<ErrorSample> errors;  // both directions, with their z
 };
 
-SurfaceDistance measure(const Truth& truth, const TriangleSoup& soup) {
-    SurfaceDistance d;
+TruthDistance measure(const Truth& truth, const TriangleSoup& soup) {
+    TruthDistance d;
     double sum = 0;
     for (const Vec3& p : sampleTriangles(soup, kSamples, 7)) {
         const double e = truth.reference.distance(p);
@@ -73,7 +73,7 @@ SurfaceDistance measure(const Truth& truth, const TriangleSoup& soup) {
 void printRow(const std::string& caseName, const std::string& system, double seconds,
               const Truth& truth, const TriangleSoup& soup) {
     const MeshCheckReport check = checkMesh(soup);
-    const SurfaceDistance distance = measure(truth, soup);
+    const TruthDistance distance = measure(truth, soup);
     const SlabErrors split = splitBySlabPosition(distance.errors, truth.planesMm);
     std::cout
         << nlohmann::ordered_json{{"bench", "recon"},

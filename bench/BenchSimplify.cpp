@@ -19,7 +19,7 @@
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "simplify/Simplification.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon::bench {
 

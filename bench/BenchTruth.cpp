@@ -32,7 +32,7 @@
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
 #include "recon/Reconstruction.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon::bench {
 

@@ -5,7 +5,7 @@
 // both ways, and to the contours when given.
 #include "contours/ContourSet.hpp"
 #include "simplify/Simplification.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon {
 

@@ -14,7 +14,7 @@
 #include "recon/SlabVolumes.hpp"
 #include "recon/SliceInterpolant.hpp"
 #include "shapes/AnalyticShapes.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 #include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {

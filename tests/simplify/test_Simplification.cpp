@@ -1,5 +1,5 @@
 // Error-bounded simplification, checked by the independent verifier
-// (simplify/SurfaceDistance: dense samples, exact distances over a BVH):
+// (simplify/SimplificationVerifier: dense samples, exact distances over a BVH):
 // both directions against the unsimplified mesh and against the contours,
 // on every synth shape at three bounds.
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 #include "simplify/DeviationBound.hpp"
 #include "simplify/InitialPriorities.hpp"
 #include "simplify/Simplification.hpp"
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 #include "tests/CpuRuntime.hpp"
 
 namespace dfrecon {

@@ -1,7 +1,7 @@
 // The verifier against distances known exactly: a cube and a shifted copy.
 #include <gtest/gtest.h>
 
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 namespace dfrecon {
 namespace {
@@ -16,13 +16,13 @@ TriangleSoup cube(double x0) {
     return s;
 }
 
-TEST(SurfaceDistance, IdenticalSurfacesAreZeroApart) {
+TEST(SimplificationVerifier, IdenticalSurfacesAreZeroApart) {
     const TwoSidedDistance d = twoSidedDistance(cube(0), cube(0), 2000);
     EXPECT_NEAR(d.maxMm(), 0.0, 1e-12);
     EXPECT_EQ(d.aToB.samples, 2000u + 8u);  // every vertex too
 }
 
-TEST(SurfaceDistance, ShiftedCubeIsTheShiftApartBothWays) {
+TEST(SimplificationVerifier, ShiftedCubeIsTheShiftApartBothWays) {
     // Shifted by 0.1 along x: the end faces are 0.1 apart, everything else
     // closer; the corners reach exactly 0.1.
     const TwoSidedDistance d = twoSidedDistance(cube(0), cube(0.1), 5000);
@@ -32,7 +32,7 @@ TEST(SurfaceDistance, ShiftedCubeIsTheShiftApartBothWays) {
     EXPECT_LT(d.aToB.meanMm, 0.1);
 }
 
-TEST(SurfaceDistance, ContourSamplesFollowEdgesAndLieOnTheCube) {
+TEST(SimplificationVerifier, ContourSamplesFollowEdgesAndLieOnTheCube) {
     Roi roi;
     roi.slices.push_back({0.5, {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}});
     const std::vector<Vec3> points = contourSamples(roi, 0.1);

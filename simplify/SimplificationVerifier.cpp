@@ -1,4 +1,4 @@
-#include "simplify/SurfaceDistance.hpp"
+#include "simplify/SimplificationVerifier.hpp"
 
 #include <algorithm>
 #include <cmath>
