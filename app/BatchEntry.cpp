@@ -71,8 +71,8 @@ struct RoiTally {
 RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
                          const ContourInput& input, const ReconstructSettings& settings,
                          const fs::path& folder) {
-    GlobalOptions quiet;  // nothing on stderr: the record says it all
-    quiet.quiet = true;
+    // Nothing on stderr: the record says it all.
+    const RoiWriteOptions quiet{true, false, false};
     RoiTally tally;
     tally.rois = rois.size();
     const std::vector<std::string> stems = uniqueFileStems(rois);
@@ -85,9 +85,9 @@ RoiTally reconstructRois(ocl::Runtime& runtime, const std::vector<const Roi*>& r
         RoiOutcome roi;
         try {
             if (rois[i]->defect) throw *rois[i]->defect;
-            roi = reconstructRoi(runtime, *rois[i],
-                                 MeshOutput{(folder / mesh).string(), settings.folderFormat()},
-                                 input, settings, quiet, false, false);
+            roi = writeRoiSurface(runtime, *rois[i],
+                                  MeshOutput{(folder / mesh).string(), settings.folderFormat()},
+                                  input, settings, quiet);
         } catch (...) {
             roi = failedRoi(*rois[i], std::current_exception());
         }

@@ -94,9 +94,10 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             try {
                 if (rois[i]->defect) throw *rois[i]->defect;
                 const Stopwatch roiWatch;
-                RoiOutcome outcome = reconstructRoi(
+                RoiOutcome outcome = writeRoiSurface(
                     runtimes[worker], *rois[i], outputFor(args, single, stems[i], several), load,
-                    args.settings, global, jobs <= 1, !args.reportPath.empty());
+                    args.settings,
+                    RoiWriteOptions{global.quiet, jobs <= 1, !args.reportPath.empty()});
                 outcome.report["seconds"]["total"] = roiWatch.total();
                 return outcome;
             } catch (...) {

@@ -115,9 +115,9 @@ nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
     return report;
 }
 
-RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
-                          const ContourInput& input, const ReconstructSettings& settings,
-                          const GlobalOptions& global, bool showProgress, bool keepSurface) {
+RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
+                           const ContourInput& input, const ReconstructSettings& settings,
+                           const RoiWriteOptions& how) {
     RoiOutcome outcome;
     std::ostringstream out, err;
     RoiSurface result;
@@ -130,7 +130,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
             runtime, roi, options, [&](const std::string& now, double fraction) {
                 if (now != stage) {
                     progress.reset();
-                    progress.emplace(now + " " + roi.name, showProgress && !global.quiet);
+                    progress.emplace(now + " " + roi.name, how.showProgress && !how.quiet);
                     stage = now;
                 }
                 if (fraction >= 0) progress->update(fraction);
@@ -151,7 +151,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
         TriMesh mesh = toTriMesh(result.surface, &refused);
         // The mesh holds the surface now (the bone of the head CT: 66 MB of
         // soup beside OpenMesh's 2.8 M faces while they are written).
-        if (!keepSurface) result.surface = {};
+        if (!how.keepSurface) result.surface = {};
         MeshWriteOptions write;
         write.binary = !settings.ascii;
         write.structure = structureTagOf(roi);
@@ -169,7 +169,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
         if (check.genus >= 0) out << ", genus " << check.genus;
         out << (written ? " -> " + output.label() : std::string(", not written")) << "\n";
     }
-    if (!valid && !global.quiet) {
+    if (!valid && !how.quiet) {
         err << "dfrecon: " << roi.name << ": not a valid closed solid between z =";
         for (const auto& [below, above] : result.brokenPieces)
             err << " [" << below << ", " << above << "]";
@@ -181,7 +181,7 @@ RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutpu
         roiReport(roi, result, input.dicomInfo(roi), settings, writing, simplification);
     outcome.invalid = !valid;
     outcome.report = std::move(report);
-    if (keepSurface) outcome.surface = std::move(result.surface);
+    if (how.keepSurface) outcome.surface = std::move(result.surface);
     outcome.out = out.str();
     outcome.err = err.str();
     return outcome;

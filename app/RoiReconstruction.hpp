@@ -51,18 +51,25 @@ nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
                                  const RoiWriting& writing,
                                  const nlohmann::ordered_json& simplification);
 
-/// Reconstructs `roi` (one of input.contours.rois) into `output` as described
-/// in docs/reconstruction.md and returns the report `reconstruct --json`
-/// gives per ROI. A surface that is not a valid closed solid is reported
-/// (`invalid`) and written only with settings.allowInvalid. The outcome
-/// holds the surface only with `keepSurface` (for an HTML report); else it
-/// is freed once the mesh to write is made, where a large ROI peaks. Throws
+/// How writeRoiSurface reports while it works and what it keeps.
+struct RoiWriteOptions {
+    bool quiet = false;         // --quiet: no progress bar, no warning for an invalid surface
+    bool showProgress = false;  // a progress bar per stage (one ROI at a time)
+    bool keepSurface = false;   // the outcome keeps the surface (for an HTML report)
+};
+
+/// Reconstructs `roi` (one of input.contours.rois), writes it to `output` as
+/// described in docs/reconstruction.md and returns the report `reconstruct
+/// --json` gives per ROI. A surface that is not a valid closed solid is
+/// reported (`invalid`) and written only with settings.allowInvalid. The
+/// outcome holds the surface only with options.keepSurface; else it is
+/// freed once the mesh to write is made, where a large ROI peaks. Throws
 /// what the stages throw (input limits, OpenCL, memory, a write that
 /// fails). Safe to call for several ROIs at once, one runtime each. O(the
-/// reconstruction).
-RoiOutcome reconstructRoi(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
-                          const ContourInput& input, const ReconstructSettings& settings,
-                          const GlobalOptions& global, bool showProgress, bool keepSurface);
+/// reconstruction). (The API's reconstructRoi reconstructs only.)
+RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
+                           const ContourInput& input, const ReconstructSettings& settings,
+                           const RoiWriteOptions& options);
 
 /// The outcome of an ROI that failed with `error` (app/Failure names it):
 /// reported with `error` and `exitCode`, so the other ROIs go on; a usage
