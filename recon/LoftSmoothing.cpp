@@ -593,11 +593,15 @@ void markRepaired(const TriangleSoup& surface, MeshCheckReport& check) {
 
 }  // namespace
 
-LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
-                               std::vector<bool> isLoft, std::size_t contourVertices,
-                               const PieceStack& stack, SliceInterpolant& field,
-                               const PlaneSections& planes, double toleranceMm,
-                               const PlaneFrame& writtenFrame, MeshCheckReport& check) {
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
+                               SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
+                               MeshCheckReport& check) {
+    std::vector<std::uint32_t>& pieceOf = marks.pieceOf;
+    std::vector<bool>& isLoft = marks.isLoft;
+    const std::size_t contourVertices = marks.contourVertices;
+    const PlaneSections& planes = bendTo.planes;
+    const double toleranceMm = bendTo.toleranceMm;
+    const PlaneFrame& writtenFrame = bendTo.writtenFrame;
     LoftSmoothingStats stats;
     const WrittenFloats written(writtenFrame);
     written.round(surface);

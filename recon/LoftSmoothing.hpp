@@ -63,10 +63,23 @@ struct LoftSmoothingStats {
 /// checkStackedMesh's, which search only the pieces whose vertices moved.
 /// Work: O(T) per round and pass over the triangles made, one or two
 /// whole-mesh checks, local tests around what was repaired.
-LoftSmoothingStats smoothLofts(TriangleSoup& surface, std::vector<std::uint32_t> pieceOf,
-                               std::vector<bool> isLoft, std::size_t contourVertices,
-                               const PieceStack& stack, SliceInterpolant& field,
-                               const PlaneSections& planes, double toleranceMm,
-                               const PlaneFrame& writtenFrame, MeshCheckReport& check);
+/// What smoothing reads of the surface per triangle and point, as the
+/// builder hands it over (SurfaceBuilder::release).
+struct LoftMarks {
+    std::vector<std::uint32_t> pieceOf;  // per triangle, its piece of `stack`
+    std::vector<bool> isLoft;            // per triangle: made between contours (may bend)
+    std::size_t contourVertices = 0;     // points below this id are contour points (never move)
+};
+
+/// What smoothing bends towards and keeps to.
+struct LoftSmoothingTargets {
+    const PlaneSections& planes;     // the field's planes (slab volume targets)
+    double toleranceMm;              // Newton steps stop this near the zero set
+    const PlaneFrame& writtenFrame;  // the frame the surface is written in (float places)
+};
+
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
+                               SliceInterpolant& field, const LoftSmoothingTargets& targets,
+                               MeshCheckReport& check);
 
 }  // namespace dfrecon

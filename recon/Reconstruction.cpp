@@ -732,9 +732,10 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
         removeUnusedPointsFrom(result.surface, contourVertices);
         std::vector<std::uint32_t>().swap(fields.nearestId);
         SliceInterpolant interpolant(fields);
+        const PlaneSections planes = sectionsOf(slices);
         const LoftSmoothingStats smooth = smoothLofts(
-            result.surface, std::move(built.pieces), std::move(built.lofts), contourVertices, stack,
-            interpolant, sectionsOf(slices), options.smoothToleranceMm, roi.frame, result.check);
+            result.surface, {std::move(built.pieces), std::move(built.lofts), contourVertices},
+            stack, interpolant, {planes, options.smoothToleranceMm, roi.frame}, result.check);
         stats.smoothedVertices = smooth.movedVertices;
         stats.smoothRevertedPieces = smooth.revertedPieces;
         stats.smoothUnbentVertices = smooth.unbentVertices;
