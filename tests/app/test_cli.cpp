@@ -624,9 +624,6 @@ TEST(Cli, CompareTouchingNeighboursOfAnAtlas) {
     // (a label map's neighbours): no general position, so B is moved off A
     // (the bound says by how much that can change the intersection), and on
     // the planes the two do not overlap at all. Exit 3 before issue 36.
-#ifdef DFRECON_SANITIZE_BUILD
-    GTEST_SKIP() << "73 s under the sanitizers; OverlapVolume's tests take the shift there";
-#endif
     const std::string atlas = "/usr/share/mricron/templates/brodmann.nii.gz";
     if (!fs::exists(atlas)) GTEST_SKIP() << atlas << " missing (make setup installs mricron-data)";
     const Result run = runDfrecon("-q compare " + atlas + " " + atlas +
