@@ -168,3 +168,27 @@ TEST(IntersectionFlux, NearlyCoplanarFacesStayWithinTheStatedBound) {
     }
     EXPECT_GE(compared, trials / 2);
 }
+
+TEST(IntersectionFlux, HollowSolidsWithTheirCavitiesInsideOut) {
+    // A shell with a cavity (its inner surface turned inside out, as a
+    // solid's boundary is), against balls that cross the cavity, sit in it,
+    // or cross both surfaces; and two hollow solids against each other.
+    auto hollow = [](double outer, double inner, const Vec3& at) {
+        TriangleSoup cavity = turned(geodesicSphere(8, inner), 0.4, at);
+        for (auto& t : cavity.triangles) std::swap(t[1], t[2]);
+        return joined(turned(geodesicSphere(10, outer), 0.2, at), cavity);
+    };
+    const TriangleSoup shell = hollow(10, 6, {0, 0, 0});
+    ASSERT_TRUE(checkMesh(shell).validSolid());
+    const TriangleSoup balls[] = {
+        turned(geodesicSphere(6, 2), 0.9, {0.3, 0.2, 0.1}),   // in the cavity
+        turned(geodesicSphere(6, 3), 0.9, {5.5, 0.3, 0.2}),   // across it
+        turned(geodesicSphere(9, 7), 0.9, {6.5, 1.1, -0.4}),  // across both
+        hollow(9, 4, {3.3, -1.2, 0.7})};
+    for (const TriangleSoup& b : balls) {
+        expectAgreesWithCorefinement(shell, b, "shell, ball");
+        expectAgreesWithCorefinement(b, shell, "ball, shell");
+    }
+    // The ball in the cavity does not meet the solid at all.
+    EXPECT_NEAR(intersectionByFlux(shell, balls[0]).volumeMm3, 0, 1e-9);
+}
