@@ -183,13 +183,14 @@ EntryOutcome::Status entryStatusNamed(const std::string& name) {
 
 void writeFailedEntryRecord(const ManifestEntry& entry, const ReconstructSettings& base,
                             const std::string& outputFolder, const std::string& version,
-                            const std::string& error, int exitCode, bool lasting) {
+                            const EntryFailure& failure) {
+    const std::string& error = failure.error;
     const fs::path folder = fs::path(outputFolder) / entry.id;
     std::optional<Failure> inputFailure;
     nlohmann::ordered_json record =
         recordStart(entry, withGivenOptions(base, entry.options), version, inputFailure);
-    record["complete"] = lasting;
-    record["exitCode"] = exitCode;
+    record["complete"] = failure.lasting;
+    record["exitCode"] = failure.exitCode;
     record["error"] = error;
     record["summary"] = "failed: " + error;
     record["seconds"] = 0;

@@ -38,12 +38,17 @@ EntryOutcome runBatchEntry(ocl::Runtime& runtime, const ManifestEntry& entry,
 
 /// Writes OUTPUT/ID/record.json for an entry that failed outside
 /// runBatchEntry (its worker process died): the entry, options and input
-/// files as runBatchEntry would record them, no ROIs, and `error` with
-/// `exitCode`. `lasting` marks it complete, so that a rerun with the same
+/// files as runBatchEntry would record them, no ROIs, and the failure's
+/// `error` with its `exitCode`. `lasting` marks it complete, so that a rerun with the same
 /// input, options and version skips it instead of meeting the failure
 /// again. Throws on a folder or record that cannot be written.
+struct EntryFailure {
+    std::string error;
+    int exitCode = 0;
+    bool lasting = false;  // complete: a rerun skips it
+};
 void writeFailedEntryRecord(const ManifestEntry& entry, const ReconstructSettings& base,
                             const std::string& outputFolder, const std::string& version,
-                            const std::string& error, int exitCode, bool lasting);
+                            const EntryFailure& failure);
 
 }  // namespace dfrecon::app

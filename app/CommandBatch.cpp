@@ -86,9 +86,9 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
             if (result.died) try {
                     // The worker wrote no record: the batch-report must
                     // still show the entry, and a rerun skip a lasting one.
-                    writeFailedEntryRecord(*mine[i], args.settings, args.output, DFRECON_VERSION,
-                                           result.outcome.error, result.outcome.exitCode,
-                                           result.lasting);
+                    writeFailedEntryRecord(
+                        *mine[i], args.settings, args.output, DFRECON_VERSION,
+                        {result.outcome.error, result.outcome.exitCode, result.lasting});
                 } catch (const std::exception& e) {
                     result.outcome.error +=
                         std::string("; its record could not be written: ") + e.what();

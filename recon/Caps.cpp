@@ -252,9 +252,11 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
 
 }  // namespace
 
-void capEnds(CapSite& site, CapMode mode, const LayerPart& end, bool up, double offsetMm,
+void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
              const SliceFields& fields, std::size_t slice) {
     if (end.contours.empty()) return;
+    const bool up = reach.up;
+    const double offsetMm = reach.offsetMm;
     switch (mode) {
         case CapMode::None:
             return;
@@ -267,13 +269,13 @@ void capEnds(CapSite& site, CapMode mode, const LayerPart& end, bool up, double 
     }
 }
 
-void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, bool up, double offsetMm,
+void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
                     const SliceFields& fields, std::size_t slice) {
     const std::size_t before = site.builder().triangleCount();
-    capEnds(site, mode, end, up, offsetMm, fields, slice);
+    capEnds(site, mode, end, reach, fields, slice);
     if (mode != CapMode::None && !site.isCleanCap(before, end)) {
         site.builder().truncateTriangles(before);
-        prismCap(site.builder(), end, up, offsetMm);
+        prismCap(site.builder(), end, reach.up, reach.offsetMm);
     }
 }
 

@@ -78,8 +78,8 @@ class CapSite {
 };
 
 /// The entry point: caps the contours of `end`, slice `slice` of `fields`,
-/// upward from their plane when `up` (else downward), reaching `offsetMm`
-/// beyond it, in the shape `mode` asks for (CapMode::None adds nothing).
+/// upward from their plane when `reach.up` (else downward), reaching
+/// `reach.offsetMm` beyond it, in the shape `mode` asks for (CapMode::None adds nothing).
 /// Everything it adds lies between the plane and the offset, and is meant to
 /// be bordered by exactly the end contours' edges. A dome that is not such a
 /// clean sheet, or whose outer contours are too small to hold an inner
@@ -93,7 +93,12 @@ class CapSite {
 /// (O(lattice points · contour points)), triangulates the region with them
 /// (O(m log m) in the m points) and checks the sheet (O(t log t) in its t
 /// triangles).
-void capEnds(CapSite& site, CapMode mode, const LayerPart& end, bool up, double offsetMm,
+/// Which way a cap goes from its plane and how far.
+struct CapReach {
+    bool up = true;       // upward (else downward) from the end's plane
+    double offsetMm = 0;  // how far beyond the plane it may reach
+};
+void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
              const SliceFields& fields, std::size_t slice);
 
 /// capEnds for a piece of its own (the ends of the stack): what it adds is
@@ -101,7 +106,7 @@ void capEnds(CapSite& site, CapMode mode, const LayerPart& end, bool up, double 
 /// replaced by a flat prism cap. So with CapMode::Flat or Dome the cap is a
 /// clean piece bordered by exactly the end contours. Work: capEnds' and
 /// the check's, O(t log t) in the cap's triangles.
-void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, bool up, double offsetMm,
+void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
                     const SliceFields& fields, std::size_t slice);
 
 /// The guaranteed cap: the contours of `end` extruded by `offsetMm` (up or

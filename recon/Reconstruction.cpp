@@ -158,7 +158,7 @@ class SurfaceReconstructor final : public CapSite {
                   std::size_t slice) {
         const LayerPart whole = part(end, all(end));
         stats_.caps += whole.contours.size();
-        capEndsAsPiece(*this, options_.cap, whole, up, offsetMm, fields, slice);
+        capEndsAsPiece(*this, options_.cap, whole, {up, offsetMm}, fields, slice);
     }
 
     /// The guaranteed cap: the end contours extruded under a flat lid.
@@ -227,7 +227,7 @@ class SurfaceReconstructor final : public CapSite {
              std::size_t slice) {
         if (end.contours.empty()) return;
         stats_.caps += end.contours.size();
-        capEnds(*this, options_.cap, end, up, offsetMm, fields, slice);
+        capEnds(*this, options_.cap, end, {up, offsetMm}, fields, slice);
     }
 
     static std::vector<std::uint32_t> all(const Layer& layer) {

@@ -36,9 +36,9 @@ double fieldEnergy(const GeodesicField& field, const std::vector<double>& vertex
 
 }  // namespace
 
-int regionCentre(const MeshGraph& graph, const FastMarching& marching,
-                 const std::vector<double>& vertexAreas, const std::vector<int>& regionVertices,
-                 int seed, int steps, double* energy) {
+RegionCentre regionCentre(const MeshGraph& graph, const FastMarching& marching,
+                          const std::vector<double>& vertexAreas,
+                          const std::vector<int>& regionVertices, int seed, int steps) {
     const std::size_t n = std::size_t(graph.vertexCount());
     std::vector<char> inRegion(n, 0);
     for (int v : regionVertices) inRegion[std::size_t(v)] = 1;
@@ -110,8 +110,7 @@ int regionCentre(const MeshGraph& graph, const FastMarching& marching,
         if (next == w || std::find(visited.begin(), visited.end(), next) != visited.end()) break;
         w = next;
     }
-    if (energy) *energy = bestEnergy;
-    return best;
+    return {best, bestEnergy};
 }
 
 LloydResult geodesicLloyd(const MeshGraph& graph, const FastMarching& marching,
@@ -174,7 +173,8 @@ LloydResult geodesicLloyd(const MeshGraph& graph, const FastMarching& marching,
         for (std::size_t i = 0; i < seeds.size(); ++i)
             if (!members[i].empty())
                 moved[i] = regionCentre(graph, marching, vertexAreas, members[i], seeds[i],
-                                        options.centerSteps);
+                                        options.centerSteps)
+                               .vertex;
         if (moved == seeds) {
             result.converged = true;
             break;

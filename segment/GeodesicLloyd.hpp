@@ -67,10 +67,14 @@ LloydResult geodesicLloyd(const MeshGraph& graph, const FastMarching& marching,
                           std::vector<int> seeds, const LloydOptions& options = {});
 
 /// The intrinsic centre of mass of the region made of `regionVertices`,
-/// by the gradient descent above from `seed`; `energy` (if set) receives
-/// its E_i (first-order sum with `vertexAreas`).
-int regionCentre(const MeshGraph& graph, const FastMarching& marching,
-                 const std::vector<double>& vertexAreas, const std::vector<int>& regionVertices,
-                 int seed, int steps, double* energy = nullptr);
+/// by the gradient descent above from `seed`, and its E_i (first-order sum
+/// with `vertexAreas`).
+struct RegionCentre {
+    int vertex = -1;
+    double energy = 0;
+};
+RegionCentre regionCentre(const MeshGraph& graph, const FastMarching& marching,
+                          const std::vector<double>& vertexAreas,
+                          const std::vector<int>& regionVertices, int seed, int steps);
 
 }  // namespace dfrecon

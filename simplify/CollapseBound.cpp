@@ -94,7 +94,7 @@ double DeviationCache::estimate(Known* entry, const NewTriangle& t,
                                 const DeviationSurface& original, const DeviationLimits& limits,
                                 std::size_t maxPieces, double enough) {
     const auto compute = [&] {
-        return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, maxPieces, enough);
+        return deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, {maxPieces, enough});
     };
     if (!entry) return compute().value;
     Known& known = *entry;

@@ -52,9 +52,14 @@ double cornerDistance(const OriginalPiece& piece, const CoverCandidate& candidat
 /// first. Returns the largest distance reported, or a value above the limit
 /// as soon as a part cannot be covered (onCovered may then have been called
 /// for other parts). The same pieces and candidates give the same answer.
+/// Which candidates coverPiece measures first (indices, or -1).
+struct CoverHints {
+    int firstTry = -1;  // tried first: the usual answer
+    int likely = -1;    // measured first, only to rule others out sooner
+};
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered,
+                  CoverHints hints, const DeviationLimits& limits, OnCovered&& onCovered,
                   int depth = 0);
 
 /// Most halvings of one original triangle in coverPiece. Three halvings of
@@ -112,8 +117,10 @@ double coverAcrossAnEdge(const OriginalPiece& piece, const std::vector<CoverCand
 
 template <class OnCovered>
 double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>& candidates,
-                  int firstTry, int likely, const DeviationLimits& limits, OnCovered&& onCovered,
+                  CoverHints hints, const DeviationLimits& limits, OnCovered&& onCovered,
                   int depth) {
+    const int firstTry = hints.firstTry;
+    int likely = hints.likely;
     const double limit = limits.limitMm;
     if (firstTry >= 0) {
         const double d = cornerDistance(piece, candidates[std::size_t(firstTry)]);
@@ -175,7 +182,7 @@ double coverPiece(const OriginalPiece& piece, const std::vector<CoverCandidate>&
     double worst = 0;
     for (const OriginalPiece& part : parts) {
         worst =
-            std::max(worst, coverPiece(part, candidates, best, -1, limits, onCovered, depth + 1));
+            std::max(worst, coverPiece(part, candidates, {best, -1}, limits, onCovered, depth + 1));
         if (worst > limit) return worst;
     }
     return worst;

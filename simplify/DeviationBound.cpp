@@ -50,12 +50,13 @@ int longestEdge(const Vec3 p[3]) {
 
 double deviationBound(const DeviationSurface& surface, Vec3 a, Vec3 b, Vec3 c,
                       const DeviationLimits& limits) {
-    return deviationBoundWithin(surface, a, b, c, limits, SIZE_MAX).value;
+    return deviationBoundWithin(surface, a, b, c, limits, {}).value;
 }
 
 DeviationEstimate deviationBoundWithin(const DeviationSurface& original, Vec3 a, Vec3 b, Vec3 c,
-                                       const DeviationLimits& limits, std::size_t maxPieces,
-                                       double enough) {
+                                       const DeviationLimits& limits, DeviationBudget budget) {
+    const std::size_t maxPieces = budget.maxPieces;
+    const double enough = budget.enough;
     const double limit = limits.limitMm;
     const double finest = limits.finestFraction * limit;
     const double searchRadius2 = limit * limit * (1 + 1e-9);  // any sqrt(d2) <= limit

@@ -67,9 +67,14 @@ struct DeviationEstimate {
     bool complete;            ///< value is deviationBound's, not just a lower bound of it
     std::size_t piecesTaken;  ///< pieces looked at when incomplete
 };
+/// How far deviationBoundWithin may go: at most `maxPieces` pieces, and no
+/// further once the lower bound exceeds `enough`.
+struct DeviationBudget {
+    std::size_t maxPieces = SIZE_MAX;
+    double enough = INFINITY;
+};
 DeviationEstimate deviationBoundWithin(const DeviationSurface& surface, Vec3 a, Vec3 b, Vec3 c,
-                                       const DeviationLimits& limits, std::size_t maxPieces,
-                                       double enough = INFINITY);
+                                       const DeviationLimits& limits, DeviationBudget budget);
 
 /// Which edge of p is longest: k for the edge p[k] → p[(k+1) % 3] (the
 /// first of equal ones).

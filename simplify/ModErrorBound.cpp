@@ -112,7 +112,7 @@ double ModErrorBound::coverage(const CollapseInfo& ci) {
         // created, is the likely nearest.
         const int likely = (f == ci.fl || f == ci.fr) ? -1 : created++;
         for (const OriginalPiece& piece : m.property(pieces_, f)) {
-            worst = std::max(worst, coverPiece(piece, candidates_, -1, likely, limits_,
+            worst = std::max(worst, coverPiece(piece, candidates_, {-1, likely}, limits_,
                                                [&](const OriginalPiece& part, int k, double) {
                                                    judgedCover_.emplace_back(
                                                        part, candidates_[std::size_t(k)].id);

@@ -36,9 +36,8 @@ TEST(GeodesicLloyd, CentreOfASquareRegionIsItsMiddle) {
     std::vector<int> all(std::size_t(graph.vertexCount()));
     for (int v = 0; v < graph.vertexCount(); ++v) all[std::size_t(v)] = v;
     const std::vector<double> areas = graph.vertexAreas();
-    double energy = 0;
-    const int centre =
-        regionCentre(graph, marching, areas, all, nearestVertex(graph, {0.2, 0.3, 0}), 20, &energy);
+    const auto [centre, energy] =
+        regionCentre(graph, marching, areas, all, nearestVertex(graph, {0.2, 0.3, 0}), 20);
     EXPECT_LT(length(graph.point(centre) - Vec3{0.5, 0.5, 0}), 0.08);  // within ~1.5 edges
     // The same first-order sum with exact distances from the true centre
     // (≈ 1/6, the integral): fast marching on this grid overestimates

@@ -29,7 +29,7 @@ TEST(Coverage, CutsAPieceAcrossTheEdgeBetweenTwoFaces) {
 
     std::vector<std::pair<OriginalPiece, int>> parts;
     const double d =
-        coverPiece(piece, faces, -1, -1, limits,
+        coverPiece(piece, faces, {}, limits,
                    [&](const OriginalPiece& part, int k, double) { parts.emplace_back(part, k); });
     ASSERT_LE(d, 0.75);
     EXPECT_GE(parts.size(), 2u);

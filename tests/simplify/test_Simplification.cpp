@@ -215,7 +215,7 @@ TEST(DeviationBound, EstimatesFromFewPiecesAreLowerBounds) {
         const DeviationSurface& original = torus.original;
         const double bound = deviationBound(original, a, b, d, limits);
         for (std::size_t pieces : {std::size_t(1), std::size_t(8), std::size_t(64)}) {
-            const DeviationEstimate e = deviationBoundWithin(original, a, b, d, limits, pieces);
+            const DeviationEstimate e = deviationBoundWithin(original, a, b, d, limits, {pieces});
             if (e.complete) {
                 EXPECT_EQ(e.value, bound);
                 ++complete;
@@ -264,7 +264,7 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
         const double enough = 0.125 * (torus.unit() + 1) + 0.02;  // over [0.02, 0.27)
         for (std::size_t pieces : {std::size_t(8), std::size_t(64), SIZE_MAX}) {
             const DeviationEstimate e =
-                deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, pieces, enough);
+                deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, {pieces, enough});
             if (e.complete) {
                 EXPECT_EQ(e.value, bound);
                 continue;
@@ -275,7 +275,7 @@ TEST(DeviationBound, EstimatesStopOnceAboveWhatTheCallerAsks) {
                 ++stoppedEarly;
                 // As strong as the same pieces without the question.
                 const DeviationEstimate same =
-                    deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, e.piecesTaken);
+                    deviationBoundWithin(original, t.p[0], t.p[1], t.p[2], limits, {e.piecesTaken});
                 EXPECT_EQ(same.value, e.value);
             }
         }
