@@ -558,8 +558,9 @@ def surface_distance_maps(meshes, *, names=None, max_distance_mm=None, texels=51
 
 def compare(a, b, *, roi_a=None, roi_b=None, spacing_mm=0.2, tolerance_mm=1.0):
     """How two structures agree, with ``dfrecon compare --json``'s keys: volumes,
-    Dice, Jaccard (on the surfaces, within intersectionBoundMm3), Hausdorff, HD95, mean surface distance, surface Dice
-    (each within spacing_mm), centroid distance, and for two contour inputs
+    Dice, Jaccard (on the surfaces, within intersectionBoundMm3), Hausdorff,
+    HD95, mean surface distance, surface Dice (each within spacing_mm),
+    centroid distance, and for two contour inputs
     ``onPlanes``, the planning system's per-plane overlap and added path
     length. `a` and `b` are Meshes or mesh files, or StructureSets / contour
     files with ``roi_a``, ``roi_b`` (reconstructed as the program does)."""
