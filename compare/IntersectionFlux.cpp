@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 #include "geometry/Box3.hpp"
+#include "geometry/CoreBudget.hpp"
 
 namespace dfrecon {
 
@@ -19,6 +22,9 @@ namespace {
 using PredicateKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+// Shares of the pair search (each a slab of A's boxes along x): a fixed
+// number, so that results do not depend on the cores free.
+constexpr std::size_t kPairShares = 8;
 
 // +1 where x lies on the side that triangle abc's normal (b − a) × (c − a)
 // points to (outside, for a surface oriented outward), −1 on the other side,
@@ -91,6 +97,14 @@ struct Crossing {
     double t;  // along the edge from its lower point id
     BoundedPoint point;
     bool lowOutside;  // the edge's lower point lies outside the other triangle's plane
+};
+
+// What one share of the pair search found: its part of the sums, and the
+// crossings of each surface's edges it met.
+struct PairShare {
+    CompensatedSum volume, bound;
+    std::size_t crossingPairs = 0;
+    std::vector<Crossing> crossingsA, crossingsB;
 };
 
 // One of the two surfaces as the cut sees it: its points (B's moved), its
@@ -318,14 +332,13 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
     };
     std::vector<Box> boxesA = boxesOf(sideA), boxesB = boxesOf(sideB);
 
-    CompensatedSum volume, bound;
     // Thrown out of the pair search at the first pair in no general
     // position: the rest of the search would be wasted (the caller moves B
     // and starts again).
     struct Degenerate {};
     // One pair of triangles whose boxes overlap: do they cross, and if so
     // the segment, its direction, and the crossings of edges it ends on.
-    auto cut = [&](const Box& boxA, const Box& boxB) {
+    auto cut = [&](PairShare& out, const Box& boxA, const Box& boxB) {
         const std::uint32_t i = boxA.info(), j = boxB.info();
         const auto& ta = a.triangles[i];
         const auto& tb = b.triangles[j];
@@ -361,7 +374,7 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
             if (count == 2) return false;
             // Constructed from the edge's lower point id, so both triangles
             // that share the edge get the same bits.
-            Side& own = edgeOfA ? sideA : sideB;
+            const Side& own = edgeOfA ? sideA : sideB;
             const auto& t = edgeOfA ? ta : tb;
             const bool lowFirst = t[k] < t[k1];
             const BoundedPoint x = lowFirst ? crossingPoint(p, q, tri[0], tri[1], tri[2], origin)
@@ -378,13 +391,14 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
                 // within the edge's own triangles' planes) and, by rounding,
                 // those of the edge's triangles.
                 const double crossed2 = (edgeOfA ? sideB : sideA).diameter2[edgeOfA ? j : i];
-                bound.add(crossed2 / 3 * (x.offPlaneMm + x.roundingMm) +
-                          2 * own.edgeDiameter2[e] / 3 * x.roundingMm);
+                out.bound.add(crossed2 / 3 * (x.offPlaneMm + x.roundingMm) +
+                              2 * own.edgeDiameter2[e] / 3 * x.roundingMm);
                 const Vec3 low = lowFirst ? p : q, high = lowFirst ? q : p;
                 const Vec3 lowToHigh = high - low;
                 const double span = dot(lowToHigh, lowToHigh);
                 const double t01 = span > 0 ? dot(x.p + origin - low, lowToHigh) / span : 0;
-                own.crossings.push_back({e, t01, x, (lowFirst ? sides[k] : sides[k1]) > 0});
+                (edgeOfA ? out.crossingsA : out.crossingsB)
+                    .push_back({e, t01, x, (lowFirst ? sides[k] : sides[k1]) > 0});
             }
             return true;
         };
@@ -398,21 +412,68 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         }
         const BoundedPoint& start = ends[0].starts ? ends[0].point : ends[1].point;
         const BoundedPoint& end = ends[0].starts ? ends[1].point : ends[0].point;
-        ++result.crossingPairs;
+        ++out.crossingPairs;
         // A's region runs along the segment from start to end, B's back.
         const Vec3 apexA = pa[0] - origin, apexB = pb[0] - origin;
         const double ls = length(start.p), le = length(end.p);
-        volume.add(det(apexA, start.p, end.p) / 6);
-        volume.add(det(apexB, end.p, start.p) / 6);
+        out.volume.add(det(apexA, start.p, end.p) / 6);
+        out.volume.add(det(apexB, end.p, start.p) / 6);
         // Both ends moving at once: the one term of second order.
         const double reach = std::sqrt(sideA.diameter2[i]) + std::sqrt(sideB.diameter2[j]);
-        bound.add(reach * start.alongMm * end.alongMm / 6 +
-                  2 * kEpsilon * (length(apexA) + length(apexB)) * ls * le / 6);
+        out.bound.add(reach * start.alongMm * end.alongMm / 6 +
+                      2 * kEpsilon * (length(apexA) + length(apexB)) * ls * le / 6);
     };
-    try {
-        CGAL::box_intersection_d(boxesA.begin(), boxesA.end(), boxesB.begin(), boxesB.end(), cut);
-    } catch (const Degenerate&) {
-        return result;
+
+    // The pair search in shares: A's boxes in slabs along x, each against
+    // the boxes of B that reach into its slab, on the cores the process has
+    // free. The shares are fixed whatever the cores, and their sums added in
+    // order, so the result does not depend on how many ran.
+    std::vector<std::uint32_t> byX(boxesA.size());
+    std::iota(byX.begin(), byX.end(), 0u);
+    std::stable_sort(byX.begin(), byX.end(), [&](std::uint32_t x, std::uint32_t y) {
+        return boxesA[x].min_coord(0) < boxesA[y].min_coord(0);
+    });
+    const std::size_t shareCount = std::min<std::size_t>(kPairShares, boxesA.size());
+    std::vector<PairShare> shares(shareCount);
+    std::atomic<std::size_t> nextShare{0};
+    std::atomic<bool> degenerate{false};
+    runOnFreeCores(shareCount - 1, [&](std::size_t, const std::atomic<bool>& stop) {
+        std::vector<Box> mineA, mineB;
+        for (std::size_t k; !stop && !degenerate && (k = nextShare++) < shareCount;) {
+            const std::size_t first = k * byX.size() / shareCount,
+                              last = (k + 1) * byX.size() / shareCount;
+            mineA.clear();
+            double lo = INFINITY, hi = -INFINITY;
+            for (std::size_t n = first; n < last; ++n) {
+                const Box& box = boxesA[byX[n]];
+                mineA.push_back(box);
+                lo = std::min(lo, box.min_coord(0));
+                hi = std::max(hi, box.max_coord(0));
+            }
+            mineB.clear();
+            for (const Box& box : boxesB)
+                if (box.max_coord(0) >= lo && box.min_coord(0) <= hi) mineB.push_back(box);
+            PairShare& share = shares[k];
+            try {
+                CGAL::box_intersection_d(
+                    mineA.begin(), mineA.end(), mineB.begin(), mineB.end(),
+                    [&](const Box& boxA, const Box& boxB) { cut(share, boxA, boxB); });
+            } catch (const Degenerate&) {
+                degenerate = true;
+            }
+        }
+    });
+    if (degenerate) return result;
+    CompensatedSum volume, bound;
+    for (PairShare& share : shares) {
+        volume.add(share.volume.sum);
+        volume.add(share.volume.carry);
+        bound.add(share.bound.value());
+        result.crossingPairs += share.crossingPairs;
+        sideA.crossings.insert(sideA.crossings.end(), share.crossingsA.begin(),
+                               share.crossingsA.end());
+        sideB.crossings.insert(sideB.crossings.end(), share.crossingsB.begin(),
+                               share.crossingsB.end());
     }
 
     sideA.sortCrossings();
