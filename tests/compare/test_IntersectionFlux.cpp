@@ -5,6 +5,7 @@
 // rotated, several shells, a surface crossing another many times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -191,4 +192,21 @@ TEST(IntersectionFlux, HollowSolidsWithTheirCavitiesInsideOut) {
     }
     // The ball in the cavity does not meet the solid at all.
     EXPECT_NEAR(intersectionByFlux(shell, balls[0]).volumeMm3, 0, 1e-9);
+}
+
+TEST(IntersectionFlux, OneSurfaceTwiceInAnotherOrderIsItsOwnIntersection) {
+    // The same solid with its triangles listed from another corner and in
+    // reverse order: overlapOf does not see it as the same soup, every face
+    // coincides, and B moved 1e-9 mm must still give the whole volume
+    // within the stated bound.
+    for (const TriangleSoup& a : {geodesicSphere(8, 10), jitteredGeodesicSphere(6, 0.35, 3, 7),
+                                  boxMesh({0, 0, 0}, {10, 7, 5}, 3)}) {
+        TriangleSoup b = a;
+        for (auto& t : b.triangles) t = {t[1], t[2], t[0]};
+        std::reverse(b.triangles.begin(), b.triangles.end());
+        const Overlap o = overlapOf(a, b);
+        EXPECT_GT(o.shiftMm, 0);
+        EXPECT_NEAR(o.intersectionMm3, o.volumeAMm3, o.intersectionBoundMm3);
+        EXPECT_LT(o.intersectionBoundMm3, 1e-5);
+    }
 }
