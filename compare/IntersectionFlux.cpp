@@ -12,6 +12,7 @@
 #include <numeric>
 #include <vector>
 
+#include "field/Rasterization.hpp"
 #include "geometry/Box3.hpp"
 #include "geometry/CoreBudget.hpp"
 
@@ -111,8 +112,7 @@ struct PairShare {
 // undirected edges, where the other surface crosses them, and which of its
 // points lie inside the other solid.
 struct Side {
-    const TriangleSoup& soup;
-    std::vector<Vec3> points;                          // as the predicates see them
+    TriangleSoup soup;                                 // B's moved: the points the predicates see
     std::vector<std::array<std::uint32_t, 2>> edges;   // lower id first
     std::vector<std::array<std::uint32_t, 3>> edgeOf;  // per triangle, edge k joins corners k, k+1
     std::vector<std::uint32_t> ownerOf;                // per edge, the first triangle that has it
@@ -123,8 +123,7 @@ struct Side {
     std::vector<std::int8_t> inside;         // per point: 1 inside the other, 0 not, -1 unknown
 
     Side(const TriangleSoup& s, const Vec3& shift) : soup(s) {
-        points.reserve(s.points.size());
-        for (const Vec3& p : s.points) points.push_back(p + shift);
+        for (Vec3& p : soup.points) p = p + shift;
         buildEdges();
     }
 
@@ -148,8 +147,9 @@ struct Side {
         edgeOf.assign(n, {0, 0, 0});
         diameter2.resize(n);
         for (std::size_t t = 0; t < n; ++t) {
-            const Vec3 &a = points[soup.triangles[t][0]], &b = points[soup.triangles[t][1]],
-                       &c = points[soup.triangles[t][2]];
+            const Vec3 &a = soup.points[soup.triangles[t][0]],
+                       &b = soup.points[soup.triangles[t][1]],
+                       &c = soup.points[soup.triangles[t][2]];
             diameter2[t] = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
         }
         for (std::size_t i = 0; i < uses.size(); ++i) {
@@ -176,30 +176,24 @@ struct Side {
     }
 };
 
-// The winding number of closed surface `soup` around x (1 inside, 0
-// outside, for an outward one): solid angles by Van Oosterom and Strackee.
-// For seeds of shells the other surface never crosses, which lie away from
-// it; the caller rounds and checks the result is near an integer.
-double windingNumber(const std::vector<Vec3>& points, const TriangleSoup& soup, const Vec3& x) {
-    CompensatedSum angle;
-    for (const auto& t : soup.triangles) {
-        const Vec3 a = points[t[0]] - x, b = points[t[1]] - x, c = points[t[2]] - x;
-        const double la = length(a), lb = length(b), lc = length(c);
-        const double numerator = det(a, b, c);
-        const double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-        angle.add(2 * std::atan2(numerator, denominator));
-    }
-    return angle.value() / (4 * kPi);
+// Whether x lies inside the closed surface `solid`: field/Rasterization's
+// ray parity, exact on the points as given (a symbolic perturbation where
+// the ray meets an edge), for a one-voxel grid centred at x. O(triangles).
+bool insideSolid(const TriangleSoup& solid, const Vec3& x) {
+    VolumeGeometry one;
+    one.size = {1, 1, 1};
+    one.originMm = {x.x, x.y, x.z};
+    return !voxelsInsideSolid(solid, PlaneFrame{}, one).empty();
 }
 
 // Which points of `side` lie inside the other solid: from every edge the
 // other surface crosses once (its lower point is inside exactly when it
 // lies behind the crossed triangle's plane), then along edges (an odd
-// number of crossings flips), with a winding number for shells that no
+// number of crossings flips), with the exact ray parity for shells that no
 // crossing reaches. False where two ways disagree (cannot happen in general
 // position with exact predicates: a check, not a repair).
 bool classifyPoints(Side& side, const Side& other) {
-    const std::size_t n = side.points.size();
+    const std::size_t n = side.soup.points.size();
     side.inside.assign(n, -1);
     // Points' neighbours along edges, with the edge's parity.
     std::vector<std::size_t> first(n + 1, 0);
@@ -240,10 +234,10 @@ bool classifyPoints(Side& side, const Side& other) {
     for (std::uint32_t p = 0; p < n; ++p) {
         if (side.inside[p] >= 0) continue;
         if (first[p] == first[p + 1]) continue;  // a point no triangle uses
-        const double winding = windingNumber(other.points, other.soup, side.points[p]);
-        const double rounded = std::round(winding);
-        if (std::abs(winding - rounded) > 0.25 || (rounded != 0 && rounded != 1)) return false;
-        if (!spread(p, std::int8_t(rounded))) return false;
+        // A shell the other surface never crosses: wholly in or out (its
+        // points are off that surface, else some pair would have been in no
+        // general position).
+        if (!spread(p, insideSolid(other.soup, side.soup.points[p]) ? 1 : 0)) return false;
     }
     return true;
 }
@@ -257,7 +251,7 @@ void addEdgePieces(const Side& side, const Vec3& origin, CompensatedSum& volume,
     std::vector<BoundedPoint> along;
     for (std::size_t t = 0; t < side.soup.triangles.size(); ++t) {
         const auto& tri = side.soup.triangles[t];
-        const Vec3 apex = side.points[tri[0]] - origin;
+        const Vec3 apex = side.soup.points[tri[0]] - origin;
         const double apexLength = length(apex);
         // The fan's triangles at a point move the volume by at most
         // diameter²/6 per mm the point moves (the volume's gradient at a
@@ -273,7 +267,7 @@ void addEdgePieces(const Side& side, const Vec3& origin, CompensatedSum& volume,
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t u = tri[k], w = tri[(k + 1) % 3];
             const std::uint32_t e = side.edgeOf[t][k];
-            const Vec3 pu = side.points[u] - origin, pw = side.points[w] - origin;
+            const Vec3 pu = side.soup.points[u] - origin, pw = side.soup.points[w] - origin;
             const BoundedPoint from{pu, 0, 0, kEpsilon * (length(pu) + length(origin)), false},
                 to{pw, 0, 0, kEpsilon * (length(pw) + length(origin)), false};
             bool in = side.inside[u] == 1;
@@ -309,7 +303,7 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
     Side sideA(a, {0, 0, 0}), sideB(b, shiftOfB);
     Box3 all;
     for (const Side* s : {&sideA, &sideB})
-        for (const Vec3& p : s->points) all.add(p);
+        for (const Vec3& p : s->soup.points) all.add(p);
     // Terms are summed about the middle, where they are smallest.
     const Vec3 origin = 0.5 * (all.lo + all.hi);
 
@@ -321,8 +315,8 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
             const auto& tri = s.soup.triangles[t];
             double lo[3], hi[3];
             for (int axis = 0; axis < 3; ++axis) {
-                const double x = s.points[tri[0]][axis], y = s.points[tri[1]][axis],
-                             z = s.points[tri[2]][axis];
+                const double x = s.soup.points[tri[0]][axis], y = s.soup.points[tri[1]][axis],
+                             z = s.soup.points[tri[2]][axis];
                 lo[axis] = std::min({x, y, z});
                 hi[axis] = std::max({x, y, z});
             }
@@ -342,8 +336,10 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         const std::uint32_t i = boxA.info(), j = boxB.info();
         const auto& ta = a.triangles[i];
         const auto& tb = b.triangles[j];
-        const Vec3 pa[3] = {sideA.points[ta[0]], sideA.points[ta[1]], sideA.points[ta[2]]};
-        const Vec3 pb[3] = {sideB.points[tb[0]], sideB.points[tb[1]], sideB.points[tb[2]]};
+        const Vec3 pa[3] = {sideA.soup.points[ta[0]], sideA.soup.points[ta[1]],
+                            sideA.soup.points[ta[2]]};
+        const Vec3 pb[3] = {sideB.soup.points[tb[0]], sideB.soup.points[tb[1]],
+                            sideB.soup.points[tb[2]]};
         int sa[3], sb[3];  // A's corners against B's plane, B's against A's
         for (int k = 0; k < 3; ++k) sa[k] = sideOf(pb[0], pb[1], pb[2], pa[k]);
         if ((sa[0] > 0 && sa[1] > 0 && sa[2] > 0) || (sa[0] < 0 && sa[1] < 0 && sa[2] < 0)) return;
