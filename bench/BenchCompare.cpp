@@ -267,7 +267,6 @@ int benchCompareStructures(ocl::Runtime& runtime) {
         oursSeconds += seconds;
         // Today's reference: corefinement with exact constructions, B moved
         // 1e-6 mm where the surfaces coincide in part (within area(B)·1e-6).
-        const Vec3 generic{1.0, std::sqrt(2.0), std::sqrt(3.0) + 0.1};
         double corefinementBoundMm3 = 0;
         std::optional<double> corefined;
         const double corefinementSeconds = bestSeconds(1, [&] {
@@ -275,7 +274,7 @@ int benchCompareStructures(ocl::Runtime& runtime) {
             if (corefined) return;
             const double shiftMm = 1e-6;
             corefined = intersectionVolume(pair.a->surface, pair.b->surface,
-                                           (shiftMm / length(generic)) * generic);
+                                           shiftMm * overlapShiftDirection());
             corefinementBoundMm3 = checkMesh(pair.b->surface).areaMm2 * shiftMm;
         });
         const double volumes = overlap.volumeAMm3 + overlap.volumeBMm3;

@@ -112,6 +112,11 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
     return volumeOf(meet);
 }
 
+Vec3 overlapShiftDirection() {
+    const Vec3 generic{1.0, std::sqrt(2.0), std::sqrt(3.0) + 0.1};
+    return (1.0 / length(generic)) * generic;
+}
+
 double Overlap::dice() const {
     return diceOf(volumeAMm3, volumeBMm3, intersectionMm3);
 }
@@ -146,8 +151,7 @@ Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckR
     // above the coordinates' rounding (1e-13 mm at 500 mm), which the flux
     // needs no more than (its crossing points are where B's moved faces
     // meet A's transversally).
-    const Vec3 generic{1.0, std::sqrt(2.0), std::sqrt(3.0) + 0.1};
-    const Vec3 direction = (1.0 / length(generic)) * generic;
+    const Vec3 direction = overlapShiftDirection();
     const bool shiftAtOnce = likelyCoincideInPart(a, b);
     for (const double shiftMm : {0.0, 1e-9, 1e-7, 1e-5}) {
         if (shiftMm == 0 && shiftAtOnce) continue;

@@ -36,6 +36,10 @@ struct Overlap {
     double jaccard() const;
 };
 
+/// The unit direction overlapOf moves B along where the surfaces coincide
+/// in part: along no face, edge or axis of anatomy.
+Vec3 overlapShiftDirection();
+
 /// The volume of the intersection of the solids bounded by `a` and by `b`
 /// moved by `shiftOfB`, exactly (corefinement), or none where corefinement
 /// cannot build it (the surfaces coincide in part). Both must be valid
