@@ -3,7 +3,7 @@
 // AddressSanitizer replaced it. Under ASan glibc's arenas hold nothing, and
 // tuning or trimming them (mallopt, malloc_trim) only disturbs glibc's own
 // bookkeeping: an arena assertion at thread exit was seen in the sanitizer
-// tests. The heap tuners (app/HeapArenas, recon's giveBackMuchFreedHeap)
+// tests. The heap tuners (app/HeapArenas, recon/MemoryHygiene)
 // compile to nothing where DFRECON_GLIBC_HEAP is not defined.
 #if defined(__GLIBC__)
 #define DFRECON_GLIBC_HEAP 1

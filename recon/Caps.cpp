@@ -40,17 +40,25 @@ void prismCap(SurfaceBuilder& builder, const LayerPart& end, bool up, double off
 
 namespace {
 
-// A rounded cap over the region of `part`'s contours: it starts at the
-// contours in their plane and rises (upward when `up`, else downward) to
-// `heightMm`, along a quarter circle that is vertical at the rim and flat
-// once `roundingMm` inside (a plateau; with roundingMm at least the region's
-// depth, a dome). `depthMm(p)` is the distance from p to the contours; the
+// The shape of a rounded cap: it rises from its contours' plane (upward when
+// `up`, else downward) to `heightMm`, along a quarter circle that is
+// vertical at the rim and flat once `roundingMm` inside (a plateau; with
+// roundingMm at least the region's depth, a dome).
+struct CapShape {
+    bool up = true;
+    double heightMm = 0, roundingMm = 0;
+};
+
+// A rounded cap of `shape` over the region of `part`'s contours, starting at
+// the contours in their plane. `depthMm(p)` is the distance from p to the contours; the
 // cap's inner vertices sit at `interiorPoints`, which must lie inside the
 // region and off the contours. A height field over a planar triangulation,
 // so it cannot fold onto itself.
-void roundedCap(SurfaceBuilder& builder, const LayerPart& part, bool up, double heightMm,
-                double roundingMm, const std::vector<Point2>& interiorPoints,
+void roundedCap(SurfaceBuilder& builder, const LayerPart& part, CapShape shape,
+                const std::vector<Point2>& interiorPoints,
                 const std::function<double(Point2)>& depthMm) {
+    const bool up = shape.up;
+    const double heightMm = shape.heightMm, roundingMm = shape.roundingMm;
     std::vector<WeightedContour> contours;
     if (part.layer)
         for (std::uint32_t c : part.contours) contours.push_back({&part.layer->contours[c], +1});
@@ -145,8 +153,10 @@ double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std
     return count > 0 && gap > 0 ? std::max(0.0, -(sum / double(count)) / gap) : 0.0;
 }
 
-void dome(SurfaceBuilder& builder, const LayerPart& end, bool up, double heightMm,
-          double roundingMm, const SliceFields& fields, std::size_t slice) {
+void dome(SurfaceBuilder& builder, const LayerPart& end, CapShape shape, const SliceFields& fields,
+          std::size_t slice) {
+    const bool up = shape.up;
+    const double heightMm = shape.heightMm;
     // Inner vertices on a lattice a third of the cap height apart (so the
     // rounding gets a few steps), at least a pixel and a half inside,
     // where the slice's field is exact.
@@ -200,7 +210,7 @@ void dome(SurfaceBuilder& builder, const LayerPart& end, bool up, double heightM
         return d;
     };
     const std::size_t before = builder.triangleCount();
-    roundedCap(builder, end, up, heightMm, roundingMm, inner, depthMm);
+    roundedCap(builder, end, shape, inner, depthMm);
     // The cap alone must be a clean sheet whose only border is the end
     // contours; otherwise (contours touching inside it) a flat prism cap.
     const MeshCheckReport cap = checkMesh(builder.trianglesSince(before));
@@ -236,7 +246,7 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
         if (c.points.size() >= 3) lid.push_back(std::move(c.points));
     if (lid.empty()) {
         // The end would narrow to nothing before the lid: round it off.
-        dome(site.builder(), end, up, offsetMm, INFINITY, fields, slice);
+        dome(site.builder(), end, {up, offsetMm, INFINITY}, fields, slice);
         return;
     }
     const Layer& top = site.addIsolineLayer(z, std::move(lid), end);
@@ -247,7 +257,7 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
         site.joinLayers(end, own, lidPart, lidField);
     else
         site.joinLayers(lidPart, lidField, end, own);
-    roundedCap(site.builder(), lidPart, up, 0.0, 0.0, {}, [](Point2) { return 0.0; });
+    roundedCap(site.builder(), lidPart, {up, 0.0, 0.0}, {}, [](Point2) { return 0.0; });
 }
 
 }  // namespace
@@ -264,7 +274,7 @@ void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
             flat(site, end, up, offsetMm, fields, slice);
             return;
         case CapMode::Dome:
-            dome(site.builder(), end, up, offsetMm, INFINITY, fields, slice);
+            dome(site.builder(), end, {up, offsetMm, INFINITY}, fields, slice);
             return;
     }
 }

@@ -208,12 +208,21 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
     return true;
 }
 
+/// What bending reads and records: the smooth surface's field, how near its
+/// zero set a vertex must land, which vertices ever moved, and the counts.
+struct Bending {
+    const SliceInterpolant& field;
+    double toleranceMm;
+    std::vector<bool>& moved;
+    LoftSmoothingStats& stats;
+};
+
 /// The vertices marked in `which` move, at their own z, onto the zero set
-/// of `field` from where they are (up to half their slab's height away);
+/// of the field from where they are (up to half their slab's height away);
 /// moved[v] records which ever did.
-void bendVertices(TriangleSoup& surface, const std::vector<bool>& which,
-                  const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
-                  LoftSmoothingStats& stats) {
+void bendVertices(TriangleSoup& surface, const std::vector<bool>& which, const Bending& bending) {
+    const SliceInterpolant& field = bending.field;
+    std::vector<bool>& moved = bending.moved;
     moved.resize(surface.points.size(), false);
     std::vector<std::uint32_t> vertices;
     for (std::size_t v = 0; v < which.size(); ++v)
@@ -225,14 +234,14 @@ void bendVertices(TriangleSoup& surface, const std::vector<bool>& which,
     forEachOnFreeCores(vertices.size(), kParallelFromVertices, [&](std::size_t i) {
         Vec3 p = surface.points[vertices[i]];
         projected[i] =
-            projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * toleranceMm);
+            projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * bending.toleranceMm);
         to[i] = p;
     });
     for (std::size_t i = 0; i < vertices.size(); ++i) {
         if (!projected[i]) continue;
         const std::uint32_t v = vertices[i];
         surface.points[v] = to[i];
-        if (!moved[v]) ++stats.movedVertices;
+        if (!moved[v]) ++bending.stats.movedVertices;
         moved[v] = true;
     }
 }
@@ -241,28 +250,28 @@ void bendVertices(TriangleSoup& surface, const std::vector<bool>& which,
 /// (one shared with a cap or prism triangle would drag that flat piece
 /// along).
 void bendNewVertices(TriangleSoup& surface, std::size_t first, const std::vector<bool>& isLoft,
-                     const SliceInterpolant& field, double toleranceMm, std::vector<bool>& moved,
-                     LoftSmoothingStats& stats) {
+                     const Bending& bending) {
     std::vector<bool> which(surface.points.size(), true);
     for (std::size_t v = 0; v < first; ++v) which[v] = false;
     for (std::size_t t = 0; t < surface.triangles.size(); ++t)
         if (!isLoft[t])
             for (std::uint32_t v : surface.triangles[t]) which[v] = false;
-    bendVertices(surface, which, field, toleranceMm, moved, stats);
+    bendVertices(surface, which, bending);
 }
 
 /// Each round splits the edges that stray and bends the new vertices onto
 /// the smooth surface, so the next round measures chords of the curve (each
-/// halving divides a smooth band's sag by about four).
-void refineAndBend(TriangleSoup& surface, std::vector<std::uint32_t>& pieceOf,
-                   std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
-                   std::vector<Edge>& parents, std::vector<bool>& moved,
-                   LoftSmoothingStats& stats) {
+/// halving divides a smooth band's sag by about four). parents[i] gets the
+/// edge at whose middle vertex i of the new ones was made.
+void refineAndBend(TriangleSoup& surface, LoftMarks& marks, const Bending& bending,
+                   std::vector<Edge>& parents) {
     for (int round = 0; round < kMaxRounds; ++round) {
         const std::size_t before = surface.points.size();
-        if (refineOnce(surface, pieceOf, isLoft, field, toleranceMm, parents) == 0) break;
-        stats.rounds = std::max(stats.rounds, round + 1);
-        bendNewVertices(surface, before, isLoft, field, toleranceMm, moved, stats);
+        if (refineOnce(surface, marks.pieceOf, marks.isLoft, bending.field, bending.toleranceMm,
+                       parents) == 0)
+            break;
+        bending.stats.rounds = std::max(bending.stats.rounds, round + 1);
+        bendNewVertices(surface, before, marks.isLoft, bending);
     }
 }
 
@@ -593,164 +602,219 @@ void markRepaired(const TriangleSoup& surface, MeshCheckReport& check) {
 
 }  // namespace
 
-LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
-                               SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
-                               MeshCheckReport& check) {
-    std::vector<std::uint32_t>& pieceOf = marks.pieceOf;
-    std::vector<bool>& isLoft = marks.isLoft;
-    const std::size_t contourVertices = marks.contourVertices;
-    const PlaneSections& planes = bendTo.planes;
-    const double toleranceMm = bendTo.toleranceMm;
-    const PlaneFrame& writtenFrame = bendTo.writtenFrame;
+namespace {
+
+/// smoothLofts' state and its steps, in the order it tries them: bend and
+/// bulge; where that breaks the surface, unbend around the defects; where
+/// that does not mend it, give broken pieces their linear triangles back;
+/// last, the linear surface whole.
+class LoftSmoother {
+  public:
+    LoftSmoother(TriangleSoup& surface, LoftMarks& marks, const PieceStack& stack,
+                 SliceInterpolant& field, const LoftSmoothingTargets& bendTo)
+        : surface_(surface),
+          marks_(marks),
+          stack_(stack),
+          field_(field),
+          planes_(bendTo.planes),
+          toleranceMm_(bendTo.toleranceMm),
+          written_(bendTo.writtenFrame),
+          linear_(roundedLinear()),
+          unmoved_(stack) {}
+
     LoftSmoothingStats stats;
-    const WrittenFloats written(writtenFrame);
-    written.round(surface);
-    const LinearSurface linear{written, written.exact(surface.points), surface.triangles, pieceOf};
-    // The surface came valid: a piece none of whose vertices moved or are
-    // new is as clean as it was, and its pairs need no search; nor do the
-    // pairs of triangles whose corners all stayed (refinement splits every
-    // triangle it touches with new vertices, so such a triangle is one of
-    // the linear surface's, where it was).
-    PieceStack unmoved = stack;  // copied once; what is known clean changes between checks
-    auto checkWhole = [&] {
-        unmoved.searched.assign(stack.planeZMm.size() + 1, true);
-        unmoved.cleanGroup.assign(surface.triangles.size(), 1);
-        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-            for (std::uint32_t v : surface.triangles[t])
-                if (v >= linear.points.size() || !(surface.points[v] == linear.point(v))) {
-                    unmoved.searched[pieceOf[t]] = false;
-                    unmoved.cleanGroup[t] = 0;
-                }
-        MeshCheckReport report = checkStackedMesh(surface, pieceOf, unmoved);
-        CleanGroups().swap(unmoved.cleanGroup);  // per triangle, and only a check reads it
-        return report;
-    };
-    std::vector<bool> restoredBefore;
-    std::vector<bool> moved;
-    // parents[i]: the edge at whose middle refinement made vertex
-    // linear.points.size() + i.
-    std::vector<Edge> parents;
-    // Intermediate contours (recursion layers half-way) lie on the zero set
-    // of the linear interpolation; between loft bands they follow the smooth
-    // surface like every other point that is not a contour point.
-    bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
-    refineAndBend(surface, pieceOf, isLoft, field, toleranceMm, parents, moved, stats);
-    // Volume: each slab bulges until it holds its target (recon/SlabVolumes);
-    // every bent vertex moves again with the field. Bands are not refined
-    // again: red–green rounds beyond the first few only make slivers (their
-    // long diagonals never reach the z floor), so a bulge moves the vertices
-    // the smooth surface needed, and the secant steps learn how much volume
-    // that moves.
-    const std::vector<double> targets = slabVolumeTargets(planes);
-    BulgeSteps steps;
-    steps.bulge.assign(targets.size(), 0.0);
-    steps.lastBulge = steps.lastVolume = steps.bulge;
-    for (int pass = 0; pass < kVolumePasses; ++pass) {
-        if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
-        ++stats.volumePasses;
-        field.setSlabBulges(steps.bulge);
-        bendNewVertices(surface, contourVertices, isLoft, field, toleranceMm, moved, stats);
+
+    /// Refines and bends the loft bands, then brings every slab to its
+    /// volume target by bulges, and checks the whole surface as written.
+    MeshCheckReport bendAndBulge() {
+        // Intermediate contours (recursion layers half-way) lie on the zero
+        // set of the linear interpolation; between loft bands they follow
+        // the smooth surface like every other point that is not a contour
+        // point.
+        bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
+        refineAndBend(surface_, marks_, bending(), parents_);
+        // Volume: each slab bulges until it holds its target
+        // (recon/SlabVolumes); every bent vertex moves again with the field.
+        // Bands are not refined again: red–green rounds beyond the first few
+        // only make slivers (their long diagonals never reach the z floor),
+        // so a bulge moves the vertices the smooth surface needed, and the
+        // secant steps learn how much volume that moves.
+        targets_ = slabVolumeTargets(planes_);
+        steps_.bulge.assign(targets_.size(), 0.0);
+        steps_.lastBulge = steps_.lastVolume = steps_.bulge;
+        for (int pass = 0; pass < kVolumePasses; ++pass) {
+            if (!nextBulges(planes_, targets_, slabVolumes(surface_, marks_.pieceOf, planes_),
+                            steps_))
+                break;
+            ++stats.volumePasses;
+            field_.setSlabBulges(steps_.bulge);
+            bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
+        }
+        written_.round(surface_);
+        return checkWhole();
     }
-    written.round(surface);
-    check = checkWhole();
-    if (check.validSolid()) return stats;
-    // Where bent bands pass through each other (across a narrow gap between
-    // two folds, say), the vertices around go back to the straight surface;
-    // the slabs that lost volume that way bulge again with those vertices
-    // pinned, and are repaired again where that breaks something. Moving
-    // vertices cannot mend the topology: that is for the pieces below.
-    const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
-                              check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
-    // Pieces the stack keeps apart are repaired each on its own grid.
-    const bool piecesApart = stackSeparatesPieces(surface, pieceOf, stack);
-    const std::uint32_t groups = piecesApart ? std::uint32_t(stack.planeZMm.size() + 1) : 1;
-    // pieceOf stays as it is while the repair lives (reset below, before
-    // pieces are swapped).
-    std::optional<LocalRepair> repair;
-    repair.emplace(surface, written, contourVertices, StraightPlaces(linear, parents),
-                   piecesApart ? &pieceOf : nullptr, groups);
-    if (topologyKept && repair->settle(check.defectiveTriangles, stats)) {
-        // Unbending changed volumes without changing bulges: the secant of
-        // the passes before does not hold for it, so start afresh.
-        steps.lastBulge = steps.bulge;
-        std::vector<bool> repaired(targets.size(), false);
-        for (std::size_t v = 0; v < surface.points.size(); ++v)
-            if (repair->pinned(v)) repaired[field.slabAt(surface.points[v].z)] = true;
-        for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
-            const std::vector<double> bulgeBefore = steps.bulge;
-            if (!nextBulges(planes, targets, slabVolumes(surface, pieceOf, planes), steps)) break;
-            field.setSlabBulges(steps.bulge);
-            // As floats: the surface is rounded to float after every move.
-            const std::vector<FloatPoint> before = written.exact(surface.points);
-            // Only the slabs that were repaired (the others are where the
-            // passes above left them) and whose bulge changed move, and not
-            // where pinned.
-            std::vector<bool> free = moved;
-            for (std::size_t v = 0; v < free.size(); ++v) {
-                const std::size_t slab = field.slabAt(surface.points[v].z);
-                free[v] = free[v] && !repair->pinned(v) && repaired[slab] &&
-                          steps.bulge[slab] != bulgeBefore[slab];
+
+    /// Where bent bands pass through each other (across a narrow gap between
+    /// two folds, say), the vertices around go back to the straight surface;
+    /// the slabs that lost volume that way bulge again with those vertices
+    /// pinned, and are repaired again where that breaks something. Moving
+    /// vertices cannot mend the topology: that is for the pieces (see
+    /// restorePieces). True when it mended `check` (then marked repaired);
+    /// otherwise `suspects` holds the triangles the next check must search.
+    bool unbendAroundDefects(MeshCheckReport& check, std::vector<std::size_t>& suspects) {
+        const bool topologyKept = check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
+                                  check.nonManifoldVertices == 0 && check.misorientedEdges == 0;
+        // Pieces the stack keeps apart are repaired each on its own grid.
+        const bool piecesApart = stackSeparatesPieces(surface_, marks_.pieceOf, stack_);
+        const std::uint32_t groups = piecesApart ? std::uint32_t(stack_.planeZMm.size() + 1) : 1;
+        // pieceOf stays as it is while the repair lives.
+        LocalRepair repair(surface_, written_, marks_.contourVertices,
+                           StraightPlaces(linear_, parents_),
+                           piecesApart ? &marks_.pieceOf : nullptr, groups);
+        if (topologyKept && repair.settle(check.defectiveTriangles, stats)) {
+            bulgeRepairedSlabs(repair);
+            markRepaired(surface_, check);
+            return true;
+        }
+        // The surface differs from the one just checked in whole only where
+        // the repair unbent vertices (all pinned; none when it did not run):
+        // every pair away from those and from the defects found was clean,
+        // so the next check searches only around them.
+        suspects = check.defectiveTriangles;
+        for (std::size_t t = 0; t < surface_.triangles.size(); ++t) {
+            const Triangle& tri = surface_.triangles[t];
+            if (repair.pinned(tri[0]) || repair.pinned(tri[1]) || repair.pinned(tri[2]))
+                suspects.push_back(t);
+        }
+        std::sort(suspects.begin(), suspects.end());  // each pair tested once
+        suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+        // What the repair holds (the straight surface, the triangles by
+        // group) goes here, before the checks that follow, where a large
+        // surface peaks.
+        return false;
+    }
+
+    /// A piece whose bent (or merely refined: halving thin triangles and
+    /// rounding the new points to float can fold them) triangles break the
+    /// surface gets its linear triangles back, up to three rounds. Pieces
+    /// meet only in contour vertices, which refinement never touches, so
+    /// swapping one piece keeps the mesh conforming. After each check, only
+    /// the triangles of the pieces just restored are new, and every other
+    /// pair was clean in the check before (both triangles of a meeting pair
+    /// are restored), unless that check stopped counting (`wholeCheck`).
+    /// True when `check` ends valid.
+    bool restorePieces(MeshCheckReport& check, std::vector<std::size_t> swappedIn,
+                       bool wholeCheck) {
+        auto checkAgain = [&] {
+            written_.round(surface_);
+            check = wholeCheck ? checkWhole() : checkMeshNear(surface_, swappedIn);
+            wholeCheck = check.intersectingPairsCapped;
+        };
+        std::vector<bool> restored, restoredBefore;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            checkAgain();
+            if (check.validSolid()) return true;
+            for (std::size_t t : check.defectiveTriangles) {
+                const std::uint32_t piece = marks_.pieceOf[t];
+                if (piece >= restored.size()) restored.resize(piece + 1, false);
+                if (!restored[piece]) ++stats.revertedPieces;
+                restored[piece] = true;
             }
-            bendVertices(surface, free, field, toleranceMm, moved, stats);
-            written.round(surface);
+            swappedIn = swapInLinear(restored, restoredBefore);
+            restoredBefore = restored;
+        }
+        checkAgain();
+        return check.validSolid();
+    }
+
+    /// The last resort: the linear surface as it came, checked whole.
+    MeshCheckReport fallBackToLinear() {
+        surface_.points.resize(linear_.points.size());
+        for (std::size_t v = 0; v < linear_.points.size(); ++v)
+            surface_.points[v] = linear_.point(v);
+        surface_.triangles = linear_.triangles;
+        marks_.pieceOf = linear_.pieceOf;
+        stats.fellBack = true;
+        return checkWhole();
+    }
+
+  private:
+    Bending bending() { return {field_, toleranceMm_, moved_, stats}; }
+
+    LinearSurface roundedLinear() {
+        written_.round(surface_);
+        return {written_, written_.exact(surface_.points), surface_.triangles, marks_.pieceOf};
+    }
+
+    /// The whole surface checked as stacked pieces. The surface came valid:
+    /// a piece none of whose vertices moved or are new is as clean as it
+    /// was, and its pairs need no search; nor do the pairs of triangles
+    /// whose corners all stayed (refinement splits every triangle it
+    /// touches with new vertices, so such a triangle is one of the linear
+    /// surface's, where it was).
+    MeshCheckReport checkWhole() {
+        unmoved_.searched.assign(stack_.planeZMm.size() + 1, true);
+        unmoved_.cleanGroup.assign(surface_.triangles.size(), 1);
+        for (std::size_t t = 0; t < surface_.triangles.size(); ++t)
+            for (std::uint32_t v : surface_.triangles[t])
+                if (v >= linear_.points.size() || !(surface_.points[v] == linear_.point(v))) {
+                    unmoved_.searched[marks_.pieceOf[t]] = false;
+                    unmoved_.cleanGroup[t] = 0;
+                }
+        MeshCheckReport report = checkStackedMesh(surface_, marks_.pieceOf, unmoved_);
+        CleanGroups().swap(unmoved_.cleanGroup);  // per triangle, and only a check reads it
+        return report;
+    }
+
+    /// After unbending: the slabs it touched bulge again (unbending changed
+    /// volumes without changing bulges, so the secant of the passes before
+    /// does not hold: it starts afresh), only their free vertices move, and
+    /// each pass is repaired again or undone.
+    void bulgeRepairedSlabs(LocalRepair& repair) {
+        steps_.lastBulge = steps_.bulge;
+        std::vector<bool> repaired(targets_.size(), false);
+        for (std::size_t v = 0; v < surface_.points.size(); ++v)
+            if (repair.pinned(v)) repaired[field_.slabAt(surface_.points[v].z)] = true;
+        for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
+            const std::vector<double> bulgeBefore = steps_.bulge;
+            if (!nextBulges(planes_, targets_, slabVolumes(surface_, marks_.pieceOf, planes_),
+                            steps_))
+                break;
+            field_.setSlabBulges(steps_.bulge);
+            // As floats: the surface is rounded to float after every move.
+            const std::vector<FloatPoint> before = written_.exact(surface_.points);
+            // Only the slabs that were repaired (the others are where the
+            // passes before left them) and whose bulge changed move, and not
+            // where pinned.
+            std::vector<bool> free = moved_;
+            for (std::size_t v = 0; v < free.size(); ++v) {
+                const std::size_t slab = field_.slabAt(surface_.points[v].z);
+                free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
+                          steps_.bulge[slab] != bulgeBefore[slab];
+            }
+            bendVertices(surface_, free, bending());
+            written_.round(surface_);
             std::vector<std::size_t> suspects;
-            for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-                for (std::uint32_t v : surface.triangles[t])
-                    if (!(surface.points[v] == written.point(before[v]))) {
+            for (std::size_t t = 0; t < surface_.triangles.size(); ++t)
+                for (std::uint32_t v : surface_.triangles[t])
+                    if (!(surface_.points[v] == written_.point(before[v]))) {
                         suspects.push_back(t);
                         break;
                     }
-            if (!repair->settle(suspects, stats)) {
+            if (!repair.settle(suspects, stats)) {
                 for (std::size_t v = 0; v < before.size(); ++v)  // valid as it was
-                    surface.points[v] = written.point(before[v]);
+                    surface_.points[v] = written_.point(before[v]);
                 break;
             }
         }
-        markRepaired(surface, check);
-        return stats;
     }
-    // The surface differs from the one just checked in whole only where the
-    // repair unbent vertices (all pinned; none when it did not run): every
-    // pair away from those and from the defects found was clean, so the
-    // next check searches only around them (unless that check stopped
-    // counting and may have missed defects).
-    std::vector<std::size_t> suspects = check.defectiveTriangles;
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-        const Triangle& tri = surface.triangles[t];
-        if (repair->pinned(tri[0]) || repair->pinned(tri[1]) || repair->pinned(tri[2]))
-            suspects.push_back(t);
-    }
-    std::sort(suspects.begin(), suspects.end());  // each pair tested once
-    suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
-    // What the repair holds (the straight surface, the triangles by group)
-    // goes before the checks below, where a large surface peaks.
-    repair.reset();
-    // A piece whose bent (or merely refined: halving thin triangles and
-    // rounding the new points to float can fold them) triangles break the
-    // surface gets its linear triangles back. Pieces meet only in contour
-    // vertices, which refinement never touches, so swapping one piece keeps
-    // the mesh conforming.
-    // After each check, only the triangles of the pieces just restored are
-    // new, and every other pair was clean in the check before (both
-    // triangles of a meeting pair are restored), unless that check stopped
-    // counting.
-    std::vector<bool> restored;
-    std::vector<std::size_t> swappedIn = std::move(suspects);
-    bool wholeCheck = check.intersectingPairsCapped;  // of the whole check before the repair
-    auto checkAgain = [&] {
-        written.round(surface);
-        check = wholeCheck ? checkWhole() : checkMeshNear(surface, swappedIn);
-        wholeCheck = check.intersectingPairsCapped;
-    };
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        checkAgain();
-        if (check.validSolid()) return stats;
-        for (std::size_t t : check.defectiveTriangles) {
-            const std::uint32_t piece = pieceOf[t];
-            if (piece >= restored.size()) restored.resize(piece + 1, false);
-            if (!restored[piece]) ++stats.revertedPieces;
-            restored[piece] = true;
-        }
+
+    /// The triangles of the pieces `restored` marks and `restoredBefore`
+    /// does not swapped for their linear ones (the pieces still bent and
+    /// those already linear kept as they are). Returns the new triangles'
+    /// ids.
+    std::vector<std::size_t> swapInLinear(const std::vector<bool>& restored,
+                                          const std::vector<bool>& restoredBefore) {
         auto isRestored = [&](std::uint32_t piece) {
             return piece < restored.size() && restored[piece];
         };
@@ -760,8 +824,9 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const Pie
         // Reserved exactly: this runs beside the surface it replaces, where
         // a large surface peaks.
         std::size_t count = 0;
-        for (std::uint32_t piece : pieceOf) count += !isRestored(piece) || wasRestored(piece);
-        for (std::uint32_t piece : linear.pieceOf)
+        for (std::uint32_t piece : marks_.pieceOf)
+            count += !isRestored(piece) || wasRestored(piece);
+        for (std::uint32_t piece : linear_.pieceOf)
             count += isRestored(piece) && !wasRestored(piece);
         std::vector<std::array<std::uint32_t, 3>> triangles;
         std::vector<std::uint32_t> pieces;
@@ -769,35 +834,57 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const Pie
         triangles.reserve(count);
         pieces.reserve(count);
         lofts.reserve(count);
-        // Kept: pieces still bent, and pieces already linear again.
-        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-            if (!isRestored(pieceOf[t]) || wasRestored(pieceOf[t])) {
-                triangles.push_back(surface.triangles[t]);
-                pieces.push_back(pieceOf[t]);
-                lofts.push_back(isLoft[t]);
+        for (std::size_t t = 0; t < surface_.triangles.size(); ++t)
+            if (!isRestored(marks_.pieceOf[t]) || wasRestored(marks_.pieceOf[t])) {
+                triangles.push_back(surface_.triangles[t]);
+                pieces.push_back(marks_.pieceOf[t]);
+                lofts.push_back(marks_.isLoft[t]);
             }
-        swappedIn.clear();
-        for (std::size_t t = 0; t < linear.triangles.size(); ++t)
-            if (isRestored(linear.pieceOf[t]) && !wasRestored(linear.pieceOf[t])) {
+        std::vector<std::size_t> swappedIn;
+        for (std::size_t t = 0; t < linear_.triangles.size(); ++t)
+            if (isRestored(linear_.pieceOf[t]) && !wasRestored(linear_.pieceOf[t])) {
                 swappedIn.push_back(triangles.size());
-                triangles.push_back(linear.triangles[t]);
-                pieces.push_back(linear.pieceOf[t]);
+                triangles.push_back(linear_.triangles[t]);
+                pieces.push_back(linear_.pieceOf[t]);
                 lofts.push_back(false);  // restored: not bent again
             }
-        surface.triangles = std::move(triangles);
-        pieceOf = std::move(pieces);
-        isLoft = std::move(lofts);
-        restoredBefore = restored;
+        surface_.triangles = std::move(triangles);
+        marks_.pieceOf = std::move(pieces);
+        marks_.isLoft = std::move(lofts);
+        return swappedIn;
     }
-    checkAgain();
-    if (check.validSolid()) return stats;
-    surface.points.resize(linear.points.size());
-    for (std::size_t v = 0; v < linear.points.size(); ++v) surface.points[v] = linear.point(v);
-    surface.triangles = linear.triangles;
-    pieceOf = linear.pieceOf;
-    check = checkWhole();
-    stats.fellBack = true;
-    return stats;
+
+    TriangleSoup& surface_;
+    LoftMarks& marks_;
+    const PieceStack& stack_;
+    SliceInterpolant& field_;
+    const PlaneSections& planes_;
+    const double toleranceMm_;
+    const WrittenFloats written_;
+    const LinearSurface linear_;
+    PieceStack unmoved_;  // copied once; what is known clean changes between checks
+    std::vector<bool> moved_;
+    std::vector<Edge> parents_;  // parents_[i]: the edge whose middle is new vertex i
+    std::vector<double> targets_;
+    BulgeSteps steps_;
+};
+
+}  // namespace
+
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
+                               SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
+                               MeshCheckReport& check) {
+    LoftSmoother smoother(surface, marks, stack, field, bendTo);
+    check = smoother.bendAndBulge();
+    if (check.validSolid()) return smoother.stats;
+    std::vector<std::size_t> suspects;
+    if (smoother.unbendAroundDefects(check, suspects)) return smoother.stats;
+    // The whole check before the repair stopped counting: the next must be
+    // whole too.
+    if (smoother.restorePieces(check, std::move(suspects), check.intersectingPairsCapped))
+        return smoother.stats;
+    check = smoother.fallBackToLinear();
+    return smoother.stats;
 }
 
 }  // namespace dfrecon
