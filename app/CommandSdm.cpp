@@ -74,11 +74,22 @@ std::vector<std::string> objectNames(const std::vector<std::string>& inputs) {
     return names;
 }
 
-void writeObjectOutputs(const std::filesystem::path& dir, const std::string& name,
-                        const SurfaceScene& scene, std::size_t o, const ObjectSamples& samples,
-                        const ObjectDistanceMap& map, double colourFarMm,
-                        const std::vector<std::string>& formats, bool images) {
-    const TriangleSoup& soup = scene.object(o);
+/// Where and how every object's maps are written: the folder, the mesh
+/// formats, whether the atlas images too, and the distance the colour ramps
+/// reach their ends at.
+struct MapOutputs {
+    std::filesystem::path dir;
+    std::vector<std::string> formats;
+    bool images = true;
+    double colourFarMm = 1;
+};
+
+/// Object `name`'s surface `soup` with its vertex map, in every format, and
+/// its atlas images (TIFF and PNG) when asked.
+void writeObjectOutputs(const MapOutputs& out, const std::string& name, const TriangleSoup& soup,
+                        const ObjectSamples& samples, const ObjectDistanceMap& map) {
+    const std::filesystem::path& dir = out.dir;
+    const double colourFarMm = out.colourFarMm;
     MeshAttributes data;
     std::vector<float> distance(soup.points.size());
     std::vector<std::int32_t> nearest(soup.points.size());
@@ -95,7 +106,7 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
     }
     data.vertexScalars = {{"distance", distance}};
     data.vertexLabels = {{"nearest_object", nearest}};
-    for (const std::string& format : formats) {
+    for (const std::string& format : out.formats) {
         MeshAttributes file = data;
         if (format == "ply")
             file.vertexScalars.push_back({"quality", distance});  // what MeshLab colours by
@@ -103,7 +114,7 @@ void writeObjectOutputs(const std::filesystem::path& dir, const std::string& nam
             file.vertexVectors = {{"to_nearest", direction}};  // PLY has no vectors
         writeAttributedMesh(soup, file, (dir / (name + "." + format)).string());
     }
-    if (!images) return;
+    if (!out.images) return;
     const int w = samples.atlas.width, h = samples.atlas.height;
     const std::vector<float> d = distanceImage(samples, map);
     writeFloatTiff((dir / (name + "_distance.tif")).string(), d.data(), w, h, 1);
@@ -175,19 +186,18 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
     const double mapSeconds = computed.mapSeconds;
 
     std::filesystem::create_directories(args.outputDir);
-    const std::filesystem::path dir(args.outputDir);
+    MapOutputs outputs{args.outputDir, args.meshFormats, !args.noImages, args.maxDistanceMm};
     // Colours span the band, or the scene's largest vertex clearance.
-    double colourFarMm = args.maxDistanceMm;
-    if (colourFarMm <= 0) {
+    if (outputs.colourFarMm <= 0) {
         for (const ObjectDistanceMap& m : maps)
             for (const ClosestPrimitive& c : m.vertices)
-                if (c.object >= 0) colourFarMm = std::max(colourFarMm, c.distanceMm);
-        colourFarMm = std::max(colourFarMm, 1.0);
+                if (c.object >= 0)
+                    outputs.colourFarMm = std::max(outputs.colourFarMm, c.distanceMm);
+        outputs.colourFarMm = std::max(outputs.colourFarMm, 1.0);
     }
     nlohmann::ordered_json objects = nlohmann::ordered_json::array();
     for (std::size_t o = 0; o < scene.objectCount(); ++o) {
-        writeObjectOutputs(dir, names[o], scene, o, samples[o], maps[o], colourFarMm,
-                           args.meshFormats, !args.noImages);
+        writeObjectOutputs(outputs, names[o], scene.object(o), samples[o], maps[o]);
         double nearestMm = INFINITY;
         std::size_t inside = 0;
         for (const ClosestPrimitive& c : maps[o].texels) {
@@ -229,10 +239,10 @@ void runSdm(const SdmArgs& args, const GlobalOptions& global) {
         {"pairs", pairReport},
         {"mapSeconds", mapSeconds},
         {"totalSeconds", watch.total()}};
-    writeStreamAtomically((dir / "report.json").string(),
+    writeStreamAtomically((outputs.dir / "report.json").string(),
                           [&](std::ostream& out) { out << jsonText(report, 2) << "\n"; });
     if (!args.reportPath.empty())
-        writeSdmPage(args.reportPath, scene, names, maps, objects, colourFarMm);
+        writeSdmPage(args.reportPath, scene, names, maps, objects, outputs.colourFarMm);
     if (args.json) {
         std::cout << jsonText(report, 2) << "\n";
         return;

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <numeric>
 
@@ -36,9 +37,17 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+/// A row's errors against its reference (NaN: none measured), in % of the
+/// reference's scale, and the reference's name.
+struct Accuracy {
+    double meanErrPct = NAN, maxErrPct = NAN;
+    std::string reference = "none";
+};
+
 void printRow(const std::string& caseName, const std::string& system, double seconds, int vertices,
-              double meanErrPct, double maxErrPct, const std::string& reference,
-              Json extra = Json::object()) {
+              const Accuracy& accuracy, Json extra = Json::object()) {
+    const double meanErrPct = accuracy.meanErrPct, maxErrPct = accuracy.maxErrPct;
+    const std::string& reference = accuracy.reference;
     Json row{{"bench", "segment"},
              {"case", caseName},
              {"system", system},
@@ -76,12 +85,21 @@ double seconds(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// The times a case's rows are held to: their name, the length whose % the
+/// errors are in, and the time at each vertex.
+struct ReferenceTimes {
+    std::string name;
+    double scale = 1;
+    std::function<double(std::size_t)> at;
+};
+
 /// Fast marching (with and without unfolding) and the FIM (device and C++
-/// reference) from vertex `source`, errors against `reference`.
-template <class Reference>
+/// reference) from vertex `source`, errors against `exact`.
 void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGraph& graph,
-                int source, double scale, const std::string& referenceName, Reference&& reference,
-                bool runFim) {
+                int source, const ReferenceTimes& exact, bool runFim) {
+    const double scale = exact.scale;
+    const std::string& referenceName = exact.name;
+    const std::function<double(std::size_t)>& reference = exact.at;
     const int n = graph.vertexCount();
     const std::vector<GeodesicSource> sources{{source, 0.0, 0}};
     auto start = std::chrono::steady_clock::now();
@@ -91,7 +109,7 @@ void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGr
     const int runs = n > 500000 ? 1 : 3;
     double t = bestSeconds(runs, [&] { marched = FastMarching(stencils).solve(sources); });
     const Errors fm = errorsPct(marched.time, scale, reference);
-    printRow(caseName, "fast-marching", t, n, fm.meanPct, fm.maxPct, referenceName,
+    printRow(caseName, "fast-marching", t, n, {fm.meanPct, fm.maxPct, referenceName},
              {{"vertices_per_second", n / t},
               {"setup_seconds", setup},
               {"obtuse_corners", stencils.obtuseCorners()},
@@ -105,7 +123,7 @@ void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGr
     GeodesicField unfoldless;
     t = bestSeconds(runs, [&] { unfoldless = FastMarching(obtuse).solve(sources); });
     const Errors nu = errorsPct(unfoldless.time, scale, reference);
-    printRow(caseName, "fast-marching-no-unfold", t, n, nu.meanPct, nu.maxPct, referenceName,
+    printRow(caseName, "fast-marching-no-unfold", t, n, {nu.meanPct, nu.maxPct, referenceName},
              {{"vertices_per_second", n / t}, {"setup_seconds", plainSetup}});
     if (!runFim) return;
 
@@ -116,7 +134,7 @@ void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGr
     const Errors ref = errorsPct(iterated.time, scale, reference);
     const Errors refVsFm =
         errorsPct(iterated.time, scale, [&](std::size_t v) { return marched.time[v]; });
-    printRow(caseName, "fim-cpp-reference", t, n, ref.meanPct, ref.maxPct, referenceName,
+    printRow(caseName, "fim-cpp-reference", t, n, {ref.meanPct, ref.maxPct, referenceName},
              {{"iterations", stats.iterations}, {"max_diff_vs_fm_pct", refVsFm.maxPct}});
 
     start = std::chrono::steady_clock::now();
@@ -126,7 +144,7 @@ void solverRows(ocl::Runtime& runtime, const std::string& caseName, const MeshGr
     const Errors dev = errorsPct(iterated.time, scale, reference);
     const Errors devVsFm =
         errorsPct(iterated.time, scale, [&](std::size_t v) { return marched.time[v]; });
-    printRow(caseName, "fim-opencl", t, n, dev.meanPct, dev.maxPct, referenceName,
+    printRow(caseName, "fim-opencl", t, n, {dev.meanPct, dev.maxPct, referenceName},
              {{"iterations", stats.iterations},
               {"setup_seconds", upload},
               {"device", runtime.device().deviceName},
@@ -146,7 +164,7 @@ void segmentationRow(const std::string& caseName, const MeshGraph& graph, int re
     for (double a : areas) variance += (a - mean) * (a - mean) / double(areas.size());
     int disks = 0;
     for (const RegionReport& r : s.regions) disks += r.disk ? 1 : 0;
-    printRow(caseName, "geodesic-lloyd", s.seconds, graph.vertexCount(), NAN, NAN, "none",
+    printRow(caseName, "geodesic-lloyd", s.seconds, graph.vertexCount(), {},
              {{"regions", s.regions.size()},
               {"seeds_added", s.seedsAdded},
               {"iterations", s.iterations},
@@ -172,13 +190,12 @@ int benchSegment(const std::string& device) {
     for (int frequency : {32, 100, 316}) {
         const MeshGraph graph = MeshGraph::fromSoup(geodesicSphere(frequency));
         const Vec3 s = graph.point(0);
-        solverRows(
-            runtime, "sphere " + std::to_string(graph.vertexCount()) + " vertices", graph, 0, 1.0,
-            "great-circle distance, % of radius",
-            [&](std::size_t v) {
-                return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
-            },
-            true);
+        solverRows(runtime, "sphere " + std::to_string(graph.vertexCount()) + " vertices", graph, 0,
+                   {"great-circle distance, % of radius", 1.0,
+                    [&](std::size_t v) {
+                        return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
+                    }},
+                   true);
     }
     {
         // The same sphere with every vertex moved at random by up to 0.35 of
@@ -187,13 +204,13 @@ int benchSegment(const std::string& device) {
         const TriangleSoup soup = jitteredGeodesicSphere(100, 0.35);
         const MeshGraph graph = MeshGraph::fromSoup(soup);
         const Vec3 s = graph.point(0);
-        solverRows(
-            runtime, "jittered sphere " + std::to_string(graph.vertexCount()) + " vertices", graph,
-            0, 1.0, "great-circle distance, % of radius",
-            [&](std::size_t v) {
-                return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
-            },
-            true);
+        solverRows(runtime, "jittered sphere " + std::to_string(graph.vertexCount()) + " vertices",
+                   graph, 0,
+                   {"great-circle distance, % of radius", 1.0,
+                    [&](std::size_t v) {
+                        return std::acos(std::clamp(dot(s, graph.point(int(v))), -1.0, 1.0));
+                    }},
+                   true);
     }
     {
         const int columns = 160, rows = 640;
@@ -201,10 +218,10 @@ int benchSegment(const std::string& device) {
         const MeshGraph graph = MeshGraph::fromSoup(staggeredGrid(columns, rows, dx, dy));
         const int source = (rows / 2) * (columns + 1) + columns / 2;
         const Vec3 s = graph.point(source);
-        solverRows(
-            runtime, "flat grid of 136-degree triangles", graph, source, 1.0,
-            "euclidean distance, % of grid width",
-            [&](std::size_t v) { return length(graph.point(int(v)) - s); }, false);
+        solverRows(runtime, "flat grid of 136-degree triangles", graph, source,
+                   {"euclidean distance, % of grid width", 1.0,
+                    [&](std::size_t v) { return length(graph.point(int(v)) - s); }},
+                   false);
     }
     for (const std::string name : {"bunny00", "armadillo", "refined_elephant"}) {
         const std::filesystem::path path =
@@ -223,10 +240,10 @@ int benchSegment(const std::string& device) {
         // Reference: fast marching itself (computed in solverRows' first row).
         const UpdateStencils stencils(graph);
         const GeodesicField marched = FastMarching(stencils).solve({{0, 0.0, 0}});
-        solverRows(
-            runtime, name, graph, 0, length(hi - lo),
-            "fast marching with unfolding, % of bounding-box diagonal",
-            [&](std::size_t v) { return marched.time[v]; }, true);
+        solverRows(runtime, name, graph, 0,
+                   {"fast marching with unfolding, % of bounding-box diagonal", length(hi - lo),
+                    [&](std::size_t v) { return marched.time[v]; }},
+                   true);
         if (name == "bunny00") segmentationRow("lloyd bunny00, 20 seeds", graph, 20);
     }
     segmentationRow("lloyd cube 5402 vertices, 10 seeds", MeshGraph::fromSoup(tessellatedCube(30)),

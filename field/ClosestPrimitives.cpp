@@ -203,8 +203,10 @@ SourceCandidates sourceCandidates(const SurfaceScene& scene, std::size_t own, st
 // the centre's nearest first, then the listed candidates whose bound at p
 // does not rule them out, or the hierarchies when the list overflowed or p
 // is off its triangle.
-Found searchSample(const SurfaceScene& scene, Vec3 p, std::size_t own, std::size_t triangle,
+Found searchSample(const SurfaceScene& scene, const SurfaceSample& sample,
                    const SourceCandidates& source, const DistanceQuery& query, double slackMm) {
+    const Vec3 p = sample.point;
+    const std::size_t own = sample.object, triangle = sample.triangle;
     Found best = startFrom(scene, p, own, source.centre, query);
     const bool onTriangle = triangleDistance2(scene, own, triangle, p) <= 0.25 * slackMm * slackMm;
     if (source.overflow || !onTriangle) return searchObjects(scene, p, own, best, query);
@@ -257,8 +259,7 @@ std::vector<ClosestPrimitive> closestPrimitivesReference(const SurfaceScene& sce
     std::vector<ClosestPrimitive> answers(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
         const SurfaceSample& s = samples[k];
-        const Found best = searchSample(scene, s.point, s.object, s.triangle,
-                                        sources[plan.ofSample[k]], query, slackMm);
+        const Found best = searchSample(scene, s, sources[plan.ofSample[k]], query, slackMm);
         if (best.object != SIZE_MAX)
             answers[k] = describe(scene, best.object, best.triangle, s.point);
     }

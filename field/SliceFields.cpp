@@ -415,11 +415,30 @@ RowCrossings rowCrossings(const std::vector<Slice>& slices, std::size_t begin, s
     return rows;
 }
 
+/// How the field kernels run, decided once per computeSliceFields from its
+/// FieldKernelOptions: pixels per work-item, the tile side (0: by the
+/// segments' density, per batch), the tiles' list capacity, from how many
+/// candidates a tile lists leaves, whether lanes run along rows, and where
+/// the counts go (null: nowhere).
+struct KernelLayout {
+    std::uint32_t lanes = 8, tile = 0;
+    cl_uint capacity = 0, leafListsFrom = 0, lanesAlong = 0;
+    FieldKernelStats* stats = nullptr;
+};
+
+/// Slices [begin, end) of a batch, every one with contours.
+struct SliceRange {
+    std::size_t begin = 0, end = 0;
+};
+
 template <class Real, class Real4>
-void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size_t begin,
-              std::size_t end, const SliceGrid& grid, std::uint32_t lanes, std::uint32_t tile,
-              cl_uint capacity, cl_uint leafListsFrom, cl_uint lanesAlong, SliceFields& out,
-              FieldKernelStats* stats) {
+void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, SliceRange range,
+              const SliceGrid& grid, const KernelLayout& layout, SliceFields& out) {
+    const std::size_t begin = range.begin, end = range.end;
+    const std::uint32_t lanes = layout.lanes;
+    std::uint32_t tile = layout.tile;
+    const cl_uint capacity = layout.capacity;
+    FieldKernelStats* stats = layout.stats;
     // The rows' crossings (only the field kernel reads them), for a batch of
     // many segments on a thread of their own while this one builds the
     // tables: found after the tables, they ran beside the candidate listing,
@@ -478,8 +497,8 @@ void runBatch(ocl::Runtime& runtime, const std::vector<Slice>& slices, std::size
     params.marginMm2 = Real(256 * double(std::numeric_limits<Real>::epsilon()) *
                             (flat.magnitudeMm + grid.pixelMm) * (flat.magnitudeMm + grid.pixelMm));
     params.width = cl_uint(grid.width), params.height = cl_uint(grid.height);
-    params.capacity = capacity, params.leafListsFrom = leafListsFrom;
-    params.lanesAlong = lanesAlong;
+    params.capacity = capacity, params.leafListsFrom = layout.leafListsFrom;
+    params.lanesAlong = layout.lanesAlong;
     RowCrossings rows;  // kept until the kernels finish
     try {
         // Kernels read the host memory of the tables above on CPU devices:
@@ -552,17 +571,20 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
                                const SliceGrid& grid, const std::function<void(double)>& progress,
                                const FieldKernelOptions& options) {
     checkLimits(slices);
-    std::uint32_t lanes = std::uint32_t(options.lanes);
-    if (lanes == 0) lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
-    if (lanes != 1 && lanes != 4 && lanes != 8)
+    KernelLayout layout;
+    layout.lanes = std::uint32_t(options.lanes);
+    if (layout.lanes == 0) layout.lanes = runtime.device().kind == ocl::DeviceKind::Cpu ? 8 : 1;
+    if (layout.lanes != 1 && layout.lanes != 4 && layout.lanes != 8)
         throw std::invalid_argument("field kernel lanes must be 1, 4 or 8");
-    const std::uint32_t tile = std::uint32_t(options.tilePixels);
-    if (tile != 0 && tile != kTile && tile != kWideTile)
+    layout.tile = std::uint32_t(options.tilePixels);
+    if (layout.tile != 0 && layout.tile != kTile && layout.tile != kWideTile)
         throw std::invalid_argument("field kernel tiles must be 0 (by density), 16 or 32 pixels");
-    const cl_uint capacity = cl_uint(
+    layout.capacity = cl_uint(
         options.tileListCapacity < 0 ? kListCapacity : std::min(options.tileListCapacity, 1 << 16));
-    const cl_uint leafListsFrom =
+    layout.leafListsFrom =
         cl_uint(options.leafListsFrom < 0 ? kLeafListsFrom : options.leafListsFrom);
+    layout.lanesAlong = cl_uint(options.lanesAlong);
+    layout.stats = options.stats;
     SliceFields fields = emptyFields(slices, grid);
     if (options.stats) *options.stats = {};
     const std::size_t perBatch =
@@ -578,9 +600,8 @@ SliceFields computeSliceFields(ocl::Runtime& runtime, const std::vector<Slice>& 
         while (end < slices.size() && end - begin < perBatch && !slices[end].contours.empty())
             ++end;
         ocl::withRealTypes(fp64, [&](auto real, auto real4) {
-            runBatch<decltype(real), decltype(real4)>(
-                runtime, slices, begin, end, grid, lanes, tile, capacity, leafListsFrom,
-                cl_uint(options.lanesAlong), fields, options.stats);
+            runBatch<decltype(real), decltype(real4)>(runtime, slices, {begin, end}, grid, layout,
+                                                      fields);
         });
         begin = end;
         if (progress) progress(double(begin) / double(slices.size()));

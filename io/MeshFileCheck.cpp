@@ -73,9 +73,20 @@ OffHeader parseOffLine(const std::string& path, std::string line) {
     return h;
 }
 
-void checkOffCounts(const std::string& path, std::uint64_t vertices, std::uint64_t faces,
-                    std::uint64_t bytes, std::uint64_t vertexBytes, std::uint64_t faceBytes,
+/// An OFF header's counts and the fewest bytes each vertex and face takes
+/// in its encoding.
+struct OffCounts {
+    std::uint64_t vertices = 0, faces = 0;
+    std::uint64_t vertexBytes = 0, faceBytes = 0;
+};
+
+/// Throws InputError (at `line` of `path`) when the counts cannot fit in the
+/// `bytes` left after them: a header declaring billions of vertices is
+/// refused before anything is allocated for them.
+void checkOffCounts(const std::string& path, const OffCounts& counts, std::uint64_t bytes,
                     int line) {
+    const std::uint64_t vertices = counts.vertices, faces = counts.faces;
+    const std::uint64_t vertexBytes = counts.vertexBytes, faceBytes = counts.faceBytes;
     const long double least = static_cast<long double>(vertices) * vertexBytes +
                               static_cast<long double>(faces) * faceBytes;
     if (least > static_cast<long double>(bytes))
@@ -106,7 +117,8 @@ void checkAsciiOff(FileScanner& in, const OffHeader& h) {
         counts[k] = std::uint64_t(value);
     }
     const std::uint64_t vertices = counts[0], faces = counts[1];
-    checkOffCounts(in.path(), vertices, faces, in.remaining(), h.normals ? 12 : 6, 8, in.line());
+    checkOffCounts(in.path(), {vertices, faces, h.normals ? 12u : 6u, 8}, in.remaining(),
+                   in.line());
     for (std::uint64_t v = 0; v < vertices; ++v) {
         for (int c = 0; c < (h.normals ? 6 : 3); ++c) {
             if (!in.nextToken(token))
@@ -153,7 +165,7 @@ void checkBinaryOff(FileScanner& in) {
     unsigned char bytes[12];
     if (!in.readBytes(bytes, 12)) in.fail("the file ends before the counts", 0);
     const std::uint64_t vertices = littleEndian32(bytes), faces = littleEndian32(bytes + 4);
-    checkOffCounts(in.path(), vertices, faces, in.remaining(), 12, 16, 0);
+    checkOffCounts(in.path(), {vertices, faces, 12, 16}, in.remaining(), 0);
     for (std::uint64_t v = 0; v < vertices; ++v) {
         float xyz[3];
         in.readBytes(bytes, 12);

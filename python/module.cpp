@@ -436,9 +436,15 @@ ComparedSolid solidOf(const PyMesh& mesh, const char* side) {
 // ---- structure algebra -----------------------------------------------------
 
 // What margin() and combine() take besides the expression, as the program's
-// options of the same names.
-StructureAlgebraOptions algebraOptions(double stepMm, double minAreaMm2, const py::object& colour,
-                                       const std::string& roiType, const std::string& what) {
+// options of the same names: `settings` holds step_mm, min_area_mm2, colour
+// (None or three integers) and roi_type ("" for the default, `defaultType`).
+StructureAlgebraOptions algebraOptions(const py::dict& settings, const std::string& defaultType,
+                                       const std::string& what) {
+    const double stepMm = py::cast<double>(settings["step_mm"]);
+    const double minAreaMm2 = py::cast<double>(settings["min_area_mm2"]);
+    const py::object colour = settings["colour"];
+    std::string roiType = py::cast<std::string>(settings["roi_type"]);
+    if (roiType.empty()) roiType = defaultType;
     if (!(stepMm >= 0.01 && stepMm <= 5))
         throw py::value_error(what + ": step_mm must be within 0.01 .. 5 mm");
     if (!(minAreaMm2 >= 0 && minAreaMm2 <= 1e6))
@@ -592,50 +598,49 @@ PYBIND11_MODULE(_dfrecon, m) {
           py::arg("accept_intensity"));
     m.def("_from_contours", &setFromContours, py::arg("rois"), py::arg("colours"));
 
-    m.def("_margin", [](const PyStructureSet& set, const py::object& roiChoice,
-                        const std::vector<double>& mm, const std::string& name, double stepMm,
-                        double minAreaMm2, const py::object& colour, const std::string& roiType) {
-        const Roi& source = chooseRoi(set.read, roiChoice);
-        if (mm.size() != 1 && mm.size() != 6)
-            throw py::value_error("margin(): mm is one number or six (R, L, A, P, S, I)");
-        DirectionalMargin margin = DirectionalMargin::uniform(mm[0]);
-        if (mm.size() == 6) std::copy(mm.begin(), mm.end(), margin.mm.begin());
-        for (const double v : margin.mm)
-            if (!std::isfinite(v) || std::abs(v) > 200)
-                throw py::value_error("margin(): mm must be finite and within ±200 mm");
-        if (margin.isZero() || (margin.grows() && margin.shrinks()))
-            throw py::value_error("margin(): mm must all grow (> 0) or all shrink (< 0)");
-        const std::string newName = !name.empty() ? name : marginRoiName(source.name, margin);
-        StructureAlgebraOptions options =
-            algebraOptions(stepMm, minAreaMm2, colour, roiType, "margin()");
-        if (options.interpretedType.empty()) options.interpretedType = source.interpretedType;
-        auto made =
-            onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
-                return marginRoi(device, set.read.contours, source.name, margin, newName, o);
-            });
-        return withNewRoi(set, std::move(made), "margin()");
-    });
+    m.def("_margin",
+          [](const PyStructureSet& set, const py::object& roiChoice, const std::vector<double>& mm,
+             const std::string& name, const py::dict& settings) {
+              const Roi& source = chooseRoi(set.read, roiChoice);
+              if (mm.size() != 1 && mm.size() != 6)
+                  throw py::value_error("margin(): mm is one number or six (R, L, A, P, S, I)");
+              DirectionalMargin margin = DirectionalMargin::uniform(mm[0]);
+              if (mm.size() == 6) std::copy(mm.begin(), mm.end(), margin.mm.begin());
+              for (const double v : margin.mm)
+                  if (!std::isfinite(v) || std::abs(v) > 200)
+                      throw py::value_error("margin(): mm must be finite and within ±200 mm");
+              if (margin.isZero() || (margin.grows() && margin.shrinks()))
+                  throw py::value_error("margin(): mm must all grow (> 0) or all shrink (< 0)");
+              const std::string newName = !name.empty() ? name : marginRoiName(source.name, margin);
+              StructureAlgebraOptions options = algebraOptions(settings, "", "margin()");
+              if (options.interpretedType.empty()) options.interpretedType = source.interpretedType;
+              auto made =
+                  onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
+                      return marginRoi(device, set.read.contours, source.name, margin, newName, o);
+                  });
+              return withNewRoi(set, std::move(made), "margin()");
+          });
 
-    m.def("_combine", [](const PyStructureSet& set, const std::string& definition, double stepMm,
-                         double minAreaMm2, const py::object& colour, const std::string& roiType) {
-        StructureAlgebraOptions options = algebraOptions(
-            stepMm, minAreaMm2, colour, roiType.empty() ? "CONTROL" : roiType, "combine()");
-        std::vector<std::string> names;
-        for (const Roi& roi : set.read.contours.rois) names.push_back(roi.name);
-        RoiExpression expression;
-        try {
-            expression = parseRoiExpression(definition, names);
-        } catch (const ExpressionError& e) {
-            throw py::value_error(std::string("combine(): ") + e.what());
-        }
-        const std::string problem = roiNameProblem(expression.name);
-        if (!problem.empty()) throw py::value_error("combine(): the new ROI's name " + problem);
-        auto made =
-            onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
-                return evaluateRoiExpression(device, set.read.contours, expression, o);
-            });
-        return withNewRoi(set, std::move(made), "combine()");
-    });
+    m.def("_combine",
+          [](const PyStructureSet& set, const std::string& definition, const py::dict& settings) {
+              StructureAlgebraOptions options = algebraOptions(settings, "CONTROL", "combine()");
+              std::vector<std::string> names;
+              for (const Roi& roi : set.read.contours.rois) names.push_back(roi.name);
+              RoiExpression expression;
+              try {
+                  expression = parseRoiExpression(definition, names);
+              } catch (const ExpressionError& e) {
+                  throw py::value_error(std::string("combine(): ") + e.what());
+              }
+              const std::string problem = roiNameProblem(expression.name);
+              if (!problem.empty())
+                  throw py::value_error("combine(): the new ROI's name " + problem);
+              auto made =
+                  onLattices(options, [&](ocl::Runtime& device, const StructureAlgebraOptions& o) {
+                      return evaluateRoiExpression(device, set.read.contours, expression, o);
+                  });
+              return withNewRoi(set, std::move(made), "combine()");
+          });
 
     m.def("_rasterize", [](const PyStructureSet& set, const py::object& roiChoice, double voxelMm,
                            const std::vector<std::pair<std::string, std::string>>& given) {

@@ -59,7 +59,7 @@ double solveAt(int v, const UpdateStencils& stencils, const std::vector<double>&
         const UpdateStencil& s = stencils.stencils()[std::size_t(k)];
         const double ta = field.time[std::size_t(s.a)], tb = field.time[std::size_t(s.b)];
         const int la = field.label[std::size_t(s.a)], lb = field.label[std::size_t(s.b)];
-        const TriangleUpdate u = triangleUpdate(ta, tb, s.lengthA, s.lengthB, s.cosAngle, p,
+        const TriangleUpdate u = triangleUpdate(ta, tb, {s.lengthA, s.lengthB, s.cosAngle}, p,
                                                 ta < kUnreached && tb < kUnreached && la == lb);
         if (u.time < best) {
             best = u.time;

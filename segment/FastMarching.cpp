@@ -105,9 +105,10 @@ void FastMarching::march(GeodesicField& field, const std::vector<GeodesicSource>
             // field too, whose untouched times are final where they are
             // earlier than the front).
             const bool knownA = time[a] <= t, knownB = time[b] <= t;
-            const TriangleUpdate u = triangleUpdate(
-                knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached, s.lengthA, s.lengthB,
-                s.cosAngle, slowness_[c], knownA && knownB && label[a] == label[b]);
+            const TriangleUpdate u =
+                triangleUpdate(knownA ? time[a] : kUnreached, knownB ? time[b] : kUnreached,
+                               {s.lengthA, s.lengthB, s.cosAngle}, slowness_[c],
+                               knownA && knownB && label[a] == label[b]);
             if (!(u.time < time[c])) continue;
             time[c] = u.time;
             label[c] = upwindLabel(u, label[a], label[b]);

@@ -24,10 +24,10 @@ double overlapTime(int v, int region, const FastMarching& marching, const Geodes
         const bool inA = field.label[std::size_t(s.a)] == region;
         const bool inB = field.label[std::size_t(s.b)] == region;
         if (!inA && !inB) continue;
-        const TriangleUpdate u =
-            triangleUpdate(inA ? field.time[std::size_t(s.a)] : kUnreached,
-                           inB ? field.time[std::size_t(s.b)] : kUnreached, s.lengthA, s.lengthB,
-                           s.cosAngle, marching.slowness()[std::size_t(v)], inA && inB);
+        const TriangleUpdate u = triangleUpdate(inA ? field.time[std::size_t(s.a)] : kUnreached,
+                                                inB ? field.time[std::size_t(s.b)] : kUnreached,
+                                                {s.lengthA, s.lengthB, s.cosAngle},
+                                                marching.slowness()[std::size_t(v)], inA && inB);
         best = std::min(best, u.time);
     }
     return best;

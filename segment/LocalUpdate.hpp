@@ -30,12 +30,21 @@ struct TriangleUpdate {
     double weightB = 0;  // where the characteristic crosses AB: 0 at A, 1 at B
 };
 
-inline TriangleUpdate triangleUpdate(double ta, double tb, double la, double lb, double cosC,
+/// The triangle an update runs over, seen from the corner C it updates: the
+/// lengths of its edges CA and CB and the cosine of its angle at C.
+struct UpdateCorner {
+    double lengthA = 0, lengthB = 0, cosC = 0;
+};
+
+/// C's arrival time from A's (ta) and B's (tb) over `corner`'s triangle at
+/// `slowness`; across the face only when `acrossFace` (else along an edge).
+inline TriangleUpdate triangleUpdate(double ta, double tb, const UpdateCorner& corner,
                                      double slowness, bool acrossFace) {
     TriangleUpdate result;
     int via = 0;
-    result.time = eikonal::eikonal_triangle_update(ta, tb, la, lb, cosC, slowness,
-                                                   acrossFace ? 1 : 0, &via, &result.weightB);
+    result.time =
+        eikonal::eikonal_triangle_update(ta, tb, corner.lengthA, corner.lengthB, corner.cosC,
+                                         slowness, acrossFace ? 1 : 0, &via, &result.weightB);
     result.upwind = Upwind(via);
     return result;
 }

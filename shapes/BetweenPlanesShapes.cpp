@@ -386,14 +386,20 @@ class TiltedEllipsoid : public PlacedShape {
 // the nearest surface point lies in the point's own half plane.
 class Neck : public PlacedShape {
   public:
-    Neck(double rA, double zA, double rB, double zB, double fillet, Placement placement,
-         double cell)
-        : PlacedShape("neck", placement, std::max(std::abs(zA) + rA, std::abs(zB) + rB), cell),
-          rA_(rA),
-          zA_(zA),
-          rB_(rB),
-          zB_(zB),
+    /// A ball's radius and its centre on the axis.
+    struct Ball {
+        double radius, z;
+    };
+
+    Neck(Ball a, Ball b, double fillet, Placement placement, double cell)
+        : PlacedShape("neck", placement,
+                      std::max(std::abs(a.z) + a.radius, std::abs(b.z) + b.radius), cell),
+          rA_(a.radius),
+          zA_(a.z),
+          rB_(b.radius),
+          zB_(b.z),
           f_(fillet) {
+        const double rA = rA_, zA = zA_, rB = rB_, zB = zB_;
         // Fillet centre C: |C - A| = rA + f and |C - B| = rB + f.
         cz_ = ((rA + f_) * (rA + f_) - (rB + f_) * (rB + f_) + zB * zB - zA * zA) / (2 * (zB - zA));
         crho_ = std::sqrt((rA + f_) * (rA + f_) - (cz_ - zA) * (cz_ - zA));
@@ -643,8 +649,8 @@ std::unique_ptr<AnalyticShape> makeBetweenPlanesShape(const std::string& name, d
         return std::make_unique<TiltedEllipsoid>(name, 25 * s, 15 * s, 2 * s, Placement(25, 70),
                                                  cell);
     if (name == "neck")
-        return std::make_unique<Neck>(12 * s, -15 * s, 10 * s, 15 * s, 7 * s, Placement(35, 0),
-                                      cell);
+        return std::make_unique<Neck>(Neck::Ball{12 * s, -15 * s}, Neck::Ball{10 * s, 15 * s},
+                                      7 * s, Placement(35, 0), cell);
     if (name == "branch") {
         std::vector<CapsulePart> parts = {{{0, 0, -24 * s}, {0, 0, 0}, 6 * s},
                                           {{0, 0, 0}, {14 * s, 4 * s, 18 * s}, 4.5 * s},

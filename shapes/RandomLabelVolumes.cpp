@@ -17,8 +17,9 @@ class Painter {
         if (v == 0) v = label;
     }
     /// Paints an axis-aligned ellipsoid (centre and radii in voxels).
-    void ellipsoid(double cx, double cy, double cz, double rx, double ry, double rz,
-                   std::int32_t label) {
+    void ellipsoid(const Vec3& centre, const Vec3& radii, std::int32_t label) {
+        const double cx = centre.x, cy = centre.y, cz = centre.z;
+        const double rx = radii.x, ry = radii.y, rz = radii.z;
         const auto& size = volume_.geometry.size;
         for (int k = std::max(0, int(cz - rz)); k <= std::min(size[2] - 1, int(cz + rz) + 1); ++k)
             for (int j = std::max(0, int(cy - ry)); j <= std::min(size[1] - 1, int(cy + ry) + 1);
@@ -58,7 +59,7 @@ LabelVolume hostileLabelVolume(std::uint32_t seed) {
     for (int b = 0; b < blobs; ++b) {
         const double cx = uniform(6, 24), cy = uniform(6, 24), cz = uniform(1, nz - 2);
         const double rx = uniform(2, 6), ry = uniform(2, 6), rz = uniform(1, nz / 2);
-        paint.ellipsoid(cx, cy, cz, rx, ry, rz, 1);
+        paint.ellipsoid({cx, cy, cz}, {rx, ry, rz}, 1);
     }
     // A tube: a random walk of discs, one per plane.
     double tx = uniform(5, 25), ty = uniform(5, 25);
@@ -91,9 +92,12 @@ LabelVolume manyBlobLabelVolume(std::uint32_t seed, int blobs, int side, int pla
     };
     LabelVolume volume = emptyVolume(side, side, planes, 0.5, 2);
     Painter paint(volume);
-    for (int b = 0; b < blobs; ++b)
-        paint.ellipsoid(uniform(4, side - 4), uniform(4, side - 4), uniform(1, planes - 2),
-                        uniform(2, 8), uniform(2, 8), uniform(1, 6), 1);
+    for (int b = 0; b < blobs; ++b) {
+        // Drawn in this order, centre first (the volumes are seeded).
+        const Vec3 centre{uniform(4, side - 4), uniform(4, side - 4), uniform(1, planes - 2)};
+        const Vec3 radii{uniform(2, 8), uniform(2, 8), uniform(1, 6)};
+        paint.ellipsoid(centre, radii, 1);
+    }
     return volume;
 }
 

@@ -216,6 +216,12 @@ def read_contours(path, *, label_table=None, accept_intensity=False):
         bool(accept_intensity)))
 
 
+def _algebra_settings(step_mm, min_area_mm2, colour, roi_type):
+    """What margin() and combine() pass to the module besides their ROIs."""
+    return {"step_mm": float(step_mm), "min_area_mm2": float(min_area_mm2),
+            "colour": colour, "roi_type": roi_type or ""}
+
+
 def margin(src, roi, mm, *, name=None, step_mm=0.25, min_area_mm2=1e-4, colour=None,
            roi_type=None):
     """ROI `roi` of `src` grown (``mm`` > 0) or shrunk (< 0) by an exact 3D
@@ -229,9 +235,9 @@ def margin(src, roi, mm, *, name=None, step_mm=0.25, min_area_mm2=1e-4, colour=N
     :meth:`StructureSet.write`."""
     ss = _structure_set(src)
     values = [float(mm)] if isinstance(mm, (int, float)) else [float(v) for v in mm]
-    core, report = _core_module._margin(ss._core, _roi_key(roi), values, name or "",
-                                        float(step_mm), float(min_area_mm2), colour,
-                                        roi_type or "")
+    core, report = _core_module._margin(
+        ss._core, _roi_key(roi), values, name or "",
+        _algebra_settings(step_mm, min_area_mm2, colour, roi_type))
     return StructureSet(core), report
 
 
@@ -243,8 +249,8 @@ def combine(src, definition, *, step_mm=0.25, min_area_mm2=1e-4, colour=None, ro
     new ROI's type defaults to CONTROL. An expression that does not parse
     raises ValueError with its column."""
     ss = _structure_set(src)
-    core, report = _core_module._combine(ss._core, str(definition), float(step_mm),
-                                         float(min_area_mm2), colour, roi_type or "")
+    core, report = _core_module._combine(
+        ss._core, str(definition), _algebra_settings(step_mm, min_area_mm2, colour, roi_type))
     return StructureSet(core), report
 
 

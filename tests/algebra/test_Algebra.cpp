@@ -40,9 +40,10 @@ double boxDistance(Vec3 p, Vec3 lo, Vec3 hi) {
     return length(outside) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
 }
 
-// An ROI of square (x0..x1, y0..y1) contours on planes z0, z0 + step, ... z1.
-Roi boxRoi(const std::string& name, double x0, double x1, double y0, double y1, double z0,
-           double z1, double step) {
+// An ROI of square (lo.x..hi.x, lo.y..hi.y) contours on planes lo.z,
+// lo.z + step, ... hi.z.
+Roi boxRoi(const std::string& name, const Vec3& lo, const Vec3& hi, double step) {
+    const double x0 = lo.x, x1 = hi.x, y0 = lo.y, y1 = hi.y, z0 = lo.z, z1 = hi.z;
     Roi roi;
     roi.name = name;
     for (double z = z0; z <= z1 + 1e-9; z += step)
@@ -172,7 +173,7 @@ TEST(PlaneSections, VerticesLieOnTheExactBoundary) {
 
 TEST(StructureAlgebra, MarginOfABoxIsItsExactOffsetOnEveryPlane) {
     ContourSet set;
-    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    set.rois.push_back(boxRoi("Box", {-10, -6, 0}, {10, 6, 20}, 2.5));
     StructureAlgebraOptions options;
     for (DistanceBackend backend : {DistanceBackend::Device, DistanceBackend::Reference}) {
         options.backend = backend;
@@ -227,7 +228,7 @@ TEST(StructureAlgebra, APlaneOnAFlatFaceOfTheResultHoldsNoSpecks) {
     // on the planes -5 and 25, where the field is zero up to rounding over
     // the whole face.
     ContourSet set;
-    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    set.rois.push_back(boxRoi("Box", {-10, -6, 0}, {10, 6, 20}, 2.5));
     const StructureAlgebraResult r =
         marginRoi(runtime(), set, "Box", DirectionalMargin::uniform(3.75), "M");
     for (const Slice& s : r.roi.slices) EXPECT_EQ(s.contours.size(), 1u) << s.zMm;
@@ -237,8 +238,8 @@ TEST(StructureAlgebra, APlaneOnAFlatFaceOfTheResultHoldsNoSpecks) {
 
 TEST(StructureAlgebra, BooleansOfBoxesHaveTheExactAreas) {
     ContourSet set;
-    set.rois.push_back(boxRoi("A", 0, 40, 0, 40, 0, 20, 2));
-    set.rois.push_back(boxRoi("B", 20, 60, 10, 30, 4, 30, 2));
+    set.rois.push_back(boxRoi("A", {0, 0, 0}, {40, 40, 20}, 2));
+    set.rois.push_back(boxRoi("B", {20, 10, 4}, {60, 30, 30}, 2));
     const struct {
         const char* expression;
         double area;  // on planes where both are
@@ -263,7 +264,7 @@ TEST(StructureAlgebra, BooleansOfBoxesHaveTheExactAreas) {
 
 TEST(StructureAlgebra, EllipsoidalMarginsScaleEachAxis) {
     ContourSet set;
-    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    set.rois.push_back(boxRoi("Box", {-10, -6, 0}, {10, 6, 20}, 2.5));
     DirectionalMargin m;
     m.mm = {4, 4, 8, 8, 0, 0};  // in the plane only: x by 4, y by 8
     const StructureAlgebraResult r = marginRoi(runtime(), set, "Box", m, "E");
@@ -285,7 +286,7 @@ TEST(StructureAlgebra, MarginsPerDirectionAreTheExactOctantSum) {
     // sqrt(Σ (excess_i / a_i(side))²) ≤ 1, excess_i being how far p lies
     // beyond the box along axis i (a box's nearest point is per axis).
     ContourSet set;
-    set.rois.push_back(boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5));
+    set.rois.push_back(boxRoi("Box", {-10, -6, 0}, {10, 6, 20}, 2.5));
     const Box3 box = boundsOf(reconstructRoi(runtime(), set.rois[0]).surface);
     const auto gaugeFromBox = [&](Vec3 p, const std::array<double, 6>& a) {
         const double ex = p.x < box.lo.x   ? (box.lo.x - p.x) / a[0]
@@ -406,7 +407,7 @@ TEST(DistanceHistograms, SpacingsThatWouldTakeTooManyCellsAreCoarsenedAndReporte
 }
 
 TEST(EuclideanDistanceVolume, IsTheExactDistanceToTheReconstructedBox) {
-    const Roi roi = boxRoi("Box", -10, 10, -6, 6, 0, 20, 2.5);
+    const Roi roi = boxRoi("Box", {-10, -6, 0}, {10, 6, 20}, 2.5);
     RoiFieldOptions options;
     options.pixelMm = 1;
     const RoiDistanceVolume v = roiEuclideanDistanceVolume(runtime(), roi, options);

@@ -37,7 +37,7 @@ TEST(LocalUpdate, PlaneWaveThroughTheTriangleIsExact) {
         const double nx = -std::cos(phi) * slowness, ny = -std::sin(phi) * slowness;
         const double t0 = 10 * unit(random);  // T(C)
         const double ta = t0 + nx * t.ax + ny * t.ay, tb = t0 + nx * t.bx + ny * t.by;
-        const TriangleUpdate u = triangleUpdate(ta, tb, t.la(), t.lb(), t.cosC(), slowness, true);
+        const TriangleUpdate u = triangleUpdate(ta, tb, {t.la(), t.lb(), t.cosC()}, slowness, true);
         EXPECT_NEAR(u.time, t0, 1e-12 * (1 + t0));
         if (u.upwind == Upwind::AcrossFace) {
             ++across;
@@ -56,21 +56,21 @@ TEST(LocalUpdate, WaveFromOutsideTheAngleTravelsAlongAnEdge) {
     const double la = 1, lb = 1, cosC = 0;
     const double nx = -std::cos(-0.5), ny = -std::sin(-0.5);  // from direction −0.5 rad
     const double ta = nx * la, tb = ny * lb;                  // T(C) = 0
-    const TriangleUpdate u = triangleUpdate(ta, tb, la, lb, cosC, 1.0, true);
+    const TriangleUpdate u = triangleUpdate(ta, tb, {la, lb, cosC}, 1.0, true);
     EXPECT_EQ(u.upwind, Upwind::AlongA);
     EXPECT_NEAR(u.time, ta + la, 1e-15);
 }
 
 TEST(LocalUpdate, UnknownCornerOnlyGivesItsEdge) {
     const double inf = std::numeric_limits<double>::infinity();
-    const TriangleUpdate u = triangleUpdate(inf, 2.0, 1.0, 0.5, 0.3, 2.0, false);
+    const TriangleUpdate u = triangleUpdate(inf, 2.0, {1.0, 0.5, 0.3}, 2.0, false);
     EXPECT_EQ(u.upwind, Upwind::AlongB);
     EXPECT_DOUBLE_EQ(u.time, 3.0);
     EXPECT_DOUBLE_EQ(u.weightB, 1.0);
 }
 
 TEST(LocalUpdate, EquilateralTriangleFromTwoEqualTimes) {
-    const TriangleUpdate u = triangleUpdate(0, 0, 1, 1, 0.5, 1, true);
+    const TriangleUpdate u = triangleUpdate(0, 0, {1, 1, 0.5}, 1, true);
     EXPECT_EQ(u.upwind, Upwind::AcrossFace);
     EXPECT_NEAR(u.time, std::sqrt(0.75), 1e-15);
     EXPECT_NEAR(u.weightB, 0.5, 1e-15);
