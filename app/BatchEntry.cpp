@@ -9,16 +9,16 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/BatchRecord.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
-#include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "contours/InputError.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/InputDigest.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Failure.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

@@ -6,8 +6,8 @@
 
 #include "app/BatchManifest.hpp"
 #include "app/Commands.hpp"
-#include "app/ReconstructSettings.hpp"
 #include "cl/Runtime.hpp"
+#include "report/ReconstructSettings.hpp"
 
 namespace dfrecon::app {
 

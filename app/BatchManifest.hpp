@@ -1,14 +1,14 @@
 #pragma once
 // The list of work of `dfrecon batch`: a CSV file with a header row, or a
 // JSON list of objects, with the keys `input` (required), `id`, `roi` and
-// any option of app/ReconstructSettings named without its dashes
+// any option of report/ReconstructSettings named without its dashes
 // (docs/cli.md, "dfrecon batch"). The whole manifest is checked before any
 // entry runs, so a typo in row 4 000 costs seconds, not a day.
 #include <cstddef>
 #include <string>
 #include <vector>
 
-#include "app/ReconstructSettings.hpp"
+#include "report/ReconstructSettings.hpp"
 
 namespace dfrecon::app {
 

@@ -1,7 +1,7 @@
 #include "app/BatchRecord.hpp"
 
-#include "app/ExitCodes.hpp"
 #include "contours/InputError.hpp"
+#include "report/ExitCodes.hpp"
 
 namespace dfrecon::app {
 

@@ -7,10 +7,10 @@
 
 #include "app/BatchRecord.hpp"
 #include "app/CsvTable.hpp"
-#include "app/ExitCodes.hpp"
 #include "contours/InputError.hpp"
 #include "io/JsonText.hpp"
 #include "io/RegularFile.hpp"
+#include "report/ExitCodes.hpp"
 
 namespace dfrecon::app {
 

@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/ExitCodes.hpp"
 #include "io/JsonText.hpp"
+#include "report/ExitCodes.hpp"
 
 extern char** environ;
 

@@ -11,11 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Algebra.hpp"
@@ -26,6 +24,8 @@
 #include "io/RoiName.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

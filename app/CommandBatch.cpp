@@ -15,13 +15,13 @@
 #include "app/BatchShard.hpp"
 #include "app/BatchWorkers.hpp"
 #include "app/Commands.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/OrderedParallel.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/ReconstructSettings.hpp"
-#include "app/WorkerRuntimes.hpp"
+#include "cl/WorkerRuntimes.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "io/JsonText.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/ReconstructSettings.hpp"
 
 namespace dfrecon::app {
 
@@ -49,7 +49,7 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     for (const ManifestEntry& entry : entries)
         if (shard.has(entry.number)) mine.push_back(&entry);
     if (isBatchWorkerProcess()) {  // started by a BatchWorker below, with this command line
-        WorkerRuntimes runtime(global.device, 1);
+        ocl::WorkerRuntimes runtime(global.device, 1);
         serveBatchEntries(
             [&](std::size_t i) {
                 return runBatchEntry(runtime[0], *mine[i], args.settings, args.output,
@@ -69,8 +69,8 @@ void runBatch(const BatchArgs& args, const GlobalOptions& global) {
     // batch before any work; the entries run in worker processes, each with
     // its own runtime (app/BatchWorkers), so that one entry's crash is that
     // entry's failure alone.
-    std::unique_ptr<WorkerRuntimes> deviceCheck;
-    if (!mine.empty()) deviceCheck = std::make_unique<WorkerRuntimes>(global.device, 1);
+    std::unique_ptr<ocl::WorkerRuntimes> deviceCheck;
+    if (!mine.empty()) deviceCheck = std::make_unique<ocl::WorkerRuntimes>(global.device, 1);
     std::vector<std::unique_ptr<BatchWorker>> workers(jobs);
     for (auto& worker : workers) worker = std::make_unique<BatchWorker>();
 

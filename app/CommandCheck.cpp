@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "contours/InputError.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

@@ -4,7 +4,7 @@
 // planning system's per-plane overlap and the added path length — computed
 // on the surfaces and contours (compare/), not on voxels, with the
 // distances' error bound stated. Two structure sets are compared ROI by ROI
-// (app/RoiMatching), one row per pair.
+// (report/RoiMatching), one row per pair.
 #include <initializer_list>
 #include <iomanip>
 #include <iostream>
@@ -16,25 +16,25 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
-#include "app/CompareReport.hpp"
 #include "app/CsvTable.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
-#include "app/NumberChecks.hpp"
-#include "app/OrderedParallel.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/RoiMatching.hpp"
-#include "app/WorkerRuntimes.hpp"
+#include "cl/WorkerRuntimes.hpp"
 #include "contours/InputError.hpp"
 #include "dfrecon/Compare.hpp"
 #include "dfrecon/Reconstruct.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "report/CompareReport.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Failure.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/RoiMatching.hpp"
 
 namespace dfrecon::app {
 
@@ -206,7 +206,7 @@ void runStructureSets(const CompareArgs& args, const GlobalOptions& global,
     }
     const std::size_t count = matching.pairs.size();
     const std::size_t jobs = jobsFor(args.jobs, count);
-    WorkerRuntimes runtimes(global.device, jobs);
+    ocl::WorkerRuntimes runtimes(global.device, jobs);
     nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
     std::optional<Failure> firstFailure;
     std::size_t failures = 0;

@@ -10,13 +10,13 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
-#include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/JsonText.hpp"
+#include "report/EnumNames.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"
 

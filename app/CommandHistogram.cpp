@@ -12,12 +12,12 @@
 #include "app/Inputs.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Algebra.hpp"
 #include "io/AtomicWrite.hpp"
 #include "io/JsonText.hpp"
 #include "io/LinePlot.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

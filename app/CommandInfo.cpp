@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "app/EnumNames.hpp"
-#include "app/ExitCodes.hpp"
 #include "app/Inputs.hpp"
-#include "app/Reports.hpp"
 #include "io/JsonText.hpp"
 #include "io/SlicesFile.hpp"
+#include "report/EnumNames.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

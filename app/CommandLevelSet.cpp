@@ -7,14 +7,14 @@
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Field.hpp"
 #include "io/JsonText.hpp"
 #include "io/LevelSetVdb.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

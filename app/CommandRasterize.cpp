@@ -17,19 +17,14 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
-#include "app/EnumNames.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Failure.hpp"
 #include "app/Inputs.hpp"
-#include "app/NumberChecks.hpp"
-#include "app/OrderedParallel.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/WorkerRuntimes.hpp"
+#include "cl/WorkerRuntimes.hpp"
 #include "dfrecon/Field.hpp"
 #include "dfrecon/Reconstruct.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/DicomImageSeries.hpp"
 #include "io/FileNames.hpp"
@@ -37,6 +32,11 @@
 #include "io/LabelTable.hpp"
 #include "io/LabelVolume.hpp"
 #include "io/RtStruct.hpp"
+#include "report/EnumNames.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Failure.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 
@@ -194,7 +194,7 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
     // Several ROIs at once, each worker with its own OpenCL queue, as
     // reconstruct --all runs them; with several workers one bar counts ROIs.
     const std::size_t jobs = jobsFor(args.jobs, rois.size());
-    WorkerRuntimes runtimes(global.device, jobs);
+    ocl::WorkerRuntimes runtimes(global.device, jobs);
     Progress overall("rasterizing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);
     forEachInOrder(

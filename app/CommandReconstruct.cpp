@@ -7,19 +7,19 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
-#include "app/ExitCodes.hpp"
 #include "app/HtmlReport.hpp"
 #include "app/Inputs.hpp"
-#include "app/OrderedParallel.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/ReconstructSettings.hpp"
 #include "app/RoiReconstruction.hpp"
 #include "app/StandardStreams.hpp"
-#include "app/WorkerRuntimes.hpp"
+#include "cl/WorkerRuntimes.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/ReconstructSettings.hpp"
 
 namespace dfrecon::app {
 
@@ -84,7 +84,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     // With several workers each ROI's own bar would fight for the line, so
     // the bar counts ROIs instead.
     const std::size_t jobs = jobsFor(args.jobs, rois.size());
-    WorkerRuntimes runtimes(global.device, jobs);
+    ocl::WorkerRuntimes runtimes(global.device, jobs);
     Progress overall("reconstructing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);
     forEachInOrder(

@@ -16,10 +16,8 @@
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "contours/InputError.hpp"
 #include "dfrecon/SurfaceDistanceMaps.hpp"
@@ -30,6 +28,8 @@
 #include "io/ImageFiles.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

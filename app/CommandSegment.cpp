@@ -13,16 +13,16 @@
 
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
-#include "app/EnumNames.hpp"
 #include "app/GeodesicOutput.hpp"
 #include "app/HtmlReport.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/Colours.hpp"
 #include "io/JsonText.hpp"
+#include "report/EnumNames.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 #include "segment/Segmentation.hpp"
 
 namespace dfrecon::app {

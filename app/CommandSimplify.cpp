@@ -9,16 +9,16 @@
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
-#include "app/Reports.hpp"
 #include "app/RoiReconstruction.hpp"
-#include "app/SimplifyReport.hpp"
+#include "app/SimplifyAndVerify.hpp"
 #include "app/StandardStreams.hpp"
 #include "contours/InputError.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/JsonText.hpp"
 #include "io/MeshIO.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

@@ -10,10 +10,8 @@
 #include "api/Stopwatch.hpp"
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Field.hpp"
 #include "io/AtomicWrite.hpp"
@@ -21,6 +19,8 @@
 #include "io/JsonText.hpp"
 #include "io/RawVolume.hpp"
 #include "recon/MedialAxis.hpp"
+#include "report/NumberChecks.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 

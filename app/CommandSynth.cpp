@@ -5,11 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Commands.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/JsonText.hpp"
 #include "io/SlicesFile.hpp"
+#include "report/NumberChecks.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon::app {

@@ -5,13 +5,13 @@
 
 #include "app/BatchWorkers.hpp"
 #include "app/Commands.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Failure.hpp"
 #include "app/HeapArenas.hpp"
-#include "app/NumberChecks.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
 #include "io/OutputTarget.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Failure.hpp"
+#include "report/NumberChecks.hpp"
 
 namespace dfrecon::app {
 

@@ -7,7 +7,7 @@
 namespace dfrecon::app {
 
 /// Parses `argv` and runs the subcommand it names. Returns the exit code
-/// (app/ExitCodes.hpp, docs/cli.md); errors go to stderr. Cost: that of
+/// (report/ExitCodes.hpp, docs/cli.md); errors go to stderr. Cost: that of
 /// the subcommand.
 int runProgram(int argc, char** argv);
 

@@ -5,14 +5,14 @@
 #include <sstream>
 
 #include "api/Stopwatch.hpp"
-#include "app/EnumNames.hpp"
-#include "app/Failure.hpp"
 #include "app/Progress.hpp"
-#include "app/Reports.hpp"
-#include "app/SimplifyReport.hpp"
+#include "app/SimplifyAndVerify.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RtStruct.hpp"
+#include "report/EnumNames.hpp"
+#include "report/Failure.hpp"
+#include "report/Reports.hpp"
 
 namespace dfrecon::app {
 
@@ -23,10 +23,6 @@ namespace {
 std::mutex meshWriting;
 
 }  // namespace
-
-StructureTag structureTagOf(const Roi& roi) {
-    return StructureTag{roi.name, roi.colour};
-}
 
 RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
     Failure failure = describeFailure(error);
@@ -44,75 +40,6 @@ RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
                       {"error", failure.message},
                       {"exitCode", failure.exitCode}};
     return outcome;
-}
-
-namespace {
-
-// Where the ROI ends and starts again (contours/PlaneGaps): [below, above]
-// of each gap, in the plane frame's mm.
-nlohmann::ordered_json planeGapsJson(const Roi& roi) {
-    nlohmann::ordered_json gaps = nlohmann::ordered_json::array();
-    for (std::size_t i : roi.restartsAt) gaps.push_back({roi.slices[i - 1].zMm, roi.slices[i].zMm});
-    return gaps;
-}
-
-}  // namespace
-
-nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
-                                 const RtStructRoiInfo* dicom, const ReconstructSettings& settings,
-                                 const RoiWriting& writing,
-                                 const nlohmann::ordered_json& simplification) {
-    const ReconstructionStats& s = result.stats;
-    const MeshCheckReport& check = result.check;
-    const double contourVolume = result.contourVolumeMm3;
-    const std::optional<const char*> holes =
-        dicom ? std::optional(nameOf(kHoleConventionNames, dicom->holes)) : std::nullopt;
-    nlohmann::ordered_json broken = nlohmann::ordered_json::array();
-    for (const auto& [below, above] : result.brokenPieces) broken.push_back({below, above});
-    nlohmann::ordered_json report{{"roi", roi.name},
-                                  {"roiNumber", valueOrNull(roi.number)},
-                                  {"output", valueOrNull(writing.written, writing.path)},
-                                  {"written", writing.written}};
-    appendItems(report, meshCheckJson(check));
-    appendItems(report,
-                {{"contourVolumeMm3", contourVolume},
-                 {"contourVolumeCc", contourVolume / 1000},
-                 {"brokenSlabsMm", broken},
-                 {"touchesOpened", s.touchesOpened},
-                 {"piecesClosedAgain", s.repairedPieces},
-                 {"facesRefusedByOpenMesh", writing.refusedFaces},
-                 {"slices", s.slices},
-                 {"pieces", s.runs},
-                 {"planesLeftEmptyMm", planeGapsJson(roi)},
-                 {"planes", roi.frame.orientationName()},
-                 {"holeConvention", valueOrNull(holes)},
-                 {"contourReading", contourReadingJson(roi.reading)},
-                 {"slabThicknessMm", valueOrNull(roi.slabThicknessMm > 0, roi.slabThicknessMm)},
-                 {"contourPoints", s.contourPoints},
-                 {"pixelMm", s.pixelMm},
-                 {"cap", nameOf(kCapModeNames, settings.options.cap)},
-                 {"interpolation", nameOf(kInterpolationNames, settings.options.interpolation)},
-                 {"smoothedVertices", s.smoothedVertices},
-                 {"smoothUnbentVertices", s.smoothUnbentVertices},
-                 {"smoothKeptLinearPieces", s.smoothRevertedPieces},
-                 {"smoothFellBackToLinear", s.smoothFellBack},
-                 {"strips", s.strips},
-                 {"rejectedStrips", s.rejectedStrips},
-                 {"intermediateLayers", s.recursions},
-                 {"deepestLevel", s.deepestLevel},
-                 {"closedAtDepthLimit", s.limitClosings},
-                 {"endContours", s.caps},
-                 {"slabsClosedAsPrisms", s.fallbackSlabs},
-                 {"simplification", simplification},
-                 {"seconds",
-                  {{"simplify", s.simplifySeconds},
-                   {"fields", s.fieldsSeconds},
-                   {"medialAxes", s.medialSeconds},
-                   {"triangulation", s.triangulationSeconds},
-                   {"check", result.checkSeconds},
-                   {"smooth", s.smoothSeconds},
-                   {"write", writing.seconds}}}});
-    return report;
 }
 
 RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,

@@ -9,11 +9,12 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
-#include "app/ReconstructSettings.hpp"
 #include "app/StandardStreams.hpp"
 #include "cl/Runtime.hpp"
 #include "dfrecon/Reconstruct.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "report/ReconstructSettings.hpp"
+#include "report/RoiReport.hpp"
 
 namespace dfrecon::app {
 
@@ -28,28 +29,6 @@ struct RoiOutcome {
     /// when the ROI failed.
     TriangleSoup surface;
 };
-
-/// The name and colour of `roi` as mesh files carry them (io/StructureTag).
-/// O(name length).
-StructureTag structureTagOf(const Roi& roi);
-
-/// Where a reconstructed ROI went: its file (when written), the faces
-/// OpenMesh refused on the way, the seconds writing took.
-struct RoiWriting {
-    std::string path;
-    bool written = false;
-    std::size_t refusedFaces = 0;
-    double seconds = 0;
-};
-
-/// The report `reconstruct --json` gives per ROI for `result` of `roi`
-/// (docs/cli.md lists every key); `dicom` what DICOM reading found about it
-/// (or nullptr), `simplification` simplificationJson's report or null. The
-/// Python module's reconstruct() returns it too. O(broken pieces).
-nlohmann::ordered_json roiReport(const Roi& roi, const RoiSurface& result,
-                                 const RtStructRoiInfo* dicom, const ReconstructSettings& settings,
-                                 const RoiWriting& writing,
-                                 const nlohmann::ordered_json& simplification);
 
 /// How writeRoiSurface reports while it works and what it keeps.
 struct RoiWriteOptions {
@@ -71,7 +50,7 @@ RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutp
                            const ContourInput& input, const ReconstructSettings& settings,
                            const RoiWriteOptions& options);
 
-/// The outcome of an ROI that failed with `error` (app/Failure names it):
+/// The outcome of an ROI that failed with `error` (report/Failure names it):
 /// reported with `error` and `exitCode`, so the other ROIs go on; a usage
 /// error (the ROI's data refused as an argument) counts as bad input (2),
 /// since the command line was read before any ROI. O(1).

@@ -28,11 +28,6 @@ std::string MeshOutput::label() const {
     return toStandardOutput() ? "standard output" : path;
 }
 
-void addMeshFormatOption(CLI::App& command, std::string& format, const std::string& description) {
-    command.add_option("--format", format, description + ": " + meshFormatList(false))
-        ->check(CLI::IsMember(meshFormatNames(false)));
-}
-
 MeshOutput meshOutput(const std::string& output, const std::string& format, bool json) {
     if (isStandardStream(output)) {
         const std::optional<MeshFormat> named = meshFormatNamed(format);

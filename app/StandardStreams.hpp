@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "io/MeshIO.hpp"
+#include "report/MeshFormatOption.hpp"
 
 namespace dfrecon::app {
 
@@ -33,11 +34,6 @@ struct MeshOutput {
     /// The path, or "standard output", for messages.
     std::string label() const;
 };
-
-/// Adds --format (every format io/MeshFormat writes: ply obj off stl vtk
-/// vtp) to a command that writes meshes, into `format` ("" when not
-/// given), described by `description` with the list of names appended.
-void addMeshFormatOption(CLI::App& command, std::string& format, const std::string& description);
 
 /// -o and --format together: a mesh file (--format, if given, must agree
 /// with its extension) or "-" (--format required; not with --json). Throws

@@ -26,12 +26,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/OrderedParallel.hpp"
-#include "app/WorkerRuntimes.hpp"
 #include "baselines/ExternalCommand.hpp"
 #include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
+#include "cl/WorkerRuntimes.hpp"
 #include "geometry/MeshCheck.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "io/MaskContours.hpp"
 #include "io/RtStruct.hpp"
 #include "recon/Reconstruction.hpp"
@@ -165,11 +165,11 @@ std::vector<const Roi*> roisWithSlices(const ContourSet& set) {
 // queue), timed over the whole set.
 SetResult reconstructionRoute(const std::string& device, const ContourSet& set) {
     const std::vector<const Roi*> rois = roisWithSlices(set);
-    const std::size_t jobs = app::defaultJobs(rois.size());
-    app::WorkerRuntimes runtimes(device, jobs);  // as reconstruct --all opens them
+    const std::size_t jobs = defaultJobs(rois.size());
+    ocl::WorkerRuntimes runtimes(device, jobs);  // as reconstruct --all opens them
     SetResult r;
     r.seconds = bestSeconds(1, [&] {
-        app::forEachInOrder(
+        forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t worker) {
                 Reconstruction made = reconstructSurface(runtimes[worker], *rois[i]);
@@ -195,8 +195,8 @@ SetResult rasterRoute(const ContourSet& set) {
     std::vector<TriangleSoup> marched(rois.size());
     SetResult r;
     r.seconds = bestSeconds(1, [&] {
-        app::forEachInOrder(
-            rois.size(), app::defaultJobs(rois.size()),
+        forEachInOrder(
+            rois.size(), defaultJobs(rois.size()),
             [&](std::size_t i, std::size_t) { return rasterBaseline(*rois[i], kRasterPixelMm); },
             [&](std::size_t i, TriangleSoup soup) { marched[i] = std::move(soup); });
     });
@@ -255,7 +255,7 @@ void printLine(const std::string& name, const char* system, const SetResult& r,
                              {"triangles", r.triangles},
                              {"worstVolumeDeviationPct", 100 * r.worstVolumeDeviation},
                              {"within1Pct", r.within1Pct},
-                             {"jobs", app::defaultJobs(r.rois)},
+                             {"jobs", defaultJobs(r.rois)},
                              {"peakMemoryMb", r.peakMemoryMb},
                              {"trianglesPerSecond", double(r.triangles) / r.seconds}};
     if (!r.phases.empty()) {

@@ -3,8 +3,10 @@
 #   lib/libdfrecon_FOLDER.a            one static library per stage folder
 #   lib/libdfrecon_api.a, include/dfrecon/*.hpp   the public API
 #   lib/python3.X/site-packages/dfrecon  the Python module (python/CMakeLists.txt)
-#   include/dfrecon/FOLDER/*.hpp       their headers (and kernels/*.cl, which
-#                                      geometry/ and segment/ headers include)
+#   include/dfrecon/FOLDER/*.hpp       the stage headers the public API needs
+#                                      (those include/dfrecon/*.hpp include, and
+#                                      theirs, kernels/*.cl text among them),
+#                                      nothing else of the stages' internals
 #   lib/cmake/dfrecon/                 the package: dfreconConfig.cmake,
 #                                      dfreconConfigVersion.cmake, the
 #                                      dfrecon:: targets, their dependencies
@@ -21,8 +23,44 @@ foreach(folder IN LISTS DFRECON_LIBRARY_FOLDERS)
   set_target_properties(dfrecon_${folder} PROPERTIES EXPORT_NAME ${folder})
   add_library(dfrecon::${folder} ALIAS dfrecon_${folder})
   list(APPEND dfrecon_libraries dfrecon_${folder})
-  install(DIRECTORY ${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfrecon/${folder}
-          FILES_MATCHING PATTERN "*.hpp" PATTERN "*.cl")
+endforeach()
+
+# The files the public headers need: every project file they include, and
+# those include, by following the #include "..." lines from
+# include/dfrecon/*.hpp (a line inside #if counts too: the walk may take a
+# header more, never one less). Configured again when any of them changes.
+function(dfrecon_public_header_closure out)
+  file(GLOB pending RELATIVE ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/include/dfrecon/*.hpp)
+  set(found "")
+  while(pending)
+    list(POP_FRONT pending file)
+    if(file IN_LIST found)
+      continue()
+    endif()
+    list(APPEND found ${file})
+    set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+                 ${PROJECT_SOURCE_DIR}/${file})
+    file(STRINGS ${PROJECT_SOURCE_DIR}/${file} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*" "\\1" included "${line}")
+      if(EXISTS ${PROJECT_SOURCE_DIR}/${included})
+        list(APPEND pending ${included})
+      elseif(EXISTS ${PROJECT_SOURCE_DIR}/include/${included})
+        list(APPEND pending include/${included})
+      endif()
+    endforeach()
+  endwhile()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+dfrecon_public_header_closure(dfrecon_public_files)
+foreach(file IN LISTS dfrecon_public_files)
+  get_filename_component(folder ${file} DIRECTORY)
+  if(folder STREQUAL "include/dfrecon")
+    continue()  # installed whole below
+  endif()
+  install(FILES ${PROJECT_SOURCE_DIR}/${file}
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfrecon/${folder})
 endforeach()
 
 # The public API: its library, and its headers straight under include/dfrecon/.

@@ -25,7 +25,7 @@ enum class HoleConvention {
     Xor,      // CLOSEDPLANAR_XOR contours, or contours sharing edges: exclusive or
 };
 /// The one list of the conventions' names, which reports print
-/// (app/EnumNames.hpp reads it); holeConventionName reads it too.
+/// (report/EnumNames.hpp reads it); holeConventionName reads it too.
 inline constexpr std::array<std::pair<const char*, HoleConvention>, 4> kHoleConventionNames{{
     {"none", HoleConvention::None},
     {"nested", HoleConvention::Nested},

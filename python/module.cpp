@@ -14,24 +14,24 @@
 #include <mutex>
 #include <sstream>
 
-#include "app/CompareReport.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/OrderedParallel.hpp"
-#include "app/ReconstructSettings.hpp"
-#include "app/Reports.hpp"
-#include "app/RoiMatching.hpp"
-#include "app/RoiReconstruction.hpp"
-#include "app/SimplifyReport.hpp"
-#include "app/WorkerRuntimes.hpp"
 #include "cl/ClError.hpp"
+#include "cl/WorkerRuntimes.hpp"
 #include "dfrecon/Segment.hpp"
 #include "dfrecon/dfrecon.hpp"
 #include "field/Rasterization.hpp"
+#include "geometry/OrderedParallel.hpp"
 #include "io/ContourFormat.hpp"
 #include "io/MeshIO.hpp"
 #include "io/RoiName.hpp"
 #include "io/RtStruct.hpp"
 #include "io/SlicesFile.hpp"
+#include "report/CompareReport.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/ReconstructSettings.hpp"
+#include "report/Reports.hpp"
+#include "report/RoiMatching.hpp"
+#include "report/RoiReport.hpp"
+#include "report/SimplifyReport.hpp"
 #include "segment/GeodesicDistances.hpp"
 #include "segment/SpeedFunctions.hpp"
 
@@ -344,22 +344,22 @@ const Roi& chooseRoi(const ContoursRead& read, const py::object& roi) {
     return *chosen;
 }
 
-app::ReconstructSettings settingsOf(const std::vector<std::pair<std::string, std::string>>& given) {
-    std::vector<app::GivenOption> options;
+ReconstructSettings settingsOf(const std::vector<std::pair<std::string, std::string>>& given) {
+    std::vector<GivenOption> options;
     for (const auto& [name, value] : given) options.push_back({name, value, "reconstruct()"});
-    return app::withGivenOptions({}, options);
+    return withGivenOptions({}, options);
 }
 
 // The mesh Python gets for `result` of `roi`, with reconstruct --json's
 // per-ROI report.
 PyMesh meshOf(const PyStructureSet& set, const Roi& roi, RoiSurface result,
-              const app::ReconstructSettings& settings) {
+              const ReconstructSettings& settings) {
     const nlohmann::ordered_json simplification =
-        result.simplification ? app::simplificationJson(*result.simplification,
-                                                        SimplifyOptions{settings.maxErrorMm}, true)
-                              : nlohmann::ordered_json(nullptr);
+        result.simplification
+            ? simplificationJson(*result.simplification, SimplifyOptions{settings.maxErrorMm}, true)
+            : nlohmann::ordered_json(nullptr);
     nlohmann::ordered_json report =
-        app::roiReport(roi, result, set.read.dicomInfo(roi), settings, {}, simplification);
+        roiReport(roi, result, set.read.dicomInfo(roi), settings, {}, simplification);
     // Nothing is written from Python: the file keys would only mislead.
     report.erase("output");
     report.erase("written");
@@ -376,7 +376,7 @@ PyMesh meshOf(const PyStructureSet& set, const Roi& roi, RoiSurface result,
 PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
                       const std::vector<std::pair<std::string, std::string>>& given) {
     const Roi& roi = chooseRoi(set.read, roiChoice);
-    const app::ReconstructSettings settings = settingsOf(given);
+    const ReconstructSettings settings = settingsOf(given);
     RoiSurface result = onDevice([&](ocl::Runtime& device) {
         return reconstructRoi(device, roi,
                               RoiReconstructOptions{settings.options, settings.maxErrorMm});
@@ -393,14 +393,14 @@ std::vector<PyMesh> reconstructMany(const PyStructureSet& set,
                                     unsigned jobs) {
     std::vector<const Roi*> rois;
     for (const std::string& name : names) rois.push_back(&chooseRoi(set.read, py::str(name)));
-    const app::ReconstructSettings settings = settingsOf(given);
+    const ReconstructSettings settings = settingsOf(given);
     const std::size_t workers =
-        jobs > 0 ? std::min<std::size_t>(jobs, rois.size()) : app::defaultJobs(rois.size());
+        jobs > 0 ? std::min<std::size_t>(jobs, rois.size()) : defaultJobs(rois.size());
     std::vector<RoiSurface> results(rois.size());
     {
         py::gil_scoped_release release;
-        app::WorkerRuntimes runtimes(deviceSpec, workers);
-        app::forEachInOrder(
+        ocl::WorkerRuntimes runtimes(deviceSpec, workers);
+        forEachInOrder(
             rois.size(), workers,
             [&](std::size_t i, std::size_t worker) {
                 return reconstructRoi(runtimes[worker], *rois[i],
@@ -418,8 +418,8 @@ std::vector<PyMesh> reconstructMany(const PyStructureSet& set,
 
 nlohmann::ordered_json checkJson(const TriangleSoup& soup) {
     const MeshCheckReport check = checkMesh(soup);
-    nlohmann::ordered_json report = app::meshCheckJson(check);
-    app::appendItems(report, app::defectLocationsJson(check, soup));
+    nlohmann::ordered_json report = meshCheckJson(check);
+    appendItems(report, defectLocationsJson(check, soup));
     return report;
 }
 
@@ -506,12 +506,12 @@ py::tuple withNewRoi(const PyStructureSet& set, std::pair<StructureAlgebraResult
     report["roi"] = roi.name;
     report["expression"] = made.first.expression.text();
     report["planes"] = roi.slices.size();
-    report["contourVolumeCc"] = contourVolumeMm3(roi) / app::kCubicMmPerCc;
-    report["surfaceVolumeCc"] = check.volumeMm3 / app::kCubicMmPerCc;
+    report["contourVolumeCc"] = contourVolumeMm3(roi) / kCubicMmPerCc;
+    report["surfaceVolumeCc"] = check.volumeMm3 / kCubicMmPerCc;
     report["validSolid"] = check.validSolid();
     py::dict sources;
     for (const auto& [name, mm3] : made.first.surfaceVolumesMm3)
-        sources[py::str(name)] = mm3 / app::kCubicMmPerCc;
+        sources[py::str(name)] = mm3 / kCubicMmPerCc;
     report["sourceSurfaceVolumesCc"] = sources;
     out.read.contours.rois.push_back(std::move(roi));
     return py::make_tuple(std::move(out), report);
@@ -524,8 +524,7 @@ PYBIND11_MODULE(_dfrecon, m) {
     // Exceptions: bad input is a ValueError naming the file; a result that
     // is not one, and device failures, are RuntimeErrors.
     static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
-    static py::exception<app::InvalidResult> invalidResult(m, "InvalidResultError",
-                                                           PyExc_RuntimeError);
+    static py::exception<InvalidResult> invalidResult(m, "InvalidResultError", PyExc_RuntimeError);
     static py::exception<ocl::ClError> deviceError(m, "DeviceError", PyExc_RuntimeError);
     py::register_exception_translator([](std::exception_ptr p) {
         try {
@@ -536,7 +535,7 @@ PYBIND11_MODULE(_dfrecon, m) {
             error.attr("file") = e.file();
             error.attr("line") = e.line();
             PyErr_SetObject(inputError.ptr(), error.ptr());
-        } catch (const app::InvalidResult& e) {
+        } catch (const InvalidResult& e) {
             invalidResult(e.what());
         } catch (const ocl::ClError& e) {
             deviceError((std::string("OpenCL: ") + e.what()).c_str());
@@ -647,7 +646,7 @@ PYBIND11_MODULE(_dfrecon, m) {
         const Roi& roi = chooseRoi(set.read, roiChoice);
         if (!(voxelMm >= 0.05 && voxelMm <= 50))
             throw py::value_error("rasterize(): voxel_mm must be within 0.05 .. 50 mm");
-        const app::ReconstructSettings settings = settingsOf(given);
+        const ReconstructSettings settings = settingsOf(given);
         const VolumeGeometry grid = gridAroundRois({&roi}, voxelMm);
         if (grid.voxelCount() > (std::size_t(1) << 31))
             throw py::value_error("rasterize(): " + std::to_string(grid.voxelCount()) +
@@ -679,8 +678,8 @@ PYBIND11_MODULE(_dfrecon, m) {
         result["directions"] = directions;
         result["voxels"] = inside.size();
         result["volume_cc"] = double(inside.size()) * grid.spacingMm[0] * grid.spacingMm[1] *
-                              grid.spacingMm[2] / app::kCubicMmPerCc;
-        result["surface_volume_cc"] = surfaceVolumeMm3 / app::kCubicMmPerCc;
+                              grid.spacingMm[2] / kCubicMmPerCc;
+        result["surface_volume_cc"] = surfaceVolumeMm3 / kCubicMmPerCc;
         return result;
     });
 
@@ -713,7 +712,7 @@ PYBIND11_MODULE(_dfrecon, m) {
               out["surface"] = weighted(h.surface);
               out["volume_step_mm"] = h.volumeStepMm;
               out["surface_spacing_mm"] = h.surfaceSpacingMm;
-              out["oar_volume_cc"] = h.oarVolumeMm3 / app::kCubicMmPerCc;
+              out["oar_volume_cc"] = h.oarVolumeMm3 / kCubicMmPerCc;
               out["oar_area_mm2"] = h.oarAreaMm2;
               return out;
           });
@@ -776,7 +775,7 @@ PYBIND11_MODULE(_dfrecon, m) {
           py::arg("options"));
     m.def("_reconstruct_many", &reconstructMany, py::arg("structure_set"), py::arg("rois"),
           py::arg("options"), py::arg("jobs"));
-    m.def("_reconstruct_option_names", &app::reconstructSettingsNames);
+    m.def("_reconstruct_option_names", &reconstructSettingsNames);
 
     m.def("_simplify", [](const PyMesh& mesh, double maxErrorMm) {
         SimplifyOptions options;
@@ -784,7 +783,7 @@ PYBIND11_MODULE(_dfrecon, m) {
         VerifiedSimplification simplified = onDevice(
             [&](ocl::Runtime& device) { return simplifyVerified(&device, mesh.surface, options); });
         PyMesh out;
-        out.report = toPython(app::simplificationJson(simplified, options, false));
+        out.report = toPython(simplificationJson(simplified, options, false));
         out.surface = std::move(simplified.result.surface);
         out.name = mesh.name;
         out.colour = mesh.colour;
@@ -895,7 +894,7 @@ PYBIND11_MODULE(_dfrecon, m) {
         const Comparison comparison = onDevice([&](ocl::Runtime& device) {
             return compareSolids(device, solidA, solidB, CompareOptions{spacingMm, toleranceMm});
         });
-        return toPython(app::comparisonJson(comparison));
+        return toPython(comparisonJson(comparison));
     });
     m.def("_segment", [](const PyMesh& mesh, int regions, const std::string& speed, bool disks) {
         const MeshGraph graph = MeshGraph::fromSoup(mesh.surface);
@@ -917,7 +916,7 @@ PYBIND11_MODULE(_dfrecon, m) {
         out["face_region"] = py::array_t<std::int32_t>(py::ssize_t(result.faceRegion.size()),
                                                        result.faceRegion.data());
         out["seeds"] = result.seeds;
-        out["regions"] = toPython(app::segmentRegionsJson(result.regions));
+        out["regions"] = toPython(segmentRegionsJson(result.regions));
         out["iterations"] = result.iterations;
         out["converged"] = result.converged;
         out["lloydEnergy"] = result.energy;
@@ -963,23 +962,22 @@ PYBIND11_MODULE(_dfrecon, m) {
         return out;
     });
 
-    m.def("_compare_sets",
-          [](const PyStructureSet& setA, const PyStructureSet& setB,
-             const std::vector<std::string>& matches, double spacingMm, double toleranceMm) {
-              const app::RoiMatching matching =
-                  app::matchRois(setA.read.contours, setB.read.contours, matches);
-              nlohmann::ordered_json report{{"a", setA.source}, {"b", setB.source}};
-              nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
-              onDevice([&](ocl::Runtime& device) {
-                  for (const app::RoiPair& pair : matching.pairs)
-                      pairs.push_back(app::comparedPairRow(device, pair, setA.source, setB.source,
-                                                           CompareOptions{spacingMm, toleranceMm}));
-                  return 0;
-              });
-              report["pairs"] = pairs;
-              report.update(app::unpairedJson(matching));
-              return toPython(report);
-          });
+    m.def("_compare_sets", [](const PyStructureSet& setA, const PyStructureSet& setB,
+                              const std::vector<std::string>& matches, double spacingMm,
+                              double toleranceMm) {
+        const RoiMatching matching = matchRois(setA.read.contours, setB.read.contours, matches);
+        nlohmann::ordered_json report{{"a", setA.source}, {"b", setB.source}};
+        nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+        onDevice([&](ocl::Runtime& device) {
+            for (const RoiPair& pair : matching.pairs)
+                pairs.push_back(comparedPairRow(device, pair, setA.source, setB.source,
+                                                CompareOptions{spacingMm, toleranceMm}));
+            return 0;
+        });
+        report["pairs"] = pairs;
+        report.update(unpairedJson(matching));
+        return toPython(report);
+    });
 
     m.def("_compare_contours", [](const PyStructureSet& setA, const py::object& roiA,
                                   const PyStructureSet& setB, const py::object& roiB,
@@ -991,13 +989,13 @@ PYBIND11_MODULE(_dfrecon, m) {
             RoiSurface surfaceB = reconstructRoi(device, b);
             for (const auto* s : {&surfaceA, &surfaceB})
                 if (!s->check.validSolid())
-                    throw app::InvalidResult("ROI '" + (s == &surfaceA ? a.name : b.name) +
-                                             "' gives no valid closed solid");
+                    throw InvalidResult("ROI '" + (s == &surfaceA ? a.name : b.name) +
+                                        "' gives no valid closed solid");
             return compareSolids(device,
                                  ComparedSolid{std::move(surfaceA.surface), surfaceA.check, &a},
                                  ComparedSolid{std::move(surfaceB.surface), surfaceB.check, &b},
                                  CompareOptions{spacingMm, toleranceMm});
         });
-        return toPython(app::comparisonJson(comparison));
+        return toPython(comparisonJson(comparison));
     });
 }

@@ -31,7 +31,7 @@ enum class CapMode {
 };
 
 /// The one list of the cap modes' names, which the command line parses and
-/// reports print (app/EnumNames.hpp reads it); capModeName reads it too.
+/// reports print (report/EnumNames.hpp reads it); capModeName reads it too.
 inline constexpr std::array<std::pair<const char*, CapMode>, 3> kCapModeNames{{
     {"flat", CapMode::Flat},
     {"dome", CapMode::Dome},

@@ -30,7 +30,7 @@ namespace dfrecon {
 enum class SpeedKind { Uniform, EdgeRepulsive, EdgeAttractive };
 
 /// The one list of the speeds' names, which the command line parses and
-/// reports print (app/EnumNames.hpp reads it); toString and parseSpeedKind
+/// reports print (report/EnumNames.hpp reads it); toString and parseSpeedKind
 /// read it too.
 inline constexpr std::array<std::pair<const char*, SpeedKind>, 3> kSpeedKindNames{{
     {"uniform", SpeedKind::Uniform},

@@ -14,8 +14,30 @@ cmake --install "$build" --prefix "$prefix" >"$scratch/install.log"
 fail() { echo "test_consumer: $*" >&2; exit 1; }
 for folder in kernels cl geometry io field shapes recon simplify sdm segment compare; do
   [ -f "$prefix/lib/libdfrecon_$folder.a" ] || fail "lib/libdfrecon_$folder.a not installed"
-  ls "$prefix/include/dfrecon/$folder/"*.hpp >/dev/null || fail "no headers in include/dfrecon/$folder"
 done
+# The headers: the public API and the stage headers it includes, nothing
+# else. Every installed header must be reachable from include/dfrecon/*.hpp
+# by its #include lines; the consumer's build below shows none is missing.
+reachable=$(cd "$prefix/include" && "${DFRECON_PYTHON_EXECUTABLE:-python3}" - <<'PY'
+import os, re
+seen, stack = set(), ["dfrecon/" + f for f in os.listdir("dfrecon") if f.endswith(".hpp")]
+while stack:
+    path = stack.pop()
+    if path in seen or not os.path.isfile(path):
+        continue
+    seen.add(path)
+    for included in re.findall(r'^\s*#\s*include\s*"([^"]+)"', open(path).read(), re.M):
+        stack += [included, "dfrecon/" + included]
+installed = {os.path.join(d, f)[2:] for d, _, fs in os.walk(".") for f in fs}
+stray = sorted(installed - seen)
+print("\n".join(stray))
+PY
+)
+[ -z "$reachable" ] || fail "headers installed that the public API does not include: $reachable"
+[ ! -e "$prefix/include/dfrecon/recon/SlabReconstructor.hpp" ] ||
+  fail "an internal header (recon/SlabReconstructor.hpp) was installed"
+[ ! -e "$prefix/include/dfrecon/app" ] && [ ! -e "$prefix/include/dfrecon/report" ] ||
+  fail "the program's or the report layer's headers were installed"
 for file in bin/dfrecon lib/cmake/dfrecon/dfreconConfig.cmake \
   lib/cmake/dfrecon/dfreconConfigVersion.cmake lib/cmake/dfrecon/dfreconTargets.cmake \
   lib/cmake/dfrecon/dfreconDependencies.cmake include/dfrecon/kernels/closest_point.cl \

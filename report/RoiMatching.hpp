@@ -8,7 +8,7 @@
 
 #include "contours/ContourSet.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 struct RoiPair {
     const Roi* a = nullptr;
@@ -49,4 +49,4 @@ std::string foldedRoiName(const std::string& name);
 RoiMatching matchRois(const ContourSet& a, const ContourSet& b,
                       const std::vector<std::string>& map);
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

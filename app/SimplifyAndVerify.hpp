@@ -2,7 +2,7 @@
 // The simplification step shared by `dfrecon simplify` and `dfrecon
 // reconstruct --max-error`: run simplifySurface, verify the result
 // independently (dense samples, exact distances; the contours and a .vdb
-// field when given) and describe it all as JSON.
+// field when given) and describe it all as JSON (report/SimplifyReport).
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +11,7 @@
 #include "contours/ContourSet.hpp"
 #include "dfrecon/Simplify.hpp"
 #include "io/LevelSetVdb.hpp"
+#include "report/SimplifyReport.hpp"
 
 namespace dfrecon::app {
 
@@ -20,13 +21,6 @@ struct SimplifyRequest {
     const LevelSetSampler* field = nullptr;  // report |field| on the result
     std::string label;                       // progress text
 };
-
-/// The report of a simplification: sizes, the certified bounds, the
-/// verified distances (to the contours when `againstContours`; |field| at
-/// the result's samples when given), seconds. O(1).
-nlohmann::ordered_json simplificationJson(const VerifiedSimplification& simplified,
-                                          const SimplifyOptions& options, bool againstContours,
-                                          std::optional<double> fieldAbsMaxMm = std::nullopt);
 
 /// Simplifies `surface` (replaced by the result) and returns the report:
 /// sizes, the certified bounds, the verified distances, seconds.

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 template <class Enum, std::size_t N>
 using EnumNames = std::array<std::pair<const char*, Enum>, N>;
@@ -44,4 +44,4 @@ Enum parseEnum(const EnumNames<Enum, N>& table, const std::string& name, const s
     throw std::invalid_argument(what + ": unknown name '" + name + "' (use " + names + ")");
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

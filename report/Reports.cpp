@@ -1,9 +1,9 @@
-#include "app/Reports.hpp"
+#include "report/Reports.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 nlohmann::ordered_json contourReadingJson(const PlaneReadingCounts& counts) {
     return {{"rule", "even-odd"},
@@ -88,4 +88,4 @@ nlohmann::ordered_json segmentRegionsJson(const std::vector<RegionReport>& regio
     return out;
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

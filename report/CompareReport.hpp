@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/RoiMatching.hpp"
 #include "cl/Runtime.hpp"
 #include "dfrecon/Compare.hpp"
+#include "report/RoiMatching.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 /// The per-plane comparison's keys, or null without one. O(1).
 nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes);
@@ -37,4 +37,4 @@ nlohmann::ordered_json comparedPairRow(ocl::Runtime& runtime, const RoiPair& pai
 /// duplicateA/B, emptyA/B, each a list of names. O(ROIs).
 nlohmann::ordered_json unpairedJson(const RoiMatching& matching);
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

@@ -1,11 +1,11 @@
-#include "app/CompareReport.hpp"
+#include "report/CompareReport.hpp"
 
 #include "api/Stopwatch.hpp"
-#include "app/ExitCodes.hpp"
-#include "app/Failure.hpp"
 #include "dfrecon/Reconstruct.hpp"
+#include "report/ExitCodes.hpp"
+#include "report/Failure.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 nlohmann::ordered_json planesJson(const std::optional<PlaneComparison>& planes) {
     if (!planes) return nullptr;
@@ -101,4 +101,4 @@ nlohmann::ordered_json unpairedJson(const RoiMatching& matching) {
             {"emptyA", names(matching.emptyA)},         {"emptyB", names(matching.emptyB)}};
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

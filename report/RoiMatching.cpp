@@ -1,11 +1,11 @@
-#include "app/RoiMatching.hpp"
+#include "report/RoiMatching.hpp"
 
 #include <algorithm>
 #include <map>
 #include <set>
 #include <stdexcept>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 namespace {
 
@@ -104,4 +104,4 @@ RoiMatching matchRois(const ContourSet& a, const ContourSet& b,
     return matching;
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

@@ -5,10 +5,10 @@
 
 #include <stdexcept>
 
-#include "app/ReconstructSettings.hpp"
+#include "report/ReconstructSettings.hpp"
 
 using namespace dfrecon;
-using namespace dfrecon::app;
+using namespace dfrecon;
 
 TEST(ReconstructSettings, TheRecordNamesEveryOptionAsTheCommandLineDoes) {
     const nlohmann::ordered_json json = reconstructSettingsJson({});

@@ -11,7 +11,7 @@
 
 #include "cl/Runtime.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon::ocl {
 
 class WorkerRuntimes {
   public:
@@ -19,21 +19,21 @@ class WorkerRuntimes {
     /// opened fails the command before any work (throws ClError).
     WorkerRuntimes(const std::string& deviceSpec, std::size_t workers)
         : runtimes_(std::max<std::size_t>(1, workers)) {
-        runtimes_[0] = std::make_unique<ocl::Runtime>(deviceSpec);
+        runtimes_[0] = std::make_unique<Runtime>(deviceSpec);
     }
 
     /// Worker `worker`'s runtime, opened on its first use. Each worker asks
     /// for its own only, so workers need no lock. O(1) after the first call.
-    ocl::Runtime& operator[](std::size_t worker) {
+    Runtime& operator[](std::size_t worker) {
         if (!runtimes_[worker])
-            runtimes_[worker] = std::make_unique<ocl::Runtime>(*runtimes_[0], ocl::ShareContext{});
+            runtimes_[worker] = std::make_unique<Runtime>(*runtimes_[0], ShareContext{});
         return *runtimes_[worker];
     }
 
-    const ocl::Runtime& first() const { return *runtimes_[0]; }
+    const Runtime& first() const { return *runtimes_[0]; }
 
   private:
-    std::vector<std::unique_ptr<ocl::Runtime>> runtimes_;
+    std::vector<std::unique_ptr<Runtime>> runtimes_;
 };
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon::ocl

@@ -2,7 +2,7 @@
 // The dfrecon program's exit codes (docs/cli.md lists them for users).
 #include <stdexcept>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 enum ExitCode : int {
     kExitOk = 0,
@@ -33,4 +33,4 @@ class ItemsFailed : public std::runtime_error {
     int exitCode_;
 };
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

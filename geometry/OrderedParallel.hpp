@@ -15,7 +15,7 @@
 
 #include "geometry/CoreBudget.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 /// The worker count a command uses by default: one per hardware thread, at
 /// most one per item, at least one.
@@ -104,4 +104,4 @@ void forEachInOrder(std::size_t count, std::size_t jobs, Work work, Take take) {
     }
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

@@ -1,16 +1,16 @@
-#include "app/Failure.hpp"
+#include "report/Failure.hpp"
 
 #include <new>
 #include <stdexcept>
 #include <string>
 
-#include "app/ExitCodes.hpp"
 #include "cl/ClError.hpp"
 #include "contours/InputError.hpp"
 #include "field/PrimitiveId.hpp"
 #include "io/InputsInUse.hpp"
+#include "report/ExitCodes.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 namespace {
 
@@ -59,4 +59,4 @@ Failure describeFailure(std::exception_ptr error) {
     }
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

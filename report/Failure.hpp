@@ -1,11 +1,11 @@
 #pragma once
 // What a failure means to the user: one mapping from exceptions to exit
-// codes (app/ExitCodes.hpp) and messages, used by main() for the command and
+// codes (report/ExitCodes.hpp) and messages, used by main() for the command and
 // by commands that carry on past a failing item (reconstruct --all).
 #include <exception>
 #include <string>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 struct Failure {
     int exitCode = 0;
@@ -21,4 +21,4 @@ struct Failure {
 /// ("unknown error"). CLI11's parse errors are main()'s own business.
 Failure describeFailure(std::exception_ptr error);
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

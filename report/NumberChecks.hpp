@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 /// A finite number for which `accept` holds; otherwise "`rule`, not TEXT".
 template <class Accept>
@@ -52,4 +52,4 @@ inline CLI::Validator maxErrorCheck(double minimumMm, bool zeroAllowed) {
                        zeroAllowed ? "0 or NUMBER >= " + floor : "NUMBER >= " + floor);
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

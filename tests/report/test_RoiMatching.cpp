@@ -4,10 +4,10 @@
 
 #include <stdexcept>
 
-#include "app/RoiMatching.hpp"
+#include "report/RoiMatching.hpp"
 
 using namespace dfrecon;
-using namespace dfrecon::app;
+using namespace dfrecon;
 
 namespace {
 

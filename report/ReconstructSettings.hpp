@@ -13,7 +13,7 @@
 #include "io/MeshFormat.hpp"
 #include "recon/Reconstruction.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 struct ReconstructSettings {
     ReconstructionOptions options;
@@ -54,4 +54,4 @@ ReconstructSettings withGivenOptions(const ReconstructSettings& base,
 /// tell whether the options of an entry changed. O(1).
 nlohmann::ordered_json reconstructSettingsJson(const ReconstructSettings& settings);
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

@@ -1,14 +1,14 @@
-#include "app/ReconstructSettings.hpp"
+#include "report/ReconstructSettings.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "app/EnumNames.hpp"
-#include "app/NumberChecks.hpp"
-#include "app/StandardStreams.hpp"
+#include "report/EnumNames.hpp"
+#include "report/MeshFormatOption.hpp"
+#include "report/NumberChecks.hpp"
 #include "simplify/Simplification.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 void addReconstructSettingsOptions(CLI::App& cmd, ReconstructSettings& settings) {
     ReconstructionOptions& options = settings.options;
@@ -130,4 +130,4 @@ nlohmann::ordered_json reconstructSettingsJson(const ReconstructSettings& settin
             {"format", meshFormatName(settings.folderFormat())}};
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon

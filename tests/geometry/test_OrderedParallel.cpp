@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <thread>
 
-#include "app/OrderedParallel.hpp"
+#include "geometry/OrderedParallel.hpp"
 
-using dfrecon::app::forEachInOrder;
+using dfrecon::forEachInOrder;
 
 TEST(OrderedParallel, TakesResultsInItemOrder) {
     for (std::size_t jobs : {1u, 2u, 3u, 8u}) {

@@ -12,7 +12,7 @@
 #include "geometry/Vec3.hpp"
 #include "segment/Segmentation.hpp"
 
-namespace dfrecon::app {
+namespace dfrecon {
 
 /// Reports give volumes in cc (cm³), as planning systems do.
 inline constexpr double kCubicMmPerCc = 1000;
@@ -68,4 +68,4 @@ nlohmann::ordered_json valueOrNull(const std::optional<T>& value) {
     return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
 }
 
-}  // namespace dfrecon::app
+}  // namespace dfrecon
