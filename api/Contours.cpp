@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "contours/PlaneGaps.hpp"
-#include "io/InputsInUse.hpp"
-#include "io/LabelInput.hpp"
-#include "io/RoiName.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/RoiName.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/files/InputsInUse.hpp"
+#include "io/labels/LabelInput.hpp"
 
 namespace dfrecon {
 
@@ -171,14 +171,16 @@ const RtStructRoiInfo* ContoursRead::dicomInfo(const Roi& roi) const {
 }
 
 ContoursRead readContours(const std::string& path, const ReadContoursOptions& options) {
+    // Decided once: the format and a label volume's table.
+    const ContourSource source = contourSourceOf(path, options.labelTable);
     ContoursRead read;
-    read.format = contourFormatOf(path);
+    read.format = source.format;
     switch (read.format) {
         case ContourFormat::LabelVolume:
         case ContourFormat::MaskStack: {
-            const LabelInputOptions label{options.labelTable, options.acceptIntensity};
-            read.contours = readLabelContours(path, label);
-            read.labelTable = labelTableSource(path, label);
+            LabelContours labels = readLabelContours(source, options.acceptIntensity);
+            read.contours = std::move(labels.contours);
+            read.labelTable = std::move(labels.namesFrom);
             break;
         }
         case ContourFormat::RtStruct: {
@@ -193,7 +195,7 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
             break;
     }
     if (read.format != ContourFormat::Slices) findGaps(read, path);
-    // Every reader makes names by the rule (io/RoiName); this is the one
+    // Every reader makes names by the rule (io/contours/RoiName); this is the one
     // place that holds for all of them, so that no name read here can fail
     // at a write or fail to read back.
     for (Roi& roi : read.contours.rois) {

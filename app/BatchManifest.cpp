@@ -12,9 +12,9 @@
 
 #include "app/Inputs.hpp"
 #include "contours/InputError.hpp"
-#include "io/JsonText.hpp"
-#include "io/RegularFile.hpp"
-#include "io/TextEncoding.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/files/RegularFile.hpp"
+#include "io/files/TextEncoding.hpp"
 
 namespace dfrecon::app {
 
@@ -322,7 +322,7 @@ std::vector<ManifestEntry> parseManifest(const std::string& text, const std::str
     const std::size_t start = text.find_first_not_of(" \t\r\n", bom);
     const bool json = start != std::string::npos && text[start] == '[';
     // Text typed on Windows may be Latin-1. JSON must be UTF-8 to parse,
-    // so its lines are made so (io/JsonText); CSV cells are made so one by
+    // so its lines are made so (io/files/JsonText); CSV cells are made so one by
     // one, all but the input's path, which names a file by its bytes.
     std::vector<ManifestEntry> entries =
         json ? parseJson(text.substr(bom), file, folder) : parseCsv(text, file, folder);

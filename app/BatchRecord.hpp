@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/InputDigest.hpp"
-#include "io/JsonText.hpp"
+#include "io/contours/InputDigest.hpp"
+#include "io/files/JsonText.hpp"
 
 namespace dfrecon::app {
 
@@ -20,11 +20,11 @@ inline constexpr const char* kRecordFormat = "dfrecon-batch-record 1";
 
 /// How a record is read: a regular file of at most 256 MiB (a structure set
 /// of 10 000 ROIs takes some 20 MB), JSON at most 16 levels deep (records
-/// nest 5). io/JsonText.
+/// nest 5). io/files/JsonText.
 JsonLimits recordJsonLimits();
 
 /// Parses a record's text (record.json in `file`); InputError naming the
-/// file as io/JsonText reports it, or when it is not an object of
+/// file as io/files/JsonText reports it, or when it is not an object of
 /// kRecordFormat with a string id, an entry number and, for every ROI with a
 /// mesh, a mesh that is a plain file name (isPlainFileName): a record
 /// pointing outside its entry folder is not trusted. O(record size).

@@ -8,8 +8,8 @@
 #include "app/BatchRecord.hpp"
 #include "app/CsvTable.hpp"
 #include "contours/InputError.hpp"
-#include "io/JsonText.hpp"
-#include "io/RegularFile.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/files/RegularFile.hpp"
 #include "report/ExitCodes.hpp"
 
 namespace dfrecon::app {

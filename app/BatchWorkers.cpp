@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 #include "report/ExitCodes.hpp"
 
 extern char** environ;

@@ -19,7 +19,7 @@
 #include "app/Progress.hpp"
 #include "cl/WorkerRuntimes.hpp"
 #include "geometry/OrderedParallel.hpp"
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/ReconstructSettings.hpp"
 

@@ -12,10 +12,10 @@
 #include "app/HtmlReport.hpp"
 #include "app/OutputOptions.hpp"
 #include "contours/InputError.hpp"
-#include "io/AtomicWrite.hpp"
-#include "io/Colours.hpp"
-#include "io/JsonText.hpp"
-#include "io/MeshIO.hpp"
+#include "io/files/AtomicWrite.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/images/Colours.hpp"
+#include "io/mesh/MeshIO.hpp"
 
 namespace dfrecon::app {
 

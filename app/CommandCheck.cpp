@@ -9,8 +9,8 @@
 #include "app/StandardStreams.hpp"
 #include "contours/InputError.hpp"
 #include "geometry/MeshCheck.hpp"
-#include "io/JsonText.hpp"
-#include "io/MeshIO.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/Reports.hpp"
 

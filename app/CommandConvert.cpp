@@ -11,10 +11,10 @@
 #include "app/Inputs.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
-#include "io/FileNames.hpp"
-#include "io/JsonText.hpp"
-#include "io/RtStruct.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/files/FileNames.hpp"
+#include "io/files/JsonText.hpp"
 
 namespace dfrecon::app {
 

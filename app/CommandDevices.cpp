@@ -5,7 +5,7 @@
 
 #include "app/Commands.hpp"
 #include "cl/Devices.hpp"
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 
 namespace dfrecon::app {
 

@@ -13,7 +13,7 @@
 #include "app/GeodesicOutput.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 #include "report/EnumNames.hpp"
 #include "report/NumberChecks.hpp"
 #include "report/Reports.hpp"

@@ -14,9 +14,9 @@
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Algebra.hpp"
-#include "io/AtomicWrite.hpp"
-#include "io/JsonText.hpp"
-#include "io/LinePlot.hpp"
+#include "io/files/AtomicWrite.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/images/LinePlot.hpp"
 #include "report/Reports.hpp"
 
 namespace dfrecon::app {

@@ -7,8 +7,8 @@
 
 #include "app/Commands.hpp"
 #include "app/Inputs.hpp"
-#include "io/JsonText.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/files/JsonText.hpp"
 #include "report/EnumNames.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/Reports.hpp"

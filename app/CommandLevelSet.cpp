@@ -11,8 +11,8 @@
 #include "app/Progress.hpp"
 #include "app/StandardStreams.hpp"
 #include "dfrecon/Field.hpp"
-#include "io/JsonText.hpp"
-#include "io/LevelSetVdb.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/volumes/LevelSetVdb.hpp"
 #include "report/NumberChecks.hpp"
 #include "report/Reports.hpp"
 

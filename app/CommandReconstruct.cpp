@@ -15,9 +15,9 @@
 #include "app/StandardStreams.hpp"
 #include "cl/WorkerRuntimes.hpp"
 #include "geometry/OrderedParallel.hpp"
-#include "io/JsonText.hpp"
-#include "io/MeshIO.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/ReconstructSettings.hpp"
 

@@ -15,8 +15,8 @@
 #include "app/StandardStreams.hpp"
 #include "contours/InputError.hpp"
 #include "geometry/MeshCheck.hpp"
-#include "io/JsonText.hpp"
-#include "io/MeshIO.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "report/NumberChecks.hpp"
 #include "report/Reports.hpp"
 

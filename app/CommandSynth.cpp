@@ -7,8 +7,8 @@
 #include "app/Commands.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
-#include "io/JsonText.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/files/JsonText.hpp"
 #include "report/NumberChecks.hpp"
 #include "shapes/AnalyticShapes.hpp"
 

@@ -1,6 +1,6 @@
 #include "app/CsvTable.hpp"
 
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 
 namespace dfrecon::app {
 

@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "contours/InputError.hpp"
-#include "io/AttributedMesh.hpp"
-#include "io/Colours.hpp"
-#include "io/MeshIO.hpp"
+#include "io/images/Colours.hpp"
+#include "io/mesh/AttributedMesh.hpp"
+#include "io/mesh/MeshIO.hpp"
 
 namespace dfrecon::app {
 

@@ -1,8 +1,8 @@
 #pragma once
 // What `dfrecon segment` and `dfrecon geodesic` share: reading the mesh
 // into the solvers' graph, and writing the results as mesh attributes
-// (io/AttributedMesh: per-face region ids, per-vertex distances) next to
-// the colours a viewer shows (io/Colours).
+// (io/mesh/AttributedMesh: per-face region ids, per-vertex distances) next to
+// the colours a viewer shows (io/images/Colours).
 #include <string>
 #include <vector>
 

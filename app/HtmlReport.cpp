@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/AtomicWrite.hpp"
-#include "io/Base64.hpp"
-#include "io/Colours.hpp"
-#include "io/JsonText.hpp"
+#include "io/files/AtomicWrite.hpp"
+#include "io/files/Base64.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/images/Colours.hpp"
 
 namespace dfrecon::app {
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/TriangleSoup.hpp"
-#include "io/Colours.hpp"
+#include "io/images/Colours.hpp"
 
 namespace dfrecon::app {
 
@@ -47,7 +47,7 @@ inline constexpr std::size_t kMaxReportTriangles = std::size_t(8) << 20;
 /// kMaxReportTriangles; returns whether it did. O(1) (the surface is moved).
 bool addSurface(HtmlReport& report, ReportSurface surface);
 
-/// Writes `report` as one HTML file, atomically (io/AtomicWrite). The page
+/// Writes `report` as one HTML file, atomically (io/files/AtomicWrite). The page
 /// builds the table and the 3D view from data embedded in it: positions as
 /// base64 float32, triangles as uint32, colours per point as RGB bytes.
 /// Size about 30 bytes per point and 16 per triangle, plus 640 kB of

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/StandardStreams.hpp"
-#include "io/OutputTarget.hpp"
+#include "io/files/OutputTarget.hpp"
 
 namespace dfrecon::app {
 

@@ -4,7 +4,7 @@
 // as macOS and Windows file systems do), a device, a FIFO or a socket, and
 // a file output may not be a folder. Commands mark their output options;
 // the program checks the chosen command once its command line is parsed.
-// io/OutputTarget holds the rules and checks every write again.
+// io/files/OutputTarget holds the rules and checks every write again.
 #include <CLI/CLI.hpp>
 
 namespace dfrecon::app {

@@ -8,7 +8,7 @@
 #include "app/HeapArenas.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/StandardStreams.hpp"
-#include "io/OutputTarget.hpp"
+#include "io/files/OutputTarget.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/Failure.hpp"
 #include "report/NumberChecks.hpp"

@@ -10,7 +10,7 @@
 #include "app/Commands.hpp"
 #include "contours/ContourSet.hpp"
 #include "dfrecon/Simplify.hpp"
-#include "io/LevelSetVdb.hpp"
+#include "io/volumes/LevelSetVdb.hpp"
 #include "report/SimplifyReport.hpp"
 
 namespace dfrecon::app {

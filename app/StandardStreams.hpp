@@ -15,7 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "report/MeshFormatOption.hpp"
 
 namespace dfrecon::app {
@@ -40,7 +40,7 @@ struct MeshOutput {
 /// std::invalid_argument (exit 1) otherwise.
 MeshOutput meshOutput(const std::string& output, const std::string& format, bool json);
 
-/// Writes `mesh` where `output` says: a file atomically (io/AtomicWrite), or
+/// Writes `mesh` where `output` says: a file atomically (io/files/AtomicWrite), or
 /// standard output, flushed and checked. `mesh` gains the written
 /// properties in place (writeMesh's rvalue overload: no copy).
 void writeMeshOutput(TriMesh&& mesh, const MeshOutput& output, const MeshWriteOptions& options);

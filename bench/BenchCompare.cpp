@@ -41,7 +41,7 @@
 #include "field/Rasterization.hpp"
 #include "geometry/Box3.hpp"
 #include "geometry/MeshCheck.hpp"
-#include "io/LabelInput.hpp"
+#include "io/labels/LabelInput.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/MeshShapes.hpp"
 

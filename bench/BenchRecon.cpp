@@ -24,7 +24,7 @@
 #include "bench/SlabErrors.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleBvh.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "shapes/SurfaceReference.hpp"

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 
 namespace dfrecon::bench {
 

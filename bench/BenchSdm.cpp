@@ -29,7 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 
 namespace dfrecon::bench {

@@ -26,7 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "segment/EikonalFim.hpp"
 #include "segment/Segmentation.hpp"
 #include "shapes/MeshShapes.hpp"

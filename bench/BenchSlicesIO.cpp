@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/Benchmarks.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon::bench {

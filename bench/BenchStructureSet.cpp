@@ -32,8 +32,8 @@
 #include "cl/WorkerRuntimes.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/OrderedParallel.hpp"
-#include "io/MaskContours.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/labels/MaskContours.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 

@@ -29,8 +29,8 @@
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleBvh.hpp"
-#include "io/MeshIO.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/SimplificationVerifier.hpp"
 

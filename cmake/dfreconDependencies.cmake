@@ -38,7 +38,7 @@ _dfrecon_require(nlohmann_json 3.10)
 _dfrecon_require(Threads)
 _dfrecon_require(OpenCV COMPONENTS core imgproc)
 # PNG and TIFF files through their own libraries, not OpenCV's imgcodecs
-# (io/ImageFiles.hpp says why).
+# (io/images/ImageFiles.hpp says why).
 _dfrecon_require(PNG)
 _dfrecon_require(TIFF)
 # Debian ships OpenVDB's find module (not a config file) in its cmake folder.
@@ -54,7 +54,7 @@ set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 _dfrecon_require(CGAL)
 _dfrecon_require(ZLIB)
 
-# Label volumes (io/LabelVolume*): NIfTI through niftilib, NRRD through
+# Label volumes (io/labels/LabelVolume*): NIfTI through niftilib, NRRD through
 # teem. Debian 12's CMake files for both are broken (NIFTIConfig.cmake
 # expects /usr/lib/libznz.so.3.0.0 and the nifti tools in /usr/bin, and stops
 # configuring without them; TeemConfig.cmake imports libteem from the

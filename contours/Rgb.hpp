@@ -1,7 +1,7 @@
 #pragma once
 // The colour of a structure as files carry it (DICOM ROI Display Color, a
 // mesh's vertex colours): 8 bits per channel. The schemes dfrecon paints
-// values with are io/Colours.
+// values with are io/images/Colours.
 #include <array>
 #include <cstdint>
 

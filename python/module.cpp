@@ -20,11 +20,11 @@
 #include "dfrecon/dfrecon.hpp"
 #include "field/Rasterization.hpp"
 #include "geometry/OrderedParallel.hpp"
-#include "io/ContourFormat.hpp"
-#include "io/MeshIO.hpp"
-#include "io/RoiName.hpp"
-#include "io/RtStruct.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/ContourFormat.hpp"
+#include "io/contours/RoiName.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "report/CompareReport.hpp"
 #include "report/ExitCodes.hpp"
 #include "report/ReconstructSettings.hpp"
@@ -760,7 +760,7 @@ PYBIND11_MODULE(_dfrecon, m) {
             if (!mesh.name.empty()) options.structure = StructureTag{mesh.name, mesh.colour};
             writeMesh(toTriMesh(mesh.surface), path, options);
         });
-    // Whether a path names a mesh file dfrecon reads (io/MeshIO's one list).
+    // Whether a path names a mesh file dfrecon reads (io/mesh/MeshIO's one list).
     m.def("_is_mesh_path", &isMeshExtension);
     m.def("_read_mesh", [](const std::string& path) {
         PyMesh mesh;

@@ -7,7 +7,7 @@
 #include "cl/ClError.hpp"
 #include "contours/InputError.hpp"
 #include "field/PrimitiveId.hpp"
-#include "io/InputsInUse.hpp"
+#include "io/files/InputsInUse.hpp"
 #include "report/ExitCodes.hpp"
 
 namespace dfrecon {

@@ -6,11 +6,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "io/MeshFormat.hpp"
+#include "io/mesh/MeshFormat.hpp"
 
 namespace dfrecon {
 
-/// Adds --format (every format io/MeshFormat writes: ply obj off stl vtk
+/// Adds --format (every format io/mesh/MeshFormat writes: ply obj off stl vtk
 /// vtp) to a command that writes meshes, into `format` ("" when not
 /// given), described by `description` with the list of names appended.
 /// O(1).

@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "io/MeshFormat.hpp"
+#include "io/mesh/MeshFormat.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon {

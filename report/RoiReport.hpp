@@ -9,13 +9,13 @@
 
 #include "contours/ContourSet.hpp"
 #include "dfrecon/Reconstruct.hpp"
-#include "io/RtStruct.hpp"
-#include "io/StructureTag.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/mesh/StructureTag.hpp"
 #include "report/ReconstructSettings.hpp"
 
 namespace dfrecon {
 
-/// The name and colour of `roi` as mesh files carry them (io/StructureTag).
+/// The name and colour of `roi` as mesh files carry them (io/mesh/StructureTag).
 /// O(name length).
 StructureTag structureTagOf(const Roi& roi);
 

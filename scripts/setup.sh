@@ -36,7 +36,7 @@ build_packages=(
   libpng-dev libtiff-dev
 )
 # OpenCV pulls in a desktop's worth of recommends; we link core and imgproc
-# only (images are read and written with libpng and libtiff: io/ImageFiles). python3 makes the man page and bash completion at build
+# only (images are read and written with libpng and libtiff: io/images/ImageFiles). python3 makes the man page and bash completion at build
 # time (scripts/help_pages.py); python3-dev, pybind11-dev and python3-numpy
 # build the Python module (python/, docs/python.md).
 build_packages_no_recommends=(

@@ -7,7 +7,7 @@
 // the coincidences reconstruction must survive. Deterministic per seed.
 #include <cstdint>
 
-#include "io/LabelVolume.hpp"
+#include "io/labels/LabelVolume.hpp"
 
 namespace dfrecon {
 

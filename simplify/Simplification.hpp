@@ -10,7 +10,7 @@
 namespace dfrecon {
 
 /// The smallest bound simplification accepts: 1 nm. Coordinates are within
-/// a kilometre of the origin (io/InputLimits.hpp), where doubles resolve
+/// a kilometre of the origin (io/files/InputLimits.hpp), where doubles resolve
 /// 1.2e-10 mm, and the coverage of a collapse splits pieces of the original
 /// surface down to a tenth of the bound: below about 10^4 units of that
 /// resolution the halves of a piece would round onto their parent and the

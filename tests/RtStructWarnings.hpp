@@ -2,7 +2,7 @@
 // What the RTSTRUCT tests ask of a read's warnings.
 #include <string>
 
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 
 namespace dfrecon {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Contours in: every contour input dfrecon reads (.slices, DICOM RT
-// Structure Sets, label volumes, mask stacks: io/ContourFormat decides which
+// Structure Sets, label volumes, mask stacks: io/contours/ContourFormat decides which
 // by content, then by name), and structure sets built from points in memory.
 // The command line's inputs go through readContours, so both read alike.
 #include <functional>
@@ -12,8 +12,8 @@
 
 #include "contours/ContourSet.hpp"
 #include "geometry/Vec3.hpp"
-#include "io/ContourFormat.hpp"
-#include "io/RtStruct.hpp"
+#include "io/contours/ContourFormat.hpp"
+#include "io/dicom/RtStruct.hpp"
 
 namespace dfrecon {
 

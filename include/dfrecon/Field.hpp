@@ -13,7 +13,7 @@
 #include "field/DistanceField3D.hpp"
 #include "field/Rasterization.hpp"
 #include "field/SliceFields.hpp"
-#include "io/LevelSetVdb.hpp"
+#include "io/volumes/LevelSetVdb.hpp"
 
 namespace dfrecon {
 

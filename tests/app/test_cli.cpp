@@ -18,11 +18,11 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "io/LabelInput.hpp"
-#include "io/LabelVolume.hpp"
-#include "io/MeshIO.hpp"
-#include "io/RtStruct.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/labels/LabelInput.hpp"
+#include "io/labels/LabelVolume.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "shapes/MeshShapes.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/BadSlicesInputs.hpp"

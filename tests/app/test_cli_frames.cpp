@@ -20,9 +20,9 @@
 #include <openvdb/openvdb.h>
 
 #include "geometry/Box3.hpp"
-#include "io/LabelVolume.hpp"
-#include "io/LevelSetVdb.hpp"
-#include "io/MeshIO.hpp"
+#include "io/labels/LabelVolume.hpp"
+#include "io/mesh/MeshIO.hpp"
+#include "io/volumes/LevelSetVdb.hpp"
 #include "tests/CliRun.hpp"
 #include "tests/TempDir.hpp"
 

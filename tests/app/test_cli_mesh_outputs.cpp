@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "shapes/MeshShapes.hpp"
 #include "tests/CliRun.hpp"
 #include "tests/TempDir.hpp"

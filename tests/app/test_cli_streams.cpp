@@ -14,7 +14,7 @@
 
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/CliRun.hpp"
 #include "tests/TempDir.hpp"
 

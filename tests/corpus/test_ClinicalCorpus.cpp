@@ -18,7 +18,7 @@
 
 #include "dfrecon/Contours.hpp"
 #include "dfrecon/Reconstruct.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 #include "tests/CpuRuntime.hpp"
 #include "tests/corpus/ClinicalCorpus.hpp"
 

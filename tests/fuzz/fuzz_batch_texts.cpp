@@ -1,6 +1,6 @@
 // libFuzzer target for the small text formats around `dfrecon batch`
 // (docs/fuzzing.md): batch manifests (app/BatchManifest), batch records
-// (app/BatchRecord) and label tables (io/LabelTable). The first byte modulo
+// (app/BatchRecord) and label tables (io/labels/LabelTable). The first byte modulo
 // 3 picks the parser (0 manifest, 1 record, 2 label table), the rest is the
 // text: one corpus covers all three, and a mutation of that byte hands the
 // same text to another parser (a CSV manifest and a plain label list look
@@ -37,10 +37,10 @@
 #include "app/BatchRecord.hpp"
 #include "app/Inputs.hpp"
 #include "contours/InputError.hpp"
-#include "io/Colours.hpp"
-#include "io/JsonText.hpp"
-#include "io/LabelTable.hpp"
-#include "io/TextEncoding.hpp"
+#include "io/files/JsonText.hpp"
+#include "io/files/TextEncoding.hpp"
+#include "io/images/Colours.hpp"
+#include "io/labels/LabelTable.hpp"
 #include "tests/fuzz/ScratchInput.hpp"
 
 using namespace dfrecon;

@@ -17,8 +17,8 @@
 #include <string>
 
 #include "contours/InputError.hpp"
-#include "io/InputLimits.hpp"
-#include "io/LabelVolume.hpp"
+#include "io/files/InputLimits.hpp"
+#include "io/labels/LabelVolume.hpp"
 #include "tests/fuzz/ScratchInput.hpp"
 
 using namespace dfrecon;

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "contours/InputError.hpp"
-#include "io/InputLimits.hpp"
-#include "io/MeshIO.hpp"
+#include "io/files/InputLimits.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/fuzz/ScratchInput.hpp"
 
 using namespace dfrecon;

@@ -17,7 +17,7 @@
 #include <fstream>
 #include <string>
 
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 
 using namespace dfrecon;
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <sstream>
 
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
 
 using namespace dfrecon;
 

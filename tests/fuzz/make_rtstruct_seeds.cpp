@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 
 using namespace dfrecon;
 

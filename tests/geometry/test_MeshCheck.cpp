@@ -13,7 +13,7 @@
 #include <set>
 
 #include "geometry/MeshCheck.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/TestMeshes.hpp"
 #include "tests/geometry/RandomSoup.hpp"
 

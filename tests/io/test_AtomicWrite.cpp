@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/AtomicWrite.hpp"
+#include "io/files/AtomicWrite.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/AttributedMesh.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/AttributedMesh.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/TempDir.hpp"
 #include "tests/VtkRead.hpp"
 
@@ -70,7 +70,7 @@ TEST(AttributedMesh, PlyNamesItsStructureInTheHeader) {
     EXPECT_EQ(ply.find("comment roi_name Left lung\ncomment roi_colour 200 100 7\n"),
               ply.find("format binary_little_endian 1.0\n") + 32)
         << ply.substr(0, 200);
-    const TriangleSoup back = readTriangleSoup(dir / "m.ply");  // through io/PlyFileCheck
+    const TriangleSoup back = readTriangleSoup(dir / "m.ply");  // through io/mesh/PlyFileCheck
     EXPECT_EQ(back.points, square().points);
 }
 

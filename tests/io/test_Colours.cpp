@@ -6,7 +6,7 @@
 #include <cmath>
 #include <set>
 
-#include "io/Colours.hpp"
+#include "io/images/Colours.hpp"
 
 using namespace dfrecon;
 

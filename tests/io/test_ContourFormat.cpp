@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "io/ContourFormat.hpp"
+#include "io/contours/ContourFormat.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -11,8 +11,8 @@
 #include <fstream>
 
 #include "contours/InputError.hpp"
-#include "io/DicomImageSeries.hpp"
-#include "io/LabelVolume.hpp"
+#include "io/dicom/DicomImageSeries.hpp"
+#include "io/labels/LabelVolume.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -12,11 +12,11 @@
 #include <initializer_list>
 #include <vector>
 
-#include "io/InputLimits.hpp"
-#include "io/LabelVolume.hpp"
-#include "io/MeshIO.hpp"
-#include "io/RtStruct.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/files/InputLimits.hpp"
+#include "io/labels/LabelVolume.hpp"
+#include "io/mesh/MeshIO.hpp"
 
 using namespace dfrecon;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// PNG and TIFF through libpng and libtiff (io/ImageFiles) against OpenCV's
+// PNG and TIFF through libpng and libtiff (io/images/ImageFiles) against OpenCV's
 // imgcodecs as the independent reference: every file OpenCV writes reads
 // back to the pixels OpenCV reads from it, every file written here reads
 // back in OpenCV unchanged, and what is not a grey 8- or 16-bit image, or
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "contours/InputError.hpp"
-#include "io/ImageFiles.hpp"
+#include "io/images/ImageFiles.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "io/InputsInUse.hpp"
+#include "io/files/InputsInUse.hpp"
 
 using namespace dfrecon;
 

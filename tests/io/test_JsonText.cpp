@@ -1,6 +1,6 @@
 // The one JSON reader: what nlohmann::json accepts silently or crashes on
 // is refused with the file, line or place named, and reports never throw.
-#include "io/JsonText.hpp"
+#include "io/files/JsonText.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

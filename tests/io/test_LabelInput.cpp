@@ -1,6 +1,6 @@
 // Label volumes as contour input: names and colours from label tables, and
 // intensity images (scans) told apart from label maps.
-#include "io/LabelInput.hpp"
+#include "io/labels/LabelInput.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <random>
 
 #include "contours/InputError.hpp"
-#include "io/Colours.hpp"
-#include "io/LabelTable.hpp"
+#include "io/images/Colours.hpp"
+#include "io/labels/LabelTable.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/TempDir.hpp"
 
@@ -95,14 +95,15 @@ TEST(LabelInput, NamesAndColoursComeFromTheLabelTable) {
     };
     EXPECT_EQ(namesOf(readLabelContours(dir / "v.nrrd")),
               (std::vector<std::string>{"label_4", "label_9"}));
-    EXPECT_EQ(labelTableSource(dir / "v.nrrd"), "");
+    EXPECT_EQ(readLabelContours(contourSourceOf(dir / "v.nrrd")).namesFrom, "");
 
     // Beside the volume.
     writeLabelTable(dir / "v.txt", {{4, {"Left kidney", Rgb{1, 2, 3}}}, {9, {"Cord", {}}}});
     ContourSet beside = readLabelContours(dir / "v.nrrd");
     EXPECT_EQ(namesOf(beside), (std::vector<std::string>{"Left kidney", "Cord"}));
     EXPECT_EQ(beside.rois[0].colour, (Rgb{1, 2, 3}));
-    EXPECT_EQ(labelTableSource(dir / "v.nrrd"), dir / "v.txt");
+    EXPECT_EQ(contourSourceOf(dir / "v.nrrd").labelTablePath, dir / "v.txt");
+    EXPECT_EQ(readLabelContours(contourSourceOf(dir / "v.nrrd")).namesFrom, dir / "v.txt");
 
     // Named on the command line: wins over the one beside.
     std::ofstream(dir / "other.lut") << "4 Liver 9 8 7 255\n";
@@ -116,7 +117,11 @@ TEST(LabelInput, NamesAndColoursComeFromTheLabelTable) {
     v.keyValues =
         segmentationKeys({{4, {"Spleen", Rgb{0, 255, 0}}}, {9, {"Aorta", {}}}}, v.geometry.size);
     writeLabelNrrd(dir / "s.seg.nrrd", v);
-    ContourSet segments = readLabelContours(dir / "s.seg.nrrd");
+    // Its own names win over a table beside it (none given).
+    writeLabelTable(dir / "s.txt", {{4, {"Not this", {}}}});
+    const LabelContours read = readLabelContours(contourSourceOf(dir / "s.seg.nrrd"));
+    EXPECT_EQ(read.namesFrom, "segmentation header");
+    const ContourSet& segments = read.contours;
     EXPECT_EQ(namesOf(segments), (std::vector<std::string>{"Spleen", "Aorta"}));
     EXPECT_EQ(segments.rois[0].colour, (Rgb{0, 255, 0}));
     EXPECT_EQ(segments.rois[1].colour, categoricalColour(9));

@@ -1,14 +1,14 @@
 // Label tables: every accepted form parsed to the names and colours its
 // lines state, errors located by line, and what dfrecon writes read back
 // (by us and in the form the other tools expect).
-#include "io/LabelTable.hpp"
+#include "io/labels/LabelTable.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "contours/InputError.hpp"
-#include "io/Colours.hpp"
+#include "io/images/Colours.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

@@ -16,7 +16,7 @@
 #include <stdexcept>
 
 #include "contours/InputError.hpp"
-#include "io/LabelVolume.hpp"
+#include "io/labels/LabelVolume.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "io/LevelSetVdb.hpp"
+#include "io/volumes/LevelSetVdb.hpp"
 
 namespace dfrecon {
 namespace {

@@ -10,7 +10,7 @@
 #include <iostream>
 
 #include "contours/InputError.hpp"
-#include "io/MaskContours.hpp"
+#include "io/labels/MaskContours.hpp"
 #include "shapes/AnalyticShapes.hpp"
 
 namespace dfrecon {

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "contours/InputError.hpp"
-#include "io/MaskContours.hpp"
-#include "io/MaskStack.hpp"
+#include "io/labels/MaskContours.hpp"
+#include "io/labels/MaskStack.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/TempDir.hpp"
 

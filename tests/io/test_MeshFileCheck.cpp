@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "contours/InputError.hpp"
-#include "io/MeshFileCheck.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshFileCheck.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -2,7 +2,7 @@
 // read, and the lists messages and --help show.
 #include <gtest/gtest.h>
 
-#include "io/MeshFormat.hpp"
+#include "io/mesh/MeshFormat.hpp"
 
 using namespace dfrecon;
 

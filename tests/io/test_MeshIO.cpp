@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "contours/InputError.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "tests/VtkRead.hpp"
 
 using namespace dfrecon;

@@ -1,4 +1,4 @@
-// What an output may name (io/OutputTarget): special files refused always,
+// What an output may name (io/files/OutputTarget): special files refused always,
 // inputs refused while guarded, a file the process wrote itself and read
 // back (to check it) writable again.
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "io/AtomicWrite.hpp"
-#include "io/InputsInUse.hpp"
-#include "io/OutputTarget.hpp"
+#include "io/files/AtomicWrite.hpp"
+#include "io/files/InputsInUse.hpp"
+#include "io/files/OutputTarget.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

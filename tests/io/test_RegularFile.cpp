@@ -1,6 +1,6 @@
 // The one gate before any reader: only regular files within their limit
 // are opened; pipes, devices and folders are named for what they are.
-#include "io/RegularFile.hpp"
+#include "io/files/RegularFile.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,11 +1,11 @@
-// One rule for ROI names (io/RoiName): what it refuses, and that what it
+// One rule for ROI names (io/contours/RoiName): what it refuses, and that what it
 // mends passes it.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "contours/ContourSet.hpp"
-#include "io/RoiName.hpp"
+#include "io/contours/RoiName.hpp"
 
 using namespace dfrecon;
 

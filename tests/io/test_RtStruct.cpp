@@ -13,7 +13,7 @@
 #include <set>
 #include <tuple>
 
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/HostileDicom.hpp"
 #include "tests/RtStructWarnings.hpp"

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <map>
 
-#include "io/LabelVolume.hpp"
-#include "io/RtStruct.hpp"
+#include "io/dicom/RtStruct.hpp"
+#include "io/labels/LabelVolume.hpp"
 #include "tests/RtStructWarnings.hpp"
 
 using namespace dfrecon;

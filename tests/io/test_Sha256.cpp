@@ -1,13 +1,13 @@
 // SHA-256 against the FIPS 180-4 examples and the digests of the input files
-// a batch record keeps (io/InputDigest).
+// a batch record keeps (io/contours/InputDigest).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "contours/InputError.hpp"
-#include "io/InputDigest.hpp"
-#include "io/Sha256.hpp"
+#include "io/contours/InputDigest.hpp"
+#include "io/files/Sha256.hpp"
 #include "tests/TempDir.hpp"
 
 using namespace dfrecon;

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/BadSlicesInputs.hpp"
 

@@ -1,7 +1,7 @@
 // Text made UTF-8 at the readers: UTF-8 kept byte for byte, anything else
 // read as Windows-1252, checked against the code charts (Unicode's
 // cp1252.txt mapping) and RFC 3629's well-formedness table.
-#include "io/TextEncoding.hpp"
+#include "io/files/TextEncoding.hpp"
 
 #include <gtest/gtest.h>
 

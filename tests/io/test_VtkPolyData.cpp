@@ -9,7 +9,7 @@
 #include <limits>
 #include <sstream>
 
-#include "io/VtkPolyData.hpp"
+#include "io/mesh/VtkPolyData.hpp"
 #include "tests/TempDir.hpp"
 #include "tests/VtkRead.hpp"
 

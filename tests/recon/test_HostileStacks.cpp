@@ -9,7 +9,7 @@
 #include <string>
 
 #include "geometry/MeshCheck.hpp"
-#include "io/MaskContours.hpp"
+#include "io/labels/MaskContours.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/RandomLabelVolumes.hpp"
 #include "tests/CpuRuntime.hpp"

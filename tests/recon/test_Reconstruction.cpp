@@ -9,7 +9,7 @@
 #include <tuple>
 
 #include "geometry/MeshCheck.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "tests/CpuRuntime.hpp"

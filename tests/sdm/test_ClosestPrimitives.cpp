@@ -9,7 +9,7 @@
 #include <random>
 
 #include "field/ClosestPrimitives.hpp"
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "sdm/SurfaceDistanceMaps.hpp"
 #include "shapes/MeshShapes.hpp"
 

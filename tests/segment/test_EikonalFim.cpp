@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "io/MeshIO.hpp"
+#include "io/mesh/MeshIO.hpp"
 #include "segment/SpeedFunctions.hpp"
 #include "tests/segment/SegmentTestMeshes.hpp"
 

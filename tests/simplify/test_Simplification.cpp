@@ -9,7 +9,7 @@
 #include <random>
 
 #include "geometry/MeshCheck.hpp"
-#include "io/SlicesFile.hpp"
+#include "io/contours/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
 #include "shapes/AnalyticShapes.hpp"
 #include "simplify/CollapseBound.hpp"
