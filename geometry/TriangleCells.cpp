@@ -1,5 +1,6 @@
 #include "geometry/TriangleCells.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/SurfaceMeasures.hpp"
@@ -34,11 +35,20 @@ double cellCountUpTo(const TriangleSoup& soup, double spacingMm, double limit) {
 double cellSpacingWithinBudget(const std::vector<const TriangleSoup*>& soups, double spacingMm,
                                std::size_t maxCells) {
     const double limit = double(maxCells);
+    // Past the longest edge every triangle is one cell, and no spacing makes
+    // fewer: a surface of more triangles than the budget stops there.
+    double longestEdgeMm = 0;
+    for (const TriangleSoup* soup : soups)
+        for (const auto& tri : soup->triangles)
+            for (int k = 0; k < 3; ++k)
+                longestEdgeMm =
+                    std::max(longestEdgeMm, length(soup->points[tri[std::size_t(k)]] -
+                                                   soup->points[tri[std::size_t((k + 1) % 3)]]));
     for (;;) {
         double cells = 0;
         for (const TriangleSoup* soup : soups)
             cells = std::max(cells, cellCountUpTo(*soup, spacingMm, limit));
-        if (cells <= limit) return spacingMm;
+        if (cells <= limit || spacingMm >= longestEdgeMm) return spacingMm;
         // Cells fall with the square of the spacing, or slower (at least one
         // per triangle): grow by the root, at least by 5 %.
         spacingMm *= std::max(1.05, std::sqrt(cells / limit));

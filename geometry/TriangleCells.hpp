@@ -165,10 +165,12 @@ void forEachCell(const Vec3& p0, const Vec3& p1, const Vec3& p2, double spacingM
 
 /// The spacing to cut every surface of `soups` into cells at, asked for
 /// `spacingMm`: that one where none of them then has more than `maxCells`
-/// cells, else the first spacing found, growing from it, where none has.
-/// O(min(S, maxCells) + T) per step for S cells and T triangles, a few
-/// steps: past the budget cells are not all counted but estimated from the
-/// area of those counted (a metre-sized cube at 0.2 mm has 10^8 of them).
+/// cells, else the first spacing found, growing from it, where none has —
+/// or, where a surface has more triangles than `maxCells`, one at which
+/// every triangle is a cell of its own (no spacing gives fewer: such a
+/// surface is sampled once per triangle). O(min(S, maxCells) + T) per step for S cells and T
+/// triangles, a few steps: past the budget cells are not all counted but estimated from the area of
+/// those counted (a metre-sized cube at 0.2 mm has 10^8 of them).
 double cellSpacingWithinBudget(const std::vector<const TriangleSoup*>& soups, double spacingMm,
                                std::size_t maxCells);
 

@@ -12,6 +12,7 @@ nlohmann::ordered_json simplificationJson(const VerifiedSimplification& simplifi
     if (againstContours) distances["contoursToResultMaxMm"] = simplified.verified.contours.maxMm;
     distances["maxMm"] = simplified.verified.maxMm();
     distances["samples"] = both.aToB.samples + both.bToA.samples;
+    distances["spacingMm"] = both.spacingMm;
     if (fieldAbsMaxMm) distances["fieldAbsMaxMm"] = *fieldAbsMaxMm;
     const SimplifyStats& s = simplified.result.stats;
     return {

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <random>
 
+#include "field/SurfaceDistances.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleBvh.hpp"
+#include "geometry/TriangleCells.hpp"
 
 namespace dfrecon {
 
@@ -49,15 +52,27 @@ SampledDistance distanceToSurface(const std::vector<Vec3>& points, const Triangl
 }
 
 TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
-                                  std::size_t samplesPerSurface, unsigned seed) {
-    // Vertices too: a simplified surface's farthest points are often there.
-    auto withVertices = [&](const TriangleSoup& s, unsigned k) {
-        std::vector<Vec3> points = sampleTriangles(s, samplesPerSurface, k);
-        points.insert(points.end(), s.points.begin(), s.points.end());
-        return points;
+                                  std::size_t samplesPerSurface) {
+    TwoSidedDistance d;
+    if (a.triangles.empty() || b.triangles.empty()) return d;
+    // Started below the spacing that gives samplesPerSurface cells (a cell
+    // covers about 1.3 spacing²), so the budget decides it.
+    const double areaMm2 = std::max(measureSurface(a).areaMm2, measureSurface(b).areaMm2);
+    const std::size_t budget = std::max<std::size_t>(1, samplesPerSurface);
+    d.spacingMm = cellSpacingWithinBudget(
+        {&a, &b}, std::max(1e-6, 0.5 * std::sqrt(areaMm2 / double(budget))), budget);
+    const SurfaceDistances cells = surfaceDistances(a, b, d.spacingMm);
+    const auto withVertices = [](const DirectedDistances& sampled,
+                                 const SampledDistance& vertices) {
+        SampledDistance both;
+        both.maxMm = std::max(sampled.maxMm, vertices.maxMm);
+        both.meanMm = sampled.meanMm;
+        both.samples = sampled.samples + vertices.samples;
+        return both;
     };
-    return {distanceToSurface(withVertices(a, seed), b),
-            distanceToSurface(withVertices(b, seed + 1), a)};
+    d.aToB = withVertices(cells.aToB, distanceToSurface(a.points, b));
+    d.bToA = withVertices(cells.bToA, distanceToSurface(b.points, a));
+    return d;
 }
 
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm) {

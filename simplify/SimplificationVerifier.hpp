@@ -24,14 +24,21 @@ struct SampledDistance {
 /// O(T log T + points · log T) typically.
 SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleSoup& surface);
 
-/// Both directions between two surfaces: `samplesPerSurface` random points
-/// plus every vertex of each, to the other.
+/// Both directions between two surfaces, by the project's one surface
+/// distance (field/SurfaceDistances): each surface cut into cells, about
+/// `samplesPerSurface` of them (at least one per triangle), every point of
+/// a cell within `spacingMm` of its sample, each sample's exact distance to
+/// the other surface; and every vertex of each too (a simplified surface's
+/// farthest points are often there). maxMm is the largest distance found,
+/// within spacingMm below the exact Hausdorff distance; meanMm weighs the
+/// cells by area. O((S + V) log T).
 struct TwoSidedDistance {
     SampledDistance aToB, bToA;
+    double spacingMm = 0;
     double maxMm() const { return aToB.maxMm > bToA.maxMm ? aToB.maxMm : bToA.maxMm; }
 };
 TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
-                                  std::size_t samplesPerSurface, unsigned seed = 1);
+                                  std::size_t samplesPerSurface);
 
 /// Points along every contour of `roi` (every vertex, and along each edge
 /// at most `stepMm` apart, or the step that gives kMaxContourSamples over

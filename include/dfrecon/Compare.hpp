@@ -2,7 +2,7 @@
 // How two structures agree, as contouring studies report it: volumes, Dice
 // and Jaccard from the exact intersection volume (compare/OverlapVolume),
 // Hausdorff, HD95, mean surface distance and surface Dice from exact closest
-// points (compare/SurfaceDistances, each within the sample spacing), the
+// points (field/SurfaceDistances, each within the sample spacing), the
 // centroid distance, and for two contour stacks the planning system's
 // per-plane overlap and added path length (compare/PlaneComparison).
 #include <functional>
@@ -11,8 +11,8 @@
 #include "cl/Runtime.hpp"
 #include "compare/OverlapVolume.hpp"
 #include "compare/PlaneComparison.hpp"
-#include "compare/SurfaceDistances.hpp"
 #include "contours/ContourSet.hpp"
+#include "field/SurfaceDistances.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
 

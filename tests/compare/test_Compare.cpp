@@ -10,7 +10,7 @@
 
 #include "cl/Runtime.hpp"
 #include "compare/OverlapVolume.hpp"
-#include "compare/SurfaceDistances.hpp"
+#include "field/SurfaceDistances.hpp"
 #include "geometry/ClosestPoint.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
@@ -225,6 +225,24 @@ TEST(SurfaceDistances, ACellWalkStopsWhereItsVisitSaysSo) {
     EXPECT_FALSE(
         forEachCellWhile(p0, p1, p2, 0.1, [&](const Vec3&, double) { return ++visited < 1000; }));
     EXPECT_EQ(visited, 1000u);
+}
+
+TEST(SurfaceDistances, ABudgetBelowTheTrianglesStopsAtOneCellPerTriangle) {
+    // More triangles than the budget allows cells: no spacing gives fewer
+    // than one cell per triangle, and the search returned (it grew the
+    // spacing for ever before) at a spacing where each is one cell.
+    const TriangleSoup sphere = geodesicSphere(16, 10);
+    const std::size_t budget = sphere.triangles.size() / 4;
+    const double spacing = cellSpacingWithinBudget({&sphere}, 0.01, budget);
+    std::size_t cells = 0;
+    for (const auto& t : sphere.triangles)
+        forEachCell(sphere.points[t[0]], sphere.points[t[1]], sphere.points[t[2]], spacing,
+                    [&](const Vec3&, double) { ++cells; });
+    EXPECT_EQ(cells, sphere.triangles.size());
+    EXPECT_TRUE(std::isfinite(spacing));
+    // And the distances of a surface to itself at that spacing are zero.
+    const SurfaceDistances self = surfaceDistances(sphere, sphere, spacing);
+    EXPECT_NEAR(self.hausdorffMm(), 0.0, 1e-12);
 }
 
 TEST(SurfaceDistances, CellsCoverTheirTriangleWithinTheSpacingAndAreFew) {

@@ -1,4 +1,4 @@
-#include "compare/SurfaceDistances.hpp"
+#include "field/SurfaceDistances.hpp"
 
 #include <algorithm>
 #include <cmath>
