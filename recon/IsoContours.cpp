@@ -20,4 +20,41 @@ std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceG
                                  float(1e-6 * grid.pixelMm));
 }
 
+double enclosedAreaMm2(const std::vector<Polygon>& isolines) {
+    double area = 0;
+    for (const Polygon& p : isolines) area += signedArea(p);
+    return area;
+}
+
+std::vector<Polygon> isolinesEnclosing(const std::vector<float>& values, const SliceGrid& grid,
+                                       double targetAreaMm2, double maxLevelMm) {
+    std::vector<Polygon> zero = zeroIsolines(values, grid);
+    if (zero.empty() || !(maxLevelMm > 0) || enclosedAreaMm2(zero) >= 0.99 * targetAreaMm2)
+        return zero;
+    auto atLevel = [&](double level) {
+        std::vector<float> shifted(values);
+        for (float& v : shifted) v -= float(level);
+        return zeroIsolines(shifted, grid);
+    };
+    std::vector<Polygon> high = atLevel(maxLevelMm);
+    if (enclosedAreaMm2(high) <= targetAreaMm2) return high;
+    // {values < c} grows with c: bisection on the level, keeping the lower
+    // end's isolines (never more than the target, within 1 % of it).
+    double lo = 0, hi = maxLevelMm;
+    std::vector<Polygon> best = std::move(zero);
+    for (int step = 0; step < 12; ++step) {
+        const double mid = 0.5 * (lo + hi);
+        std::vector<Polygon> at = atLevel(mid);
+        const double area = enclosedAreaMm2(at);
+        if (area > targetAreaMm2) {
+            hi = mid;
+        } else {
+            lo = mid;
+            best = std::move(at);
+            if (area >= 0.99 * targetAreaMm2) break;
+        }
+    }
+    return best;
+}
+
 }  // namespace dfrecon

@@ -115,6 +115,26 @@ SliceFields pairOf(const SliceFields& a, std::size_t ia, const SliceFields& b, s
     return pair;
 }
 
+/// The net area of a part's contours (outer counter-clockwise, holes
+/// clockwise). O(points).
+double netAreaMm2(const LayerPart& part) {
+    double area = 0;
+    for (std::uint32_t c : part.contours) area += signedArea(part.layer->contours[c]);
+    return area;
+}
+
+/// The intermediate contour half-way between parts x and y from their summed
+/// field `sumMm`: its zero set, raised (up to the slab's height, in mm of
+/// the summed distance) where it encloses less than the mean of x's and y's
+/// areas (isolinesEnclosing). Parts whose outermost contour is a hole keep
+/// the zero set.
+std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SliceGrid& grid,
+                                    const LayerPart& x, const LayerPart& y) {
+    if (emptyIsNegative(x, y)) return zeroIsolines(sumMm, grid);
+    const double heightMm = std::abs(y.layer->zMm - x.layer->zMm);
+    return isolinesEnclosing(sumMm, grid, 0.5 * (netAreaMm2(x) + netAreaMm2(y)), heightMm);
+}
+
 }  // namespace
 
 SlabReconstructor::SlabReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
@@ -361,7 +381,7 @@ void SlabReconstructor::recurse(const LayerPart& x, const LayerPart& y, int dept
         const ScopedSeconds timer(stats_.medialSeconds);
         const SliceSum sum =
             knownSum ? *knownSum : sumSlices(sides.fields, sides.lower, sides.upper);
-        std::vector<Polygon> isolines = zeroIsolines(sum.sumMm, sides.fields.grid);
+        std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides.fields.grid, x, y);
         // Pixel-step isolines carry far more points than the surface needs.
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));

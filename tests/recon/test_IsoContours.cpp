@@ -47,6 +47,28 @@ TEST(IsoContours, AnnulusGivesOuterAndClockwiseHole) {
     EXPECT_EQ(holes, 1);
 }
 
+TEST(IsoContours, RaisedLevelEnclosesTheTargetArea) {
+    // The summed field of a disk of radius 3 and one of radius 9 (concentric):
+    // its zero set is the circle of radius 6 (area 113 mm²); raised to the
+    // mean of the two disks' areas (141 mm², radius 6.7) the isolines are
+    // the circle of that area, within the 1 % the search stops at.
+    const SliceGrid grid = unitGrid(40);
+    const std::vector<float> sum =
+        sample(grid, [](Point2 p) { return (length(p) - 3.0) + (length(p) - 9.0); });
+    const double mean = 0.5 * (M_PI * 9 + M_PI * 81);
+    const auto raised = isolinesEnclosing(sum, grid, mean, 10.0);
+    ASSERT_EQ(raised.size(), 1u);
+    EXPECT_NEAR(enclosedAreaMm2(raised), mean, 0.02 * mean);
+    EXPECT_LE(enclosedAreaMm2(raised), mean);
+    // Already enough, nothing to enclose, or a level capped: as documented.
+    EXPECT_NEAR(enclosedAreaMm2(isolinesEnclosing(sum, grid, 50.0, 10.0)),
+                enclosedAreaMm2(zeroIsolines(sum, grid)), 1e-9);
+    const std::vector<float> positive(grid.pixelCount(), 1.0f);
+    EXPECT_TRUE(isolinesEnclosing(positive, grid, 100.0, 10.0).empty());
+    const auto capped = isolinesEnclosing(sum, grid, mean, 0.5);  // circle of radius 6.25
+    EXPECT_NEAR(enclosedAreaMm2(capped), M_PI * 6.25 * 6.25, 1.5);
+}
+
 TEST(IsoContours, NegativeAtTheGridEdgeStillCloses) {
     const SliceGrid grid = unitGrid(10);
     const auto polygons = zeroIsolines(std::vector<float>(100, -1.0f), grid);

@@ -1,5 +1,5 @@
 // The slabs of one ROI are built on the cores left free and appended in
-// order (recon/Reconstruction buildSlabs): the surface must be the one a
+// order (recon/ParallelSlabs buildSlabs): the surface must be the one a
 // single core builds, point for point and triangle for triangle, with the
 // same counts. The single-core run holds every core of the process's budget
 // (geometry/CoreBudget), so the reconstruction gets no helper thread.
