@@ -236,11 +236,20 @@ class DisjointUnion : public AnalyticShape {
 class HollowSphere : public AnalyticShape {
   public:
     HollowSphere(double outer, double inner) : R_(outer), r_(inner) {}
-    std::string name() const override { return "hollow-sphere"; }
-    double volumeMm3() const override { return 4.0 / 3.0 * kPi * (R_ * R_ * R_ - r_ * r_ * r_); }
+    /// With a ball of radius `island` centred at `islandCentre` floating in
+    /// the cavity (it must lie inside it, clear of its wall).
+    HollowSphere(double outer, double inner, double island, Vec3 islandCentre)
+        : R_(outer), r_(inner), island_(island), islandCentre_(islandCentre) {}
+    std::string name() const override { return island_ > 0 ? "shell-island" : "hollow-sphere"; }
+    double volumeMm3() const override {
+        return 4.0 / 3.0 * kPi * (R_ * R_ * R_ - r_ * r_ * r_ + island_ * island_ * island_);
+    }
     double signedDistance(Vec3 p) const override {
         const double rho = length(p);
-        return std::max(rho - R_, r_ - rho);
+        const double shell = std::max(rho - R_, r_ - rho);
+        // Two disjoint solids: the nearer surface is the point's own or,
+        // outside both, the nearer one.
+        return island_ > 0 ? std::min(shell, length(p - islandCentre_) - island_) : shell;
     }
     double zMinMm() const override { return -R_; }
     double zMaxMm() const override { return R_; }
@@ -250,11 +259,18 @@ class HollowSphere : public AnalyticShape {
             circlePolygon({0, 0}, std::sqrt(R_ * R_ - z * z), atLeast3(points))};
         if (std::abs(z) < r_)
             polygons.push_back(circlePolygon({0, 0}, std::sqrt(r_ * r_ - z * z), atLeast3(points)));
+        const double dz = z - islandCentre_.z;
+        if (island_ > 0 && std::abs(dz) < island_)
+            polygons.push_back(circlePolygon({islandCentre_.x, islandCentre_.y},
+                                             std::sqrt(island_ * island_ - dz * dz),
+                                             atLeast3(points)));
         return polygons;
     }
 
   private:
     double R_, r_;
+    double island_ = 0;
+    Vec3 islandCentre_{};
 };
 
 }  // namespace
@@ -294,8 +310,9 @@ std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, u
 }
 
 const std::vector<std::string>& shapeNames() {
-    static const std::vector<std::string> names = {"sphere", "ellipsoid", "torus",        "capsule",
-                                                   "y",      "two-blobs", "hollow-sphere"};
+    static const std::vector<std::string> names = {"sphere",        "ellipsoid",   "torus",
+                                                   "capsule",       "y",           "two-blobs",
+                                                   "hollow-sphere", "shell-island"};
     return names;
 }
 
@@ -317,6 +334,9 @@ std::string shapeDescription(const std::string& name) {
     if (name == "y") return "cylinder r 8 mm below z=0 splitting into two at x=+-10 mm above";
     if (name == "two-blobs") return "balls r 12 mm at x=-18 and r 9 mm at x=+18, z=+3";
     if (name == "hollow-sphere") return "ball r 20 mm with a concentric cavity r 10 mm";
+    if (name == "shell-island")
+        return "ball r 20 mm with a cavity r 12 mm and a ball r 6 mm floating off-centre in it "
+               "(three nested contours per plane)";
     if (std::string d = betweenPlanesShapeDescription(name); !d.empty()) return d;
     throw std::invalid_argument("unknown shape '" + name + "'");
 }
@@ -337,6 +357,8 @@ std::unique_ptr<AnalyticShape> makeShape(const std::string& name, double scale) 
         return std::make_unique<DisjointUnion>("two-blobs", std::move(parts));
     }
     if (name == "hollow-sphere") return std::make_unique<HollowSphere>(20 * s, 10 * s);
+    if (name == "shell-island")
+        return std::make_unique<HollowSphere>(20 * s, 12 * s, 6 * s, Vec3{2 * s, 1 * s, 1.5 * s});
     if (auto shape = makeBetweenPlanesShape(name, s)) return shape;
     std::string known;
     for (const std::string& n : allShapeNames()) known += (known.empty() ? "" : ", ") + n;
