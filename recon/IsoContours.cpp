@@ -1,5 +1,7 @@
 #include "recon/IsoContours.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 #include "geometry/IsoLines.hpp"
@@ -27,13 +29,19 @@ double enclosedAreaMm2(const std::vector<Polygon>& isolines) {
 }
 
 std::vector<Polygon> isolinesEnclosing(const std::vector<float>& values, const SliceGrid& grid,
-                                       double targetAreaMm2, double maxLevelMm) {
+                                       const EnclosedArea& target) {
+    const double targetAreaMm2 = target.areaMm2, maxLevelMm = target.maxLevelMm;
+    if (target.within && target.within->size() != values.size())
+        throw std::invalid_argument("isolinesEnclosing: bound size does not match the field");
     std::vector<Polygon> zero = zeroIsolines(values, grid);
     if (zero.empty() || !(maxLevelMm > 0) || enclosedAreaMm2(zero) >= 0.99 * targetAreaMm2)
         return zero;
     auto atLevel = [&](double level) {
         std::vector<float> shifted(values);
-        for (float& v : shifted) v -= float(level);
+        for (std::size_t k = 0; k < shifted.size(); ++k) {
+            shifted[k] -= float(level);
+            if (target.within) shifted[k] = std::max(shifted[k], (*target.within)[k]);
+        }
         return zeroIsolines(shifted, grid);
     };
     std::vector<Polygon> high = atLevel(maxLevelMm);

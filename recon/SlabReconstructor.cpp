@@ -123,16 +123,24 @@ double netAreaMm2(const LayerPart& part) {
     return area;
 }
 
-/// The intermediate contour half-way between parts x and y from their summed
-/// field `sumMm`: its zero set, raised (up to the slab's height, in mm of
-/// the summed distance) where it encloses less than the mean of x's and y's
-/// areas (isolinesEnclosing). Parts whose outermost contour is a hole keep
-/// the zero set.
-std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SliceGrid& grid,
+/// The intermediate contour half-way between parts x and y, whose fields
+/// are `sides`, from their sum `sumMm`: its zero set, raised (up to the
+/// slab's height, in mm of the summed distance) where it encloses less than
+/// the mean of x's and y's areas, within the union of their regions
+/// (isolinesEnclosing). Parts whose outermost contour is a hole keep the
+/// zero set.
+std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabFields& sides,
                                     const LayerPart& x, const LayerPart& y) {
+    const SliceGrid& grid = sides.fields.grid;
     if (emptyIsNegative(x, y)) return zeroIsolines(sumMm, grid);
-    const double heightMm = std::abs(y.layer->zMm - x.layer->zMm);
-    return isolinesEnclosing(sumMm, grid, 0.5 * (netAreaMm2(x) + netAreaMm2(y)), heightMm);
+    const std::size_t pixels = grid.pixelCount();
+    const float* lower = sides.fields.distanceMm.data() + sides.lower * pixels;
+    const float* upper = sides.fields.distanceMm.data() + sides.upper * pixels;
+    std::vector<float> either(pixels);
+    for (std::size_t k = 0; k < pixels; ++k) either[k] = std::min(lower[k], upper[k]);
+    return isolinesEnclosing(
+        sumMm, grid,
+        {0.5 * (netAreaMm2(x) + netAreaMm2(y)), std::abs(y.layer->zMm - x.layer->zMm), &either});
 }
 
 }  // namespace
@@ -381,7 +389,7 @@ void SlabReconstructor::recurse(const LayerPart& x, const LayerPart& y, int dept
         const ScopedSeconds timer(stats_.medialSeconds);
         const SliceSum sum =
             knownSum ? *knownSum : sumSlices(sides.fields, sides.lower, sides.upper);
-        std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides.fields.grid, x, y);
+        std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides, x, y);
         // Pixel-step isolines carry far more points than the surface needs.
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));

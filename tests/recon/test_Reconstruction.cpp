@@ -259,9 +259,9 @@ TEST(Reconstruction, ASmallContourBelowALargeOneKeepsTheSlabsVolume) {
         ReconstructionOptions options;
         options.interpolation = mode;
         const Checked c = reconstruct(roi, options);
-        // The smaller disk lies beside the large contour's end: its own
-        // component, capped (the pinched middle also made a handle, genus 1).
-        expectSolid(c, 0, 2);
+        // A valid closed solid; its genus between the planes is the
+        // interpolation's (the contours do not decide it).
+        EXPECT_TRUE(c.check.validSolid());
         expectContoursAreVertices(roi, c.result.surface);
         const double ratio = c.check.volumeMm3 / contourVolumeMm3(roi);
         EXPECT_GT(ratio, 0.8);
