@@ -215,7 +215,44 @@ struct Bending {
     double toleranceMm;
     std::vector<bool>& moved;
     LoftSmoothingStats& stats;
+    bool withinNeighbourPlanes = false;  // LoftSmoothingTargets' field of that name
 };
+
+/// `to` drawn back along the segment from `from` to the last point inside
+/// the union of its slab's two planes' regions (bisection, 1/4096 of the
+/// segment), where it lies outside both; `from` where that lies outside
+/// too. O(1): a dozen field look-ups.
+Vec3 withinNeighbourPlanes(const SliceInterpolant& field, Vec3 from, Vec3 to) {
+    if (field.neighbourPlanesValue(to) <= 0) return to;
+    if (field.neighbourPlanesValue(from) <= 0) {
+        double inside = 0, outside = 1;
+        for (int step = 0; step < 12; ++step) {
+            const double t = 0.5 * (inside + outside);
+            (field.neighbourPlanesValue(from + t * (to - from)) <= 0 ? inside : outside) = t;
+        }
+        return from + inside * (to - from);
+    }
+    // Outside from the start (the middle of an edge across a staircase's
+    // corner): Newton steps on the union's distance, which is 1-Lipschitz.
+    Vec3 p = to;
+    constexpr double kStepMm = 0.02;
+    for (int iteration = 0; iteration < 6; ++iteration) {
+        const double value = field.neighbourPlanesValue(p);
+        if (value <= 0) return p;
+        const double gx = (field.neighbourPlanesValue(p + Vec3{kStepMm, 0, 0}) -
+                           field.neighbourPlanesValue(p - Vec3{kStepMm, 0, 0})) /
+                          (2 * kStepMm);
+        const double gy = (field.neighbourPlanesValue(p + Vec3{0, kStepMm, 0}) -
+                           field.neighbourPlanesValue(p - Vec3{0, kStepMm, 0})) /
+                          (2 * kStepMm);
+        const double g2 = gx * gx + gy * gy;
+        if (g2 < 1e-6) break;
+        // A little past the boundary, so rounding leaves it inside.
+        const double move = (value + 1e-3) / g2;
+        p = p - Vec3{move * gx, move * gy, 0};
+    }
+    return field.neighbourPlanesValue(p) <= field.neighbourPlanesValue(to) ? p : to;
+}
 
 /// The vertices marked in `which` move, at their own z, onto the zero set
 /// of the field from where they are (up to half their slab's height away);
@@ -232,9 +269,12 @@ void bendVertices(TriangleSoup& surface, const std::vector<bool>& which, const B
     std::vector<Vec3> to(vertices.size());
     std::vector<char> projected(vertices.size(), 0);
     forEachOnFreeCores(vertices.size(), kParallelFromVertices, [&](std::size_t i) {
-        Vec3 p = surface.points[vertices[i]];
+        const Vec3 from = surface.points[vertices[i]];
+        Vec3 p = from;
         projected[i] =
             projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * bending.toleranceMm);
+        if (projected[i] && bending.withinNeighbourPlanes)
+            p = withinNeighbourPlanes(field, from, p);
         to[i] = p;
     });
     for (std::size_t i = 0; i < vertices.size(); ++i) {
@@ -618,6 +658,7 @@ class LoftSmoother {
           field_(field),
           planes_(bendTo.planes),
           toleranceMm_(bendTo.toleranceMm),
+          withinNeighbourPlanes_(bendTo.withinNeighbourPlanes),
           written_(bendTo.writtenFrame),
           linear_(roundedLinear()),
           unmoved_(stack) {}
@@ -739,7 +780,7 @@ class LoftSmoother {
     }
 
   private:
-    Bending bending() { return {field_, toleranceMm_, moved_, stats}; }
+    Bending bending() { return {field_, toleranceMm_, moved_, stats, withinNeighbourPlanes_}; }
 
     LinearSurface roundedLinear() {
         written_.round(surface_);
@@ -860,6 +901,7 @@ class LoftSmoother {
     SliceInterpolant& field_;
     const PlaneSections& planes_;
     const double toleranceMm_;
+    const bool withinNeighbourPlanes_;
     const WrittenFloats written_;
     const LinearSurface linear_;
     PieceStack unmoved_;  // copied once; what is known clean changes between checks

@@ -76,6 +76,9 @@ struct LoftSmoothingTargets {
     const PlaneSections& planes;     // the field's planes (slab volume targets)
     double toleranceMm;              // Newton steps stop this near the zero set
     const PlaneFrame& writtenFrame;  // the frame the surface is written in (float places)
+    /// Keep every bent vertex inside the union of its slab's two planes'
+    /// regions (contours on a pixel lattice: the voxels bound the structure).
+    bool withinNeighbourPlanes = false;
 };
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,

@@ -16,6 +16,7 @@
 #include "recon/LoftSmoothing.hpp"
 #include "recon/MemoryHygiene.hpp"
 #include "recon/ParallelSlabs.hpp"
+#include "recon/PixelLattice.hpp"
 #include "recon/ScopedSeconds.hpp"
 #include "recon/SlabReconstructor.hpp"
 
@@ -296,7 +297,8 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     const PlaneSections planes = sectionsOf(run.slices);
     const LoftSmoothingStats smooth = smoothLofts(
         result.surface, {std::move(built.pieces), std::move(built.lofts), run.contourVertices},
-        run.stack, interpolant, {planes, run.options.smoothToleranceMm, run.roi.frame},
+        run.stack, interpolant,
+        {planes, run.options.smoothToleranceMm, run.roi.frame, followsPixelLattice(run.roi.slices)},
         result.check);
     stats.smoothedVertices = smooth.movedVertices;
     stats.smoothRevertedPieces = smooth.revertedPieces;

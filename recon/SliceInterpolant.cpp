@@ -28,6 +28,13 @@ double SliceInterpolant::slabHeightAt(double zMm) const {
     return fields_.zMm[s + 1] - fields_.zMm[s];
 }
 
+double SliceInterpolant::neighbourPlanesValue(Vec3 p) const {
+    const std::size_t s = slabAt(p.z);
+    const Point2 xy{p.x, p.y};
+    if (fields_.zMm.size() < 2) return planeValue(0, xy);
+    return std::min(planeValue(s, xy), planeValue(s + 1, xy));
+}
+
 double SliceInterpolant::planeValue(std::size_t slice, Point2 p) const {
     const SliceGrid& g = fields_.grid;
     // Bilinear between pixel centres, clamped to the grid (whose margin keeps

@@ -44,6 +44,10 @@ class SliceInterpolant {
     std::size_t slabAt(double zMm) const;
     /// The height of that slab, mm (0 for a single slice).
     double slabHeightAt(double zMm) const;
+    /// The smaller of the two fields of p's slab's planes at p's xy (no
+    /// bulge): <= 0 inside the union of the two planes' regions. O(1): two
+    /// planes' bilinear look-ups.
+    double neighbourPlanesValue(Vec3 p) const;
 
   private:
     double planeValue(std::size_t slice, Point2 p) const;
