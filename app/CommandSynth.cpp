@@ -28,8 +28,7 @@ struct SynthArgs {
 // planimetric volume a planning system would report for these slices.
 double planimetricVolume(const Roi& roi, double spacingMm) {
     double volume = 0;
-    for (const Slice& slice : roi.slices)
-        for (const Polygon& contour : slice.contours) volume += signedArea(contour) * spacingMm;
+    for (const Slice& slice : roi.slices) volume += netArea(slice.contours) * spacingMm;
     return volume;
 }
 

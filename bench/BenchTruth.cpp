@@ -48,9 +48,7 @@ double contourImpliedVolume(const Roi& roi) {
     std::vector<std::pair<double, double>> planes;  // z, area
     for (const Slice& s : roi.slices) {
         if (s.contours.empty()) continue;
-        double area = 0;
-        for (const Polygon& c : s.contours) area += signedArea(c);
-        planes.push_back({s.zMm, area});
+        planes.push_back({s.zMm, netArea(s.contours)});
     }
     double volume = 0;
     for (std::size_t k = 0; k < planes.size(); ++k) {

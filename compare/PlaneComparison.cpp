@@ -84,12 +84,6 @@ double pathLength(const std::vector<Polygon>& contours) {
     return length;
 }
 
-double netArea(const std::vector<Polygon>& contours) {
-    double area = 0;
-    for (const Polygon& contour : contours) area += signedArea(contour);
-    return area;
-}
-
 bool boxesMeet(const std::vector<Polygon>& a, const std::vector<Polygon>& b) {
     Box3 boxA, boxB;
     for (const Polygon& c : a)

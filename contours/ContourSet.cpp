@@ -185,9 +185,7 @@ double contourVolumeMm3(const Roi& roi) {
         std::vector<double> thickness = planeThicknessesMm(planeZMm, roi.slabThicknessMm);
         if (end - begin == 1) thickness[0] = lonePlaneThicknessMm(roi);
         for (std::size_t i = begin; i < end; ++i) {
-            double area = 0;
-            for (const Polygon& contour : roi.slices[i].contours) area += signedArea(contour);
-            volume += area * thickness[i - begin];
+            volume += netArea(roi.slices[i].contours) * thickness[i - begin];
         }
         begin = end;
     }

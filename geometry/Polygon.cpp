@@ -10,6 +10,12 @@
 
 namespace dfrecon {
 
+double netArea(const std::vector<Polygon>& contours) {
+    double area = 0;
+    for (const Polygon& contour : contours) area += signedArea(contour);
+    return area;
+}
+
 double signedArea(const Polygon& polygon) {
     if (polygon.size() < 3) return 0;
     // Relative to the first point: keeps cancellation small far from the origin.

@@ -38,12 +38,16 @@ inline double length(Point2 a) {
 /// implied, and the last point does not repeat the first.
 using Polygon = std::vector<Point2>;
 
-/// Shoelace area: positive for counter-clockwise polygons. O(n).
 /// Do all points lie on one line (a polygon with no area at all, as
 /// opposed to a figure eight whose halves cancel)? Exact on the recorded
 /// coordinates. O(n).
 bool allCollinear(const Polygon& polygon);
+/// Shoelace area: positive for counter-clockwise polygons. O(n).
 double signedArea(const Polygon& polygon);
+/// The net area of contours oriented as slices keep them (outer ones
+/// counter-clockwise, holes clockwise): their signed areas summed, holes
+/// subtracted. O(points).
+double netArea(const std::vector<Polygon>& contours);
 
 /// What edge a→b adds to the winding number of `p`, by Sunday's crossing
 /// rule: +1 if it goes up across the horizontal line through p (half-open:

@@ -22,20 +22,13 @@ std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceG
                                  float(1e-6 * grid.pixelMm));
 }
 
-double enclosedAreaMm2(const std::vector<Polygon>& isolines) {
-    double area = 0;
-    for (const Polygon& p : isolines) area += signedArea(p);
-    return area;
-}
-
 std::vector<Polygon> isolinesEnclosing(const std::vector<float>& values, const SliceGrid& grid,
                                        const EnclosedArea& target) {
     const double targetAreaMm2 = target.areaMm2, maxLevelMm = target.maxLevelMm;
     if (target.within && target.within->size() != values.size())
         throw std::invalid_argument("isolinesEnclosing: bound size does not match the field");
     std::vector<Polygon> zero = zeroIsolines(values, grid);
-    if (zero.empty() || !(maxLevelMm > 0) || enclosedAreaMm2(zero) >= 0.99 * targetAreaMm2)
-        return zero;
+    if (zero.empty() || !(maxLevelMm > 0) || netArea(zero) >= 0.99 * targetAreaMm2) return zero;
     auto atLevel = [&](double level) {
         std::vector<float> shifted(values);
         for (std::size_t k = 0; k < shifted.size(); ++k) {
@@ -45,7 +38,7 @@ std::vector<Polygon> isolinesEnclosing(const std::vector<float>& values, const S
         return zeroIsolines(shifted, grid);
     };
     std::vector<Polygon> high = atLevel(maxLevelMm);
-    if (enclosedAreaMm2(high) <= targetAreaMm2) return high;
+    if (netArea(high) <= targetAreaMm2) return high;
     // {values < c} grows with c: bisection on the level, keeping the lower
     // end's isolines (never more than the target, within 1 % of it).
     double lo = 0, hi = maxLevelMm;
@@ -53,7 +46,7 @@ std::vector<Polygon> isolinesEnclosing(const std::vector<float>& values, const S
     for (int step = 0; step < 12; ++step) {
         const double mid = 0.5 * (lo + hi);
         std::vector<Polygon> at = atLevel(mid);
-        const double area = enclosedAreaMm2(at);
+        const double area = netArea(at);
         if (area > targetAreaMm2) {
             hi = mid;
         } else {

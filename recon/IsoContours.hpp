@@ -19,10 +19,6 @@ namespace dfrecon {
 /// connect their negative corners when the cell's mean is negative. O(pixels).
 std::vector<Polygon> zeroIsolines(const std::vector<float>& values, const SliceGrid& grid);
 
-/// The net area (holes subtracted) the polygons of `isolines` enclose, as
-/// zeroIsolines orients them. O(points).
-double enclosedAreaMm2(const std::vector<Polygon>& isolines);
-
 /// What isolinesEnclosing aims at: a region of `areaMm2`, at a level within
 /// [0, maxLevelMm], and, where `within` is given (row-major on the grid), a
 /// region that stays where it is <= 0.

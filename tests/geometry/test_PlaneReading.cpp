@@ -26,12 +26,6 @@ bool oddInside(const std::vector<Polygon>& contours, Point2 p) {
     return inside;
 }
 
-double netArea(const std::vector<Polygon>& contours) {
-    double area = 0;
-    for (const Polygon& c : contours) area += signedArea(c);
-    return area;
-}
-
 // What a Slice may hold: each contour simple, none crossing another.
 void expectValidPlane(const std::vector<Polygon>& contours) {
     for (const Polygon& c : contours) EXPECT_FALSE(findContourDefect({c}).has_value());

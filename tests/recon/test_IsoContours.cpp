@@ -58,20 +58,20 @@ TEST(IsoContours, RaisedLevelEnclosesTheTargetArea) {
     const double mean = 0.5 * (M_PI * 9 + M_PI * 81);
     const auto raised = isolinesEnclosing(sum, grid, {mean, 10.0});
     ASSERT_EQ(raised.size(), 1u);
-    EXPECT_NEAR(enclosedAreaMm2(raised), mean, 0.02 * mean);
-    EXPECT_LE(enclosedAreaMm2(raised), mean);
+    EXPECT_NEAR(netArea(raised), mean, 0.02 * mean);
+    EXPECT_LE(netArea(raised), mean);
     // Already enough, nothing to enclose, or a level capped: as documented.
-    EXPECT_NEAR(enclosedAreaMm2(isolinesEnclosing(sum, grid, {50.0, 10.0})),
-                enclosedAreaMm2(zeroIsolines(sum, grid)), 1e-9);
+    EXPECT_NEAR(netArea(isolinesEnclosing(sum, grid, {50.0, 10.0})),
+                netArea(zeroIsolines(sum, grid)), 1e-9);
     const std::vector<float> positive(grid.pixelCount(), 1.0f);
     EXPECT_TRUE(isolinesEnclosing(positive, grid, {100.0, 10.0}).empty());
     const auto capped = isolinesEnclosing(sum, grid, {mean, 0.5});  // circle of radius 6.25
-    EXPECT_NEAR(enclosedAreaMm2(capped), M_PI * 6.25 * 6.25, 1.5);
+    EXPECT_NEAR(netArea(capped), M_PI * 6.25 * 6.25, 1.5);
     // Bounded by a disk of radius 6.5 (the union of two sides' regions):
     // the raised region stops at it, below the target.
     const std::vector<float> bound = sample(grid, [](Point2 p) { return length(p) - 6.5; });
     const auto bounded = isolinesEnclosing(sum, grid, {mean, 10.0, &bound});
-    EXPECT_NEAR(enclosedAreaMm2(bounded), M_PI * 6.5 * 6.5, 2.0);
+    EXPECT_NEAR(netArea(bounded), M_PI * 6.5 * 6.5, 2.0);
     for (const Polygon& polygon : bounded)
         for (Point2 p : polygon) EXPECT_LE(length(p), 6.5 + 0.06);
 }
