@@ -168,6 +168,13 @@ SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, 
     checkArguments(a, b, spacingMm);
     spacingMm = distanceSpacingWithinBudget(a, b, spacingMm);
     const TriangleBvh bvhA(a), bvhB(b);
+    return surfaceDistances(a, bvhA, b, bvhB, spacingMm, toleranceMm);
+}
+
+SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleBvh& bvhA,
+                                  const TriangleSoup& b, const TriangleBvh& bvhB, double spacingMm,
+                                  double toleranceMm) {
+    checkArguments(a, b, spacingMm);
     return combine(a, b, spacingMm, toleranceMm, hostDistances(a, bvhB, spacingMm),
                    hostDistances(b, bvhA, spacingMm));
 }

@@ -11,6 +11,7 @@
 #include <cstddef>
 
 #include "cl/Runtime.hpp"
+#include "geometry/TriangleBvh.hpp"
 #include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
@@ -68,6 +69,14 @@ double distanceSpacingWithinBudget(const TriangleSoup& a, const TriangleSoup& b,
 /// spacingMm² samples, S at most kMaxDistanceSamples (the spacing grows to
 /// keep it so); memory O(S + T).
 SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleSoup& b, double spacingMm,
+                                  double toleranceMm = 1);
+
+/// The same on the host over hierarchies the caller built (`bvhA` of `a`,
+/// `bvhB` of `b`), at `spacingMm` as given: for callers that measure more
+/// against the same surfaces (simplify's verifier) and keep their own
+/// sample budget. Throws as above. Work: O(S log T).
+SurfaceDistances surfaceDistances(const TriangleSoup& a, const TriangleBvh& bvhA,
+                                  const TriangleSoup& b, const TriangleBvh& bvhB, double spacingMm,
                                   double toleranceMm = 1);
 
 /// The same figures from the closest-primitive kernel

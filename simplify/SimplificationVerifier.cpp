@@ -37,9 +37,13 @@ std::vector<Vec3> sampleTriangles(const TriangleSoup& soup, std::size_t count, u
 }
 
 SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleSoup& surface) {
+    if (points.empty()) return {};
+    return distanceToSurface(points, TriangleBvh(surface));
+}
+
+SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleBvh& bvh) {
     SampledDistance d;
     if (points.empty()) return d;
-    const TriangleBvh bvh(surface);
     double sum = 0;
     for (const Vec3& p : points) {
         const double e = bvh.nearest(p).distance;
@@ -51,17 +55,22 @@ SampledDistance distanceToSurface(const std::vector<Vec3>& points, const Triangl
     return d;
 }
 
-TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
+namespace {
+
+// twoSidedDistance over hierarchies built once, which verifySimplification
+// also measures the contours against.
+TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleBvh& bvhA,
+                                  const TriangleSoup& b, const TriangleBvh& bvhB,
                                   std::size_t samplesPerSurface) {
     TwoSidedDistance d;
     if (a.triangles.empty() || b.triangles.empty()) return d;
     // Started below the spacing that gives samplesPerSurface cells (a cell
     // covers about 1.3 spacing²), so the budget decides it.
     const double areaMm2 = std::max(measureSurface(a).areaMm2, measureSurface(b).areaMm2);
-    const std::size_t budget = std::max<std::size_t>(1, samplesPerSurface);
+    const std::size_t budget = std::clamp<std::size_t>(samplesPerSurface, 1, kMaxDistanceSamples);
     d.spacingMm = cellSpacingWithinBudget(
         {&a, &b}, std::max(1e-6, 0.5 * std::sqrt(areaMm2 / double(budget))), budget);
-    const SurfaceDistances cells = surfaceDistances(a, b, d.spacingMm);
+    const SurfaceDistances cells = surfaceDistances(a, bvhA, b, bvhB, d.spacingMm);
     const auto withVertices = [](const DirectedDistances& sampled,
                                  const SampledDistance& vertices) {
         SampledDistance both;
@@ -70,9 +79,18 @@ TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
         both.samples = sampled.samples + vertices.samples;
         return both;
     };
-    d.aToB = withVertices(cells.aToB, distanceToSurface(a.points, b));
-    d.bToA = withVertices(cells.bToA, distanceToSurface(b.points, a));
+    d.aToB = withVertices(cells.aToB, distanceToSurface(a.points, bvhB));
+    d.bToA = withVertices(cells.bToA, distanceToSurface(b.points, bvhA));
     return d;
+}
+
+}  // namespace
+
+TwoSidedDistance twoSidedDistance(const TriangleSoup& a, const TriangleSoup& b,
+                                  std::size_t samplesPerSurface) {
+    if (a.triangles.empty() || b.triangles.empty()) return {};
+    const TriangleBvh bvhA(a), bvhB(b);
+    return twoSidedDistance(a, bvhA, b, bvhB, samplesPerSurface);
 }
 
 std::vector<Vec3> contourSamples(const Roi& roi, double stepMm) {
@@ -100,8 +118,11 @@ SimplificationDistance verifySimplification(const TriangleSoup& input, const Tri
                                             const Roi* contours, double contourStepMm,
                                             std::size_t samplesPerSurface) {
     SimplificationDistance d;
-    d.surfaces = twoSidedDistance(input, result, samplesPerSurface);
-    if (contours) d.contours = distanceToSurface(contourSamples(*contours, contourStepMm), result);
+    // Each hierarchy built once, for the cells, the vertices and the contours.
+    const TriangleBvh inputBvh(input), resultBvh(result);
+    d.surfaces = twoSidedDistance(input, inputBvh, result, resultBvh, samplesPerSurface);
+    if (contours)
+        d.contours = distanceToSurface(contourSamples(*contours, contourStepMm), resultBvh);
     return d;
 }
 

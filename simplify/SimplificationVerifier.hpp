@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contours/ContourSet.hpp"
+#include "geometry/TriangleBvh.hpp"
 #include "geometry/TriangleSoup.hpp"
 
 namespace dfrecon {
@@ -23,6 +24,8 @@ struct SampledDistance {
 /// Distances from `points` to the nearest point of `surface`.
 /// O(T log T + points · log T) typically.
 SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleSoup& surface);
+/// The same over `surface`'s hierarchy, built by the caller. O(points · log T).
+SampledDistance distanceToSurface(const std::vector<Vec3>& points, const TriangleBvh& surface);
 
 /// Both directions between two surfaces, by the project's one surface
 /// distance (field/SurfaceDistances): each surface cut into cells, about
