@@ -235,21 +235,15 @@ Vec3 withinNeighbourPlanes(const SliceInterpolant& field, Vec3 from, Vec3 to) {
     // Outside from the start (the middle of an edge across a staircase's
     // corner): Newton steps on the union's distance, which is 1-Lipschitz.
     Vec3 p = to;
-    constexpr double kStepMm = 0.02;
     for (int iteration = 0; iteration < 6; ++iteration) {
         const double value = field.neighbourPlanesValue(p);
         if (value <= 0) return p;
-        const double gx = (field.neighbourPlanesValue(p + Vec3{kStepMm, 0, 0}) -
-                           field.neighbourPlanesValue(p - Vec3{kStepMm, 0, 0})) /
-                          (2 * kStepMm);
-        const double gy = (field.neighbourPlanesValue(p + Vec3{0, kStepMm, 0}) -
-                           field.neighbourPlanesValue(p - Vec3{0, kStepMm, 0})) /
-                          (2 * kStepMm);
-        const double g2 = gx * gx + gy * gy;
+        const Point2 g = field.neighbourPlanesGradientXy(p);
+        const double g2 = g.x * g.x + g.y * g.y;
         if (g2 < 1e-6) break;
         // A little past the boundary, so rounding leaves it inside.
         const double move = (value + 1e-3) / g2;
-        p = p - Vec3{move * gx, move * gy, 0};
+        p = p - Vec3{move * g.x, move * g.y, 0};
     }
     return field.neighbourPlanesValue(p) <= field.neighbourPlanesValue(to) ? p : to;
 }

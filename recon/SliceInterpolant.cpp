@@ -98,10 +98,24 @@ double SliceInterpolant::value(Vec3 p) const {
            (t3 - t2) * h * m1 - bulgeAt(p.z);
 }
 
+namespace {
+
+// d/dx and d/dy of `f` at p by central differences `stepMm` apart.
+template <class F>
+Point2 centralGradientXy(F&& f, Vec3 p, double stepMm) {
+    return {(f(Vec3{p.x + stepMm, p.y, p.z}) - f(Vec3{p.x - stepMm, p.y, p.z})) / (2 * stepMm),
+            (f(Vec3{p.x, p.y + stepMm, p.z}) - f(Vec3{p.x, p.y - stepMm, p.z})) / (2 * stepMm)};
+}
+
+}  // namespace
+
 Point2 SliceInterpolant::gradientXy(Vec3 p) const {
-    const double d = 0.5 * fields_.grid.pixelMm;
-    return {(value({p.x + d, p.y, p.z}) - value({p.x - d, p.y, p.z})) / (2 * d),
-            (value({p.x, p.y + d, p.z}) - value({p.x, p.y - d, p.z})) / (2 * d)};
+    return centralGradientXy([this](Vec3 q) { return value(q); }, p, 0.5 * fields_.grid.pixelMm);
+}
+
+Point2 SliceInterpolant::neighbourPlanesGradientXy(Vec3 p) const {
+    return centralGradientXy([this](Vec3 q) { return neighbourPlanesValue(q); }, p,
+                             0.5 * fields_.grid.pixelMm);
 }
 
 }  // namespace dfrecon

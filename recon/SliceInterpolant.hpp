@@ -48,6 +48,8 @@ class SliceInterpolant {
     /// bulge): <= 0 inside the union of the two planes' regions. O(1): two
     /// planes' bilinear look-ups.
     double neighbourPlanesValue(Vec3 p) const;
+    /// Its d/dx and d/dy at p, as gradientXy takes F's. O(1).
+    Point2 neighbourPlanesGradientXy(Vec3 p) const;
 
   private:
     double planeValue(std::size_t slice, Point2 p) const;
