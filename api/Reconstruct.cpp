@@ -17,25 +17,64 @@ RoiSurface reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
     });
     // Sagittal, coronal and oblique stacks were reconstructed in their planes.
     toPatient(result.surface, roi.frame);
-    if (options.maxErrorMm > 0) {
-        if (progress) progress("simplifying", -1);
-        SimplifyOptions simplify;
-        simplify.maxErrorMm = options.maxErrorMm;
-        out.simplification = simplifyVerified(&runtime, result.surface, simplify, &roi);
-        result.surface = std::move(out.simplification->result.surface);
-    }
     // The reconstruction checked its surface as floats in the plane frame;
-    // a rotated frame or a simplified surface is checked again as written.
+    // a rotated frame is checked again as written.
     roundPointsToFloat(result.surface);
     const Stopwatch watch;
-    out.check =
-        !out.simplification && roi.frame.isIdentity() ? result.check : checkMesh(result.surface);
+    out.check = roi.frame.isIdentity() ? result.check : checkMesh(result.surface);
     out.checkSeconds = watch.total() + result.stats.checkSeconds;
     out.surface = std::move(result.surface);
     out.stats = result.stats;
     out.brokenPieces = std::move(result.brokenPieces);
     out.contourVolumeMm3 = contourVolumeMm3(roi);
+    if (options.maxErrorMm > 0) {
+        if (progress) progress("simplifying", -1);
+        simplifyRoiSurface(runtime, roi, out, options.maxErrorMm);
+    }
     return out;
+}
+
+void simplifyRoiSurface(ocl::Runtime& runtime, const Roi& roi, RoiSurface& surface,
+                        double maxErrorMm) {
+    SimplifyOptions simplify;
+    simplify.maxErrorMm = maxErrorMm;
+    surface.simplification = simplifyVerified(&runtime, surface.surface, simplify, &roi);
+    surface.surface = std::move(surface.simplification->result.surface);
+    roundPointsToFloat(surface.surface);
+    const Stopwatch watch;
+    surface.check = checkMesh(surface.surface);
+    surface.checkSeconds += watch.total();
+}
+
+NeighbourSeparation keepNeighboursApart(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
+                                        const std::vector<RoiSurface*>& surfaces,
+                                        const NeighbourSeparationOptions& options) {
+    std::vector<NeighbourSurface> taking;
+    std::vector<std::size_t> indexOf;  // into rois, per taking entry
+    for (std::size_t i = 0; i < rois.size(); ++i) {
+        if (!surfaces[i] || !surfaces[i]->check.validSolid()) continue;
+        NeighbourSurface roi{rois[i]->name, &surfaces[i]->surface, rois[i]->frame, {}};
+        for (const Slice& slice : rois[i]->slices) roi.planeZMm.push_back(slice.zMm);
+        taking.push_back(std::move(roi));
+        indexOf.push_back(i);
+    }
+    NeighbourSeparation separation = keepNeighboursApart(&runtime, taking, options);
+    for (NeighbourPair& pair : separation.pairs) {
+        pair.a = indexOf[pair.a];
+        pair.b = indexOf[pair.b];
+    }
+    // Moves change no triangle and leave no collision: the check stands but
+    // for what the surface encloses.
+    std::vector<std::optional<SurfaceMeasures>> measures(rois.size());
+    for (std::size_t k = 0; k < taking.size(); ++k) {
+        if (!separation.measures[k]) continue;
+        MeshCheckReport& check = surfaces[indexOf[k]]->check;
+        check.volumeMm3 = separation.measures[k]->volumeMm3;
+        check.areaMm2 = separation.measures[k]->areaMm2;
+        measures[indexOf[k]] = separation.measures[k];
+    }
+    separation.measures = std::move(measures);
+    return separation;
 }
 
 }  // namespace dfrecon

@@ -9,6 +9,7 @@
 #include "app/Commands.hpp"
 #include "app/HtmlReport.hpp"
 #include "app/Inputs.hpp"
+#include "app/NeighbourSeparationStep.hpp"
 #include "app/OutputOptions.hpp"
 #include "app/Progress.hpp"
 #include "app/RoiReconstruction.hpp"
@@ -27,6 +28,7 @@ namespace {
 
 struct ReconstructArgs {
     std::string input, output, roi, reportPath;
+    std::string neighbours = "independent";  // several ROIs: "independent", "report" or "apart"
     bool all = false, json = false;
     unsigned jobs = 0;  // ROIs at once; 0: defaultJobs()
     ReconstructSettings settings;
@@ -87,42 +89,93 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     ocl::WorkerRuntimes runtimes(global.device, jobs);
     Progress overall("reconstructing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);
-    forEachInOrder(
-        rois.size(), jobs,
-        [&](std::size_t i, std::size_t worker) {
-            // With several ROIs one that fails is reported and the rest go on.
-            try {
-                if (rois[i]->defect) throw *rois[i]->defect;
+    const RoiWriteOptions how{global.quiet, jobs <= 1, !args.reportPath.empty()};
+    auto take = [&](std::size_t i, RoiOutcome outcome) {
+        overall.finish();
+        if (!args.json) reportStream(single.toStandardOutput()) << outcome.out << std::flush;
+        std::cerr << outcome.err << std::flush;
+        if (outcome.failure != 0) {
+            failed += (failed.empty() ? "" : ", ") + rois[i]->name;
+            if (firstFailure == 0) firstFailure = outcome.failure;
+        } else if (outcome.invalid) {
+            invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
+        }
+        if (!args.reportPath.empty() && outcome.failure == 0 &&
+            !addSurface(page, {rois[i]->name, colourOf(*rois[i]), std::move(outcome.surface), {}}))
+            leftOut += (leftOut.empty() ? "" : ", ") + rois[i]->name;
+        reports.push_back(std::move(outcome.report));
+        overall.update(double(i + 1) / double(rois.size()));
+    };
+    // With several ROIs one that fails is reported and the rest go on.
+    auto failedOrThrow = [&](std::size_t i) {
+        if (!several) throw;
+        return failedRoi(*rois[i], std::current_exception());
+    };
+    nlohmann::ordered_json neighbours = nullptr;
+    if (several && args.neighbours != "independent") {
+        // Every ROI first, then the neighbours kept apart, then the files.
+        std::vector<std::optional<RoiSurface>> surfaces(rois.size());
+        std::vector<std::optional<RoiOutcome>> failures(rois.size());
+        std::vector<double> seconds(rois.size(), 0.0);
+        forEachInOrder(
+            rois.size(), jobs,
+            [&](std::size_t i, std::size_t worker) {
                 const Stopwatch roiWatch;
-                RoiOutcome outcome = writeRoiSurface(
-                    runtimes[worker], *rois[i], outputFor(args, single, stems[i], several), load,
-                    args.settings,
-                    RoiWriteOptions{global.quiet, jobs <= 1, !args.reportPath.empty()});
-                outcome.report["seconds"]["total"] = roiWatch.total();
-                return outcome;
-            } catch (...) {
-                if (!several) throw;
-                return failedRoi(*rois[i], std::current_exception());
-            }
-        },
-        [&](std::size_t i, RoiOutcome outcome) {
-            overall.finish();
-            if (!args.json) reportStream(single.toStandardOutput()) << outcome.out << std::flush;
-            std::cerr << outcome.err << std::flush;
-            if (outcome.failure != 0) {
-                failed += (failed.empty() ? "" : ", ") + rois[i]->name;
-                if (firstFailure == 0) firstFailure = outcome.failure;
-            } else if (outcome.invalid) {
-                invalid += (invalid.empty() ? "" : ", ") + rois[i]->name;
-            }
-            if (!args.reportPath.empty() && outcome.failure == 0 &&
-                !addSurface(page,
-                            {rois[i]->name, colourOf(*rois[i]), std::move(outcome.surface), {}}))
-                leftOut += (leftOut.empty() ? "" : ", ") + rois[i]->name;
-            reports.push_back(std::move(outcome.report));
-            overall.update(double(i + 1) / double(rois.size()));
-        });
+                try {
+                    if (rois[i]->defect) throw *rois[i]->defect;
+                    RoiSurface surface = reconstructForWriting(runtimes[worker], *rois[i],
+                                                               args.settings, how, false);
+                    seconds[i] = roiWatch.total();
+                    return std::pair(std::optional(std::move(surface)),
+                                     std::optional<RoiOutcome>());
+                } catch (...) {
+                    return std::pair(std::optional<RoiSurface>(), std::optional(failedOrThrow(i)));
+                }
+            },
+            [&](std::size_t i, auto done) {
+                surfaces[i] = std::move(done.first);
+                failures[i] = std::move(done.second);
+                overall.update(0.5 * double(i + 1) / double(rois.size()));
+            });
+        neighbours =
+            neighbourSeparationJson(runtimes[0], rois, surfaces, args.neighbours == "apart");
+        forEachInOrder(
+            rois.size(), jobs,
+            [&](std::size_t i, std::size_t worker) {
+                if (failures[i]) return std::move(*failures[i]);
+                const Stopwatch roiWatch;
+                try {
+                    RoiOutcome outcome = writeReconstructedRoi(
+                        runtimes[worker], *rois[i], std::move(*surfaces[i]),
+                        outputFor(args, single, stems[i], several), load, args.settings, how);
+                    outcome.report["seconds"]["total"] = seconds[i] + roiWatch.total();
+                    return outcome;
+                } catch (...) {
+                    return failedOrThrow(i);
+                }
+            },
+            take);
+    } else {
+        forEachInOrder(
+            rois.size(), jobs,
+            [&](std::size_t i, std::size_t worker) {
+                try {
+                    if (rois[i]->defect) throw *rois[i]->defect;
+                    const Stopwatch roiWatch;
+                    RoiOutcome outcome = writeRoiSurface(runtimes[worker], *rois[i],
+                                                         outputFor(args, single, stems[i], several),
+                                                         load, args.settings, how);
+                    outcome.report["seconds"]["total"] = roiWatch.total();
+                    return outcome;
+                } catch (...) {
+                    return failedOrThrow(i);
+                }
+            },
+            take);
+    }
     overall.finish();
+    if (!neighbours.is_null() && !args.json)
+        reportStream(single.toStandardOutput()) << neighbourSeparationLine(neighbours);
     if (!args.reportPath.empty()) {
         page.title = "dfrecon reconstruct " + fs::path(args.input).filename().string();
         page.columns = kRoiReportColumns;
@@ -156,7 +209,8 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                                                       args.settings.options.contourErrorMm},
                                                      {"seconds", watch.total()},
                                                      {"rois", reports},
-                                                     {"emptyRois", empty}},
+                                                     {"emptyRois", empty},
+                                                     {"neighbours", neighbours}},
                               2)
                   << "\n";
     if (!failed.empty())
@@ -203,6 +257,18 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "ROI name, or DICOM ROI number (default: the only ROI of the file)");
     cmd->add_flag("--all", args->all, "Every ROI of the file that has contours");
     addReconstructSettingsOptions(*cmd, args->settings);
+    cmd->add_option("--neighbours", args->neighbours,
+                    "Several ROIs: 'independent' reconstructs each ROI on its own, as one ROI "
+                    "alone; 'report' also finds the pairs whose contours overlap on no plane "
+                    "but whose surfaces overlap between the planes and measures each overlap "
+                    "exactly, mm3 (--json: neighbours; all surfaces are held until then); "
+                    "'apart' moves those surfaces out of each other first (each vertex inside a "
+                    "neighbour halfway to it, or all the way where the neighbour has none in "
+                    "the overlap, and 0.01 mm beyond, in two rounds; contour points stay "
+                    "vertices; a move that would make a surface cross itself is undone) and "
+                    "reports the overlap left. See docs/reconstruction.md, 'Neighbours'")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"independent", "report", "apart"}));
     cmd->add_option("-j,--jobs", args->jobs,
                     "ROIs reconstructed at once, each with its own OpenCL queue (default 0: one "
                     "per CPU core; never more than one per core or per ROI; 1: one after the "

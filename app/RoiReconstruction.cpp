@@ -42,26 +42,40 @@ RoiOutcome failedRoi(const Roi& roi, std::exception_ptr error) {
     return outcome;
 }
 
+RoiSurface reconstructForWriting(ocl::Runtime& runtime, const Roi& roi,
+                                 const ReconstructSettings& settings, const RoiWriteOptions& how,
+                                 bool simplify) {
+    // One progress line per stage: reconstructing, then simplifying.
+    std::optional<Progress> progress;
+    std::string stage;
+    RoiReconstructOptions options{settings.options, simplify ? settings.maxErrorMm : 0};
+    return dfrecon::reconstructRoi(
+        runtime, roi, options, [&](const std::string& now, double fraction) {
+            if (now != stage) {
+                progress.reset();
+                progress.emplace(now + " " + roi.name, how.showProgress && !how.quiet);
+                stage = now;
+            }
+            if (fraction >= 0) progress->update(fraction);
+        });
+}
+
 RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
                            const ContourInput& input, const ReconstructSettings& settings,
                            const RoiWriteOptions& how) {
+    return writeReconstructedRoi(runtime, roi,
+                                 reconstructForWriting(runtime, roi, settings, how, true), output,
+                                 input, settings, how);
+}
+
+RoiOutcome writeReconstructedRoi(ocl::Runtime& runtime, const Roi& roi, RoiSurface result,
+                                 const MeshOutput& output, const ContourInput& input,
+                                 const ReconstructSettings& settings, const RoiWriteOptions& how) {
     RoiOutcome outcome;
     std::ostringstream out, err;
-    RoiSurface result;
-    {
-        // One progress line per stage: reconstructing, then simplifying.
-        std::optional<Progress> progress;
-        std::string stage;
-        RoiReconstructOptions options{settings.options, settings.maxErrorMm};
-        result = dfrecon::reconstructRoi(
-            runtime, roi, options, [&](const std::string& now, double fraction) {
-                if (now != stage) {
-                    progress.reset();
-                    progress.emplace(now + " " + roi.name, how.showProgress && !how.quiet);
-                    stage = now;
-                }
-                if (fraction >= 0) progress->update(fraction);
-            });
+    if (settings.maxErrorMm > 0 && !result.simplification) {
+        Progress progress("simplifying " + roi.name, how.showProgress && !how.quiet);
+        simplifyRoiSurface(runtime, roi, result, settings.maxErrorMm);
     }
     const nlohmann::ordered_json simplification =
         result.simplification

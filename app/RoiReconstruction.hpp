@@ -50,6 +50,21 @@ RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutp
                            const ContourInput& input, const ReconstructSettings& settings,
                            const RoiWriteOptions& options);
 
+/// The first half of writeRoiSurface: `roi` reconstructed (and simplified
+/// when settings ask and `simplify`), with the progress bars it shows.
+RoiSurface reconstructForWriting(ocl::Runtime& runtime, const Roi& roi,
+                                 const ReconstructSettings& settings,
+                                 const RoiWriteOptions& options, bool simplify);
+
+/// The second half: `result` (reconstructForWriting's) simplified if the
+/// settings ask and it was not yet, checked, written and reported as
+/// writeRoiSurface does. Lets `reconstruct` work on every ROI's surface
+/// (neighbours kept apart) between the two.
+RoiOutcome writeReconstructedRoi(ocl::Runtime& runtime, const Roi& roi, RoiSurface result,
+                                 const MeshOutput& output, const ContourInput& input,
+                                 const ReconstructSettings& settings,
+                                 const RoiWriteOptions& options);
+
 /// The outcome of an ROI that failed with `error` (report/Failure names it):
 /// reported with `error` and `exitCode`, so the other ROIs go on; a usage
 /// error (the ROI's data refused as an argument) counts as bad input (2),

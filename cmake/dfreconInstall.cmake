@@ -15,7 +15,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(DFRECON_LIBRARY_FOLDERS kernels cl geometry contours io field shapes recon simplify sdm segment compare algebra)
+set(DFRECON_LIBRARY_FOLDERS kernels cl geometry contours io field shapes recon neighbours simplify sdm segment compare algebra)
 set(dfrecon_libraries "")
 foreach(folder IN LISTS DFRECON_LIBRARY_FOLDERS)
   # dfrecon_recon is dfrecon::recon to package users, and to projects that

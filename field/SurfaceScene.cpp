@@ -1,7 +1,7 @@
 #include "field/SurfaceScene.hpp"
 
 #include <algorithm>
-#include <map>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
@@ -24,7 +24,14 @@ double angleBetween(Vec3 u, Vec3 v) {
 std::vector<std::array<Vec3, 7>> pseudoNormals(const TriangleSoup& soup, bool flip) {
     const std::size_t count = soup.triangles.size();
     std::vector<Vec3> faceNormal(count), vertexNormal(soup.points.size());
-    std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> edgeNormal;
+    // Each triangle's edge k is one entry; sorting by edge brings the two
+    // uses of an edge together (a map per edge cost most of a large scene).
+    struct EdgeUse {
+        std::uint64_t edge;
+        std::uint32_t triangle, k;
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * count);
     for (std::size_t t = 0; t < count; ++t) {
         const auto& tri = soup.triangles[t];
         const Vec3 p[3] = {soup.points[tri[0]], soup.points[tri[1]], soup.points[tri[2]]};
@@ -36,46 +43,66 @@ std::vector<std::array<Vec3, 7>> pseudoNormals(const TriangleSoup& soup, bool fl
             vertexNormal[tri[std::size_t(k)]] =
                 vertexNormal[tri[std::size_t(k)]] + angleBetween(next, prev) * n;
             const std::uint32_t u = tri[std::size_t(k)], v = tri[std::size_t(k + 1) % 3];
-            Vec3& e = edgeNormal[{std::min(u, v), std::max(u, v)}];
-            e = e + n;
+            uses.push_back({std::uint64_t(std::min(u, v)) << 32 | std::max(u, v), std::uint32_t(t),
+                            std::uint32_t(k)});
         }
     }
+    std::sort(uses.begin(), uses.end(),
+              [](const EdgeUse& a, const EdgeUse& b) { return a.edge < b.edge; });
     std::vector<std::array<Vec3, 7>> normals(count);
+    for (std::size_t first = 0; first < uses.size();) {
+        std::size_t last = first;
+        Vec3 sum;
+        for (; last < uses.size() && uses[last].edge == uses[first].edge; ++last)
+            sum = sum + faceNormal[uses[last].triangle];
+        for (std::size_t i = first; i < last; ++i) normals[uses[i].triangle][3 + uses[i].k] = sum;
+        first = last;
+    }
     for (std::size_t t = 0; t < count; ++t) {
         const auto& tri = soup.triangles[t];
-        auto edge = [&](int k) {
-            const std::uint32_t u = tri[std::size_t(k)], v = tri[std::size_t(k + 1) % 3];
-            return edgeNormal[{std::min(u, v), std::max(u, v)}];
-        };
-        normals[t] = {vertexNormal[tri[0]],
-                      vertexNormal[tri[1]],
-                      vertexNormal[tri[2]],
-                      edge(0),
-                      edge(1),
-                      edge(2),
-                      faceNormal[t]};
+        for (int k = 0; k < 3; ++k) normals[t][std::size_t(k)] = vertexNormal[tri[std::size_t(k)]];
+        normals[t][6] = faceNormal[t];
     }
     return normals;
 }
 
 }  // namespace
 
+namespace {
+
+std::string objectName(const std::vector<std::string>& names, std::size_t i) {
+    return i < names.size() ? names[i] : "object" + std::to_string(i);
+}
+
+}  // namespace
+
 SurfaceScene::SurfaceScene(std::vector<TriangleSoup> objects, std::vector<std::string> names) {
     for (std::size_t i = 0; i < objects.size(); ++i) {
-        if (objects[i].triangles.empty())
-            throw std::invalid_argument("surface scene: object " + std::to_string(i) +
-                                        " has no triangles");
-        auto object = std::make_unique<Object>();
-        object->name = i < names.size() ? names[i] : "object" + std::to_string(i);
-        object->soup = std::move(objects[i]);
-        object->bvh = std::make_unique<TriangleBvh>(object->soup);
-        const MeshCheckReport check = checkMesh(object->soup);
-        object->closed = check.watertight();
+        const MeshCheckReport check = checkMesh(objects[i]);
         // Signs need outward normals; a closed mesh whose faces point
         // inwards encloses negative volume.
-        object->pseudoNormals = pseudoNormals(object->soup, object->closed && check.volumeMm3 < 0);
-        objects_.push_back(std::move(object));
+        add(std::move(objects[i]), objectName(names, i), check.watertight(),
+            check.watertight() && check.volumeMm3 < 0);
     }
+}
+
+SurfaceScene::SurfaceScene(std::vector<TriangleSoup> objects, std::vector<std::string> names,
+                           KnownValidSolids) {
+    for (std::size_t i = 0; i < objects.size(); ++i)
+        add(std::move(objects[i]), objectName(names, i), true, false);
+}
+
+void SurfaceScene::add(TriangleSoup soup, std::string name, bool closed, bool flip) {
+    if (soup.triangles.empty())
+        throw std::invalid_argument("surface scene: object " + std::to_string(objects_.size()) +
+                                    " has no triangles");
+    auto object = std::make_unique<Object>();
+    object->name = std::move(name);
+    object->soup = std::move(soup);
+    object->bvh = std::make_unique<TriangleBvh>(object->soup);
+    object->closed = closed;
+    object->pseudoNormals = pseudoNormals(object->soup, flip);
+    objects_.push_back(std::move(object));
 }
 
 std::size_t SurfaceScene::triangleCount() const {

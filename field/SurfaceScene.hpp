@@ -23,6 +23,14 @@ class SurfaceScene {
     /// O(T log T) in all their triangles, plus a watertightness check each.
     explicit SurfaceScene(std::vector<TriangleSoup> objects, std::vector<std::string> names = {});
 
+    /// Objects already known to be valid closed solids oriented outward
+    /// (checked as they were built, as reconstructions are): no check again.
+    struct KnownValidSolids {};
+    /// The same scene without the watertightness checks: every object is
+    /// taken as closed and outward. O(T log T).
+    SurfaceScene(std::vector<TriangleSoup> objects, std::vector<std::string> names,
+                 KnownValidSolids);
+
     std::size_t objectCount() const { return objects_.size(); }
     const TriangleSoup& object(std::size_t i) const { return objects_[i]->soup; }
     const TriangleBvh& bvh(std::size_t i) const { return *objects_[i]->bvh; }
@@ -38,6 +46,8 @@ class SurfaceScene {
     std::size_t triangleCount() const;
 
   private:
+    void add(TriangleSoup soup, std::string name, bool closed, bool flip);
+
     struct Object {
         std::string name;
         TriangleSoup soup;

@@ -496,6 +496,23 @@ MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::s
     });
 }
 
+std::vector<std::size_t> defectsAfterMoving(const TriangleSoup& soup,
+                                            const std::vector<std::size_t>& suspects) {
+    std::vector<bool> degenerate(soup.triangles.size(), false);
+    std::vector<std::size_t> defects;
+    for (const std::size_t t : suspects)
+        if ((degenerate[t] = isDegenerate(soup, soup.triangles[t]))) defects.push_back(t);
+    bool capped = false;
+    for (const TrianglePair& pair :
+         collidingPairsNear(soup, degenerate, suspects, kMaxCountedIntersections, capped)) {
+        defects.push_back(pair.first);
+        defects.push_back(pair.second);
+    }
+    std::sort(defects.begin(), defects.end());
+    defects.erase(std::unique(defects.begin(), defects.end()), defects.end());
+    return defects;
+}
+
 MeshCheckReport checkMeshWith(const TriangleSoup& soup, const PairSearch& search) {
     return checkSoup(soup, search);
 }

@@ -84,6 +84,15 @@ MeshCheckReport checkMeshKnowing(const TriangleSoup& soup, const CleanGroups& cl
 /// look-ups for the pairs.
 MeshCheckReport checkMeshNear(const TriangleSoup& soup, const std::vector<std::size_t>& suspects);
 
+/// For a valid solid whose vertices moved but whose triangles stayed the
+/// same (so its topology cannot have changed): the triangles that are now
+/// degenerate or collide with another, found among those touching one of
+/// `suspects` (every triangle with a moved vertex). Sorted, no repeats;
+/// empty when the solid is still valid but for its volume's sign. O(T) box
+/// tests plus grid look-ups around the suspects.
+std::vector<std::size_t> defectsAfterMoving(const TriangleSoup& soup,
+                                            const std::vector<std::size_t>& suspects);
+
 /// Pairs of colliding triangles (i < j) a search found, and whether it
 /// stopped at the most it was asked to count.
 struct CollidingPairs {

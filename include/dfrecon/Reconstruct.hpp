@@ -14,6 +14,7 @@
 #include "dfrecon/Simplify.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/TriangleSoup.hpp"
+#include "neighbours/NeighbourSeparation.hpp"
 #include "recon/Reconstruction.hpp"
 
 namespace dfrecon {
@@ -53,5 +54,25 @@ using RoiProgress = std::function<void(const std::string& stage, double fraction
 RoiSurface reconstructRoi(ocl::Runtime& runtime, const Roi& roi,
                           const RoiReconstructOptions& options = {},
                           const RoiProgress& progress = {});
+
+/// Simplifies a reconstructed ROI's surface within maxErrorMm (> 0) as
+/// reconstructRoi does when asked (dfrecon/Simplify, verified), then rounds
+/// its points to float and checks it again. O(the simplification).
+void simplifyRoiSurface(ocl::Runtime& runtime, const Roi& roi, RoiSurface& surface,
+                        double maxErrorMm);
+
+/// The ROIs of one structure set, reconstructed (without simplification,
+/// the surfaces as reconstructRoi gives them): those whose contours overlap
+/// on no plane they share are moved apart where they overlap between the
+/// planes (neighbours/NeighbourSeparation; with options.move false only
+/// found and measured), every contour point still a
+/// vertex. Surfaces that are not valid solids are left out. Each changed
+/// surface's check gets its new volume and area (its topology is the same
+/// and it stays free of self-intersections). `rois[i]` made
+/// `surfaces[i]`; null entries (ROIs that failed) are skipped. The report
+/// indexes pairs by position in `rois`.
+NeighbourSeparation keepNeighboursApart(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
+                                        const std::vector<RoiSurface*>& surfaces,
+                                        const NeighbourSeparationOptions& options = {});
 
 }  // namespace dfrecon

@@ -1,0 +1,421 @@
+#include "neighbours/NeighbourSeparation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+
+#include "field/ClosestPrimitives.hpp"
+#include "field/SurfaceScene.hpp"
+#include "geometry/Box3.hpp"
+#include "geometry/MeshCheck.hpp"
+#include "geometry/OrderedParallel.hpp"
+
+namespace dfrecon {
+
+namespace {
+
+constexpr std::uint32_t kEdgeMidpoint = UINT32_MAX;
+
+// Probe-and-move rounds: the first meets in the middle, the second moves
+// out what is still inside (a neighbour's move fell short). A third moved
+// almost nothing more on the Brodmann set (0.918 against 0.920 cc left):
+// what stays inside then is where moving would break the surface.
+constexpr int kRounds = 2;
+
+Box3 boxOf(const TriangleSoup& soup, double marginMm) {
+    Box3 box;
+    for (const Vec3& p : soup.points) box.add(p);
+    const Vec3 margin{marginMm, marginMm, marginMm};
+    box.lo = box.lo - margin;
+    box.hi = box.hi + margin;
+    return box;
+}
+
+bool boxContains(const Box3& box, Vec3 p) {
+    return p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y &&
+           p.z >= box.lo.z && p.z <= box.hi.z;
+}
+
+// Is plane coordinate z within toleranceMm of one of `planes` (increasing)?
+bool onPlane(const std::vector<double>& planes, double z, double toleranceMm) {
+    const auto above = std::lower_bound(planes.begin(), planes.end(), z - toleranceMm);
+    return above != planes.end() && *above <= z + toleranceMm;
+}
+
+double largestGapMm(const std::vector<double>& planes) {
+    double gap = 0;
+    for (std::size_t k = 1; k < planes.size(); ++k) gap = std::max(gap, planes[k] - planes[k - 1]);
+    return gap;
+}
+
+// Distances only mean something between surfaces on parallel planes: the
+// planes of one set are then the planes of the other.
+bool parallelPlanes(const PlaneFrame& a, const PlaneFrame& b) {
+    return std::abs(std::abs(dot(a.n, b.n)) - 1) <= 1e-9;
+}
+
+// The points of `from` a probe against the surface of `to` asks about: its
+// vertices in to's box, and the midpoints of its contour edges there. A
+// point on a plane both ROIs have tells whether their contours overlap;
+// a vertex on none of from's planes may move.
+struct ProbePoints {
+    std::vector<Vec3> points;
+    std::vector<std::uint32_t> vertex;  // the vertex, or kEdgeMidpoint
+    std::vector<bool> onSharedPlane;
+};
+
+ProbePoints probePoints(const NeighbourSurface& from, const NeighbourSurface& to, const Box3& toBox,
+                        double planeToleranceMm) {
+    const TriangleSoup& soup = *from.surface;
+    auto onOwnPlane = [&](Vec3 p) {
+        return onPlane(from.planeZMm, dot(p, from.frame.n), planeToleranceMm);
+    };
+    auto onOtherPlane = [&](Vec3 p) {
+        return onPlane(to.planeZMm, dot(p, to.frame.n), planeToleranceMm);
+    };
+    ProbePoints probe;
+    std::vector<bool> own(soup.points.size(), false);
+    for (std::uint32_t v = 0; v < soup.points.size(); ++v) {
+        const Vec3 p = soup.points[v];
+        if (!boxContains(toBox, p)) continue;
+        own[v] = onOwnPlane(p);
+        // A point on from's plane where `to` has no contour says nothing.
+        if (own[v] && !onOtherPlane(p)) continue;
+        probe.points.push_back(p);
+        probe.vertex.push_back(v);
+        probe.onSharedPlane.push_back(own[v]);
+    }
+    // Contour edges are mesh edges with both ends on one plane; each is in
+    // two triangles, once each way: taken where it runs from the lower index.
+    for (const auto& t : soup.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t u = t[k], w = t[(k + 1) % 3];
+            if (u > w || !own[u] || !own[w]) continue;
+            const Vec3 mid = 0.5 * (soup.points[u] + soup.points[w]);
+            if (std::abs(dot(soup.points[u] - soup.points[w], from.frame.n)) > planeToleranceMm ||
+                !onOtherPlane(mid))
+                continue;
+            probe.points.push_back(mid);
+            probe.vertex.push_back(kEdgeMidpoint);
+            probe.onSharedPlane.push_back(true);
+        }
+    return probe;
+}
+
+// Where a vertex inside a neighbour goes.
+struct Move {
+    std::uint32_t vertex = 0;
+    Vec3 to;
+    double lengthMm = 0;
+    std::size_t pair = 0;
+};
+
+// A vertex between the planes found inside a neighbour, and the
+// neighbour's closest point and triangle.
+struct Inside {
+    std::uint32_t vertex = 0;
+    Vec3 closest;
+    std::uint32_t triangle = 0;
+};
+
+// What probing one ROI's points against another found.
+struct Probe {
+    bool overlapOnPlanes = false;
+    double deepestMm = 0;
+    std::vector<Inside> inside;
+};
+
+Probe readProbe(const ProbePoints& probe, const std::vector<ClosestPrimitive>& found,
+                double insideToleranceMm) {
+    Probe result;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+        // Beyond the search band (object -1) counts as not inside.
+        const double depth = found[k].object < 0 ? 0 : -found[k].distanceMm;
+        if (!(depth > insideToleranceMm)) continue;
+        if (probe.onSharedPlane[k]) {
+            result.overlapOnPlanes = true;
+            continue;
+        }
+        result.deepestMm = std::max(result.deepestMm, depth);
+        result.inside.push_back({probe.vertex[k], found[k].point, found[k].triangle});
+    }
+    return result;
+}
+
+// The moves of `mine` (one ROI's vertices inside the other of pair `pair`):
+// in the first round halfway to the other's closest point where the
+// other's triangle there has a vertex inside this ROI too (both sides move:
+// they meet in the middle), else all the way; later rounds (what is still
+// inside) all the way; a clearance beyond either way. A closest point
+// outward of this surface (a structure inside another without touching its
+// planes' contours) is no lens: no move.
+std::vector<Move> movesOf(const Probe& mine, const Probe& theirs, const TriangleSoup& own,
+                          const TriangleSoup& other, std::size_t pair, bool firstRound,
+                          double clearanceMm) {
+    std::vector<bool> theirsInside(other.points.size(), false);
+    for (const Inside& in : theirs.inside) theirsInside[in.vertex] = true;
+    std::vector<Vec3> normals(own.points.size());
+    for (const auto& t : own.triangles) {
+        const Vec3 n =
+            cross(own.points[t[1]] - own.points[t[0]], own.points[t[2]] - own.points[t[0]]);
+        for (const std::uint32_t v : t) normals[v] = normals[v] + n;
+    }
+    std::vector<Move> moves;
+    for (const Inside& in : mine.inside) {
+        const Vec3 from = own.points[in.vertex], toward = in.closest - from;
+        if (dot(toward, normals[in.vertex]) >= 0) continue;
+        const auto& t = other.triangles[in.triangle];
+        const bool bothMove =
+            firstRound && (theirsInside[t[0]] || theirsInside[t[1]] || theirsInside[t[2]]);
+        const double span = length(toward);
+        const double share = std::min(1.0, ((bothMove ? 0.5 : 1.0) * span + clearanceMm) / span);
+        moves.push_back({in.vertex, from + share * toward, share * span, pair});
+    }
+    return moves;
+}
+
+// The signed distances of `points` to the scene's one surface, within bandMm.
+std::vector<ClosestPrimitive> distancesTo(ocl::Runtime* runtime, const SurfaceScene& scene,
+                                          const std::vector<Vec3>& points, double bandMm) {
+    if (points.empty()) return {};
+    DistanceQuery query;
+    query.maxDistanceMm = bandMm;
+    if (!runtime) return closestPrimitivesAtReference(scene, points, query);
+    ClosestPrimitiveKernel kernel(*runtime, scene);
+    return kernel.runAt(points, query);
+}
+
+// Moves `moves` (one per vertex) into `soup` and undoes, vertex by vertex,
+// those around any collision or degenerate triangle they make, until none
+// is left (the soup was a valid solid, and its triangles do not change).
+// Returns which moves stayed.
+std::vector<bool> applyMoves(TriangleSoup& soup, const std::vector<Move>& moves) {
+    std::vector<std::int64_t> moveOf(soup.points.size(), -1);
+    std::vector<Vec3> before(moves.size());
+    std::vector<bool> changed(soup.points.size(), false);
+    for (std::size_t m = 0; m < moves.size(); ++m) {
+        const std::uint32_t v = moves[m].vertex;
+        moveOf[v] = std::int64_t(m);
+        changed[v] = true;
+        before[m] = soup.points[v];
+        // As mesh files hold them: the check then judges what is written.
+        soup.points[v] = {double(float(moves[m].to.x)), double(float(moves[m].to.y)),
+                          double(float(moves[m].to.z))};
+    }
+    std::vector<bool> kept(moves.size(), true);
+    for (;;) {
+        // Only triangles whose corners changed since the last search can
+        // collide anew: the moved ones first, then those around undone moves.
+        std::vector<std::size_t> suspects;
+        for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+            const auto& tri = soup.triangles[t];
+            if (changed[tri[0]] || changed[tri[1]] || changed[tri[2]]) suspects.push_back(t);
+        }
+        std::fill(changed.begin(), changed.end(), false);
+        bool undone = false;
+        for (const std::size_t t : defectsAfterMoving(soup, suspects))
+            for (const std::uint32_t v : soup.triangles[t])
+                if (moveOf[v] >= 0) {
+                    const std::size_t m = std::size_t(moveOf[v]);
+                    soup.points[v] = before[m];
+                    kept[m] = false;
+                    moveOf[v] = -1;
+                    changed[v] = true;
+                    undone = true;
+                }
+        if (!undone) return kept;
+    }
+}
+
+// Cells of about bandMm that lie within bandMm of a surface's triangles: a
+// point in no such cell is farther than the band from it, and needs no
+// search. O(T) to build (the cells each triangle's box, grown by the band,
+// covers), O(1) to ask.
+class NearSurface {
+  public:
+    NearSurface(const TriangleSoup& soup, const Box3& box, double bandMm)
+        : origin_(box.lo - Vec3{bandMm, bandMm, bandMm}), cellMm_(std::max(bandMm, 1e-3)) {
+        const Vec3 size = box.hi - box.lo;
+        // At most about 16 M cells: a coarser grid only asks more searches.
+        const double cells =
+            (size.x / cellMm_ + 3) * (size.y / cellMm_ + 3) * (size.z / cellMm_ + 3);
+        if (cells > 16e6) cellMm_ *= std::cbrt(cells / 16e6);
+        for (int k = 0; k < 3; ++k) count_[k] = std::size_t(axis(size, k) / cellMm_) + 3;
+        near_.assign(count_[0] * count_[1] * count_[2], false);
+        for (const auto& t : soup.triangles) {
+            Box3 b;
+            for (const std::uint32_t v : t) b.add(soup.points[v]);
+            const Vec3 lo = b.lo - Vec3{bandMm, bandMm, bandMm},
+                       hi = b.hi + Vec3{bandMm, bandMm, bandMm};
+            const std::size_t i0 = cell(lo, 0), i1 = cell(hi, 0), j0 = cell(lo, 1),
+                              j1 = cell(hi, 1), k0 = cell(lo, 2), k1 = cell(hi, 2);
+            for (std::size_t k = k0; k <= k1; ++k)
+                for (std::size_t j = j0; j <= j1; ++j)
+                    for (std::size_t i = i0; i <= i1; ++i)
+                        near_[(k * count_[1] + j) * count_[0] + i] = true;
+        }
+    }
+    bool maybeNear(Vec3 p) const {
+        return near_[(cell(p, 2) * count_[1] + cell(p, 1)) * count_[0] + cell(p, 0)];
+    }
+
+  private:
+    static double axis(Vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+    std::size_t cell(Vec3 p, int k) const {
+        const double c = std::floor((axis(p, k) - axis(origin_, k)) / cellMm_);
+        return std::size_t(std::clamp(c, 0.0, double(count_[std::size_t(k)] - 1)));
+    }
+    Vec3 origin_;
+    double cellMm_;
+    std::size_t count_[3] = {1, 1, 1};
+    std::vector<bool> near_;
+};
+
+// Every ROI of a pair probed against the other: one hierarchy per ROI,
+// asked about the points of its neighbours within its box and band.
+struct Probes {
+    std::vector<Probe> ofA, ofB;  // per pair: a's points in b, b's in a
+};
+
+Probes probePairs(ocl::Runtime* runtime, const std::vector<NeighbourSurface>& rois,
+                  const std::vector<NeighbourPair>& pairs, const std::vector<bool>& active,
+                  const NeighbourSeparationOptions& options) {
+    const std::size_t count = rois.size();
+    std::vector<std::vector<std::size_t>> pairsOf(count);
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        if (!active[p]) continue;
+        pairsOf[pairs[p].a].push_back(p);
+        pairsOf[pairs[p].b].push_back(p);
+    }
+    Probes result;
+    result.ofA.resize(pairs.size());
+    result.ofB.resize(pairs.size());
+    for (std::size_t to = 0; to < count; ++to) {
+        if (pairsOf[to].empty()) continue;
+        const Box3 box = boxOf(*rois[to].surface, options.insideToleranceMm);
+        double bandMm = largestGapMm(rois[to].planeZMm);
+        for (const std::size_t p : pairsOf[to])
+            bandMm = std::max(
+                bandMm, largestGapMm(rois[pairs[p].a == to ? pairs[p].b : pairs[p].a].planeZMm));
+        // A single plane each has no gap: a band of a centimetre then.
+        if (!(bandMm > 0)) bandMm = 10;
+        const NearSurface near(*rois[to].surface, box, bandMm);
+        std::vector<ProbePoints> probes;
+        std::vector<Vec3> points;
+        for (const std::size_t p : pairsOf[to]) {
+            const std::size_t from = pairs[p].a == to ? pairs[p].b : pairs[p].a;
+            ProbePoints probe = probePoints(rois[from], rois[to], box, options.planeToleranceMm);
+            ProbePoints kept;
+            for (std::size_t k = 0; k < probe.points.size(); ++k)
+                if (near.maybeNear(probe.points[k])) {
+                    kept.points.push_back(probe.points[k]);
+                    kept.vertex.push_back(probe.vertex[k]);
+                    kept.onSharedPlane.push_back(probe.onSharedPlane[k]);
+                }
+            points.insert(points.end(), kept.points.begin(), kept.points.end());
+            probes.push_back(std::move(kept));
+        }
+        if (points.empty()) continue;
+        const SurfaceScene scene({*rois[to].surface}, {rois[to].name},
+                                 SurfaceScene::KnownValidSolids{});
+        const std::vector<ClosestPrimitive> found = distancesTo(runtime, scene, points, bandMm);
+        std::size_t first = 0;
+        for (std::size_t k = 0; k < probes.size(); ++k) {
+            const std::size_t p = pairsOf[to][k], size = probes[k].points.size();
+            const std::vector<ClosestPrimitive> mine(found.begin() + std::ptrdiff_t(first),
+                                                     found.begin() + std::ptrdiff_t(first + size));
+            first += size;
+            (pairs[p].a == to ? result.ofB : result.ofA)[p] =
+                readProbe(probes[k], mine, options.insideToleranceMm);
+        }
+    }
+    return result;
+}
+
+}  // namespace
+
+NeighbourSeparation keepNeighboursApart(ocl::Runtime* runtime, std::vector<NeighbourSurface>& rois,
+                                        const NeighbourSeparationOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t count = rois.size();
+    std::vector<Box3> boxes(count);
+    for (std::size_t i = 0; i < count; ++i)
+        boxes[i] = boxOf(*rois[i].surface, options.insideToleranceMm);
+
+    // Candidate pairs: boxes that overlap, planes that are parallel.
+    std::vector<NeighbourPair> pairs;
+    for (std::size_t a = 0; a < count; ++a)
+        for (std::size_t b = a + 1; b < count; ++b)
+            if (boxes[a].overlaps(boxes[b]) && parallelPlanes(rois[a].frame, rois[b].frame))
+                pairs.push_back({a, b});
+    NeighbourSeparation result;
+    result.measures.resize(count);
+    std::vector<bool> active(pairs.size(), true), moved(count, false);
+    const int rounds = options.move ? kRounds : 1;
+    for (int round = 0; round < rounds; ++round) {
+        const Probes probes = probePairs(runtime, rois, pairs, active, options);
+        std::vector<std::vector<Move>> movesOfRoi(count);
+        for (std::size_t p = 0; p < pairs.size(); ++p) {
+            if (!active[p]) continue;
+            NeighbourPair& pair = pairs[p];
+            const Probe &ofA = probes.ofA[p], &ofB = probes.ofB[p];
+            if (round == 0) {
+                pair.overlapOnPlanes = ofA.overlapOnPlanes || ofB.overlapOnPlanes;
+                pair.insideA = ofA.inside.size();
+                pair.insideB = ofB.inside.size();
+                pair.deepestMm = std::max(ofA.deepestMm, ofB.deepestMm);
+            }
+            pair.leftInsideA = ofA.inside.size();
+            pair.leftInsideB = ofB.inside.size();
+            active[p] = options.move && !pair.overlapOnPlanes &&
+                        !ofA.inside.empty() + !ofB.inside.empty() > 0;
+            if (!active[p]) continue;
+            const TriangleSoup &a = *rois[pair.a].surface, &b = *rois[pair.b].surface;
+            for (const Move& m : movesOf(ofA, ofB, a, b, p, round == 0, options.clearanceMm))
+                movesOfRoi[pair.a].push_back(m);
+            for (const Move& m : movesOf(ofB, ofA, b, a, p, round == 0, options.clearanceMm))
+                movesOfRoi[pair.b].push_back(m);
+        }
+        // Each vertex moves once a round, as far as its deepest neighbour asks.
+        for (std::vector<Move>& moves : movesOfRoi) {
+            std::stable_sort(moves.begin(), moves.end(), [](const Move& x, const Move& y) {
+                return x.vertex != y.vertex ? x.vertex < y.vertex : x.lengthMm > y.lengthMm;
+            });
+            moves.erase(
+                std::unique(moves.begin(), moves.end(),
+                            [](const Move& x, const Move& y) { return x.vertex == y.vertex; }),
+                moves.end());
+        }
+        // Surfaces are checked on their own: two at once on the free cores.
+        forEachInOrder(
+            count, defaultJobs(count),
+            [&](std::size_t i, std::size_t) {
+                return movesOfRoi[i].empty() ? std::vector<bool>{}
+                                             : applyMoves(*rois[i].surface, movesOfRoi[i]);
+            },
+            [&](std::size_t i, std::vector<bool> kept) {
+                if (!movesOfRoi[i].empty()) moved[i] = true;
+                for (std::size_t m = 0; m < kept.size(); ++m) {
+                    if (!kept[m]) continue;
+                    NeighbourPair& pair = pairs[movesOfRoi[i][m].pair];
+                    if (round == 0) ++(pair.a == i ? pair.movedA : pair.movedB);
+                    // The last round's moves are not probed again: a kept
+                    // move leaves its vertex outside.
+                    if (round + 1 == rounds) {
+                        std::size_t& left = pair.a == i ? pair.leftInsideA : pair.leftInsideB;
+                        left -= left > 0 ? 1 : 0;
+                    }
+                }
+            });
+    }
+    for (std::size_t i = 0; i < count; ++i)
+        if (moved[i]) result.measures[i] = measureSurface(*rois[i].surface);
+    for (const NeighbourPair& pair : pairs)
+        if (pair.insideA + pair.insideB > 0 || pair.overlapOnPlanes) result.pairs.push_back(pair);
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace dfrecon
