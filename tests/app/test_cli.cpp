@@ -120,6 +120,41 @@ TEST(Cli, AnRoiWithPlanesLeftEmptyIsTwoPieces) {
     EXPECT_NEAR(node["volumeMm3"].get<double>(), 100 * (6 + 4), 1e-3);
 }
 
+// Two labels of a voxelised ball, touching on every plane: --neighbours
+// report measures their overlap between the planes, apart moves them out of
+// each other (the files written as moved, still valid), independent (the
+// default) says nothing of neighbours.
+TEST(Cli, NeighboursAreReportedAndKeptApart) {
+    const std::string slices = std::string(DFRECON_TEST_DATA) + "/neighbours/split-ball.slices";
+    auto neighbours = [&](const std::string& mode) {
+        const fs::path dir = scratch() / ("split-" + mode);
+        const Result run = runDfrecon("reconstruct --all --json --neighbours " + mode + " " +
+                                      slices + " -o " + dir.string());
+        EXPECT_EQ(run.exitCode, 0) << run.err;
+        return nlohmann::json::parse(run.out);
+    };
+    const auto independent = neighbours("independent");
+    EXPECT_TRUE(independent["neighbours"].is_null());
+    const auto reported = neighbours("report")["neighbours"];
+    const auto apart = neighbours("apart");
+    ASSERT_EQ(reported["pairs"].size(), 1u);
+    ASSERT_EQ(apart["neighbours"]["pairs"].size(), 1u);
+    const double before = reported["pairs"][0]["overlapMm3"].get<double>();
+    const double after = apart["neighbours"]["pairs"][0]["overlapMm3"].get<double>();
+    EXPECT_GT(before, 1.0);
+    EXPECT_LT(after, 0.1 * before);
+    EXPECT_EQ(reported["pairs"][0]["verticesMovedA"], 0);
+    EXPECT_GT(apart["neighbours"]["pairs"][0]["verticesMovedA"].get<int>(), 0);
+    for (const auto& roi : apart["rois"]) {
+        EXPECT_TRUE(roi["validSolid"].get<bool>());
+        // The report's volume is the moved surface's, as written.
+        const Result check = runDfrecon("check --json " + roi["output"].get<std::string>());
+        ASSERT_EQ(check.exitCode, 0) << check.err;
+        EXPECT_NEAR(nlohmann::json::parse(check.out)["volumeMm3"].get<double>(),
+                    roi["volumeMm3"].get<double>(), 1e-3);
+    }
+}
+
 // One ROI of a .slices file whose contours cross in more places than any
 // reading combines: it alone is reported; the other reconstructs by name,
 // and --all writes it and exits 2.
