@@ -22,6 +22,7 @@ int benchStructureSet(const std::string& device, const std::string& route = "");
 int benchCompare(const std::string& device);
 int benchMargin(const std::string& device);
 int benchLabelMaps(const std::string& device);
+int benchNeighbours(const std::string& device);
 /// `setsDir` empty: build/truth-sets, made by scripts/truth_sets.sh where
 /// missing; `onlySet` empty: every set there.
 int benchTruth(const std::string& device, const std::string& setsDir, const std::string& onlySet);

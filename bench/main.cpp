@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
         "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|margin|"
-        "label-maps|"
+        "label-maps|neighbours|"
         "all "
         "[--device SPEC] [--truth-sets DIR] [--truth-set NAME]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
@@ -41,7 +41,9 @@ int main(int argc, char** argv) {
         "  compare    Dice and Hausdorff of offset balls: surfaces (exact overlap) vs voxels, "
         "against the exact values\n"
         "  label-maps label maps of the shared structure sets' ROIs (1 cc or more) from the "
-        "reconstructed solid vs from the 3D distance field: volume against the surface's\n";
+        "reconstructed solid vs from the 3D distance field: volume against the surface's\n"
+        "  neighbours touching ROIs (split ball, Brodmann atlas) reconstructed each on its own "
+        "vs moved apart: the overlap left between pairs (exact) and the volumes\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -68,11 +70,13 @@ int main(int argc, char** argv) {
         if (suite == "compare") return benchCompare(device);
         if (suite == "margin") return benchMargin(device);
         if (suite == "label-maps") return benchLabelMaps(device);
+        if (suite == "neighbours") return benchNeighbours(device);
         if (suite == "all")
             return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                    benchTruth(device, truthSets, truthSet) | benchSimplify(device) |
                    benchSdm(device) | benchSegment(device) | benchStructureSet(device) |
-                   benchCompare(device) | benchMargin(device) | benchLabelMaps(device);
+                   benchCompare(device) | benchMargin(device) | benchLabelMaps(device) |
+                   benchNeighbours(device);
     } catch (const std::exception& e) {
         std::cerr << "dfrecon-bench " << suite << ": " << e.what() << "\n";
         return 1;

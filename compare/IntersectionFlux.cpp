@@ -301,16 +301,19 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
         return result;
     }
     Side sideA(a, {0, 0, 0}), sideB(b, shiftOfB);
-    Box3 all;
-    for (const Side* s : {&sideA, &sideB})
-        for (const Vec3& p : s->soup.points) all.add(p);
+    Box3 all, boundsA, boundsB;
+    for (const Vec3& p : sideA.soup.points) boundsA.add(p);
+    for (const Vec3& p : sideB.soup.points) boundsB.add(p);
+    all.add(boundsA);
+    all.add(boundsB);
     // Terms are summed about the middle, where they are smallest.
     const Vec3 origin = 0.5 * (all.lo + all.hi);
 
     using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t>;
-    auto boxesOf = [](const Side& s) {
+    // Only a triangle that reaches into the other surface's box can cross
+    // it (neighbours share a sliver of their boxes: most triangles do not).
+    auto boxesOf = [](const Side& s, const Box3& other) {
         std::vector<Box> boxes;
-        boxes.reserve(s.soup.triangles.size());
         for (std::uint32_t t = 0; t < s.soup.triangles.size(); ++t) {
             const auto& tri = s.soup.triangles[t];
             double lo[3], hi[3];
@@ -320,11 +323,14 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
                 lo[axis] = std::min({x, y, z});
                 hi[axis] = std::max({x, y, z});
             }
+            if (lo[0] > other.hi.x || hi[0] < other.lo.x || lo[1] > other.hi.y ||
+                hi[1] < other.lo.y || lo[2] > other.hi.z || hi[2] < other.lo.z)
+                continue;
             boxes.emplace_back(lo, hi, t);
         }
         return boxes;
     };
-    std::vector<Box> boxesA = boxesOf(sideA), boxesB = boxesOf(sideB);
+    std::vector<Box> boxesA = boxesOf(sideA, boundsB), boxesB = boxesOf(sideB, boundsA);
 
     // Thrown out of the pair search at the first pair in no general
     // position: the rest of the search would be wasted (the caller moves B
@@ -433,32 +439,34 @@ IntersectionFlux intersectionByFlux(const TriangleSoup& a, const TriangleSoup& b
     std::vector<PairShare> shares(shareCount);
     std::atomic<std::size_t> nextShare{0};
     std::atomic<bool> degenerate{false};
-    runOnFreeCores(shareCount - 1, [&](std::size_t, const std::atomic<bool>& stop) {
-        std::vector<Box> mineA, mineB;
-        for (std::size_t k; !stop && !degenerate && (k = nextShare++) < shareCount;) {
-            const std::size_t first = k * byX.size() / shareCount,
-                              last = (k + 1) * byX.size() / shareCount;
-            mineA.clear();
-            double lo = INFINITY, hi = -INFINITY;
-            for (std::size_t n = first; n < last; ++n) {
-                const Box& box = boxesA[byX[n]];
-                mineA.push_back(box);
-                lo = std::min(lo, box.min_coord(0));
-                hi = std::max(hi, box.max_coord(0));
+    // No triangle of one in the other's box: nothing crosses, no share.
+    if (shareCount > 0)
+        runOnFreeCores(shareCount - 1, [&](std::size_t, const std::atomic<bool>& stop) {
+            std::vector<Box> mineA, mineB;
+            for (std::size_t k; !stop && !degenerate && (k = nextShare++) < shareCount;) {
+                const std::size_t first = k * byX.size() / shareCount,
+                                  last = (k + 1) * byX.size() / shareCount;
+                mineA.clear();
+                double lo = INFINITY, hi = -INFINITY;
+                for (std::size_t n = first; n < last; ++n) {
+                    const Box& box = boxesA[byX[n]];
+                    mineA.push_back(box);
+                    lo = std::min(lo, box.min_coord(0));
+                    hi = std::max(hi, box.max_coord(0));
+                }
+                mineB.clear();
+                for (const Box& box : boxesB)
+                    if (box.max_coord(0) >= lo && box.min_coord(0) <= hi) mineB.push_back(box);
+                PairShare& share = shares[k];
+                try {
+                    CGAL::box_intersection_d(
+                        mineA.begin(), mineA.end(), mineB.begin(), mineB.end(),
+                        [&](const Box& boxA, const Box& boxB) { cut(share, boxA, boxB); });
+                } catch (const Degenerate&) {
+                    degenerate = true;
+                }
             }
-            mineB.clear();
-            for (const Box& box : boxesB)
-                if (box.max_coord(0) >= lo && box.min_coord(0) <= hi) mineB.push_back(box);
-            PairShare& share = shares[k];
-            try {
-                CGAL::box_intersection_d(
-                    mineA.begin(), mineA.end(), mineB.begin(), mineB.end(),
-                    [&](const Box& boxA, const Box& boxB) { cut(share, boxA, boxB); });
-            } catch (const Degenerate&) {
-                degenerate = true;
-            }
-        }
-    });
+        });
     if (degenerate) return result;
     CompensatedSum volume, bound;
     for (PairShare& share : shares) {

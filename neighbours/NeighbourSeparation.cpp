@@ -109,6 +109,9 @@ struct Move {
     Vec3 to;
     double lengthMm = 0;
     std::size_t pair = 0;
+    // The neighbour's closest point and triangle the move heads for.
+    Vec3 closest;
+    std::uint32_t otherTriangle = 0;
 };
 
 // A vertex between the planes found inside a neighbour, and the
@@ -170,7 +173,31 @@ std::vector<Move> movesOf(const Probe& mine, const Probe& theirs, const Triangle
             firstRound && (theirsInside[t[0]] || theirsInside[t[1]] || theirsInside[t[2]]);
         const double span = length(toward);
         const double share = std::min(1.0, ((bothMove ? 0.5 : 1.0) * span + clearanceMm) / span);
-        moves.push_back({in.vertex, from + share * toward, share * span, pair});
+        moves.push_back(
+            {in.vertex, from + share * toward, share * span, pair, in.closest, in.triangle});
+    }
+    return moves;
+}
+
+// Where a vertex stays inside its neighbour (its move would have made its
+// own surface cross itself), the neighbour gives way: the corners of its
+// closest triangle that are off its planes move inward past the vertex, by
+// the vertex's depth and the clearance. `stuck` are one ROI's moves that
+// were undone; `other` the neighbour's surface, `otherPlanes` its planes.
+std::vector<Move> givingWay(const std::vector<Move>& stuck, const TriangleSoup& own,
+                            const NeighbourSurface& other, double planeToleranceMm,
+                            double clearanceMm) {
+    std::vector<Move> moves;
+    for (const Move& m : stuck) {
+        const Vec3 away = own.points[m.vertex] - m.closest;
+        const double depth = length(away);
+        if (!(depth > 0)) continue;
+        const Vec3 shift = ((depth + clearanceMm) / depth) * away;
+        for (const std::uint32_t w : other.surface->triangles[m.otherTriangle]) {
+            const Vec3 p = other.surface->points[w];
+            if (onPlane(other.planeZMm, dot(p, other.frame.n), planeToleranceMm)) continue;
+            moves.push_back({w, p + shift, depth + clearanceMm, m.pair, {}, 0});
+        }
     }
     return moves;
 }
@@ -186,13 +213,20 @@ std::vector<ClosestPrimitive> distancesTo(ocl::Runtime* runtime, const SurfaceSc
     return kernel.runAt(points, query);
 }
 
-// Moves `moves` (one per vertex) into `soup` and undoes, vertex by vertex,
-// those around any collision or degenerate triangle they make, until none
-// is left (the soup was a valid solid, and its triangles do not change).
-// Returns which moves stayed.
+// Moves `moves` (one per vertex) into `soup`; a move around a collision or
+// degenerate triangle is halved, up to kHalvings times, then undone, until
+// none is left (the soup was a valid solid, and its triangles do not
+// change). Returns which moves stayed, in full or in part.
+constexpr int kHalvings = 3;
+
+Vec3 asFloat(Vec3 p) {
+    return {double(float(p.x)), double(float(p.y)), double(float(p.z))};
+}
+
 std::vector<bool> applyMoves(TriangleSoup& soup, const std::vector<Move>& moves) {
     std::vector<std::int64_t> moveOf(soup.points.size(), -1);
     std::vector<Vec3> before(moves.size());
+    std::vector<int> halvings(moves.size(), 0);
     std::vector<bool> changed(soup.points.size(), false);
     for (std::size_t m = 0; m < moves.size(); ++m) {
         const std::uint32_t v = moves[m].vertex;
@@ -200,32 +234,58 @@ std::vector<bool> applyMoves(TriangleSoup& soup, const std::vector<Move>& moves)
         changed[v] = true;
         before[m] = soup.points[v];
         // As mesh files hold them: the check then judges what is written.
-        soup.points[v] = {double(float(moves[m].to.x)), double(float(moves[m].to.y)),
-                          double(float(moves[m].to.z))};
+        soup.points[v] = asFloat(moves[m].to);
     }
     std::vector<bool> kept(moves.size(), true);
     for (;;) {
         // Only triangles whose corners changed since the last search can
-        // collide anew: the moved ones first, then those around undone moves.
+        // collide anew: the moved ones first, then those around changed moves.
         std::vector<std::size_t> suspects;
         for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
             const auto& tri = soup.triangles[t];
             if (changed[tri[0]] || changed[tri[1]] || changed[tri[2]]) suspects.push_back(t);
         }
         std::fill(changed.begin(), changed.end(), false);
-        bool undone = false;
+        bool again = false;
         for (const std::size_t t : defectsAfterMoving(soup, suspects))
-            for (const std::uint32_t v : soup.triangles[t])
-                if (moveOf[v] >= 0) {
-                    const std::size_t m = std::size_t(moveOf[v]);
+            for (const std::uint32_t v : soup.triangles[t]) {
+                if (moveOf[v] < 0 || changed[v]) continue;
+                const std::size_t m = std::size_t(moveOf[v]);
+                changed[v] = again = true;
+                if (++halvings[m] <= kHalvings) {
+                    soup.points[v] = asFloat(before[m] + 0.5 * (soup.points[v] - before[m]));
+                } else {
                     soup.points[v] = before[m];
                     kept[m] = false;
                     moveOf[v] = -1;
-                    changed[v] = true;
-                    undone = true;
                 }
-        if (!undone) return kept;
+            }
+        if (!again) return kept;
     }
+}
+
+// Applies the moves of every ROI (deduplicated: each vertex once, as far as
+// its deepest neighbour asks), each surface checked on its own, two at once
+// on the free cores. Returns per ROI which of its (deduplicated) moves stayed.
+std::vector<std::vector<bool>> applyAll(std::vector<NeighbourSurface>& rois,
+                                        std::vector<std::vector<Move>>& movesOfRoi) {
+    for (std::vector<Move>& moves : movesOfRoi) {
+        std::stable_sort(moves.begin(), moves.end(), [](const Move& x, const Move& y) {
+            return x.vertex != y.vertex ? x.vertex < y.vertex : x.lengthMm > y.lengthMm;
+        });
+        moves.erase(std::unique(moves.begin(), moves.end(),
+                                [](const Move& x, const Move& y) { return x.vertex == y.vertex; }),
+                    moves.end());
+    }
+    std::vector<std::vector<bool>> kept(rois.size());
+    forEachInOrder(
+        rois.size(), defaultJobs(rois.size()),
+        [&](std::size_t i, std::size_t) {
+            return movesOfRoi[i].empty() ? std::vector<bool>{}
+                                         : applyMoves(*rois[i].surface, movesOfRoi[i]);
+        },
+        [&](std::size_t i, std::vector<bool> done) { kept[i] = std::move(done); });
+    return kept;
 }
 
 // Cells of about bandMm that lie within bandMm of a surface's triangles: a
@@ -377,37 +437,40 @@ NeighbourSeparation keepNeighboursApart(ocl::Runtime* runtime, std::vector<Neigh
             for (const Move& m : movesOf(ofB, ofA, b, a, p, round == 0, options.clearanceMm))
                 movesOfRoi[pair.b].push_back(m);
         }
-        // Each vertex moves once a round, as far as its deepest neighbour asks.
-        for (std::vector<Move>& moves : movesOfRoi) {
-            std::stable_sort(moves.begin(), moves.end(), [](const Move& x, const Move& y) {
-                return x.vertex != y.vertex ? x.vertex < y.vertex : x.lengthMm > y.lengthMm;
-            });
-            moves.erase(
-                std::unique(moves.begin(), moves.end(),
-                            [](const Move& x, const Move& y) { return x.vertex == y.vertex; }),
-                moves.end());
-        }
-        // Surfaces are checked on their own: two at once on the free cores.
-        forEachInOrder(
-            count, defaultJobs(count),
-            [&](std::size_t i, std::size_t) {
-                return movesOfRoi[i].empty() ? std::vector<bool>{}
-                                             : applyMoves(*rois[i].surface, movesOfRoi[i]);
-            },
-            [&](std::size_t i, std::vector<bool> kept) {
-                if (!movesOfRoi[i].empty()) moved[i] = true;
-                for (std::size_t m = 0; m < kept.size(); ++m) {
-                    if (!kept[m]) continue;
-                    NeighbourPair& pair = pairs[movesOfRoi[i][m].pair];
-                    if (round == 0) ++(pair.a == i ? pair.movedA : pair.movedB);
-                    // The last round's moves are not probed again: a kept
-                    // move leaves its vertex outside.
-                    if (round + 1 == rounds) {
-                        std::size_t& left = pair.a == i ? pair.leftInsideA : pair.leftInsideB;
-                        left -= left > 0 ? 1 : 0;
-                    }
+        const std::vector<std::vector<bool>> kept = applyAll(rois, movesOfRoi);
+        std::vector<std::vector<Move>> giving(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!movesOfRoi[i].empty()) moved[i] = true;
+            std::vector<Move> stuck;
+            for (std::size_t m = 0; m < kept[i].size(); ++m) {
+                NeighbourPair& pair = pairs[movesOfRoi[i][m].pair];
+                if (!kept[i][m]) {
+                    stuck.push_back(movesOfRoi[i][m]);
+                    continue;
                 }
-            });
+                if (round == 0) ++(pair.a == i ? pair.movedA : pair.movedB);
+                // The last round's moves are not probed again: a kept move
+                // leaves its vertex outside.
+                if (round + 1 == rounds) {
+                    std::size_t& left = pair.a == i ? pair.leftInsideA : pair.leftInsideB;
+                    left -= left > 0 ? 1 : 0;
+                }
+            }
+            // After the last round, neighbours give way to the stuck.
+            if (round + 1 < rounds) continue;
+            for (const Move& m : stuck) {
+                const NeighbourPair& pair = pairs[m.pair];
+                const std::size_t other = pair.a == i ? pair.b : pair.a;
+                for (const Move& g : givingWay({m}, *rois[i].surface, rois[other],
+                                               options.planeToleranceMm, options.clearanceMm))
+                    giving[other].push_back(g);
+            }
+        }
+        if (round + 1 == rounds) {
+            const std::vector<std::vector<bool>> gave = applyAll(rois, giving);
+            for (std::size_t i = 0; i < count; ++i)
+                if (!giving[i].empty()) moved[i] = true;
+        }
     }
     for (std::size_t i = 0; i < count; ++i)
         if (moved[i]) result.measures[i] = measureSurface(*rois[i].surface);
