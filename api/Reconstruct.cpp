@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "api/Stopwatch.hpp"
+#include "geometry/OrderedParallel.hpp"
 
 namespace dfrecon {
 
@@ -75,6 +76,21 @@ NeighbourSeparation keepNeighboursApart(ocl::Runtime& runtime, const std::vector
     }
     separation.measures = std::move(measures);
     return separation;
+}
+
+std::vector<std::optional<Overlap>> neighbourOverlaps(const NeighbourSeparation& separation,
+                                                      const std::vector<RoiSurface*>& surfaces) {
+    std::vector<std::optional<Overlap>> overlaps(separation.pairs.size());
+    forEachInOrder(
+        separation.pairs.size(), defaultJobs(separation.pairs.size()),
+        [&](std::size_t p, std::size_t) -> std::optional<Overlap> {
+            const NeighbourPair& pair = separation.pairs[p];
+            if (pair.overlapOnPlanes) return std::nullopt;
+            const RoiSurface &a = *surfaces[pair.a], &b = *surfaces[pair.b];
+            return overlapOf(a.surface, b.surface, a.check, b.check);
+        },
+        [&](std::size_t p, std::optional<Overlap> overlap) { overlaps[p] = std::move(overlap); });
+    return overlaps;
 }
 
 }  // namespace dfrecon

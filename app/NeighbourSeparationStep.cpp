@@ -3,8 +3,6 @@
 #include <sstream>
 
 #include "api/Stopwatch.hpp"
-#include "compare/OverlapVolume.hpp"
-#include "geometry/OrderedParallel.hpp"
 
 namespace dfrecon::app {
 
@@ -22,16 +20,7 @@ nlohmann::ordered_json neighbourSeparationJson(ocl::Runtime& runtime,
     // What is left between each pair that met, measured on the surfaces as
     // they will be written.
     const Stopwatch watch;
-    std::vector<std::optional<Overlap>> overlaps(separation.pairs.size());
-    forEachInOrder(
-        separation.pairs.size(), defaultJobs(separation.pairs.size()),
-        [&](std::size_t p, std::size_t) -> std::optional<Overlap> {
-            const NeighbourPair& pair = separation.pairs[p];
-            if (pair.overlapOnPlanes) return std::nullopt;
-            const RoiSurface &a = *taking[pair.a], &b = *taking[pair.b];
-            return overlapOf(a.surface, b.surface, a.check, b.check);
-        },
-        [&](std::size_t p, std::optional<Overlap> overlap) { overlaps[p] = overlap; });
+    const std::vector<std::optional<Overlap>> overlaps = neighbourOverlaps(separation, taking);
 
     nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
     for (std::size_t p = 0; p < separation.pairs.size(); ++p) {

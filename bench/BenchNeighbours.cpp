@@ -15,7 +15,6 @@
 
 #include "bench/Benchmarks.hpp"
 #include "cl/WorkerRuntimes.hpp"
-#include "compare/OverlapVolume.hpp"
 #include "dfrecon/Contours.hpp"
 #include "dfrecon/Reconstruct.hpp"
 #include "geometry/OrderedParallel.hpp"
@@ -29,17 +28,11 @@ nlohmann::ordered_json measure(const std::string& caseName, const char* system,
                                const std::vector<const Roi*>& rois,
                                std::vector<RoiSurface>& surfaces,
                                const NeighbourSeparation& separation, double seconds) {
-    std::vector<double> overlaps(separation.pairs.size(), 0.0);
-    forEachInOrder(
-        separation.pairs.size(), defaultJobs(separation.pairs.size()),
-        [&](std::size_t p, std::size_t) {
-            const NeighbourPair& pair = separation.pairs[p];
-            if (pair.overlapOnPlanes) return 0.0;
-            return overlapOf(surfaces[pair.a].surface, surfaces[pair.b].surface,
-                             surfaces[pair.a].check, surfaces[pair.b].check)
-                .intersectionMm3;
-        },
-        [&](std::size_t p, double overlap) { overlaps[p] = overlap; });
+    std::vector<RoiSurface*> all;
+    for (RoiSurface& s : surfaces) all.push_back(&s);
+    std::vector<double> overlaps;
+    for (const std::optional<Overlap>& overlap : neighbourOverlaps(separation, all))
+        overlaps.push_back(overlap ? overlap->intersectionMm3 : 0.0);
     double total = 0, largest = 0, worstVolume = 0;
     std::size_t within = 0, met = 0;
     std::string largestPair;

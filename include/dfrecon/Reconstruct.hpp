@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cl/Runtime.hpp"
+#include "compare/OverlapVolume.hpp"
 #include "contours/ContourSet.hpp"
 #include "dfrecon/Simplify.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -74,5 +75,12 @@ void simplifyRoiSurface(ocl::Runtime& runtime, const Roi& roi, RoiSurface& surfa
 NeighbourSeparation keepNeighboursApart(ocl::Runtime& runtime, const std::vector<const Roi*>& rois,
                                         const std::vector<RoiSurface*>& surfaces,
                                         const NeighbourSeparationOptions& options = {});
+
+/// The overlap of each pair of `separation` (keepNeighboursApart's, over the
+/// same `surfaces`) as the surfaces are now, by compare's exact overlap
+/// (overlapOf); none for pairs whose contours overlap on their planes (left
+/// as drawn). Pairs run on the free cores. O(one overlap per pair).
+std::vector<std::optional<Overlap>> neighbourOverlaps(const NeighbourSeparation& separation,
+                                                      const std::vector<RoiSurface*>& surfaces);
 
 }  // namespace dfrecon
