@@ -33,3 +33,17 @@ for line in "${sets[@]}"; do
   rm -rf "$out/$name"
   mv "$out/$name.tmp" "$out/$name"
 done
+# Label-map sets (issue 66): a set's true surfaces voxelised at 1 mm and
+# contoured from the voxels, as segmentation tools export label maps
+# (scripts/labelmap_truth_set.py; it needs the dfrecon program: $DFRECON,
+# else build/bin/dfrecon).
+dfrecon=${DFRECON:-$here/../build/bin/dfrecon}
+labelmaps=(
+  "brodmann-labelmap-1  brodmann-axial-2.5"
+  "jhu-labelmap-1       jhu-axial-2"
+)
+for line in "${labelmaps[@]}"; do
+  read -r name source <<<"$line"
+  [ -s "$out/$name/set-rtstruct.dcm" ] && continue
+  /usr/bin/python3 "$here/labelmap_truth_set.py" "$out/$source" "$out/$name" "$dfrecon" >&2
+done
