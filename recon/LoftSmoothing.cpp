@@ -84,10 +84,15 @@ class EdgeMiddles {
 /// One round of red–green refinement of the loft triangles' slanted edges
 /// whose middle lies farther than `toleranceMm` from the smooth surface (F
 /// is a distance in the plane, so |F| there is how far the straight edge
-/// strays). Returns the number of edges split.
+/// strays). Where bent vertices stay within the slab's planes' regions
+/// (`withinNeighbourPlanes`, a pixel lattice's voxels), an edge whose middle
+/// lies inside the smooth surface but already within the tolerance of that
+/// union's border stays whole: its middle could not move out farther than
+/// the tolerance, so splitting it would add triangles and no shape (the
+/// staircases of label maps). Returns the number of edges split.
 std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
                        std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
-                       std::vector<Edge>& parents) {
+                       bool withinNeighbourPlanes, std::vector<Edge>& parents) {
     EdgeMiddles middle(soup.points.size());
     // Collected apart and appended with an exact reservation: a surface of
     // millions of points grown by push_back would hold up to twice its size.
@@ -108,7 +113,10 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
                 middle.find(a, b) != EdgeMiddles::kNone)
                 continue;
             const Vec3 m = 0.5 * (pa + pb);
-            if (std::abs(field.value(m)) <= toleranceMm) continue;
+            const double f = field.value(m);
+            if (std::abs(f) <= toleranceMm) continue;
+            if (withinNeighbourPlanes && f < 0 && field.neighbourPlanesValue(m) > -toleranceMm)
+                continue;
             middle.add(a, b, std::uint32_t(soup.points.size() + middles.size()));
             middles.push_back(m);
             parents.push_back({a, b});
@@ -302,7 +310,7 @@ void refineAndBend(TriangleSoup& surface, LoftMarks& marks, const Bending& bendi
     for (int round = 0; round < kMaxRounds; ++round) {
         const std::size_t before = surface.points.size();
         if (refineOnce(surface, marks.pieceOf, marks.isLoft, bending.field, bending.toleranceMm,
-                       parents) == 0)
+                       bending.withinNeighbourPlanes, parents) == 0)
             break;
         bending.stats.rounds = std::max(bending.stats.rounds, round + 1);
         bendNewVertices(surface, before, marks.isLoft, bending);
