@@ -386,11 +386,13 @@ PyMesh reconstructOne(const PyStructureSet& set, const py::object& roiChoice,
 
 // Several ROIs at once, as `reconstruct --all --jobs` runs them: `jobs`
 // workers (0: one per core), each with its own OpenCL queue, results in the
-// given order. The first ROI that fails raises its error.
+// given order. The first ROI that fails raises its error. With `apart`,
+// the neighbours are moved apart before any is simplified, as `reconstruct
+// --all --neighbours apart` does.
 std::vector<PyMesh> reconstructMany(const PyStructureSet& set,
                                     const std::vector<std::string>& names,
                                     const std::vector<std::pair<std::string, std::string>>& given,
-                                    unsigned jobs) {
+                                    unsigned jobs, bool apart) {
     std::vector<const Roi*> rois;
     for (const std::string& name : names) rois.push_back(&chooseRoi(set.read, py::str(name)));
     const ReconstructSettings settings = settingsOf(given);
@@ -403,10 +405,25 @@ std::vector<PyMesh> reconstructMany(const PyStructureSet& set,
         forEachInOrder(
             rois.size(), workers,
             [&](std::size_t i, std::size_t worker) {
-                return reconstructRoi(runtimes[worker], *rois[i],
-                                      RoiReconstructOptions{settings.options, settings.maxErrorMm});
+                return reconstructRoi(
+                    runtimes[worker], *rois[i],
+                    RoiReconstructOptions{settings.options, apart ? 0 : settings.maxErrorMm});
             },
             [&](std::size_t i, RoiSurface result) { results[i] = std::move(result); });
+        if (apart) {
+            std::vector<RoiSurface*> surfaces;
+            for (RoiSurface& result : results) surfaces.push_back(&result);
+            keepNeighboursApart(runtimes[0], rois, surfaces);
+            if (settings.maxErrorMm > 0)
+                forEachInOrder(
+                    rois.size(), workers,
+                    [&](std::size_t i, std::size_t worker) {
+                        simplifyRoiSurface(runtimes[worker], *rois[i], results[i],
+                                           settings.maxErrorMm);
+                        return 0;
+                    },
+                    [](std::size_t, int) {});
+        }
     }
     std::vector<PyMesh> meshes;
     for (std::size_t i = 0; i < rois.size(); ++i)
@@ -774,7 +791,7 @@ PYBIND11_MODULE(_dfrecon, m) {
     m.def("_reconstruct", &reconstructOne, py::arg("structure_set"), py::arg("roi"),
           py::arg("options"));
     m.def("_reconstruct_many", &reconstructMany, py::arg("structure_set"), py::arg("rois"),
-          py::arg("options"), py::arg("jobs"));
+          py::arg("options"), py::arg("jobs"), py::arg("apart"));
     m.def("_reconstruct_option_names", &reconstructSettingsNames);
 
     m.def("_simplify", [](const PyMesh& mesh, double maxErrorMm) {

@@ -435,7 +435,7 @@ def _given_options(options, function):
     return given
 
 
-def reconstruct(src, roi=None, *, jobs=0, **options):
+def reconstruct(src, roi=None, *, jobs=0, neighbours="independent", **options):
     """Reconstructs ROI `roi` of `src` (a :class:`StructureSet` or a path to
     contours) into a closed :class:`Mesh`, as ``dfrecon reconstruct`` does:
     same surface, same triangles, same report.
@@ -449,8 +449,14 @@ def reconstruct(src, roi=None, *, jobs=0, **options):
     ``smooth_tolerance_mm`` (0.05), ``max_error_mm`` (0: no simplification).
     Several ROIs are reconstructed ``jobs`` at a time (0: one per core), each
     worker with its own OpenCL queue, as ``reconstruct --all --jobs``; an ROI
-    that cannot be reconstructed (its ``defect``) raises its error.
+    that cannot be reconstructed (its ``defect``) raises its error. With
+    several ROIs, ``neighbours="apart"`` moves those whose contours overlap on
+    no plane out of each other where their surfaces overlap between the
+    planes, as ``reconstruct --all --neighbours apart`` (before any
+    simplification; each mesh's report gives its volume after the move).
     """
+    if neighbours not in ("independent", "apart"):
+        raise ValueError("neighbours must be 'independent' or 'apart', not %r" % (neighbours,))
     given = _given_options(options, "reconstruct")
     ss = _structure_set(src)
     try:
@@ -458,7 +464,8 @@ def reconstruct(src, roi=None, *, jobs=0, **options):
             names = [r.name for r in ss.rois if len(r.contours) > 0 or r.defect]
             if len(set(names)) != len(names):
                 raise ValueError("the structure set has ROIs of one name; reconstruct them by number")
-            cores = _core_module._reconstruct_many(ss._core, names, given, int(jobs))
+            cores = _core_module._reconstruct_many(ss._core, names, given, int(jobs),
+                                                   neighbours == "apart")
             return {name: Mesh(_core=core) for name, core in zip(names, cores)}
         return Mesh(_core=_core_module._reconstruct(ss._core, _roi_key(roi), given))
     except ValueError as error:

@@ -88,11 +88,11 @@ class Mesh:
 def read_mesh(path: _Path) -> Mesh: ...
 @overload
 def reconstruct(
-    src: Union[StructureSet, _Path], roi: Union[str, int, Roi], *, jobs: int = ..., **options: Any
+    src: Union[StructureSet, _Path], roi: Union[str, int, Roi], *, jobs: int = ..., neighbours: str = ..., **options: Any
 ) -> Mesh: ...
 @overload
 def reconstruct(
-    src: Union[StructureSet, _Path], roi: None = ..., *, jobs: int = ..., **options: Any
+    src: Union[StructureSet, _Path], roi: None = ..., *, jobs: int = ..., neighbours: str = ..., **options: Any
 ) -> Union[Mesh, Dict[str, Mesh]]: ...
 
 def margin(

@@ -219,6 +219,23 @@ def test_same_surfaces_as_the_program_on_brodmann_areas(cli, shared, tmp_path):
     same_as_cli(path, ["BA17", "BA44"], cli, tmp_path)
 
 
+def test_neighbours_apart_as_the_program_moves_them(cli, tmp_path):
+    # Two touching labels of a voxelised ball: the same surfaces as
+    # `reconstruct --all --neighbours apart`, smaller than each on its own.
+    path = pytest.importorskip("conftest").SOURCE / "tests/data/neighbours/split-ball.slices"
+    apart = dfrecon.reconstruct(path, neighbours="apart", jobs=1)
+    alone = dfrecon.reconstruct(path, jobs=1)
+    report = cli("reconstruct", path, "--all", "--neighbours", "apart", "--json", "-o",
+                 tmp_path / "out")
+    for roi in report["rois"]:
+        mesh = apart[roi["roi"]]
+        assert mesh.valid_solid
+        assert mesh.report["volumeMm3"] == pytest.approx(roi["volumeMm3"], abs=1e-6)
+        assert mesh.report["volumeMm3"] < alone[roi["roi"]].report["volumeMm3"]
+    with pytest.raises(ValueError, match="neighbours"):
+        dfrecon.reconstruct(path, neighbours="sideways")
+
+
 # ---- fields ------------------------------------------------------------------
 
 
