@@ -87,7 +87,7 @@ std::vector<std::optional<Overlap>> neighbourOverlaps(const NeighbourSeparation&
             const NeighbourPair& pair = separation.pairs[p];
             if (pair.overlapOnPlanes) return std::nullopt;
             const RoiSurface &a = *surfaces[pair.a], &b = *surfaces[pair.b];
-            return overlapOf(a.surface, b.surface, a.check, b.check);
+            return overlapByFlux(a.surface, b.surface, a.check, b.check);
         },
         [&](std::size_t p, std::optional<Overlap> overlap) { overlaps[p] = std::move(overlap); });
     return overlaps;

@@ -50,7 +50,7 @@ nlohmann::ordered_json neighbourSeparationJson(ocl::Runtime& runtime,
 }
 
 std::string neighbourSeparationLine(const nlohmann::ordered_json& neighbours) {
-    std::size_t met = 0, onPlanes = 0;
+    std::size_t met = 0, onPlanes = 0, unmeasured = 0;
     double largest = 0;
     std::string largestPair;
     for (const auto& pair : neighbours["pairs"]) {
@@ -59,6 +59,10 @@ std::string neighbourSeparationLine(const nlohmann::ordered_json& neighbours) {
             continue;
         }
         ++met;
+        if (pair["overlapMm3"].is_null()) {
+            ++unmeasured;
+            continue;
+        }
         const double overlap = pair["overlapMm3"].get<double>();
         if (overlap > largest) {
             largest = overlap;
@@ -72,6 +76,7 @@ std::string neighbourSeparationLine(const nlohmann::ordered_json& neighbours) {
     if (met > 0)
         line << (moved ? ", largest overlap left " : ", largest overlap ") << largest << " mm3"
              << (largestPair.empty() ? "" : " (" + largestPair + ")");
+    if (unmeasured > 0) line << " (" << unmeasured << " not measured: see --json)";
     if (onPlanes > 0) line << "; " << onPlanes << " pairs overlap on their planes, left as drawn";
     line << "\n";
     return line.str();

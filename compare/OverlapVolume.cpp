@@ -129,8 +129,8 @@ Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b) {
     return overlapOf(a, b, checkMesh(a), checkMesh(b));
 }
 
-Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckReport& checkA,
-                  const MeshCheckReport& checkB) {
+std::optional<Overlap> overlapByFlux(const TriangleSoup& a, const TriangleSoup& b,
+                                     const MeshCheckReport& checkA, const MeshCheckReport& checkB) {
     // The check measures what the overlap needs of each solid alone.
     for (const MeshCheckReport* check : {&checkA, &checkB})
         if (!check->validSolid())
@@ -163,10 +163,21 @@ Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckR
         overlap.intersectionBoundMm3 = flux.boundMm3 + areaB * shiftMm;
         return overlap;
     }
+    return std::nullopt;
+}
+
+Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckReport& checkA,
+                  const MeshCheckReport& checkB) {
+    if (std::optional<Overlap> byFlux = overlapByFlux(a, b, checkA, checkB)) return *byFlux;
+    Overlap overlap;
+    overlap.volumeAMm3 = checkA.volumeMm3;
+    overlap.volumeBMm3 = checkB.volumeMm3;
+    const double areaB = checkB.areaMm2;
+    const Vec3 direction = overlapShiftDirection();
     // Corefinement, exact, where the flux found no general position even
-    // with B moved (not met on any surface so far; kept because it decides
-    // the same question another way).
-    if (!shiftAtOnce) {
+    // with B moved (not met on any reconstructed surface so far; kept
+    // because it decides the same question another way).
+    if (!likelyCoincideInPart(a, b)) {
         if (const std::optional<double> volume = intersectionVolume(a, b, {0, 0, 0})) {
             overlap.intersectionMm3 = *volume;
             overlap.method = "exact";

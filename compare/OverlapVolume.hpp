@@ -59,6 +59,14 @@ std::optional<double> intersectionVolume(const TriangleSoup& a, const TriangleSo
 /// corefinement's exact arithmetic only where all of those fail.
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b);
 
+/// overlapOf by the flux alone (with B moved where the surfaces coincide in
+/// part), none where no shift gives it general position: for callers that
+/// would rather report "not measured" than wait for corefinement, whose
+/// exact constructions take minutes on surfaces of 10⁵ triangles. Both
+/// must have been checked (checkA = checkMesh(a), ...). O(overlapOf's flux).
+std::optional<Overlap> overlapByFlux(const TriangleSoup& a, const TriangleSoup& b,
+                                     const MeshCheckReport& checkA, const MeshCheckReport& checkB);
+
 /// The same where the caller has checked both solids already (checkA =
 /// checkMesh(a), checkB = checkMesh(b)): they are not checked again.
 Overlap overlapOf(const TriangleSoup& a, const TriangleSoup& b, const MeshCheckReport& checkA,

@@ -77,9 +77,12 @@ NeighbourSeparation keepNeighboursApart(ocl::Runtime& runtime, const std::vector
                                         const NeighbourSeparationOptions& options = {});
 
 /// The overlap of each pair of `separation` (keepNeighboursApart's, over the
-/// same `surfaces`) as the surfaces are now, by compare's exact overlap
-/// (overlapOf); none for pairs whose contours overlap on their planes (left
-/// as drawn). Pairs run on the free cores. O(one overlap per pair).
+/// same `surfaces`) as the surfaces are now, by compare's flux
+/// (overlapByFlux: exact predicates, a stated bound); none for pairs whose
+/// contours overlap on their planes (left as drawn) and for a pair the flux
+/// cannot decide (no general position even with one moved), which would
+/// take corefinement minutes. Pairs run on the free cores. O(one flux per
+/// pair).
 std::vector<std::optional<Overlap>> neighbourOverlaps(const NeighbourSeparation& separation,
                                                       const std::vector<RoiSurface*>& surfaces);
 
