@@ -18,8 +18,12 @@
 // surfaces, exactly.
 // A pair whose contours overlap on a plane both have (a PTV around its GTV,
 // the body around every organ) overlaps by design and is left as drawn.
-// Moves that would make a surface cross itself are undone, vertex by
-// vertex, until the surface is a valid closed solid again.
+// A move that would make a surface cross itself is halved, up to three
+// times, then undone, vertex by vertex, until the surface is a valid closed
+// solid again; where a vertex stays stuck inside its neighbour, the
+// neighbour's closest triangle gives way (its corners off the planes move
+// inward past it). What is left overlaps inside triangles, not at vertices
+// (docs/reconstruction.md, "Neighbours kept apart", has the figures).
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -84,7 +88,7 @@ struct NeighbourSeparation {
 /// every vertex between the planes that lies deeper than
 /// options.insideToleranceMm inside another ROI of a pair with no overlap on
 /// shared planes moves out (unless that would break its surface), measured
-/// against the surfaces as given. Every surface stays a valid closed solid
+/// against the surfaces as they are at the start of each of the two rounds. Every surface stays a valid closed solid
 /// with the same vertices on its planes. A pair "overlaps on planes" when a
 /// vertex or contour-edge midpoint of one on a plane both have lies inside
 /// the other (an overlap narrower than the contours' point spacing can go
