@@ -90,6 +90,9 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     Progress overall("reconstructing " + std::to_string(rois.size()) + " ROIs",
                      jobs > 1 && !global.quiet);
     const RoiWriteOptions how{global.quiet, jobs <= 1, !args.reportPath.empty()};
+    // The share of the bar the writing fills: all of it, or its second half
+    // when every ROI is reconstructed first.
+    double writtenFrom = 0;
     auto take = [&](std::size_t i, RoiOutcome outcome) {
         overall.finish();
         if (!args.json) reportStream(single.toStandardOutput()) << outcome.out << std::flush;
@@ -104,7 +107,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             !addSurface(page, {rois[i]->name, colourOf(*rois[i]), std::move(outcome.surface), {}}))
             leftOut += (leftOut.empty() ? "" : ", ") + rois[i]->name;
         reports.push_back(std::move(outcome.report));
-        overall.update(double(i + 1) / double(rois.size()));
+        overall.update(writtenFrom + (1 - writtenFrom) * double(i + 1) / double(rois.size()));
     };
     // With several ROIs one that fails is reported and the rest go on.
     auto failedOrThrow = [&](std::size_t i) {
@@ -139,6 +142,7 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
             });
         neighbours =
             neighbourSeparationJson(runtimes[0], rois, surfaces, args.neighbours == "apart");
+        writtenFrom = 0.5;
         forEachInOrder(
             rois.size(), jobs,
             [&](std::size_t i, std::size_t worker) {

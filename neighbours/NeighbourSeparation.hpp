@@ -88,8 +88,8 @@ struct NeighbourSeparation {
 /// every vertex between the planes that lies deeper than
 /// options.insideToleranceMm inside another ROI of a pair with no overlap on
 /// shared planes moves out (unless that would break its surface), measured
-/// against the surfaces as they are at the start of each of the two rounds. Every surface stays a valid closed solid
-/// with the same vertices on its planes. A pair "overlaps on planes" when a
+/// against the surfaces as they are at the start of each of the two rounds. Every surface stays a
+/// valid closed solid with the same vertices on its planes. A pair "overlaps on planes" when a
 /// vertex or contour-edge midpoint of one on a plane both have lies inside
 /// the other (an overlap narrower than the contours' point spacing can go
 /// unseen). `runtime`: the distances on its device; null: the C++ twin.
