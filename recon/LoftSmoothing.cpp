@@ -81,18 +81,30 @@ class EdgeMiddles {
     std::vector<Entry> entries_;
 };
 
+/// What bending reads and records: the smooth surface's field, how near its
+/// zero set a vertex must land, which vertices ever moved, and the counts.
+struct Bending {
+    const SliceInterpolant& field;
+    double toleranceMm;
+    std::vector<bool>& moved;
+    LoftSmoothingStats& stats;
+    bool withinNeighbourPlanes = false;  // LoftSmoothingTargets' field of that name
+};
+
 /// One round of red–green refinement of the loft triangles' slanted edges
-/// whose middle lies farther than `toleranceMm` from the smooth surface (F
+/// whose middle lies farther than bending.toleranceMm from the smooth surface (F
 /// is a distance in the plane, so |F| there is how far the straight edge
 /// strays). Where bent vertices stay within the slab's planes' regions
-/// (`withinNeighbourPlanes`, a pixel lattice's voxels), an edge whose middle
+/// (bending.withinNeighbourPlanes, a pixel lattice's voxels), an edge whose middle
 /// lies inside the smooth surface but already within the tolerance of that
 /// union's border stays whole: its middle could not move out farther than
 /// the tolerance, so splitting it would add triangles and no shape (the
 /// staircases of label maps). Returns the number of edges split.
 std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
-                       std::vector<bool>& isLoft, const SliceInterpolant& field, double toleranceMm,
-                       bool withinNeighbourPlanes, std::vector<Edge>& parents) {
+                       std::vector<bool>& isLoft, const Bending& bending,
+                       std::vector<Edge>& parents) {
+    const SliceInterpolant& field = bending.field;
+    const double toleranceMm = bending.toleranceMm;
     EdgeMiddles middle(soup.points.size());
     // Collected apart and appended with an exact reservation: a surface of
     // millions of points grown by push_back would hold up to twice its size.
@@ -115,7 +127,8 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
             const Vec3 m = 0.5 * (pa + pb);
             const double f = field.value(m);
             if (std::abs(f) <= toleranceMm) continue;
-            if (withinNeighbourPlanes && f < 0 && field.neighbourPlanesValue(m) > -toleranceMm)
+            if (bending.withinNeighbourPlanes && f < 0 &&
+                field.neighbourPlanesValue(m) > -toleranceMm)
                 continue;
             middle.add(a, b, std::uint32_t(soup.points.size() + middles.size()));
             middles.push_back(m);
@@ -216,16 +229,6 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
     return true;
 }
 
-/// What bending reads and records: the smooth surface's field, how near its
-/// zero set a vertex must land, which vertices ever moved, and the counts.
-struct Bending {
-    const SliceInterpolant& field;
-    double toleranceMm;
-    std::vector<bool>& moved;
-    LoftSmoothingStats& stats;
-    bool withinNeighbourPlanes = false;  // LoftSmoothingTargets' field of that name
-};
-
 /// `to` drawn back along the segment from `from` to the last point inside
 /// the union of its slab's two planes' regions (bisection, 1/4096 of the
 /// segment), where it lies outside both; `from` where that lies outside
@@ -309,9 +312,7 @@ void refineAndBend(TriangleSoup& surface, LoftMarks& marks, const Bending& bendi
                    std::vector<Edge>& parents) {
     for (int round = 0; round < kMaxRounds; ++round) {
         const std::size_t before = surface.points.size();
-        if (refineOnce(surface, marks.pieceOf, marks.isLoft, bending.field, bending.toleranceMm,
-                       bending.withinNeighbourPlanes, parents) == 0)
-            break;
+        if (refineOnce(surface, marks.pieceOf, marks.isLoft, bending, parents) == 0) break;
         bending.stats.rounds = std::max(bending.stats.rounds, round + 1);
         bendNewVertices(surface, before, marks.isLoft, bending);
     }
