@@ -149,8 +149,10 @@ void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
                 if (failures[i]) return std::move(*failures[i]);
                 const Stopwatch roiWatch;
                 try {
+                    simplifyForWriting(runtimes[worker], *rois[i], *surfaces[i], args.settings,
+                                       how);
                     RoiOutcome outcome = writeReconstructedRoi(
-                        runtimes[worker], *rois[i], std::move(*surfaces[i]),
+                        *rois[i], std::move(*surfaces[i]),
                         outputFor(args, single, stems[i], several), load, args.settings, how);
                     outcome.report["seconds"]["total"] = seconds[i] + roiWatch.total();
                     return outcome;

@@ -63,20 +63,22 @@ RoiSurface reconstructForWriting(ocl::Runtime& runtime, const Roi& roi,
 RoiOutcome writeRoiSurface(ocl::Runtime& runtime, const Roi& roi, const MeshOutput& output,
                            const ContourInput& input, const ReconstructSettings& settings,
                            const RoiWriteOptions& how) {
-    return writeReconstructedRoi(runtime, roi,
-                                 reconstructForWriting(runtime, roi, settings, how, true), output,
-                                 input, settings, how);
+    return writeReconstructedRoi(roi, reconstructForWriting(runtime, roi, settings, how, true),
+                                 output, input, settings, how);
 }
 
-RoiOutcome writeReconstructedRoi(ocl::Runtime& runtime, const Roi& roi, RoiSurface result,
-                                 const MeshOutput& output, const ContourInput& input,
-                                 const ReconstructSettings& settings, const RoiWriteOptions& how) {
+void simplifyForWriting(ocl::Runtime& runtime, const Roi& roi, RoiSurface& result,
+                        const ReconstructSettings& settings, const RoiWriteOptions& how) {
+    if (!(settings.maxErrorMm > 0) || result.simplification) return;
+    Progress progress("simplifying " + roi.name, how.showProgress && !how.quiet);
+    simplifyRoiSurface(runtime, roi, result, settings.maxErrorMm);
+}
+
+RoiOutcome writeReconstructedRoi(const Roi& roi, RoiSurface result, const MeshOutput& output,
+                                 const ContourInput& input, const ReconstructSettings& settings,
+                                 const RoiWriteOptions& how) {
     RoiOutcome outcome;
     std::ostringstream out, err;
-    if (settings.maxErrorMm > 0 && !result.simplification) {
-        Progress progress("simplifying " + roi.name, how.showProgress && !how.quiet);
-        simplifyRoiSurface(runtime, roi, result, settings.maxErrorMm);
-    }
     const nlohmann::ordered_json simplification =
         result.simplification
             ? simplificationJson(*result.simplification, SimplifyOptions{settings.maxErrorMm}, true)

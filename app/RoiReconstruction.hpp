@@ -56,13 +56,18 @@ RoiSurface reconstructForWriting(ocl::Runtime& runtime, const Roi& roi,
                                  const ReconstructSettings& settings,
                                  const RoiWriteOptions& options, bool simplify);
 
-/// The second half: `result` (reconstructForWriting's) simplified if the
-/// settings ask and it was not yet, checked, written and reported as
-/// writeRoiSurface does. Lets `reconstruct` work on every ROI's surface
-/// (neighbours kept apart) between the two.
-RoiOutcome writeReconstructedRoi(ocl::Runtime& runtime, const Roi& roi, RoiSurface result,
-                                 const MeshOutput& output, const ContourInput& input,
-                                 const ReconstructSettings& settings,
+/// `result` (reconstructForWriting's without simplification) simplified as
+/// the settings ask (--max-error), with its progress bar; nothing when they
+/// do not or it was simplified already. O(the simplification).
+void simplifyForWriting(ocl::Runtime& runtime, const Roi& roi, RoiSurface& result,
+                        const ReconstructSettings& settings, const RoiWriteOptions& options);
+
+/// The second half: `result` (reconstructForWriting's, simplified already
+/// if asked) written and reported as writeRoiSurface does. Lets
+/// `reconstruct` work on every ROI's surface (neighbours kept apart)
+/// between the two.
+RoiOutcome writeReconstructedRoi(const Roi& roi, RoiSurface result, const MeshOutput& output,
+                                 const ContourInput& input, const ReconstructSettings& settings,
                                  const RoiWriteOptions& options);
 
 /// The outcome of an ROI that failed with `error` (report/Failure names it):

@@ -165,15 +165,29 @@ Probe readProbe(const ProbePoints& probe, const std::vector<ClosestPrimitive>& f
 // inside) all the way; a clearance beyond either way. A closest point
 // outward of this surface (a structure inside another without touching its
 // planes' contours) is no lens: no move.
-// `normals` are own's (vertexNormals).
-std::vector<Move> movesOf(const Probe& mine, const Probe& theirs, const TriangleSoup& own,
-                          const std::vector<Vec3>& normals, const TriangleSoup& other,
-                          std::size_t pair, bool firstRound, double clearanceMm) {
+// `own` is the ROI whose vertices move, with its vertexNormals.
+struct MovingSurface {
+    const TriangleSoup& soup;
+    const std::vector<Vec3>& normals;
+};
+
+// How far a round moves: meeting in the middle (the first) or not, and the
+// clearance beyond.
+struct RoundRule {
+    bool firstRound = true;
+    double clearanceMm = 0.01;
+};
+
+std::vector<Move> movesOf(const Probe& mine, const Probe& theirs, MovingSurface own,
+                          const TriangleSoup& other, std::size_t pair, RoundRule rule) {
+    const bool firstRound = rule.firstRound;
+    const double clearanceMm = rule.clearanceMm;
+    const std::vector<Vec3>& normals = own.normals;
     std::vector<bool> theirsInside(other.points.size(), false);
     for (const Inside& in : theirs.inside) theirsInside[in.vertex] = true;
     std::vector<Move> moves;
     for (const Inside& in : mine.inside) {
-        const Vec3 from = own.points[in.vertex], toward = in.closest - from;
+        const Vec3 from = own.soup.points[in.vertex], toward = in.closest - from;
         if (dot(toward, normals[in.vertex]) >= 0) continue;
         const auto& t = other.triangles[in.triangle];
         const bool bothMove =
@@ -444,11 +458,10 @@ NeighbourSeparation keepNeighboursApart(ocl::Runtime* runtime, std::vector<Neigh
                         !ofA.inside.empty() + !ofB.inside.empty() > 0;
             if (!active[p]) continue;
             const TriangleSoup &a = *rois[pair.a].surface, &b = *rois[pair.b].surface;
-            for (const Move& m :
-                 movesOf(ofA, ofB, a, normals(pair.a), b, p, round == 0, options.clearanceMm))
+            const RoundRule rule{round == 0, options.clearanceMm};
+            for (const Move& m : movesOf(ofA, ofB, {a, normals(pair.a)}, b, p, rule))
                 movesOfRoi[pair.a].push_back(m);
-            for (const Move& m :
-                 movesOf(ofB, ofA, b, normals(pair.b), a, p, round == 0, options.clearanceMm))
+            for (const Move& m : movesOf(ofB, ofA, {b, normals(pair.b)}, a, p, rule))
                 movesOfRoi[pair.b].push_back(m);
         }
         const std::vector<std::vector<bool>> kept = applyAll(rois, movesOfRoi);
