@@ -26,6 +26,13 @@ double signedArea(const Polygon& polygon) {
     return 0.5 * twice;
 }
 
+double perimeterMm(const Polygon& polygon) {
+    double sum = 0;
+    for (std::size_t k = 0; k < polygon.size(); ++k)
+        sum += length(polygon[(k + 1) % polygon.size()] - polygon[k]);
+    return sum;
+}
+
 int windingNumber(Point2 p, const Polygon& polygon) {
     int winding = 0;
     const std::size_t n = polygon.size();

@@ -44,6 +44,8 @@ using Polygon = std::vector<Point2>;
 bool allCollinear(const Polygon& polygon);
 /// Shoelace area: positive for counter-clockwise polygons. O(n).
 double signedArea(const Polygon& polygon);
+/// The length of the closed outline, mm. O(n).
+double perimeterMm(const Polygon& polygon);
 /// The net area of contours oriented as slices keep them (outer ones
 /// counter-clockwise, holes clockwise): their signed areas summed, holes
 /// subtracted. O(points).

@@ -128,29 +128,151 @@ void roundedCap(SurfaceBuilder& builder, const LayerPart& part, CapShape shape,
     }
 }
 
-// How fast the contours of `end` (slice `slice` of `fields`) move inward
-// per mm of z, judged from the slice on the other side: the mean of its
-// field at their vertices over the gap. 0 when there is no such slice or
-// the contours grow.
-double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std::size_t slice) {
-    if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return 0;
+// The field of the slice on the other side of the end (below when the cap
+// goes `up`) at the vertices of contours `which` of `end` (slice `slice` of
+// `fields`): how far outside (> 0) or inside (< 0) that slice's solid each
+// lies. Empty when there is no such slice or it has no contours there.
+std::vector<double> fieldBeyond(const LayerPart& end, const std::vector<std::uint32_t>& which,
+                                bool up, const SliceFields& fields, std::size_t slice) {
+    if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return {};
     const std::size_t other = up ? slice - 1 : slice + 1;
     const SliceGrid& grid = fields.grid;
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::uint32_t c : end.contours)
+    std::vector<double> values;
+    for (std::uint32_t c : which)
         for (Point2 p : end.layer->contours[c]) {
             const int i =
                 std::clamp(int((p.x - grid.originMm.x) / grid.pixelMm), 0, grid.width - 1);
             const int j =
                 std::clamp(int((p.y - grid.originMm.y) / grid.pixelMm), 0, grid.height - 1);
             const double d = fields.distanceMm[fields.index(other, i, j)];
-            if (!std::isfinite(d)) return 0;
-            sum += d;
-            ++count;
+            if (!std::isfinite(d)) return {};
+            values.push_back(d);
         }
+    return values;
+}
+
+// How fast the contours of `end` (slice `slice` of `fields`) move inward
+// per mm of z, judged from the slice on the other side: the mean of its
+// field at their vertices over the gap. 0 when there is no such slice or
+// the contours grow.
+double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std::size_t slice) {
+    const std::vector<double> beyond = fieldBeyond(end, end.contours, up, fields, slice);
+    if (beyond.empty()) return 0;
+    double sum = 0;
+    for (double d : beyond) sum += d;
+    const std::size_t other = up ? slice - 1 : slice + 1;
     const double gap = std::fabs(fields.zMm[slice] - fields.zMm[other]);
-    return count > 0 && gap > 0 ? std::max(0.0, -(sum / double(count)) / gap) : 0.0;
+    return gap > 0 ? std::max(0.0, -(sum / double(beyond.size())) / gap) : 0.0;
+}
+
+// An end's contours where a cavity closes before the end does. A hole of
+// the end plane whose cavity narrows toward the end (the slice on the other
+// side holds more of it: its vertices lie outside that slice's solid, on
+// average) is a cavity's last section, as a ball's cavity near its pole is:
+// capping it with the rest would run it through the lid as a tunnel from
+// the cavity to the outside. Such a hole gets a lid of its own, nearer the
+// plane than the rest's, and what it holds (an island) a cap nearer still.
+// A hole that widens toward the end (a torus's or a bowl's opening) stays
+// open, as before.
+struct CavitySplit {
+    LayerPart rest;                   // what is capped as before
+    std::vector<LayerPart> holes;     // closing holes, one contour each
+    std::vector<LayerPart> holdings;  // what each closing hole holds (maybe nothing)
+};
+
+// Fraction of the cap offset a closing hole's lid reaches, and then what it
+// holds, of the hole's: each level halves, so nested lids never meet.
+constexpr double kCavityLidFraction = 0.5;
+
+// The contours of `end` that contain contour `inner`'s first vertex, by
+// index into end.contours, innermost first. Contours of a plane do not
+// cross, so one vertex decides. O(n · points) per contour.
+std::vector<std::size_t> enclosing(const LayerPart& end, std::size_t inner) {
+    const Point2 p = end.layer->contours[end.contours[inner]].front();
+    std::vector<std::pair<double, std::size_t>> around;
+    for (std::size_t k = 0; k < end.contours.size(); ++k) {
+        if (k == inner) continue;
+        const Polygon& contour = end.layer->contours[end.contours[k]];
+        if (boundingBox(contour).contains(p) && windingNumber(p, contour) != 0)
+            around.push_back({std::fabs(signedArea(contour)), k});
+    }
+    std::sort(around.begin(), around.end());
+    std::vector<std::size_t> out;
+    for (const auto& [area, k] : around) out.push_back(k);
+    return out;
+}
+
+// Does the cavity of hole `contour` narrow toward the end fast enough to
+// close soon beyond it? Its vertices (`beyondMm`: the field beyond at each)
+// mostly lie outside the solid of the slice beyond, and a quarter of them
+// by at least half its radius (2 · area / perimeter: at that rate it closes
+// within two gaps) and two pixels (the field is read at the pixel a vertex
+// falls in). Quantiles, not the mean, as an island in the cavity beyond
+// lies under some of them or near. A torus's bore, which narrows a little
+// toward its middle, a straight tube's, and one that noise makes wobble
+// stay open. O(n).
+bool cavityCloses(const Polygon& contour, std::vector<double> beyondMm, const SliceGrid& grid) {
+    if (beyondMm.empty()) return false;
+    std::sort(beyondMm.begin(), beyondMm.end());
+    const double median = beyondMm[beyondMm.size() / 2];
+    const double upperQuartile = beyondMm[3 * beyondMm.size() / 4];
+    const double radiusMm =
+        2 * std::fabs(signedArea(contour)) / std::max(perimeterMm(contour), 1e-12);
+    return median > 0 && upperQuartile > std::max(0.5 * radiusMm, 2 * grid.pixelMm);
+}
+
+CavitySplit splitClosingCavities(const LayerPart& end, bool up, const SliceFields& fields,
+                                 std::size_t slice) {
+    CavitySplit split;
+    split.rest.layer = end.layer;
+    const std::size_t n = end.contours.size();
+    // A hole with something around it in this part (a part whose outermost
+    // contour is a hole is a cavity's own end, capped as it is).
+    std::vector<bool> closing(n, false);
+    bool any = false;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t c = end.contours[k];
+        if (signedArea(end.layer->contours[c]) >= 0) continue;
+        const std::vector<std::size_t> around = enclosing(end, k);
+        if (around.empty()) continue;
+        // The wall around it goes on beyond (its outline lies mostly inside
+        // the solid there), so the hole beyond is this cavity's, not the
+        // open space around a part that starts or ends here.
+        std::vector<double> wall =
+            fieldBeyond(end, {end.contours[around.front()]}, up, fields, slice);
+        if (wall.empty()) continue;
+        std::nth_element(wall.begin(), wall.begin() + std::ptrdiff_t(wall.size() / 2), wall.end());
+        if (!(wall[wall.size() / 2] < 0)) continue;
+        closing[k] = cavityCloses(end.layer->contours[c], fieldBeyond(end, {c}, up, fields, slice),
+                                  fields.grid);
+        any = any || closing[k];
+    }
+    if (!any) {
+        split.rest = end;
+        return split;
+    }
+    // Each contour goes with the outermost closing hole around it, if any.
+    std::vector<std::size_t> owner(n, n);
+    for (std::size_t k = 0; k < n; ++k) {
+        for (std::size_t around : enclosing(end, k))
+            if (closing[around]) owner[k] = around;           // the last is the outermost
+        if (closing[k] && owner[k] != n) closing[k] = false;  // inside another: its holding
+    }
+    std::vector<std::size_t> slot(n, n);
+    for (std::size_t k = 0; k < n; ++k)
+        if (closing[k] && owner[k] == n) {
+            slot[k] = split.holes.size();
+            split.holes.push_back({end.layer, {end.contours[k]}});
+            split.holdings.push_back({end.layer, {}});
+        }
+    for (std::size_t k = 0; k < n; ++k) {
+        if (slot[k] != n) continue;
+        if (owner[k] != n)
+            split.holdings[slot[owner[k]]].contours.push_back(end.contours[k]);
+        else
+            split.rest.contours.push_back(end.contours[k]);
+    }
+    return split;
 }
 
 void dome(SurfaceBuilder& builder, const LayerPart& end, CapShape shape, const SliceFields& fields,
@@ -264,18 +386,31 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
 
 void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
              const SliceFields& fields, std::size_t slice) {
-    if (end.contours.empty()) return;
+    if (end.contours.empty() || mode == CapMode::None) return;
+    const CavitySplit split = splitClosingCavities(end, reach.up, fields, slice);
     const bool up = reach.up;
     const double offsetMm = reach.offsetMm;
-    switch (mode) {
-        case CapMode::None:
-            return;
-        case CapMode::Flat:
-            flat(site, end, up, offsetMm, fields, slice);
-            return;
-        case CapMode::Dome:
-            dome(site.builder(), end, {up, offsetMm, INFINITY}, fields, slice);
-            return;
+    if (mode == CapMode::Flat)
+        flat(site, split.rest, up, offsetMm, fields, slice);
+    else
+        dome(site.builder(), split.rest, {up, offsetMm, INFINITY}, fields, slice);
+    const double lidMm = kCavityLidFraction * offsetMm;
+    for (std::size_t h = 0; h < split.holes.size(); ++h) {
+        prismCap(site.builder(), split.holes[h], up, lidMm);
+        capEnds(site, mode, split.holdings[h], {up, kCavityLidFraction * lidMm}, fields, slice);
+    }
+}
+
+void guaranteedCap(SurfaceBuilder& builder, const LayerPart& end, CapReach reach,
+                   const SliceFields& fields, std::size_t slice) {
+    if (end.contours.empty()) return;
+    const CavitySplit split = splitClosingCavities(end, reach.up, fields, slice);
+    prismCap(builder, split.rest, reach.up, reach.offsetMm);
+    const double lidMm = kCavityLidFraction * reach.offsetMm;
+    for (std::size_t h = 0; h < split.holes.size(); ++h) {
+        prismCap(builder, split.holes[h], reach.up, lidMm);
+        guaranteedCap(builder, split.holdings[h], {reach.up, kCavityLidFraction * lidMm}, fields,
+                      slice);
     }
 }
 
@@ -285,7 +420,7 @@ void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, CapReach 
     capEnds(site, mode, end, reach, fields, slice);
     if (mode != CapMode::None && !site.isCleanCap(before, end)) {
         site.builder().truncateTriangles(before);
-        prismCap(site.builder(), end, reach.up, reach.offsetMm);
+        guaranteedCap(site.builder(), end, reach, fields, slice);
     }
 }
 

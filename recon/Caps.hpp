@@ -109,9 +109,22 @@ void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
 void capEndsAsPiece(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
                     const SliceFields& fields, std::size_t slice);
 
-/// The guaranteed cap: the contours of `end` extruded by `offsetMm` (up or
-/// down from their plane) under a flat lid, a prism closing with nothing on
-/// the other side, valid by construction. Θ(n log n) in the contour points.
+/// The contours of `end` extruded by `offsetMm` (up or down from their
+/// plane) under a flat lid, a prism closing with nothing on the other side,
+/// valid by construction. Θ(n log n) in the contour points.
 void prismCap(SurfaceBuilder& builder, const LayerPart& end, bool up, double offsetMm);
+
+/// The guaranteed cap of `end`, slice `slice` of `fields`: prismCap, except
+/// where a cavity closes before the end does — a hole of the end plane
+/// whose cavity narrows toward the end (the slice on the other side holds
+/// more of it) gets a flat lid of its own at half the offset, and what lies
+/// inside it (an island) its cap at half that, so the cavity stays closed
+/// instead of running through the lid to the outside. capEnds splits the
+/// same way. Valid by construction: vertical prisms over disjoint contours,
+/// each nested one shallower than the one around it, lids at distinct
+/// heights. Θ(n log n) in the contour points, plus O(h · n) to find what
+/// encloses each of the h contours.
+void guaranteedCap(SurfaceBuilder& builder, const LayerPart& end, CapReach reach,
+                   const SliceFields& fields, std::size_t slice);
 
 }  // namespace dfrecon

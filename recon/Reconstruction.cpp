@@ -217,9 +217,10 @@ void closeBrokenPiecesAgain(RunState& run) {
         ++run.result.stats.repairedPieces;
         builder.setPiece(p);
         if (p == 0)
-            run.reconstructor->prismCapLayer(run.layers[0], run.bottomReach());
+            run.reconstructor->guaranteedCapLayer(run.layers[0], run.bottomReach(), run.fields, 0);
         else if (p == run.topCap())
-            run.reconstructor->prismCapLayer(run.layers.back(), run.topReach());
+            run.reconstructor->guaranteedCapLayer(run.layers.back(), run.topReach(), run.fields,
+                                                  run.slices.size() - 1);
         else
             run.reconstructor->closeSlabByPrisms(run.layers[p - 1], run.layers[p]);
     }

@@ -200,8 +200,9 @@ void SlabReconstructor::capLayer(const Layer& end, CapReach reach, const SliceFi
     capEndsAsPiece(*this, options_.cap, ends, reach, fields, slice);
 }
 
-void SlabReconstructor::prismCapLayer(const Layer& end, CapReach reach) {
-    prismCap(builder_, whole(end), reach.up, reach.offsetMm);
+void SlabReconstructor::guaranteedCapLayer(const Layer& end, CapReach reach,
+                                           const SliceFields& fields, std::size_t slice) {
+    guaranteedCap(builder_, whole(end), reach, fields, slice);
 }
 
 /// Are the triangles added since `before` a clean piece: no two meeting,

@@ -58,8 +58,10 @@ class SlabReconstructor final : public CapSite {
     /// Caps every contour of `end` (up or down from its plane) by `offsetMm`
     /// as a piece of its own (recon/Caps).
     void capLayer(const Layer& end, CapReach reach, const SliceFields& fields, std::size_t slice);
-    /// The guaranteed cap: the end contours extruded under a flat lid.
-    void prismCapLayer(const Layer& end, CapReach reach);
+    /// The guaranteed cap (recon/Caps guaranteedCap): the end contours
+    /// extruded under a flat lid, closing cavities under lids of their own.
+    void guaranteedCapLayer(const Layer& end, CapReach reach, const SliceFields& fields,
+                            std::size_t slice);
     /// The guaranteed closing of the slab between two layers: one prism
     /// piece over all their contours. True when it holds as floats
     /// (closeByPrisms).

@@ -10,8 +10,7 @@ PlaneSections sectionsOf(const std::vector<Slice>& slices) {
         double area = 0, perimeter = 0;
         for (const Polygon& c : slice.contours) {
             area += signedArea(c);
-            for (std::size_t k = 0; k < c.size(); ++k)
-                perimeter += length(c[(k + 1) % c.size()] - c[k]);
+            perimeter += perimeterMm(c);
         }
         planes.zMm.push_back(slice.zMm);
         planes.areaMm2.push_back(area);

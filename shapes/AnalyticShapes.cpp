@@ -240,13 +240,25 @@ class HollowSphere : public AnalyticShape {
     /// the cavity (it must lie inside it, clear of its wall).
     HollowSphere(double outer, double inner, double island, Vec3 islandCentre)
         : R_(outer), r_(inner), island_(island), islandCentre_(islandCentre) {}
-    std::string name() const override { return island_ > 0 ? "shell-island" : "hollow-sphere"; }
+    /// With the cavity centred at `cavityCentre` (it must lie inside the
+    /// ball, clear of its surface), named `name`.
+    HollowSphere(std::string name, double outer, double inner, Vec3 cavityCentre, double island,
+                 Vec3 islandCentre)
+        : name_(std::move(name)),
+          R_(outer),
+          r_(inner),
+          cavityCentre_(cavityCentre),
+          island_(island),
+          islandCentre_(islandCentre) {}
+    std::string name() const override {
+        if (!name_.empty()) return name_;
+        return island_ > 0 ? "shell-island" : "hollow-sphere";
+    }
     double volumeMm3() const override {
         return 4.0 / 3.0 * kPi * (R_ * R_ * R_ - r_ * r_ * r_ + island_ * island_ * island_);
     }
     double signedDistance(Vec3 p) const override {
-        const double rho = length(p);
-        const double shell = std::max(rho - R_, r_ - rho);
+        const double shell = std::max(length(p) - R_, r_ - length(p - cavityCentre_));
         // Two disjoint solids: the nearer surface is the point's own or,
         // outside both, the nearer one.
         return island_ > 0 ? std::min(shell, length(p - islandCentre_) - island_) : shell;
@@ -257,8 +269,10 @@ class HollowSphere : public AnalyticShape {
         if (std::abs(z) >= R_) return {};
         std::vector<Polygon> polygons{
             circlePolygon({0, 0}, std::sqrt(R_ * R_ - z * z), atLeast3(points))};
-        if (std::abs(z) < r_)
-            polygons.push_back(circlePolygon({0, 0}, std::sqrt(r_ * r_ - z * z), atLeast3(points)));
+        const double cz = z - cavityCentre_.z;
+        if (std::abs(cz) < r_)
+            polygons.push_back(circlePolygon({cavityCentre_.x, cavityCentre_.y},
+                                             std::sqrt(r_ * r_ - cz * cz), atLeast3(points)));
         const double dz = z - islandCentre_.z;
         if (island_ > 0 && std::abs(dz) < island_)
             polygons.push_back(circlePolygon({islandCentre_.x, islandCentre_.y},
@@ -268,7 +282,9 @@ class HollowSphere : public AnalyticShape {
     }
 
   private:
+    std::string name_;
     double R_, r_;
+    Vec3 cavityCentre_{};
     double island_ = 0;
     Vec3 islandCentre_{};
 };
@@ -310,9 +326,9 @@ std::vector<Vec3> sampleSurface(const AnalyticShape& shape, std::size_t count, u
 }
 
 const std::vector<std::string>& shapeNames() {
-    static const std::vector<std::string> names = {"sphere",        "ellipsoid",   "torus",
-                                                   "capsule",       "y",           "two-blobs",
-                                                   "hollow-sphere", "shell-island"};
+    static const std::vector<std::string> names = {
+        "sphere",    "ellipsoid",     "torus",        "capsule",   "y",
+        "two-blobs", "hollow-sphere", "shell-island", "shell-pole"};
     return names;
 }
 
@@ -337,6 +353,10 @@ std::string shapeDescription(const std::string& name) {
     if (name == "shell-island")
         return "ball r 20 mm with a cavity r 12 mm and a ball r 6 mm floating off-centre in it "
                "(three nested contours per plane)";
+    if (name == "shell-pole")
+        return "ball r 20 mm with a cavity r 8 mm centred 11.2 mm above its centre (0.8 mm of "
+               "wall at the top pole, so the top plane cuts the cavity) and a ball r 3 mm "
+               "floating in it";
     if (std::string d = betweenPlanesShapeDescription(name); !d.empty()) return d;
     throw std::invalid_argument("unknown shape '" + name + "'");
 }
@@ -359,6 +379,9 @@ std::unique_ptr<AnalyticShape> makeShape(const std::string& name, double scale) 
     if (name == "hollow-sphere") return std::make_unique<HollowSphere>(20 * s, 10 * s);
     if (name == "shell-island")
         return std::make_unique<HollowSphere>(20 * s, 12 * s, 6 * s, Vec3{2 * s, 1 * s, 1.5 * s});
+    if (name == "shell-pole")
+        return std::make_unique<HollowSphere>(name, 20 * s, 8 * s, Vec3{0, 0, 11.2 * s}, 3 * s,
+                                              Vec3{1 * s, 0.5 * s, 10.5 * s});
     if (auto shape = makeBetweenPlanesShape(name, s)) return shape;
     std::string known;
     for (const std::string& n : allShapeNames()) known += (known.empty() ? "" : ", ") + n;

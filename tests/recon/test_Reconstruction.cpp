@@ -82,9 +82,9 @@ TEST(Reconstruction, EverySynthShapeIsAValidSolidOfTheRightTopology) {
             const ContourSet set = sliceShape(*shape, options);
             const Roi& roi = set.rois[0];
             const Checked c = reconstruct(roi);
-            const std::size_t components = name == "two-blobs" || name == "hollow-sphere" ? 2
-                                           : name == "shell-island"                       ? 3
-                                                                                          : 1;
+            const std::size_t components = name == "two-blobs" || name == "hollow-sphere"   ? 2
+                                           : name == "shell-island" || name == "shell-pole" ? 3
+                                                                                            : 1;
             expectSolid(c, name == "torus" ? 1 : 0, components);
             expectContoursAreVertices(roi, c.result.surface);
             EXPECT_NEAR(c.check.volumeMm3 / shape->volumeMm3(), 1.0, spacing < 3 ? 0.02 : 0.05);
@@ -153,6 +153,68 @@ TEST(Reconstruction, CavityAndIslandInsideItGiveThreeSurfaces) {
     slices[2].push_back(circle({0, 0}, 3));
     const Checked c = reconstruct(stack(slices));
     expectSolid(c, 0, 3);
+}
+
+// Is `p` inside the closed surface: the parity of its crossings along a ray
+// in a direction no test shape lines up with (Möller–Trumbore).
+bool insideSolid(const TriangleSoup& surface, Vec3 p) {
+    const Vec3 direction{1, 0.0123, 0.0071};
+    int crossings = 0;
+    for (const auto& t : surface.triangles) {
+        const Vec3 a = surface.points[t[0]], b = surface.points[t[1]], c = surface.points[t[2]];
+        const Vec3 e1 = b - a, e2 = c - a, q = cross(direction, e2);
+        const double det = dot(e1, q);
+        if (std::abs(det) < 1e-14) continue;
+        const Vec3 s = p - a;
+        const double u = dot(s, q) / det;
+        const Vec3 r = cross(s, e1);
+        const double v = dot(direction, r) / det;
+        if (u < 0 || v < 0 || u + v > 1) continue;
+        crossings += dot(e2, r) / det > 0;
+    }
+    return crossings % 2 == 1;
+}
+
+// A cavity whose last section lies on the end plane (a thick shell cut
+// near its pole): the hole there is smaller than on the next plane in, so
+// the cavity closes beyond the end, under a lid of its own inside the
+// cap. Capped with the rest it would run through the cap as a tunnel from
+// the cavity to the outside (one surface instead of two).
+std::vector<std::vector<Polygon>> shellCutNearItsPole() {
+    return {{circle({0, 0}, 10), circle({0, 0}, 3)},
+            {circle({0, 0}, 12), circle({0, 0}, 8)},
+            {circle({0, 0}, 12), circle({0, 0}, 8)},
+            {circle({0, 0}, 10)}};
+}
+
+TEST(Reconstruction, CavityNarrowingTowardTheEndPlaneClosesInsideTheCap) {
+    for (CapMode cap : {CapMode::Flat, CapMode::Dome})
+        for (Interpolation interpolation : {Interpolation::Linear, Interpolation::Smooth}) {
+            SCOPED_TRACE(std::string(capModeName(cap)) +
+                         (interpolation == Interpolation::Linear ? " linear" : " smooth"));
+            ReconstructionOptions options;
+            options.cap = cap;
+            options.interpolation = interpolation;
+            const Roi roi = stack(shellCutNearItsPole());
+            const Checked c = reconstruct(roi, options);
+            expectSolid(c, 0, 2);
+            expectContoursAreVertices(roi, c.result.surface);
+            // Under the cavity, between its lid and the outer one (half the
+            // 2 mm spacing below the end plane), the axis is solid; in the
+            // cavity, just below the end plane, it is not.
+            EXPECT_TRUE(insideSolid(c.result.surface, {0, 0, -0.9}));
+            EXPECT_FALSE(insideSolid(c.result.surface, {0, 0, -0.05}));
+            EXPECT_FALSE(insideSolid(c.result.surface, {0, 0, 1}));
+        }
+}
+
+TEST(Reconstruction, BoreWideningTowardTheEndPlaneStaysOpen) {
+    // A bowl: the hole grows toward the top plane, so it stays open there.
+    const Roi roi = stack({{circle({0, 0}, 10)},
+                           {circle({0, 0}, 11), circle({0, 0}, 5)},
+                           {circle({0, 0}, 12), circle({0, 0}, 9)}});
+    const Checked c = reconstruct(roi);
+    expectSolid(c, 0, 1);
 }
 
 TEST(Reconstruction, FlatCapsOnStraightSidesGiveThePlanningVolume) {
