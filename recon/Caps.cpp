@@ -151,18 +151,37 @@ std::vector<double> fieldBeyond(const LayerPart& end, const std::vector<std::uin
     return values;
 }
 
-// How fast the contours of `end` (slice `slice` of `fields`) move inward
-// per mm of z, judged from the slice on the other side: the mean of its
-// field at their vertices over the gap. 0 when there is no such slice or
-// the contours grow.
+// Is the outermost contour of `end` a hole (a cavity's own end, capped
+// from inside the cavity)? The contour of largest area decides. O(points).
+bool outermostIsHole(const LayerPart& end) {
+    double largest = 0, signOfLargest = 1;
+    for (std::uint32_t c : end.contours) {
+        const double area = signedArea(end.layer->contours[c]);
+        if (std::fabs(area) > largest) {
+            largest = std::fabs(area);
+            signOfLargest = area;
+        }
+    }
+    return signOfLargest < 0;
+}
+
+// How fast the region of `end` (slice `slice` of `fields`) shrinks per mm
+// of z toward its end, judged from the slice on the other side: the mean
+// of its field at their vertices over the gap. Outer contours shrink where
+// that slice's solid lies under them (the field there is negative); a
+// cavity's own end (its outermost contour a hole) where that slice's
+// cavity does (positive: its vertices lie in the empty space beyond). 0
+// when there is no such slice or the region grows.
 double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std::size_t slice) {
     const std::vector<double> beyond = fieldBeyond(end, end.contours, up, fields, slice);
     if (beyond.empty()) return 0;
     double sum = 0;
     for (double d : beyond) sum += d;
+    const double mean = sum / double(beyond.size());
     const std::size_t other = up ? slice - 1 : slice + 1;
     const double gap = std::fabs(fields.zMm[slice] - fields.zMm[other]);
-    return gap > 0 ? std::max(0.0, -(sum / double(beyond.size())) / gap) : 0.0;
+    const double shrink = outermostIsHole(end) ? mean : -mean;
+    return gap > 0 ? std::max(0.0, shrink / gap) : 0.0;
 }
 
 // An end's contours where a cavity closes before the end does. A hole of
@@ -353,7 +372,8 @@ void dome(SurfaceBuilder& builder, const LayerPart& end, CapShape shape, const S
 void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
           std::size_t slice) {
     const double z = end.layer->zMm + (up ? offsetMm : -offsetMm);
-    const double insetMm = inwardSlope(end, up, fields, slice) * offsetMm;
+    const double slope = inwardSlope(end, up, fields, slice);
+    const double insetMm = slope * offsetMm;
     if (insetMm < fields.grid.pixelMm) {
         prismCap(site.builder(), end, up, offsetMm);
         return;
@@ -367,8 +387,13 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
          simplifySlice(zeroIsolines(shifted, own.grid), 0.25 * own.grid.pixelMm))
         if (c.points.size() >= 3) lid.push_back(std::move(c.points));
     if (lid.empty()) {
-        // The end would narrow to nothing before the lid: round it off.
-        dome(site.builder(), end, {up, offsetMm, INFINITY}, fields, slice);
+        // The end would narrow to nothing before the lid: round it off
+        // where it closes at this slope (its deepest point gone), not at the
+        // full offset, which would leave a blunt end hanging past it.
+        const float deepestMm = -*std::min_element(
+            own.distanceMm.begin(), own.distanceMm.begin() + std::ptrdiff_t(own.grid.pixelCount()));
+        const double closesMm = std::clamp(double(deepestMm) / slope, 0.25 * offsetMm, offsetMm);
+        dome(site.builder(), end, {up, closesMm, INFINITY}, fields, slice);
         return;
     }
     const Layer& top = site.addIsolineLayer(z, std::move(lid), end);

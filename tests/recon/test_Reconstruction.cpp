@@ -208,6 +208,28 @@ TEST(Reconstruction, CavityNarrowingTowardTheEndPlaneClosesInsideTheCap) {
         }
 }
 
+TEST(Reconstruction, CavityEndingBetweenPlanesNarrowsAsItsTrendSays) {
+    // The cavity's last contour (r 4) is half the one above it (r 8), 2 mm
+    // apart: it closes about 2 mm further down, so its cap (reaching the
+    // middle of the gap, 1 mm down) narrows to about r 2 there instead of
+    // keeping r 4 as a vertical wall would.
+    for (Interpolation interpolation : {Interpolation::Linear, Interpolation::Smooth}) {
+        SCOPED_TRACE(interpolation == Interpolation::Linear ? "linear" : "smooth");
+        ReconstructionOptions options;
+        options.interpolation = interpolation;
+        const Roi roi = stack({{circle({0, 0}, 12)},
+                               {circle({0, 0}, 12), circle({0, 0}, 4)},
+                               {circle({0, 0}, 12), circle({0, 0}, 8)},
+                               {circle({0, 0}, 12), circle({0, 0}, 8)},
+                               {circle({0, 0}, 12)}});
+        const Checked c = reconstruct(roi, options);
+        expectSolid(c, 0, 2);
+        EXPECT_FALSE(insideSolid(c.result.surface, {0, 0, 1.1}));
+        EXPECT_TRUE(insideSolid(c.result.surface, {3.2, 0, 1.1}));
+        EXPECT_FALSE(insideSolid(c.result.surface, {3.2, 0, 1.9}));
+    }
+}
+
 TEST(Reconstruction, BoreWideningTowardTheEndPlaneStaysOpen) {
     // A bowl: the hole grows toward the top plane, so it stays open there.
     const Roi roi = stack({{circle({0, 0}, 10)},
