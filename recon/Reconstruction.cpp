@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "contours/PlaneGaps.hpp"
 #include "geometry/MeshCheck.hpp"
@@ -309,6 +310,24 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
 
 /// One run of planes, phase by phase (see the top); its working arrays go
 /// when it returns.
+/// The guarantee every piece is built to keep: each of the first
+/// `contourVertices` points (the contour points, made first and shared by
+/// every piece) is a corner of some triangle. Checked, not assumed, so a
+/// broken construction is an error, never a surface that silently lost a
+/// contour point when unused points are dropped. O(T).
+void requireContourPointsKept(const TriangleSoup& surface, std::size_t contourVertices) {
+    std::vector<bool> used(contourVertices, false);
+    for (const auto& t : surface.triangles)
+        for (std::uint32_t v : t)
+            if (v < contourVertices) used[v] = true;
+    const auto lost = std::size_t(std::count(used.begin(), used.end(), false));
+    if (lost > 0)
+        throw std::logic_error("reconstruction: " + std::to_string(lost) + " of " +
+                               std::to_string(contourVertices) +
+                               " contour points are on no triangle (a defect of dfrecon; please "
+                               "report it with the input)");
+}
+
 Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
                                  const ReconstructionOptions& requested,
                                  const std::function<void(double)>& progress) {
@@ -322,6 +341,7 @@ Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
     if (run.options.interpolation == Interpolation::Smooth && run.slices.size() > 1 &&
         run.result.check.validSolid())
         smoothPieces(run, std::move(built));
+    requireContourPointsKept(run.result.surface, run.contourVertices);
     // Intermediate contours of discarded pieces leave points behind.
     removeUnusedPoints(run.result.surface);
     return std::move(run.result);

@@ -95,6 +95,38 @@ TEST(Reconstruction, EverySynthShapeIsAValidSolidOfTheRightTopology) {
         }
 }
 
+// Every contour point is a vertex on every shape there is (the between-planes
+// family too), at both spacings, in both interpolations and both closed cap
+// modes, and with noisy contours: the construction keeps them (contour
+// vertices are made first and shared by every piece), and this holds it to
+// that wherever pieces are closed by prisms, recursed or repaired.
+TEST(Reconstruction, EveryShapeKeepsEveryContourPointAsAVertex) {
+    struct Variant {
+        double spacingMm, noiseMm;
+        Interpolation interpolation;
+        CapMode cap;
+    };
+    const Variant variants[] = {{2, 0, Interpolation::Smooth, CapMode::Flat},
+                                {5, 0, Interpolation::Smooth, CapMode::Flat},
+                                {5, 0, Interpolation::Linear, CapMode::Dome},
+                                {3, 0.05, Interpolation::Smooth, CapMode::Flat}};
+    for (const std::string& name : allShapeNames())
+        for (const Variant& v : variants) {
+            SCOPED_TRACE(name + " at " + std::to_string(v.spacingMm) + " mm, noise " +
+                         std::to_string(v.noiseMm));
+            SynthOptions synth;
+            synth.spacingMm = v.spacingMm;
+            synth.noiseMm = v.noiseMm;
+            const Roi roi = sliceShape(*makeShape(name), synth).rois[0];
+            ReconstructionOptions options;
+            options.interpolation = v.interpolation;
+            options.cap = v.cap;
+            const Checked c = reconstruct(roi, options);
+            EXPECT_TRUE(c.check.validSolid());
+            expectContoursAreVertices(roi, c.result.surface);
+        }
+}
+
 TEST(Reconstruction, OneContourToTwoRecursesAndStaysValid) {
     const Roi roi = stack({{circle({0, 0}, 8)}, {circle({-5, 0}, 4), circle({5, 0}, 4)}});
     const Checked c = reconstruct(roi);
