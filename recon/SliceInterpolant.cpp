@@ -6,6 +6,15 @@
 
 namespace dfrecon {
 
+namespace {
+
+// A secant at most this fraction of the one on the plane's other side
+// counts as flat (the field did not change over that slab): exactly flat on
+// identical planes, with room for the fields' float rounding.
+constexpr double kFlatSecantRatio = 0.05;
+
+}  // namespace
+
 SliceInterpolant::SliceInterpolant(const SliceFields& fields) : fields_(fields) {
     if (fields.sliceCount() == 0 || fields.grid.pixelCount() == 0)
         throw std::invalid_argument("SliceInterpolant: no fields");
@@ -50,7 +59,8 @@ double SliceInterpolant::planeValue(std::size_t slice, Point2 p) const {
            fy * ((1 - fx) * at(i, j1) + fx * at(i1, j1));
 }
 
-double SliceInterpolant::tangent(std::size_t slice, double below, double here, double above) const {
+double SliceInterpolant::tangent(std::size_t slice, Point2 xy, double below, double here,
+                                 double above) const {
     const std::vector<double>& z = fields_.zMm;
     const std::size_t n = z.size();
     // Inside the stack, the slope of the parabola through the plane and its
@@ -60,8 +70,24 @@ double SliceInterpolant::tangent(std::size_t slice, double below, double here, d
     if (slice == 0) return (above - here) / (z[1] - z[0]);
     if (slice + 1 == n) return (here - below) / (z[n - 1] - z[n - 2]);
     const double hBelow = z[slice] - z[slice - 1], hAbove = z[slice + 1] - z[slice];
-    return (hAbove * (here - below) / hBelow + hBelow * (above - here) / hAbove) /
-           (hBelow + hAbove);
+    const double dBelow = (here - below) / hBelow, dAbove = (above - here) / hAbove;
+    // Where the field has not changed over the two slabs on one side (a
+    // straight stretch: a stem below a branching, a cylinder that starts to
+    // narrow), the surface leaves the plane straight: the parabola would
+    // bend the straight stretch's last slab toward the change on the other
+    // side. One flat slab alone is no straight stretch (a bulge symmetric
+    // about the middle of a slab has one too), so the next one decides, and
+    // where there is none the parabola stays.
+    auto flat = [](double d, double other) {
+        return std::fabs(d) <= kFlatSecantRatio * std::fabs(other);
+    };
+    if (slice >= 2 && flat(dBelow, dAbove) &&
+        flat((below - planeValue(slice - 2, xy)) / (z[slice - 1] - z[slice - 2]), dAbove))
+        return 0;
+    if (slice + 2 < n && flat(dAbove, dBelow) &&
+        flat((planeValue(slice + 2, xy) - above) / (z[slice + 2] - z[slice + 1]), dBelow))
+        return 0;
+    return (hAbove * dBelow + hBelow * dAbove) / (hBelow + hAbove);
 }
 
 void SliceInterpolant::setSlabBulges(std::vector<double> bulgeMm) {
@@ -92,7 +118,7 @@ double SliceInterpolant::value(Vec3 p) const {
     // The four planes around the slab, each read once.
     const double vBelow = s > 0 ? planeValue(s - 1, xy) : 0;
     const double vAbove = s + 2 < z.size() ? planeValue(s + 2, xy) : 0;
-    const double m0 = tangent(s, vBelow, v0, v1), m1 = tangent(s + 1, v0, v1, vAbove);
+    const double m0 = tangent(s, xy, vBelow, v0, v1), m1 = tangent(s + 1, xy, v0, v1, vAbove);
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * v0 + (t3 - 2 * t2 + t) * h * m0 + (-2 * t3 + 3 * t2) * v1 +
            (t3 - t2) * h * m1 - bulgeAt(p.z);

@@ -2,7 +2,9 @@
 // A C1 implicit function through a stack of slices: F(x, y, z) is each
 // slice's signed distance field (bilinear between pixel centres) and, between
 // the planes, a cubic Hermite interpolation in z whose tangent at a plane is
-// the slope of the parabola through that plane's value and its neighbours'.
+// the slope of the parabola through that plane's value and its neighbours'
+// (0 where the field is flat over the two slabs on one side: a straight
+// stretch stays straight).
 // It equals each slice's field on its plane, has a continuous z-derivative
 // across planes (the tangent is shared by the slabs above and below), and
 // reproduces any field quadratic in z, so a surface that bulges between two
@@ -55,8 +57,10 @@ class SliceInterpolant {
     double planeValue(std::size_t slice, Point2 p) const;
     /// dF/dz at plane `slice`, from the field there (`here`) and on the
     /// planes below and above it (unused where the stack ends): the slope of
-    /// the parabola through the three.
-    double tangent(std::size_t slice, double below, double here, double above) const;
+    /// the parabola through the three, or 0 where the field is flat over the
+    /// two slabs on one side of the plane (reading the plane beyond, at
+    /// `xy`, only then).
+    double tangent(std::size_t slice, Point2 xy, double below, double here, double above) const;
 
     const SliceFields& fields_;
     std::vector<double> bulgeMm_;  // per slab; empty: none

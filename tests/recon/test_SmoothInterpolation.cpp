@@ -74,6 +74,38 @@ TEST(SliceInterpolant, EqualsEachPlaneReproducesQuadraticsAndIsC1) {
         }
 }
 
+// The same value at every pixel of a plane, one value per plane.
+SliceFields uniformFields(const std::vector<double>& zMm, const std::vector<double>& values) {
+    SliceFields fields;
+    fields.grid.originMm = {-2, -2};
+    fields.grid.pixelMm = 1;
+    fields.grid.width = fields.grid.height = 4;
+    fields.zMm = zMm;
+    for (double v : values)
+        for (int k = 0; k < 16; ++k) {
+            fields.distanceMm.push_back(float(v));
+            fields.nearestId.push_back(kNoPrimitive);
+        }
+    return fields;
+}
+
+TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
+    // Three equal planes (a stem), then the field changes (a branching): the
+    // stem's last slab stays exactly straight, and the slope is 0 on both
+    // sides of its last plane, so the change is C1 too.
+    const SliceFields stem = uniformFields({0, 1, 2, 3, 4}, {-2, -2, -2, 1, 1.5});
+    const SliceInterpolant field(stem);
+    for (double z : {1.1, 1.5, 1.9}) EXPECT_NEAR(field.value({0, 0, z}), -2, 1e-6) << z;
+    const double d = 1e-4;
+    EXPECT_NEAR((field.value({0, 0, 2 + d}) - field.value({0, 0, 2})) / d, 0, 1e-3);
+    // One flat slab between two changing ones is a bulge symmetric about its
+    // middle (f = z² on planes -3, -1, 1, 3), not a straight stretch: the
+    // parabola's slopes stay, and the interpolant is the quadratic itself.
+    const SliceFields bulge = uniformFields({-3, -1, 1, 3}, {9, 1, 1, 9});
+    const SliceInterpolant round(bulge);
+    for (double z : {-0.5, 0.0, 0.7}) EXPECT_NEAR(round.value({0, 0, z}), z * z, 1e-6) << z;
+}
+
 TEST(SliceInterpolant, BulgeMovesTheZeroSetOutwardBetweenPlanesOnly) {
     const std::vector<double> z{0, 2, 4};
     const SliceFields fields = quadraticFields(z);
