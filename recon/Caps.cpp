@@ -400,10 +400,16 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
     LayerPart lidPart{&top, {}};
     for (std::uint32_t c = 0; c < top.contours.size(); ++c) lidPart.contours.push_back(c);
     const SliceFields lidField = site.fieldsOf({lidPart}, own.grid);
+    const std::size_t joinFrom = site.builder().triangleCount();
     if (up)
         site.joinLayers(end, own, lidPart, lidField);
     else
         site.joinLayers(lidPart, lidField, end, own);
+    // A cavity's end keeps the shape of its trend: the slab's interpolant
+    // there (the cavity's field against the solid plane beyond) closes it
+    // far sooner than the lid, so bending its wall onto it would pinch the
+    // cavity and volume matching would take that back from the outer wall.
+    if (outermostIsHole(end)) site.builder().markRigidSince(joinFrom);
     roundedCap(site.builder(), lidPart, {up, 0.0, 0.0}, {}, [](Point2) { return 0.0; });
 }
 

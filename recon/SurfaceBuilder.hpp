@@ -62,6 +62,11 @@ class SurfaceBuilder {
     void markLoftSince(std::size_t first) {
         std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), true);
     }
+    /// Marks the triangles added since `first` as no loft band, strips
+    /// included: smooth interpolation leaves them as built.
+    void markRigidSince(std::size_t first) {
+        std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), false);
+    }
     /// Records that the triangles added since `first` were searched for
     /// colliding pairs among themselves, clean, at float coordinates (a
     /// strip's own check): a check of their piece need not test those
