@@ -85,7 +85,14 @@ class CapSite {
 /// clean sheet, or whose outer contours are too small to hold an inner
 /// vertex, becomes a flat prism cap here; a flat cap is not checked here, as
 /// the caller checks the piece it belongs to anyway (the slab a contour ends
-/// in) or calls capEndsAsPiece. Work: a flat cap over an end that narrows
+/// in) or calls capEndsAsPiece. A hole of `end` whose cavity narrows
+/// toward the end (guaranteedCap says when) is not capped with the rest: it
+/// gets a flat lid of its own at half the offset, what lies in it a cap at
+/// half that, so the cavity stays closed. A flat cap's rim follows the
+/// trend of the region it closes, a cavity's own end (its outermost
+/// contour a hole) narrowing where the cavity beyond is wider; such a
+/// cavity cap is left out of smoothing (SurfaceBuilder::markRigidSince).
+/// Work: a flat cap over an end that narrows
 /// costs one slab's reconstruction on the window around the end contours
 /// (their field and the lid's, the medial axes, the strips), over an end
 /// that does not, a prism cap's; a dome tests a lattice of the slice's
