@@ -186,8 +186,9 @@ double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std
 
 // An end's contours where a cavity closes before the end does. A hole of
 // the end plane whose cavity narrows toward the end (the slice on the other
-// side holds more of it: its vertices lie outside that slice's solid, on
-// average) is a cavity's last section, as a ball's cavity near its pole is:
+// side holds more of it: most of its vertices lie outside that slice's
+// solid, inside the same wall; cavityCloses) is a cavity's last section, as
+// a ball's cavity near its pole is:
 // capping it with the rest would run it through the lid as a tunnel from
 // the cavity to the outside. Such a hole gets a lid of its own, nearer the
 // plane than the rest's, and what it holds (an island) a cap nearer still.
