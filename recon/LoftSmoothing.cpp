@@ -771,6 +771,11 @@ class LoftSmoother {
         return check.validSolid();
     }
 
+    /// The whole surface as written, checked (checkWhole): what a repair
+    /// that tested only around its defects must pass before the surface is
+    /// called valid.
+    MeshCheckReport confirmWhole() { return checkWhole(); }
+
     /// The last resort: the linear surface as it came, checked whole.
     MeshCheckReport fallBackToLinear() {
         surface_.points.resize(linear_.points.size());
@@ -923,11 +928,24 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const Pie
     check = smoother.bendAndBulge();
     if (check.validSolid()) return smoother.stats;
     std::vector<std::size_t> suspects;
-    if (smoother.unbendAroundDefects(check, suspects)) return smoother.stats;
     // The whole check before the repair stopped counting: the next must be
     // whole too.
-    if (smoother.restorePieces(check, std::move(suspects), check.intersectingPairsCapped))
-        return smoother.stats;
+    bool wholeChecks = check.intersectingPairsCapped;
+    if (smoother.unbendAroundDefects(check, suspects)) {
+        // The repair settled what it tested around the defects; the surface
+        // as written must agree as a whole before it is called valid (a
+        // settled repair once left crossing triangles beside it: hostile
+        // stack seed 377).
+        check = smoother.confirmWhole();
+        if (check.validSolid()) return smoother.stats;
+        suspects = check.defectiveTriangles;
+        wholeChecks = true;
+    }
+    if (smoother.restorePieces(check, std::move(suspects), wholeChecks)) {
+        if (wholeChecks) return smoother.stats;
+        check = smoother.confirmWhole();  // the same confirmation, after local checks
+        if (check.validSolid()) return smoother.stats;
+    }
     check = smoother.fallBackToLinear();
     return smoother.stats;
 }

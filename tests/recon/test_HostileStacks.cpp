@@ -37,6 +37,14 @@ void expectEveryRoiValid(std::uint32_t seed) {
     }
 }
 
+// A stack whose smoothing repair settled locally beside triangles that
+// still crossed (label 3, in its last slab): the surface was called valid.
+// The repair's result is now checked whole, and there it falls back to the
+// linear surface.
+TEST(HostileStacks, ALocallySettledRepairIsCheckedWhole) {
+    expectEveryRoiValid(377);
+}
+
 class HostileStack : public ::testing::TestWithParam<std::uint32_t> {};
 
 TEST_P(HostileStack, EveryRoiIsAValidClosedSolid) {
