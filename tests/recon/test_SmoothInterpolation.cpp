@@ -30,22 +30,30 @@ double meanDistance(const AnalyticShape& shape, const TriangleSoup& soup, double
 
 }  // namespace
 
-// A field made by hand: at every pixel centre, a quadratic in z whose
-// coefficients vary over the grid, on unevenly spaced planes.
-SliceFields quadraticFields(const std::vector<double>& zMm) {
+// Fields made by hand on a 4 × 4 grid of 1 mm pixels: `value(i, j, s)` at
+// pixel (i, j) of plane s.
+template <class Value>
+SliceFields handMadeFields(const std::vector<double>& zMm, Value value) {
     SliceFields fields;
     fields.grid.originMm = {-2, -2};
     fields.grid.pixelMm = 1;
     fields.grid.width = fields.grid.height = 4;
     fields.zMm = zMm;
-    for (double z : zMm)
+    for (std::size_t s = 0; s < zMm.size(); ++s)
         for (int j = 0; j < 4; ++j)
             for (int i = 0; i < 4; ++i) {
-                fields.distanceMm.push_back(
-                    float(0.5 * i - j + (0.3 - 0.1 * j) * z + 0.05 * i * z * z));
+                fields.distanceMm.push_back(float(value(i, j, s)));
                 fields.nearestId.push_back(kNoPrimitive);
             }
     return fields;
+}
+
+// At every pixel centre, a quadratic in z whose coefficients vary over the
+// grid, on unevenly spaced planes.
+SliceFields quadraticFields(const std::vector<double>& zMm) {
+    return handMadeFields(zMm, [&](int i, int j, std::size_t s) {
+        return 0.5 * i - j + (0.3 - 0.1 * j) * zMm[s] + 0.05 * i * zMm[s] * zMm[s];
+    });
 }
 
 double quadraticAt(int i, int j, double z) {
@@ -76,17 +84,7 @@ TEST(SliceInterpolant, EqualsEachPlaneReproducesQuadraticsAndIsC1) {
 
 // The same value at every pixel of a plane, one value per plane.
 SliceFields uniformFields(const std::vector<double>& zMm, const std::vector<double>& values) {
-    SliceFields fields;
-    fields.grid.originMm = {-2, -2};
-    fields.grid.pixelMm = 1;
-    fields.grid.width = fields.grid.height = 4;
-    fields.zMm = zMm;
-    for (double v : values)
-        for (int k = 0; k < 16; ++k) {
-            fields.distanceMm.push_back(float(v));
-            fields.nearestId.push_back(kNoPrimitive);
-        }
-    return fields;
+    return handMadeFields(zMm, [&](int, int, std::size_t s) { return values[s]; });
 }
 
 TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
