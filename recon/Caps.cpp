@@ -151,20 +151,6 @@ std::vector<double> fieldBeyond(const LayerPart& end, const std::vector<std::uin
     return values;
 }
 
-// Is the outermost contour of `end` a hole (a cavity's own end, capped
-// from inside the cavity)? The contour of largest area decides. O(points).
-bool outermostIsHole(const LayerPart& end) {
-    double largest = 0, signOfLargest = 1;
-    for (std::uint32_t c : end.contours) {
-        const double area = signedArea(end.layer->contours[c]);
-        if (std::fabs(area) > largest) {
-            largest = std::fabs(area);
-            signOfLargest = area;
-        }
-    }
-    return signOfLargest < 0;
-}
-
 // How fast the region of `end` (slice `slice` of `fields`) shrinks per mm
 // of z toward its end, judged from the slice on the other side: the mean
 // of its field at their vertices over the gap. Outer contours shrink where
@@ -222,6 +208,16 @@ std::vector<std::size_t> enclosing(const LayerPart& end, std::size_t inner) {
     return out;
 }
 
+// The value below which the fraction `q` of `values` lies (the element at
+// that rank; `values` non-empty, reordered). O(n).
+double quantile(std::vector<double>& values, double q) {
+    const auto rank =
+        values.begin() +
+        std::ptrdiff_t(std::min(values.size() - 1, std::size_t(q * double(values.size()))));
+    std::nth_element(values.begin(), rank, values.end());
+    return *rank;
+}
+
 // Does the cavity of hole `contour` narrow toward the end fast enough to
 // close soon beyond it? Its vertices (`beyondMm`: the field beyond at each)
 // mostly lie outside the solid of the slice beyond, and a quarter of them
@@ -233,9 +229,7 @@ std::vector<std::size_t> enclosing(const LayerPart& end, std::size_t inner) {
 // stay open. O(n).
 bool cavityCloses(const Polygon& contour, std::vector<double> beyondMm, const SliceGrid& grid) {
     if (beyondMm.empty()) return false;
-    std::sort(beyondMm.begin(), beyondMm.end());
-    const double median = beyondMm[beyondMm.size() / 2];
-    const double upperQuartile = beyondMm[3 * beyondMm.size() / 4];
+    const double median = quantile(beyondMm, 0.5), upperQuartile = quantile(beyondMm, 0.75);
     const double radiusMm =
         2 * std::fabs(signedArea(contour)) / std::max(perimeterMm(contour), 1e-12);
     return median > 0 && upperQuartile > std::max(0.5 * radiusMm, 2 * grid.pixelMm);
@@ -260,9 +254,7 @@ CavitySplit splitClosingCavities(const LayerPart& end, bool up, const SliceField
         // open space around a part that starts or ends here.
         std::vector<double> wall =
             fieldBeyond(end, {end.contours[around.front()]}, up, fields, slice);
-        if (wall.empty()) continue;
-        std::nth_element(wall.begin(), wall.begin() + std::ptrdiff_t(wall.size() / 2), wall.end());
-        if (!(wall[wall.size() / 2] < 0)) continue;
+        if (wall.empty() || !(quantile(wall, 0.5) < 0)) continue;
         closing[k] = cavityCloses(end.layer->contours[c], fieldBeyond(end, {c}, up, fields, slice),
                                   fields.grid);
         any = any || closing[k];
@@ -410,7 +402,7 @@ void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const S
     // there (the cavity's field against the solid plane beyond) closes it
     // far sooner than the lid, so bending its wall onto it would pinch the
     // cavity and volume matching would take that back from the outer wall.
-    if (outermostIsHole(end)) site.builder().markRigidSince(joinFrom);
+    if (outermostIsHole(end)) site.builder().markLoftSince(joinFrom, false);
     roundedCap(site.builder(), lidPart, {up, 0.0, 0.0}, {}, [](Point2) { return 0.0; });
 }
 

@@ -91,7 +91,7 @@ class CapSite {
 /// half that, so the cavity stays closed. A flat cap's rim follows the
 /// trend of the region it closes, a cavity's own end (its outermost
 /// contour a hole) narrowing where the cavity beyond is wider; such a
-/// cavity cap is left out of smoothing (SurfaceBuilder::markRigidSince).
+/// cavity cap is left out of smoothing (SurfaceBuilder::markLoftSince).
 /// Work: a flat cap over an end that narrows
 /// costs one slab's reconstruction on the window around the end contours
 /// (their field and the lid's, the medial axes, the strips), over an end

@@ -771,10 +771,26 @@ class LoftSmoother {
         return check.validSolid();
     }
 
-    /// The whole surface as written, checked (checkWhole): what a repair
-    /// that tested only around its defects must pass before the surface is
-    /// called valid.
-    MeshCheckReport confirmWhole() { return checkWhole(); }
+    /// The whole surface checked as stacked pieces. The surface came valid:
+    /// a piece none of whose vertices moved or are new is as clean as it
+    /// was, and its pairs need no search; nor do the pairs of triangles
+    /// whose corners all stayed (refinement splits every triangle it
+    /// touches with new vertices, so such a triangle is one of the linear
+    /// surface's, where it was). What a repair that tested only around its
+    /// defects must pass before the surface is called valid.
+    MeshCheckReport checkWhole() {
+        unmoved_.searched.assign(stack_.planeZMm.size() + 1, true);
+        unmoved_.cleanGroup.assign(surface_.triangles.size(), 1);
+        for (std::size_t t = 0; t < surface_.triangles.size(); ++t)
+            for (std::uint32_t v : surface_.triangles[t])
+                if (v >= linear_.points.size() || !(surface_.points[v] == linear_.point(v))) {
+                    unmoved_.searched[marks_.pieceOf[t]] = false;
+                    unmoved_.cleanGroup[t] = 0;
+                }
+        MeshCheckReport report = checkStackedMesh(surface_, marks_.pieceOf, unmoved_);
+        CleanGroups().swap(unmoved_.cleanGroup);  // per triangle, and only a check reads it
+        return report;
+    }
 
     /// The last resort: the linear surface as it came, checked whole.
     MeshCheckReport fallBackToLinear() {
@@ -793,26 +809,6 @@ class LoftSmoother {
     LinearSurface roundedLinear() {
         written_.round(surface_);
         return {written_, written_.exact(surface_.points), surface_.triangles, marks_.pieceOf};
-    }
-
-    /// The whole surface checked as stacked pieces. The surface came valid:
-    /// a piece none of whose vertices moved or are new is as clean as it
-    /// was, and its pairs need no search; nor do the pairs of triangles
-    /// whose corners all stayed (refinement splits every triangle it
-    /// touches with new vertices, so such a triangle is one of the linear
-    /// surface's, where it was).
-    MeshCheckReport checkWhole() {
-        unmoved_.searched.assign(stack_.planeZMm.size() + 1, true);
-        unmoved_.cleanGroup.assign(surface_.triangles.size(), 1);
-        for (std::size_t t = 0; t < surface_.triangles.size(); ++t)
-            for (std::uint32_t v : surface_.triangles[t])
-                if (v >= linear_.points.size() || !(surface_.points[v] == linear_.point(v))) {
-                    unmoved_.searched[marks_.pieceOf[t]] = false;
-                    unmoved_.cleanGroup[t] = 0;
-                }
-        MeshCheckReport report = checkStackedMesh(surface_, marks_.pieceOf, unmoved_);
-        CleanGroups().swap(unmoved_.cleanGroup);  // per triangle, and only a check reads it
-        return report;
     }
 
     /// After unbending: the slabs it touched bulge again (unbending changed
@@ -936,14 +932,14 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const Pie
         // as written must agree as a whole before it is called valid (a
         // settled repair once left crossing triangles beside it: hostile
         // stack seed 377).
-        check = smoother.confirmWhole();
+        check = smoother.checkWhole();
         if (check.validSolid()) return smoother.stats;
         suspects = check.defectiveTriangles;
         wholeChecks = true;
     }
     if (smoother.restorePieces(check, std::move(suspects), wholeChecks)) {
         if (wholeChecks) return smoother.stats;
-        check = smoother.confirmWhole();  // the same confirmation, after local checks
+        check = smoother.checkWhole();  // the same confirmation, after local checks
         if (check.validSolid()) return smoother.stats;
     }
     check = smoother.fallBackToLinear();

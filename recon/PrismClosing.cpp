@@ -1,5 +1,6 @@
 #include "recon/PrismClosing.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -115,6 +116,18 @@ bool holdsAsFloats(const SurfaceBuilder& builder, std::size_t before) {
 }
 
 }  // namespace
+
+bool outermostIsHole(const LayerPart& a, const LayerPart& b) {
+    double largest = 0, sign = 1;
+    for (const LayerPart* part : {&a, &b}) {
+        if (!part->layer) continue;
+        for (std::uint32_t c : part->contours) {
+            const double area = signedArea(part->layer->contours[c]);
+            if (std::abs(area) > largest) largest = std::abs(area), sign = area;
+        }
+    }
+    return sign < 0;
+}
 
 bool closeByPrisms(SurfaceBuilder& builder, const LayerPart& lower, const LayerPart& upper,
                    double middleZMm) {

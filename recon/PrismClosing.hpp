@@ -20,6 +20,14 @@ struct LayerPart {
     std::vector<std::uint32_t> contours;
 };
 
+/// Is the outermost contour (the largest by area) of `a` and `b` together a
+/// hole: a cavity's own end, below the recursion's top level or where a
+/// cavity ends? The fields of such parts alone are negative in the empty
+/// space inside the holes (the sign comes from the winding number), so what
+/// follows the negative region runs against the contours' orientation.
+/// Parts of whole slices never are. O(points).
+bool outermostIsHole(const LayerPart& a, const LayerPart& b = {});
+
 /// Adds the walls and lid described above at height `middleZMm` (strictly
 /// between the two layers' planes; either part may be empty). Every edge of
 /// the parts' contours gets exactly one wall triangle fan, so the piece

@@ -308,8 +308,6 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     stats.smoothFellBack = smooth.fellBack;
 }
 
-/// One run of planes, phase by phase (see the top); its working arrays go
-/// when it returns.
 /// The guarantee every piece is built to keep: each of the first
 /// `contourVertices` points (the contour points, made first and shared by
 /// every piece) is a corner of some triangle. Checked, not assumed, so a
@@ -328,6 +326,8 @@ void requireContourPointsKept(const TriangleSoup& surface, std::size_t contourVe
                                "report it with the input)");
 }
 
+/// One run of planes, phase by phase (see the top); its working arrays go
+/// when it returns.
 Reconstruction reconstructWithin(ocl::Runtime& runtime, const Roi& roi,
                                  const ReconstructionOptions& requested,
                                  const std::function<void(double)>& progress) {

@@ -80,21 +80,6 @@ LayerPart subset(const LayerPart& of, const std::vector<std::uint32_t>& local) {
     return out;
 }
 
-/// Is the outermost contour of these parts a hole? The fields of such parts
-/// alone are negative in the empty space inside the holes (the sign comes
-/// from the winding number), so axes and isolines, which follow the negative
-/// region, run against the contours' orientation and are turned around.
-/// Parts of whole slices never are.
-bool emptyIsNegative(const LayerPart& a, const LayerPart& b) {
-    double largest = 0, sign = 1;
-    for (const LayerPart* p : {&a, &b})
-        for (std::uint32_t c : p->contours) {
-            const double area = signedArea(p->layer->contours[c]);
-            if (std::abs(area) > largest) largest = std::abs(area), sign = area;
-        }
-    return sign < 0;
-}
-
 /// Slice `ia` of `a` and slice `ib` of `b` as a two-slice stack, so a field
 /// computed once serves both halves of a recursion.
 SliceFields pairOf(const SliceFields& a, std::size_t ia, const SliceFields& b, std::size_t ib) {
@@ -132,7 +117,7 @@ double netAreaMm2(const LayerPart& part) {
 std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabFields& sides,
                                     const LayerPart& x, const LayerPart& y) {
     const SliceGrid& grid = sides.fields.grid;
-    if (emptyIsNegative(x, y)) return zeroIsolines(sumMm, grid);
+    if (outermostIsHole(x, y)) return zeroIsolines(sumMm, grid);
     const std::size_t pixels = grid.pixelCount();
     const float* lower = sides.fields.distanceMm.data() + sides.lower * pixels;
     const float* upper = sides.fields.distanceMm.data() + sides.upper * pixels;
@@ -239,7 +224,7 @@ bool SlabReconstructor::isCleanCap(std::size_t before, const LayerPart& end) {
 
 const Layer& SlabReconstructor::addIsolineLayer(double zMm, std::vector<Polygon> isolines,
                                                 const LayerPart& of) {
-    if (emptyIsNegative(of, {of.layer, {}}))
+    if (outermostIsHole(of))
         for (Polygon& p : isolines) std::reverse(p.begin(), p.end());
     layers_.push_back(makeLayer(builder_, zMm, std::move(isolines)));
     return layers_.back();
@@ -300,7 +285,7 @@ bool SlabReconstructor::slab(const LayerPart& lower, const LayerPart& upper, Sla
         const ScopedSeconds timer(stats_.medialSeconds);
         sum = sumSlices(fields, sides.lower, sides.upper);
         axes = traceMedialAxes(fields, sides.lower, sides.upper, sum);
-        if (depth > 0 && emptyIsNegative(lower, upper))
+        if (depth > 0 && outermostIsHole(lower, upper))
             for (MedialAxis& axis : axes) std::reverse(axis.pixels.begin(), axis.pixels.end());
     }
     const std::vector<Component> components =
@@ -395,7 +380,7 @@ void SlabReconstructor::recurse(const LayerPart& x, const LayerPart& y, int dept
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));
         // Isolines keep the negative side on their left; contours keep the solid.
-        if (emptyIsNegative(x, y))
+        if (outermostIsHole(x, y))
             for (Polygon& p : middle.contours) std::reverse(p.begin(), p.end());
     }
     if (middle.contours.empty()) {

@@ -57,15 +57,12 @@ class SurfaceBuilder {
         lofts_.resize(count);
         cleanGroups_.resize(count);
     }
-    /// Marks the triangles added since `first` as a loft band: a strip
-    /// stitched between two layers, which smooth interpolation may bend.
-    void markLoftSince(std::size_t first) {
-        std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), true);
-    }
-    /// Marks the triangles added since `first` as no loft band, strips
-    /// included: smooth interpolation leaves them as built.
-    void markRigidSince(std::size_t first) {
-        std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), false);
+    /// Marks the triangles added since `first` as a loft band (`loft`): a
+    /// strip stitched between two layers, which smooth interpolation may
+    /// bend; or, with `loft` false, as none, strips included, which it leaves
+    /// as built.
+    void markLoftSince(std::size_t first, bool loft = true) {
+        std::fill(lofts_.begin() + std::ptrdiff_t(first), lofts_.end(), loft);
     }
     /// Records that the triangles added since `first` were searched for
     /// colliding pairs among themselves, clean, at float coordinates (a
