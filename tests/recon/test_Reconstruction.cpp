@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "field/Rasterization.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "io/contours/SlicesFile.hpp"
 #include "recon/Reconstruction.hpp"
@@ -187,24 +188,13 @@ TEST(Reconstruction, CavityAndIslandInsideItGiveThreeSurfaces) {
     expectSolid(c, 0, 3);
 }
 
-// Is `p` inside the closed surface: the parity of its crossings along a ray
-// in a direction no test shape lines up with (Möller–Trumbore).
+// Is `p` inside the closed surface: field/Rasterization's exact ray parity
+// for a one-voxel grid centred at p.
 bool insideSolid(const TriangleSoup& surface, Vec3 p) {
-    const Vec3 direction{1, 0.0123, 0.0071};
-    int crossings = 0;
-    for (const auto& t : surface.triangles) {
-        const Vec3 a = surface.points[t[0]], b = surface.points[t[1]], c = surface.points[t[2]];
-        const Vec3 e1 = b - a, e2 = c - a, q = cross(direction, e2);
-        const double det = dot(e1, q);
-        if (std::abs(det) < 1e-14) continue;
-        const Vec3 s = p - a;
-        const double u = dot(s, q) / det;
-        const Vec3 r = cross(s, e1);
-        const double v = dot(direction, r) / det;
-        if (u < 0 || v < 0 || u + v > 1) continue;
-        crossings += dot(e2, r) / det > 0;
-    }
-    return crossings % 2 == 1;
+    VolumeGeometry one;
+    one.size = {1, 1, 1};
+    one.originMm = {p.x, p.y, p.z};
+    return !voxelsInsideSolid(surface, PlaneFrame{}, one).empty();
 }
 
 // A cavity whose last section lies on the end plane (a thick shell cut
