@@ -22,7 +22,10 @@
 // times, then undone, vertex by vertex, until the surface is a valid closed
 // solid again; where a vertex stays stuck inside its neighbour, the
 // neighbour's closest triangle gives way (its corners off the planes move
-// inward past it). What is left overlaps inside triangles, not at vertices
+// inward past it). A triangle passing through a neighbour with no corner
+// inside it is split at its centroid, and the new vertex moves like the
+// others (the surface gains vertices between the planes, never on them).
+// What is left overlaps inside triangles, not at vertices
 // (docs/reconstruction.md, "Neighbours kept apart", has the figures).
 #include <cstddef>
 #include <optional>
@@ -88,7 +91,8 @@ struct NeighbourSeparation {
 /// every vertex between the planes that lies deeper than
 /// options.insideToleranceMm inside another ROI of a pair with no overlap on
 /// shared planes moves out (unless that would break its surface), measured
-/// against the surfaces as they are at the start of each of the two rounds. Every surface stays a
+/// against the surfaces as they are at the start of each of the two rounds (triangles with no
+/// corner inside whose centroid is inside are split there first). Every surface stays a
 /// valid closed solid with the same vertices on its planes. A pair "overlaps on planes" when a
 /// vertex or contour-edge midpoint of one on a plane both have lies inside
 /// the other (an overlap narrower than the contours' point spacing can go

@@ -102,6 +102,49 @@ TEST(NeighbourSeparation, TouchingLabelsOverlapFarLessAndKeepTheirContours) {
     }
 }
 
+// A closed box [lo, hi], oriented outward.
+TriangleSoup box(Vec3 lo, Vec3 hi) {
+    TriangleSoup soup;
+    for (int k = 0; k < 8; ++k)
+        soup.points.push_back({k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z});
+    soup.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                      {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return soup;
+}
+
+TEST(NeighbourSeparation, ATriangleThroughItsNeighbourGetsAVertexThatMovesOut) {
+    // A tetrahedron on planes z = 0 and 10 and a plate on planes z = 1 and 5
+    // skewering its slanted face: no vertex of either lies inside the other,
+    // so moving vertices alone changes nothing; the triangles are split
+    // where they pass through the other and the new vertices move out.
+    TriangleSoup tetra;
+    tetra.points = {{0, 0, 0}, {20, 0, 0}, {0, 20, 0}, {0, 0, 10}};
+    tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    TriangleSoup plate = box({-5, 6.2, 1}, {30, 7.2, 5});
+    ASSERT_TRUE(checkMesh(tetra).validSolid());
+    ASSERT_TRUE(checkMesh(plate).validSolid());
+    const double overlapBefore = overlapMm3(tetra, plate);
+    ASSERT_GT(overlapBefore, 1.0);
+
+    std::vector<NeighbourSurface> rois = {{"tetra", &tetra, {}, {0, 10}},
+                                          {"plate", &plate, {}, {1, 5}}};
+    const NeighbourSeparation separation = keepNeighboursApart(nullptr, rois);
+    ASSERT_EQ(separation.pairs.size(), 1u);
+    EXPECT_GT(separation.pairs[0].movedA, 0u);
+    EXPECT_GT(tetra.points.size(), 4u);  // split
+    EXPECT_TRUE(checkMesh(tetra).validSolid());
+    EXPECT_TRUE(checkMesh(plate).validSolid());
+    // The plate runs through the tetrahedron's inside, which stays: only
+    // the lens at the face can go (29.2 -> 23.8 mm³ as built).
+    EXPECT_LT(overlapMm3(tetra, plate), 0.9 * overlapBefore);
+    // The corners, all on their planes, stay where they were.
+    const std::vector<Vec3> corners = {{0, 0, 0}, {20, 0, 0}, {0, 20, 0}, {0, 0, 10}};
+    for (std::size_t v = 0; v < corners.size(); ++v) EXPECT_EQ(tetra.points[v], corners[v]);
+    const TriangleSoup plateCorners = box({-5, 6.2, 1}, {30, 7.2, 5});
+    for (std::size_t v = 0; v < plateCorners.points.size(); ++v)
+        EXPECT_EQ(plate.points[v], plateCorners.points[v]);
+}
+
 TEST(NeighbourSeparation, TheKernelAndItsTwinMoveTheSame) {
     const ContourSet set = splitBall();
     std::vector<RoiSurface> onDevice = reconstructAll(set), onHost = onDevice;
