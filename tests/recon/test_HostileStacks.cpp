@@ -45,6 +45,24 @@ TEST(HostileStacks, ALocallySettledRepairIsCheckedWhole) {
     expectEveryRoiValid(377);
 }
 
+// The cause: a piece given its linear triangles back kept its intermediate
+// contours' bent vertices, on which those triangles crossed each other, and
+// a piece already linear and still broken left nothing to search around, so
+// the local check passed. Restored pieces now get their linear places back:
+// label 3 keeps its smooth surface where it was valid instead of falling
+// back to linear whole.
+TEST(HostileStacks, ARestoredPieceIsLinearInItsVerticesToo) {
+    const ContourSet set = contoursFromLabels(hostileLabelVolume(377));
+    const Roi* label3 = nullptr;
+    for (const Roi& roi : set.rois)
+        if (roi.name == "label_3") label3 = &roi;
+    ASSERT_NE(label3, nullptr);
+    const Reconstruction result = reconstructSurface(cpuRuntime(), *label3);
+    EXPECT_TRUE(result.check.validSolid());
+    EXPECT_FALSE(result.stats.smoothFellBack);
+    EXPECT_GT(result.stats.smoothRevertedPieces, 0u);
+}
+
 class HostileStack : public ::testing::TestWithParam<std::uint32_t> {};
 
 TEST_P(HostileStack, EveryRoiIsAValidClosedSolid) {
