@@ -271,8 +271,8 @@ void addReconstructCommand(CLI::App& root, const GlobalOptions& global) {
                     "'apart' moves those surfaces out of each other first (each vertex inside a "
                     "neighbour halfway to it, or all the way where the neighbour has none in "
                     "the overlap, and 0.01 mm beyond, in two rounds; a triangle passing "
-                    "through a neighbour with no corner inside is split at its centroid, whose "
-                    "vertex moves likewise; contour points stay "
+                    "through a neighbour is split at its centroid, whose vertex moves likewise; "
+                    "contour points stay "
                     "vertices; a move that would make a surface cross itself is undone) and "
                     "reports the overlap left. See docs/reconstruction.md, 'Neighbours'")
         ->capture_default_str()

@@ -22,9 +22,10 @@
 // times, then undone, vertex by vertex, until the surface is a valid closed
 // solid again; where a vertex stays stuck inside its neighbour, the
 // neighbour's closest triangle gives way (its corners off the planes move
-// inward past it). A triangle passing through a neighbour with no corner
-// inside it is split at its centroid, and the new vertex moves like the
-// others (the surface gains vertices between the planes, never on them).
+// inward past it). A triangle passing through a neighbour (in the first
+// round only one with no corner inside it) is split at its centroid, and
+// the new vertex moves like the others (the surface gains vertices between
+// the planes, never on them).
 // What is left overlaps inside triangles, not at vertices
 // (docs/reconstruction.md, "Neighbours kept apart", has the figures).
 #include <cstddef>
@@ -91,8 +92,9 @@ struct NeighbourSeparation {
 /// every vertex between the planes that lies deeper than
 /// options.insideToleranceMm inside another ROI of a pair with no overlap on
 /// shared planes moves out (unless that would break its surface), measured
-/// against the surfaces as they are at the start of each of the two rounds (triangles with no
-/// corner inside whose centroid is inside are split there first). Every surface stays a
+/// against the surfaces as they are at the start of each of the two rounds (triangles whose
+/// centroid is inside are split there first; in the first round only those with no corner
+/// inside). Every surface stays a
 /// valid closed solid with the same vertices on its planes. A pair "overlaps on planes" when a
 /// vertex or contour-edge midpoint of one on a plane both have lies inside
 /// the other (an overlap narrower than the contours' point spacing can go
