@@ -132,7 +132,12 @@ bool trianglesCollide(const TriangleSoup& soup, const Triangle& s, const Triangl
     return trianglesCollide(s, a, t, b);
 }
 
-bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+namespace {
+
+// trianglesCollide as seen from s: where the triangles share vertices its
+// side and wedge tests are in floating point, taken in s's frame, and a
+// fold within a rounding error of flat can come out either way.
+bool collidesSeenFrom(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
                       const std::array<std::uint32_t, 3>& t, const Vec3 b[3]) {
     int shared = 0, sa[3] = {-1, -1, -1};  // sa[k]: index in t of s[k], or -1
     for (int i = 0; i < 3; ++i)
@@ -191,6 +196,21 @@ bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
     for (const Vec3 d : {line, -1.0 * line})
         if (intoWedge(d, a1, a2, nA) && intoWedge(d, b1, b2, nB)) return true;
     return false;
+}
+
+}  // namespace
+
+bool trianglesCollide(const std::array<std::uint32_t, 3>& s, const Vec3 a[3],
+                      const std::array<std::uint32_t, 3>& t, const Vec3 b[3]) {
+    // Judged from both sides where they share a vertex, so that a pair's
+    // verdict does not depend on which comes first: checkMesh's hierarchy
+    // and the local checks after moving vertices (defectsAfterMoving) meet
+    // a pair in either order, and once disagreed on a fold a micrometre from
+    // flat (hostile label stacks moved apart, seeds 117 and 166).
+    const bool sharesVertex = s[0] == t[0] || s[0] == t[1] || s[0] == t[2] || s[1] == t[0] ||
+                              s[1] == t[1] || s[1] == t[2] || s[2] == t[0] || s[2] == t[1] ||
+                              s[2] == t[2];
+    return collidesSeenFrom(s, a, t, b) || (sharesVertex && collidesSeenFrom(t, b, s, a));
 }
 
 namespace {

@@ -384,37 +384,94 @@ class NearSurface {
 // those probes the new vertex, which then moves like any other. The
 // surface keeps its shape and orientation: three triangles in the old
 // one's plane, the old index holding the first. O(T + splits).
+// The shortest edge of a triangle a centroid split may take: well above the
+// micrometre by which touching contours are opened (geometry/TouchSeparation).
+constexpr double kShortestSplitEdgeMm = 0.01;
+
+double shortestEdgeMm(const TriangleSoup& soup, const std::array<std::uint32_t, 3>& t) {
+    return std::min({length(soup.points[t[1]] - soup.points[t[0]]),
+                     length(soup.points[t[2]] - soup.points[t[1]]),
+                     length(soup.points[t[0]] - soup.points[t[2]])});
+}
+
 void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
                       bool evenWithCornerInside) {
-    std::vector<std::uint32_t> centroidOf(soup.triangles.size(), kTriangleCentroid);
-    std::vector<bool> vertexInside(soup.points.size(), false);
+    const std::size_t pointsBefore = soup.points.size(), trianglesBefore = soup.triangles.size();
+    std::vector<bool> vertexInside(pointsBefore, false);
     for (const Probe* probe : probes)
         for (const Inside& in : probe->inside)
             if (in.vertex != kTriangleCentroid) vertexInside[in.vertex] = true;
-    for (Probe* probe : probes)
-        for (Inside& in : probe->inside) {
-            if (in.vertex != kTriangleCentroid) continue;
-            std::uint32_t& made = centroidOf[in.splitTriangle];
-            if (made == kTriangleCentroid) {
-                // In the first round a corner inside moves out itself, most
-                // often taking the triangle along; splitting those too there
-                // cost three times the collision checks (Brodmann: 28 s
-                // against 11 s) for a fifth less overlap. In the next, few
-                // corners are left inside and every triangle through a
-                // neighbour is split (593 -> 413 mm3, 10.8 -> 11.9 s).
-                const auto& tri = soup.triangles[in.splitTriangle];
-                if (!evenWithCornerInside &&
-                    (vertexInside[tri[0]] || vertexInside[tri[1]] || vertexInside[tri[2]]))
-                    continue;
-                made = std::uint32_t(soup.points.size());
-                soup.points.push_back(in.at);
-                const auto old = soup.triangles[in.splitTriangle];
-                soup.triangles[in.splitTriangle] = {old[0], old[1], made};
-                soup.triangles.push_back({old[1], old[2], made});
-                soup.triangles.push_back({old[2], old[0], made});
-            }
-            in.vertex = made;
+    // Every split made at once, appended: split k's vertex is
+    // pointsBefore + k, its triangles splitOf[k] and trianglesBefore + 2k,
+    // + 2k + 1.
+    std::vector<std::uint32_t> splitOf;
+    std::vector<std::array<std::uint32_t, 3>> original;
+    std::vector<std::uint32_t> splitIndex(trianglesBefore, kTriangleCentroid);
+    for (const Probe* probe : probes)
+        for (const Inside& in : probe->inside) {
+            if (in.vertex != kTriangleCentroid || splitIndex[in.splitTriangle] != kTriangleCentroid)
+                continue;
+            // In the first round a corner inside moves out itself, most
+            // often taking the triangle along; splitting those too there
+            // cost three times the collision checks (Brodmann: 28 s
+            // against 11 s) for a fifth less overlap. In the next, few
+            // corners are left inside and every triangle through a
+            // neighbour is split (593 -> 413 mm3, 10.8 -> 11.9 s).
+            const auto old = soup.triangles[in.splitTriangle];
+            if (!evenWithCornerInside &&
+                (vertexInside[old[0]] || vertexInside[old[1]] || vertexInside[old[2]]))
+                continue;
+            // Nor a sliver beside a touch opened by a micrometre: its two
+            // halves along the short edge lie within a micrometre of each
+            // other, and moving the new vertex folds one onto the other
+            // (hostile label stacks, seeds 117 and 166).
+            if (shortestEdgeMm(soup, old) < kShortestSplitEdgeMm) continue;
+            const auto made = std::uint32_t(soup.points.size());
+            splitIndex[in.splitTriangle] = std::uint32_t(splitOf.size());
+            splitOf.push_back(in.splitTriangle);
+            original.push_back(old);
+            // As mesh files hold it, like every point the checks see.
+            soup.points.push_back(asFloat(in.at));
+            soup.triangles[in.splitTriangle] = {old[0], old[1], made};
+            soup.triangles.push_back({old[1], old[2], made});
+            soup.triangles.push_back({old[2], old[0], made});
         }
+    if (splitOf.empty()) return;
+    // The new point, rounded to float, lies a hair off its triangle's
+    // plane: where that makes the new triangles cross another or fold, the
+    // split is taken back.
+    std::vector<std::size_t> fresh(splitOf.begin(), splitOf.end());
+    for (std::size_t t = trianglesBefore; t < soup.triangles.size(); ++t) fresh.push_back(t);
+    std::vector<bool> undo(splitOf.size(), false);
+    for (const std::size_t t : defectsAfterMoving(soup, fresh)) {
+        if (t >= trianglesBefore)
+            undo[(t - trianglesBefore) / 2] = true;
+        else if (splitIndex[t] != kTriangleCentroid)
+            undo[splitIndex[t]] = true;
+    }
+    // Keep the splits that stay, in order, compacting the appended tails.
+    std::vector<std::uint32_t> vertexOf(splitOf.size(), kTriangleCentroid);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < splitOf.size(); ++k) {
+        if (undo[k]) {
+            soup.triangles[splitOf[k]] = original[k];
+            continue;
+        }
+        const auto made = std::uint32_t(pointsBefore + kept);
+        soup.points[made] = soup.points[pointsBefore + k];
+        const auto& old = original[k];
+        soup.triangles[splitOf[k]] = {old[0], old[1], made};
+        soup.triangles[trianglesBefore + 2 * kept] = {old[1], old[2], made};
+        soup.triangles[trianglesBefore + 2 * kept + 1] = {old[2], old[0], made};
+        vertexOf[k] = made;
+        ++kept;
+    }
+    soup.points.resize(pointsBefore + kept);
+    soup.triangles.resize(trianglesBefore + 2 * kept);
+    for (Probe* probe : probes)
+        for (Inside& in : probe->inside)
+            if (in.vertex == kTriangleCentroid && splitIndex[in.splitTriangle] != kTriangleCentroid)
+                in.vertex = vertexOf[splitIndex[in.splitTriangle]];
 }
 
 // How many of a probe's points inside are vertices (a centroid is one once
