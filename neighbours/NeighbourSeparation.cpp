@@ -378,12 +378,6 @@ class NearSurface {
     std::vector<bool> near_;
 };
 
-// Splits every triangle of `soup` whose centroid `probes` found inside a
-// neighbour at that centroid (once, whichever pairs found it; unless
-// `evenWithCornerInside`, only those with no corner found inside) and gives
-// those probes the new vertex, which then moves like any other. The
-// surface keeps its shape and orientation: three triangles in the old
-// one's plane, the old index holding the first. O(T + splits).
 // The shortest edge of a triangle a centroid split may take: well above the
 // micrometre by which touching contours are opened (geometry/TouchSeparation).
 constexpr double kShortestSplitEdgeMm = 0.01;
@@ -394,6 +388,14 @@ double shortestEdgeMm(const TriangleSoup& soup, const std::array<std::uint32_t, 
                      length(soup.points[t[0]] - soup.points[t[2]])});
 }
 
+// Splits every triangle of `soup` whose centroid `probes` found inside a
+// neighbour at that centroid (once, whichever pairs found it; unless
+// `evenWithCornerInside`, only those with no corner found inside) and gives
+// those probes the new vertex, which then moves like any other. The
+// surface keeps its shape and orientation: three triangles in the old
+// one's plane, the old index holding the first. Splits whose new triangles
+// cross another or fold are taken back. O(T + splits), plus a local check
+// around the new triangles.
 void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
                       bool evenWithCornerInside) {
     const std::size_t pointsBefore = soup.points.size(), trianglesBefore = soup.triangles.size();
