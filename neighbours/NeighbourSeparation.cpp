@@ -378,16 +378,6 @@ class NearSurface {
     std::vector<bool> near_;
 };
 
-// The shortest edge of a triangle a centroid split may take: well above the
-// micrometre by which touching contours are opened (geometry/TouchSeparation).
-constexpr double kShortestSplitEdgeMm = 0.01;
-
-double shortestEdgeMm(const TriangleSoup& soup, const std::array<std::uint32_t, 3>& t) {
-    return std::min({length(soup.points[t[1]] - soup.points[t[0]]),
-                     length(soup.points[t[2]] - soup.points[t[1]]),
-                     length(soup.points[t[0]] - soup.points[t[2]])});
-}
-
 // Splits every triangle of `soup` whose centroid `probes` found inside a
 // neighbour at that centroid (once, whichever pairs found it; unless
 // `evenWithCornerInside`, only those with no corner found inside) and gives
@@ -408,10 +398,11 @@ void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
     // + 2k + 1.
     std::vector<std::uint32_t> splitOf;
     std::vector<std::array<std::uint32_t, 3>> original;
-    std::vector<std::uint32_t> splitIndex(trianglesBefore, kTriangleCentroid);
+    constexpr std::uint32_t kNotSplit = UINT32_MAX;
+    std::vector<std::uint32_t> splitIndex(trianglesBefore, kNotSplit);  // per triangle: its k
     for (const Probe* probe : probes)
         for (const Inside& in : probe->inside) {
-            if (in.vertex != kTriangleCentroid || splitIndex[in.splitTriangle] != kTriangleCentroid)
+            if (in.vertex != kTriangleCentroid || splitIndex[in.splitTriangle] != kNotSplit)
                 continue;
             // In the first round a corner inside moves out itself, most
             // often taking the triangle along; splitting those too there
@@ -423,11 +414,6 @@ void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
             if (!evenWithCornerInside &&
                 (vertexInside[old[0]] || vertexInside[old[1]] || vertexInside[old[2]]))
                 continue;
-            // Nor a sliver beside a touch opened by a micrometre: its two
-            // halves along the short edge lie within a micrometre of each
-            // other, and moving the new vertex folds one onto the other
-            // (hostile label stacks, seeds 117 and 166).
-            if (shortestEdgeMm(soup, old) < kShortestSplitEdgeMm) continue;
             const auto made = std::uint32_t(soup.points.size());
             splitIndex[in.splitTriangle] = std::uint32_t(splitOf.size());
             splitOf.push_back(in.splitTriangle);
@@ -448,7 +434,7 @@ void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
     for (const std::size_t t : defectsAfterMoving(soup, fresh)) {
         if (t >= trianglesBefore)
             undo[(t - trianglesBefore) / 2] = true;
-        else if (splitIndex[t] != kTriangleCentroid)
+        else if (splitIndex[t] != kNotSplit)
             undo[splitIndex[t]] = true;
     }
     // Keep the splits that stay, in order, compacting the appended tails.
@@ -472,7 +458,7 @@ void splitAtCentroids(TriangleSoup& soup, const std::vector<Probe*>& probes,
     soup.triangles.resize(trianglesBefore + 2 * kept);
     for (Probe* probe : probes)
         for (Inside& in : probe->inside)
-            if (in.vertex == kTriangleCentroid && splitIndex[in.splitTriangle] != kTriangleCentroid)
+            if (in.vertex == kTriangleCentroid && splitIndex[in.splitTriangle] != kNotSplit)
                 in.vertex = vertexOf[splitIndex[in.splitTriangle]];
 }
 
