@@ -89,6 +89,33 @@ struct Bending {
     std::vector<bool>& moved;
     LoftSmoothingStats& stats;
     bool withinNeighbourPlanes = false;  // LoftSmoothingTargets' field of that name
+    /// The slabs' parts, each part's bulge and each slab's (mm at
+    /// mid-slab); none (before the volume passes): no bulge.
+    const SlabParts* parts = nullptr;
+    const PlaneSections* planes = nullptr;
+    const std::vector<double>* bulgeOfPart = nullptr;
+    const std::vector<double>* bulgeOfSlab = nullptr;
+
+    std::uint32_t partOf(std::size_t v) const {
+        return parts && v < parts->partOfVertex.size() ? parts->partOfVertex[v] : SlabParts::kNone;
+    }
+    /// How far vertex v's bulge moves the zero set outward at its height z:
+    /// b · 4t(1 − t), t the height within the slab z lies in, b its part's
+    /// bulge where the part is nested, else its slab's. O(log slices).
+    double bulgeOf(std::size_t v, double zMm) const {
+        const std::uint32_t part = partOf(v);
+        if (part == SlabParts::kNone) return 0;
+        const std::size_t slab = field.slabAt(zMm);
+        const double z0 = planes->zMm[slab], z1 = planes->zMm[slab + 1];
+        const double t = std::clamp((zMm - z0) / (z1 - z0), 0.0, 1.0);
+        double bulge = 0;
+        if (parts->nested[part]) {
+            if (bulgeOfPart && part < bulgeOfPart->size()) bulge = (*bulgeOfPart)[part];
+        } else if (bulgeOfSlab && slab < bulgeOfSlab->size()) {
+            bulge = (*bulgeOfSlab)[slab];
+        }
+        return 4 * t * (1 - t) * bulge;
+    }
 };
 
 /// One round of red–green refinement of the loft triangles' slanted edges
@@ -204,12 +231,13 @@ std::size_t refineOnce(TriangleSoup& soup, std::vector<std::uint32_t>& pieceOf,
 /// pixel borders and Newton may circle within a small band: the best point
 /// seen counts.
 bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm,
-                        double toleranceMm) {
+                        double toleranceMm, double bulgeMm) {
     const Vec3 start = p;
     Vec3 at = p, best = p;
     // F where the step starts: the value found where the last step ended
-    // (each evaluation is four planes' look-ups).
-    double f = field.value(p);
+    // (each evaluation is four planes' look-ups). The bulge is constant in
+    // the plane: it shifts F, not its gradient.
+    double f = field.value(p) - bulgeMm;
     double bestF = std::abs(f);
     for (int iteration = 0; iteration < 12 && bestF > 0.1 * toleranceMm; ++iteration) {
         const Point2 g = field.gradientXy(at);
@@ -220,7 +248,7 @@ bool projectOntoZeroSet(const SliceInterpolant& field, Vec3& p, double maxMoveMm
         if (stepLength > 0.5 * maxMoveMm) step = (0.5 * maxMoveMm / stepLength) * step;
         at = at - step;
         if (length(at - start) > maxMoveMm) break;
-        f = field.value(at);
+        f = field.value(at) - bulgeMm;
         const double fa = std::abs(f);
         if (fa < bestF) bestF = fa, best = at;
     }
@@ -277,7 +305,8 @@ void bendVertices(TriangleSoup& surface, const std::vector<bool>& which, const B
         const Vec3 from = surface.points[vertices[i]];
         Vec3 p = from;
         projected[i] =
-            projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * bending.toleranceMm);
+            projectOntoZeroSet(field, p, 0.5 * field.slabHeightAt(p.z), 0.2 * bending.toleranceMm,
+                               bending.bulgeOf(vertices[i], p.z));
         if (projected[i] && bending.withinNeighbourPlanes)
             p = withinNeighbourPlanes(field, from, p);
         to[i] = p;
@@ -318,26 +347,57 @@ void refineAndBend(TriangleSoup& surface, LoftMarks& marks, const Bending& bendi
     }
 }
 
-/// Each slab's bulge, and the bulge and volume of the pass before, from
+/// What the secant steps read of each body that bulges on its own: a
+/// slab's part, or (for what the parts leave over) a whole slab.
+struct BulgeBodies {
+    std::vector<double> heightMm;     // its slab's
+    std::vector<double> perimeterMm;  // its sections' on both planes, summed
+};
+
+BulgeBodies partBodies(const SlabParts& parts, const PlaneSections& planes) {
+    BulgeBodies bodies;
+    for (std::size_t p = 0; p < parts.count(); ++p) {
+        const std::size_t slab = parts.slabOf[p];
+        bodies.heightMm.push_back(planes.zMm[slab + 1] - planes.zMm[slab]);
+        bodies.perimeterMm.push_back(parts.perimeterBelowMm[p] + parts.perimeterAboveMm[p]);
+    }
+    return bodies;
+}
+
+BulgeBodies slabBodies(const PlaneSections& planes) {
+    BulgeBodies bodies;
+    for (std::size_t s = 0; s + 1 < planes.zMm.size(); ++s) {
+        bodies.heightMm.push_back(planes.zMm[s + 1] - planes.zMm[s]);
+        bodies.perimeterMm.push_back(planes.perimeterMm[s] + planes.perimeterMm[s + 1]);
+    }
+    return bodies;
+}
+
+/// Each body's bulge, and the bulge and volume of the pass before, from
 /// which the secant steps learn how much volume a bulge moves.
 struct BulgeSteps {
     std::vector<double> bulge, lastBulge, lastVolume;
+
+    void start(std::size_t bodies) {
+        bulge.assign(bodies, 0.0);
+        lastBulge = lastVolume = bulge;
+    }
 };
 
-/// The bulge of each slab that brings its volume to its target, by secant
+/// The bulge of each body that brings its volume to its target, by secant
 /// steps from the last pass (the first step assumes the whole band moves:
-/// dV/db = h (P0 + P1) / 3 for a perimeter linear in z). A slab within
+/// dV/db = h (P0 + P1) / 3 for a perimeter linear in z). A body within
 /// 0.1 % of its target keeps its bulge. Returns whether any changed.
-bool nextBulges(const PlaneSections& planes, const std::vector<double>& targets,
+bool nextBulges(const BulgeBodies& bodies, const std::vector<double>& targets,
                 const std::vector<double>& volumes, BulgeSteps& steps) {
     std::vector<double>& bulge = steps.bulge;
     std::vector<double>& lastBulge = steps.lastBulge;
     std::vector<double>& lastVolume = steps.lastVolume;
     bool changed = false;
     for (std::size_t s = 0; s < targets.size(); ++s) {
-        const double h = planes.zMm[s + 1] - planes.zMm[s];
+        const double h = bodies.heightMm[s];
         const double deficit = targets[s] - volumes[s];
-        const double whole = h * (planes.perimeterMm[s] + planes.perimeterMm[s + 1]) / 3;
+        const double whole = h * bodies.perimeterMm[s] / 3;
         double slope = whole;
         if (bulge[s] != lastBulge[s]) {
             const double measured = (volumes[s] - lastVolume[s]) / (bulge[s] - lastBulge[s]);
@@ -654,7 +714,7 @@ namespace {
 class LoftSmoother {
   public:
     LoftSmoother(TriangleSoup& surface, LoftMarks& marks, const PieceStack& stack,
-                 SliceInterpolant& field, const LoftSmoothingTargets& bendTo)
+                 const SliceInterpolant& field, const LoftSmoothingTargets& bendTo)
         : surface_(surface),
           marks_(marks),
           stack_(stack),
@@ -683,15 +743,33 @@ class LoftSmoother {
         // only make slivers (their long diagonals never reach the z floor),
         // so a bulge moves the vertices the smooth surface needed, and the
         // secant steps learn how much volume that moves.
-        targets_ = slabVolumeTargets(planes_);
-        steps_.bulge.assign(targets_.size(), 0.0);
-        steps_.lastBulge = steps_.lastVolume = steps_.bulge;
+        // First each nested part of a slab (a cavity's wall, an island in
+        // it) by its own sections' profile: the solid's bulge would move a
+        // cavity's wall into the cavity where the cavity widens. Then the
+        // slab's other parts with one bulge, to the volume its planes'
+        // sections imply, the nested parts as they are.
+        parts_ = slabPartsOf(surface_, marks_.pieceOf, planes_);
+        partTargets_ = partVolumeTargets(parts_, planes_);
+        const BulgeBodies parts = partBodies(parts_, planes_);
+        partSteps_.start(parts_.count());
+        const bool anyNested =
+            std::find(parts_.nested.begin(), parts_.nested.end(), true) != parts_.nested.end();
+        for (int pass = 0; anyNested && pass < kVolumePasses; ++pass) {
+            // Parts that are not nested count as on target: the slab's bulge moves them.
+            std::vector<double> volumes = partVolumes(surface_, parts_, planes_);
+            for (std::size_t p = 0; p < volumes.size(); ++p)
+                if (!parts_.nested[p]) volumes[p] = partTargets_[p];
+            if (!nextBulges(parts, partTargets_, volumes, partSteps_)) break;
+            ++stats.volumePasses;
+            bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
+        }
+        slabTargets_ = slabVolumeTargets(planes_);
+        slabSteps_.start(slabTargets_.size());
         for (int pass = 0; pass < kVolumePasses; ++pass) {
-            if (!nextBulges(planes_, targets_, slabVolumes(surface_, marks_.pieceOf, planes_),
-                            steps_))
+            if (!nextBulges(slabBodies(planes_), slabTargets_,
+                            slabVolumes(surface_, marks_.pieceOf, planes_), slabSteps_))
                 break;
             ++stats.volumePasses;
-            field_.setSlabBulges(steps_.bulge);
             bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
         }
         written_.round(surface_);
@@ -808,7 +886,11 @@ class LoftSmoother {
     }
 
   private:
-    Bending bending() { return {field_, toleranceMm_, moved_, stats, withinNeighbourPlanes_}; }
+    Bending bending() {
+        return {field_,   toleranceMm_,           moved_,
+                stats,    withinNeighbourPlanes_, &parts_,
+                &planes_, &partSteps_.bulge,      &slabSteps_.bulge};
+    }
 
     LinearSurface roundedLinear() {
         written_.round(surface_);
@@ -820,16 +902,15 @@ class LoftSmoother {
     /// does not hold: it starts afresh), only their free vertices move, and
     /// each pass is repaired again or undone.
     void bulgeRepairedSlabs(LocalRepair& repair) {
-        steps_.lastBulge = steps_.bulge;
-        std::vector<bool> repaired(targets_.size(), false);
+        slabSteps_.lastBulge = slabSteps_.bulge;
+        std::vector<bool> repaired(slabTargets_.size(), false);
         for (std::size_t v = 0; v < surface_.points.size(); ++v)
             if (repair.pinned(v)) repaired[field_.slabAt(surface_.points[v].z)] = true;
         for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
-            const std::vector<double> bulgeBefore = steps_.bulge;
-            if (!nextBulges(planes_, targets_, slabVolumes(surface_, marks_.pieceOf, planes_),
-                            steps_))
+            const std::vector<double> bulgeBefore = slabSteps_.bulge;
+            if (!nextBulges(slabBodies(planes_), slabTargets_,
+                            slabVolumes(surface_, marks_.pieceOf, planes_), slabSteps_))
                 break;
-            field_.setSlabBulges(steps_.bulge);
             // As floats: the surface is rounded to float after every move.
             const std::vector<FloatPoint> before = written_.exact(surface_.points);
             // Only the slabs that were repaired (the others are where the
@@ -839,7 +920,7 @@ class LoftSmoother {
             for (std::size_t v = 0; v < free.size(); ++v) {
                 const std::size_t slab = field_.slabAt(surface_.points[v].z);
                 free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
-                          steps_.bulge[slab] != bulgeBefore[slab];
+                          slabSteps_.bulge[slab] != bulgeBefore[slab];
             }
             bendVertices(surface_, free, bending());
             written_.round(surface_);
@@ -924,7 +1005,7 @@ class LoftSmoother {
     TriangleSoup& surface_;
     LoftMarks& marks_;
     const PieceStack& stack_;
-    SliceInterpolant& field_;
+    const SliceInterpolant& field_;
     const PlaneSections& planes_;
     const double toleranceMm_;
     const bool withinNeighbourPlanes_;
@@ -933,14 +1014,15 @@ class LoftSmoother {
     PieceStack unmoved_;  // copied once; what is known clean changes between checks
     std::vector<bool> moved_;
     std::vector<Edge> parents_;  // parents_[i]: the edge whose middle is new vertex i
-    std::vector<double> targets_;
-    BulgeSteps steps_;
+    SlabParts parts_;            // none until refinement is done
+    std::vector<double> partTargets_, slabTargets_;
+    BulgeSteps partSteps_, slabSteps_;
 };
 
 }  // namespace
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
-                               SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
+                               const SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
                                MeshCheckReport& check) {
     LoftSmoother smoother(surface, marks, stack, field, bendTo);
     check = smoother.bendAndBulge();

@@ -43,11 +43,15 @@ struct LoftSmoothingStats {
 /// strips) then moves, at its own z, to the zero set of `field` (Newton
 /// steps along the xy gradient); one that would move more than half its
 /// slab's height stays.
-/// Then each slab's volume is brought to its target (slabVolumeTargets of
-/// `planes`, the field's planes): the slab's bulge in `field`
-/// (SliceInterpolant::setSlabBulges) is set by secant steps and every bent
-/// vertex moves again, up to four passes; a bulge stays within half its
-/// slab's height.
+/// Then the volumes: a bulge moves the zero set outward in the plane by
+/// b · 4t(1 − t) (t the height within the slab; nothing at the planes). Each
+/// nested part of a slab (a cavity's wall, an island in the cavity: SlabParts)
+/// gets a bulge of its own, set by secant steps until the part holds the
+/// integral of its own sections' cubic (partVolumeTargets); then each slab's
+/// other parts share one, until the slab holds its target (slabVolumeTargets
+/// of `planes`, the field's planes); every bent vertex moves again after
+/// each step, up to four passes each; a bulge stays within half its slab's
+/// height.
 /// The surface's points are first moved to the plane-frame places of the
 /// floats a mesh file will hold when it is written in patient coordinates
 /// (`writtenFrame`: the ROI's plane frame; for the identity, rounding to
@@ -82,7 +86,7 @@ struct LoftSmoothingTargets {
 };
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
-                               SliceInterpolant& field, const LoftSmoothingTargets& targets,
+                               const SliceInterpolant& field, const LoftSmoothingTargets& targets,
                                MeshCheckReport& check);
 
 }  // namespace dfrecon

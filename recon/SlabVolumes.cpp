@@ -1,6 +1,8 @@
 #include "recon/SlabVolumes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace dfrecon {
 
@@ -56,6 +58,220 @@ std::vector<double> slabVolumes(const TriangleSoup& surface,
         // its mean height above the slab's floor.
         const double areaZ = 0.5 * cross(b - a, c - a).z;
         volumes[s] += areaZ * ((a.z + b.z + c.z) / 3 - planes.zMm[s]);
+    }
+    return volumes;
+}
+
+namespace {
+
+// Points are rounded to float before smoothing (as a mesh file holds
+// them): a contour point 83.31 mm up lies 5e-6 mm off its plane's double.
+// Points between the planes lie at least a 32nd of a slab away.
+constexpr double kOnPlaneMm = 1e-4;
+
+std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+}
+
+/// Whether `p` (on the plane of `edges`) lies inside the region they bound:
+/// an odd number of them crosses the ray from p along +x. Edges walked
+/// both ways (inside a part) cross twice and cancel. O(edges).
+bool enclosedBy(Vec3 p, const std::vector<std::pair<Vec3, Vec3>>& edges) {
+    bool inside = false;
+    for (const auto& [a, b] : edges)
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+            inside = !inside;
+    return inside;
+}
+
+/// parts.nested: a part whose sections enclose less than nothing (holes: a
+/// cavity's wall), or one whose section lies inside such a part's on the
+/// same plane (an island in a cavity).
+void markNestedParts(SlabParts& parts,
+                     const std::vector<std::vector<std::pair<Vec3, Vec3>>>& sectionEdges) {
+    const std::size_t count = parts.count();
+    parts.nested.assign(count, false);
+    std::vector<std::size_t> cavities;
+    for (std::size_t p = 0; p < count; ++p)
+        if (parts.areaBelowMm2[p] + parts.areaAboveMm2[p] < 0) {
+            parts.nested[p] = true;
+            cavities.push_back(p);
+        }
+    for (std::size_t p = 0; p < count && !cavities.empty(); ++p) {
+        if (parts.nested[p]) continue;
+        for (int side = 0; side < 2 && !parts.nested[p]; ++side) {
+            const auto& own = sectionEdges[2 * p + std::size_t(side)];
+            if (own.empty()) continue;
+            for (std::size_t c : cavities)
+                if (parts.slabOf[c] == parts.slabOf[p] &&
+                    enclosedBy(own.front().first, sectionEdges[2 * c + std::size_t(side)])) {
+                    parts.nested[p] = true;
+                    break;
+                }
+        }
+    }
+}
+
+}  // namespace
+
+SlabParts slabPartsOf(const TriangleSoup& surface, const std::vector<std::uint32_t>& pieceOf,
+                      const PlaneSections& planes) {
+    const std::size_t slabs = planes.zMm.size() > 1 ? planes.zMm.size() - 1 : 0;
+    const std::size_t triangles = surface.triangles.size();
+    auto inSlab = [&](std::size_t t) { return pieceOf[t] >= 1 && pieceOf[t] <= slabs; };
+    // Triangles of one slab that share a vertex are one part. A vertex on a
+    // plane is shared by the slabs below and above: it joins within a slab
+    // only, so the first triangle of each (vertex, slab) is remembered per
+    // slab side (below: the slab under the vertex's plane).
+    std::vector<std::size_t> parent(triangles);
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+    const std::size_t kUnseen = SIZE_MAX;
+    std::vector<std::size_t> firstBelow(surface.points.size(), kUnseen),
+        firstAbove(surface.points.size(), kUnseen);
+    for (std::size_t t = 0; t < triangles; ++t) {
+        if (!inSlab(t)) continue;
+        const std::size_t slab = pieceOf[t] - 1;
+        for (std::uint32_t v : surface.triangles[t]) {
+            // A vertex on the slab's upper plane is seen from below, one on
+            // its lower plane from above, one between the planes either way.
+            const bool onUpper = std::abs(surface.points[v].z - planes.zMm[slab + 1]) <= kOnPlaneMm;
+            std::size_t& first = onUpper ? firstBelow[v] : firstAbove[v];
+            if (first == kUnseen)
+                first = t;
+            else
+                parent[findRoot(parent, t)] = findRoot(parent, first);
+        }
+    }
+    SlabParts parts;
+    parts.partOfTriangle.assign(triangles, SlabParts::kNone);
+    std::vector<std::uint32_t> partOfRoot(triangles, SlabParts::kNone);
+    for (std::size_t t = 0; t < triangles; ++t) {
+        if (!inSlab(t)) continue;
+        std::uint32_t& part = partOfRoot[findRoot(parent, t)];
+        if (part == SlabParts::kNone) {
+            part = std::uint32_t(parts.slabOf.size());
+            parts.slabOf.push_back(pieceOf[t] - 1);
+        }
+        parts.partOfTriangle[t] = part;
+    }
+    const std::size_t count = parts.count();
+    parts.areaBelowMm2.assign(count, 0);
+    parts.areaAboveMm2.assign(count, 0);
+    parts.perimeterBelowMm.assign(count, 0);
+    parts.perimeterAboveMm.assign(count, 0);
+    parts.partOfVertex.assign(surface.points.size(), SlabParts::kNone);
+    // Per vertex on a plane: the part of the slab below it and of the slab
+    // above it that reach it.
+    std::vector<std::uint32_t> fromBelow(surface.points.size(), SlabParts::kNone),
+        fromAbove(surface.points.size(), SlabParts::kNone);
+    // Each part's edges on its planes (its sections' borders), per plane
+    // side, for the nesting test below.
+    std::vector<std::vector<std::pair<Vec3, Vec3>>> sectionEdges(2 * count);
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const std::uint32_t part = parts.partOfTriangle[t];
+        if (part == SlabParts::kNone) continue;
+        const std::size_t slab = parts.slabOf[part];
+        const auto& tri = surface.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = surface.points[tri[std::size_t(k)]],
+                       b = surface.points[tri[std::size_t((k + 1) % 3)]];
+            // Edges inside the part are walked once each way and cancel;
+            // what is left is the part's boundary on the plane, walked
+            // against the section that closes the part there (outward
+            // surface): upward on the lower plane's section, downward on the
+            // upper one's.
+            const double twiceArea = a.x * b.y - a.y * b.x;
+            for (const bool upper : {false, true}) {
+                const double z = planes.zMm[slab + (upper ? 1 : 0)];
+                if (std::abs(a.z - z) > kOnPlaneMm || std::abs(b.z - z) > kOnPlaneMm) continue;
+                (upper ? parts.areaAboveMm2 : parts.areaBelowMm2)[part] +=
+                    (upper ? -0.5 : 0.5) * twiceArea;
+                (upper ? parts.perimeterAboveMm : parts.perimeterBelowMm)[part] +=
+                    std::hypot(b.x - a.x, b.y - a.y);
+                sectionEdges[2 * part + (upper ? 1 : 0)].emplace_back(a, b);
+            }
+        }
+        for (std::uint32_t v : tri) {
+            const Vec3 p = surface.points[v];
+            const bool onLower = std::abs(p.z - planes.zMm[slab]) <= kOnPlaneMm,
+                       onUpper = std::abs(p.z - planes.zMm[slab + 1]) <= kOnPlaneMm;
+            if (onLower) fromAbove[v] = part;
+            if (onUpper) fromBelow[v] = part;
+            if (!onLower && !onUpper) parts.partOfVertex[v] = part;
+        }
+    }
+    for (std::size_t v = 0; v < surface.points.size(); ++v)
+        if (fromBelow[v] != SlabParts::kNone && fromAbove[v] != SlabParts::kNone)
+            parts.meetings.emplace_back(fromBelow[v], fromAbove[v]);
+    markNestedParts(parts, sectionEdges);
+    std::sort(parts.meetings.begin(), parts.meetings.end());
+    parts.meetings.erase(std::unique(parts.meetings.begin(), parts.meetings.end()),
+                         parts.meetings.end());
+    return parts;
+}
+
+std::vector<double> partVolumeTargets(const SlabParts& parts, const PlaneSections& planes) {
+    const std::size_t count = parts.count();
+    std::vector<double> height(count), secant(count);
+    for (std::size_t p = 0; p < count; ++p) {
+        const std::size_t slab = parts.slabOf[p];
+        height[p] = planes.zMm[slab + 1] - planes.zMm[slab];
+        secant[p] = (parts.areaAboveMm2[p] - parts.areaBelowMm2[p]) / height[p];
+    }
+    // Across each plane, the parts that meet there as one: their areas
+    // summed on either side, so a branching's two arms count as the one
+    // trunk they continue.
+    std::vector<double> belowArea(count, 0), belowAreaUnder(count, 0), aboveArea(count, 0),
+        aboveAreaOver(count, 0);
+    std::vector<bool> hasBelow(count, false), hasAbove(count, false);
+    for (const auto& [lower, upper] : parts.meetings) {
+        hasBelow[upper] = hasAbove[lower] = true;
+        belowArea[upper] += parts.areaAboveMm2[lower];
+        belowAreaUnder[upper] += parts.areaBelowMm2[lower];
+        aboveArea[lower] += parts.areaBelowMm2[upper];
+        aboveAreaOver[lower] += parts.areaAboveMm2[upper];
+    }
+    std::vector<double> targets(count);
+    for (std::size_t p = 0; p < count; ++p) {
+        const double h = height[p];
+        // The tangent at each plane: the parabola's slope through the
+        // neighbours' secant and this part's (the slabs' heights weigh
+        // them), or this part's own secant where it meets nothing there.
+        double lower = secant[p], upper = secant[p];
+        if (hasBelow[p]) {
+            const std::size_t slab = parts.slabOf[p];
+            const double hBelow = planes.zMm[slab] - planes.zMm[slab - 1];
+            const double dBelow = (belowArea[p] - belowAreaUnder[p]) / hBelow;
+            lower = (h * dBelow + hBelow * secant[p]) / (hBelow + h);
+        }
+        if (hasAbove[p]) {
+            const std::size_t slab = parts.slabOf[p];
+            const double hAbove = planes.zMm[slab + 2] - planes.zMm[slab + 1];
+            const double dAbove = (aboveAreaOver[p] - aboveArea[p]) / hAbove;
+            upper = (hAbove * secant[p] + h * dAbove) / (h + hAbove);
+        }
+        targets[p] = 0.5 * h * (parts.areaBelowMm2[p] + parts.areaAboveMm2[p]) +
+                     h * h / 12 * (lower - upper);
+    }
+    return targets;
+}
+
+std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& parts,
+                                const PlaneSections& planes) {
+    std::vector<double> volumes(parts.count(), 0);
+    for (std::size_t part = 0; part < parts.count(); ++part) {
+        const std::size_t slab = parts.slabOf[part];
+        volumes[part] = (planes.zMm[slab + 1] - planes.zMm[slab]) * parts.areaAboveMm2[part];
+    }
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+        const std::uint32_t part = parts.partOfTriangle[t];
+        if (part == SlabParts::kNone) continue;
+        const auto& tri = surface.triangles[t];
+        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
+                   c = surface.points[tri[2]];
+        const double areaZ = 0.5 * cross(b - a, c - a).z;
+        volumes[part] += areaZ * ((a.z + b.z + c.z) / 3 - planes.zMm[parts.slabOf[part]]);
     }
     return volumes;
 }

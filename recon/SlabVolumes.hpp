@@ -9,6 +9,7 @@
 // volume between the planes; smooth mode bulges each slab until its volume
 // is that (recon/LoftSmoothing).
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "contours/ContourSet.hpp"
@@ -40,6 +41,51 @@ std::vector<double> slabVolumeTargets(const PlaneSections& planes);
 /// at the top plane. O(T).
 std::vector<double> slabVolumes(const TriangleSoup& surface,
                                 const std::vector<std::uint32_t>& pieceOf,
+                                const PlaneSections& planes);
+
+/// The connected parts of each slab: its triangles joined where they share
+/// a vertex (two blobs side by side, or a part that begins in the slab
+/// under its own cap, are parts of their own). Each has its own volume
+/// target, bulge and reach: one bulge for a whole slab let a part near its
+/// pole follow a bulge sized for the part beside it.
+struct SlabParts {
+    static constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> partOfVertex;    // kNone: on a plane, or in a cap
+    std::vector<std::uint32_t> partOfTriangle;  // kNone: in a cap
+    std::vector<std::size_t> slabOf;            // per part
+    /// Per part: the sections it closes on its slab's lower and upper
+    /// planes (net area, perimeter), from its boundary edges there.
+    std::vector<double> areaBelowMm2, areaAboveMm2, perimeterBelowMm, perimeterAboveMm;
+    /// Parts of neighbouring slabs that share contour points on the plane
+    /// between them: (the part below, the part above), each pair once.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> meetings;
+    /// Per part: whether it lies inside another part of its slab (a
+    /// cavity's wall, whose sections are holes, or an island in a cavity).
+    /// Such a part is bent by its own profile: the solid's bulge around it
+    /// would move a cavity's wall the wrong way.
+    std::vector<bool> nested;
+
+    std::size_t count() const { return slabOf.size(); }
+};
+
+/// The parts of `surface`'s slabs (triangle t in slab pieceOf[t] − 1, as
+/// slabVolumes reads it). Points whose z lies within 1e-4 mm of a plane are
+/// on it. O(T α(T)), plus O(n · e) to find the n parts inside the cavities
+/// (e: the cavities' edges on the planes).
+SlabParts slabPartsOf(const TriangleSoup& surface, const std::vector<std::uint32_t>& pieceOf,
+                      const PlaneSections& planes);
+
+/// Each part's volume target: the integral of the cubic Hermite
+/// interpolation of its own section areas, as slabVolumeTargets does for
+/// whole planes, the tangent at a plane from the part's secant and that of
+/// the parts it meets across the plane (its own secant where it meets
+/// none: a stack's or a part's end). A cavity's wall is bent by the
+/// cavity's own profile, not the solid's around it. O(parts + meetings).
+std::vector<double> partVolumeTargets(const SlabParts& parts, const PlaneSections& planes);
+
+/// Each part's volume between its slab's planes, as slabVolumes measures a
+/// slab's (its upper section from its own boundary edges). O(T).
+std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& parts,
                                 const PlaneSections& planes);
 
 }  // namespace dfrecon

@@ -90,19 +90,6 @@ double SliceInterpolant::tangent(std::size_t slice, Point2 xy, double below, dou
     return (hAbove * dBelow + hBelow * dAbove) / (hBelow + hAbove);
 }
 
-void SliceInterpolant::setSlabBulges(std::vector<double> bulgeMm) {
-    if (bulgeMm.size() != (fields_.zMm.size() > 1 ? fields_.zMm.size() - 1 : 0))
-        throw std::invalid_argument("SliceInterpolant: one bulge per slab");
-    bulgeMm_ = std::move(bulgeMm);
-}
-
-double SliceInterpolant::bulgeAt(double zMm) const {
-    if (bulgeMm_.empty() || zMm <= fields_.zMm.front() || zMm >= fields_.zMm.back()) return 0;
-    const std::size_t s = slabAt(zMm);
-    const double t = (zMm - fields_.zMm[s]) / (fields_.zMm[s + 1] - fields_.zMm[s]);
-    return 4 * t * (1 - t) * bulgeMm_[s];
-}
-
 double SliceInterpolant::value(Vec3 p) const {
     const std::vector<double>& z = fields_.zMm;
     const Point2 xy{p.x, p.y};
@@ -121,7 +108,7 @@ double SliceInterpolant::value(Vec3 p) const {
     const double m0 = tangent(s, xy, vBelow, v0, v1), m1 = tangent(s + 1, xy, v0, v1, vAbove);
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * v0 + (t3 - 2 * t2 + t) * h * m0 + (-2 * t3 + 3 * t2) * v1 +
-           (t3 - t2) * h * m1 - bulgeAt(p.z);
+           (t3 - t2) * h * m1;
 }
 
 namespace {

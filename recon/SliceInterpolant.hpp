@@ -9,9 +9,9 @@
 // across planes (the tangent is shared by the slabs above and below), and
 // reproduces any field quadratic in z, so a surface that bulges between two
 // planes (convex anatomy half-way) bulges in F too, which a monotone
-// interpolant cannot do. Its zero set, moved outward in the plane by each
-// slab's bulge (setSlabBulges), is what `--interpolation smooth` bends the
-// loft bands onto.
+// interpolant cannot do. Its zero set, moved outward in the plane by a
+// bulge per slab (or per nested part of a slab, recon/LoftSmoothing), is what
+// `--interpolation smooth` bends the loft bands onto.
 #include <cstddef>
 #include <vector>
 
@@ -27,17 +27,10 @@ class SliceInterpolant {
     /// every value finite). Keeps a reference: `fields` must outlive it.
     explicit SliceInterpolant(const SliceFields& fields);
 
-    /// F at p, mm (< 0 inside), less the bulge at p.z. Beyond the first and
-    /// last plane, the end slab's secant in z continues (a single slice: its
-    /// field). O(1): four planes' bilinear look-ups.
+    /// F at p, mm (< 0 inside). Beyond the first and last plane, the end
+    /// slab's secant in z continues (a single slice: its field). O(1): four
+    /// planes' bilinear look-ups.
     double value(Vec3 p) const;
-    /// Each slab's zero set moves outward in the plane by bulgeMm[s] ·
-    /// 4t(1 − t) (t the height within slab s; negative: inward): nothing at
-    /// the planes, so F still passes through every contour. One value per
-    /// slab (sliceCount − 1); throws std::invalid_argument otherwise.
-    void setSlabBulges(std::vector<double> bulgeMm);
-    /// The bulge at height z (0 outside the stack). O(log slices).
-    double bulgeAt(double zMm) const;
     /// dF/dx and dF/dy at p by central differences of half a pixel. O(1).
     Point2 gradientXy(Vec3 p) const;
 
@@ -46,8 +39,8 @@ class SliceInterpolant {
     std::size_t slabAt(double zMm) const;
     /// The height of that slab, mm (0 for a single slice).
     double slabHeightAt(double zMm) const;
-    /// The smaller of the two fields of p's slab's planes at p's xy (no
-    /// bulge): <= 0 inside the union of the two planes' regions. O(1): two
+    /// The smaller of the two fields of p's slab's planes at p's xy: <= 0
+    /// inside the union of the two planes' regions. O(1): two
     /// planes' bilinear look-ups.
     double neighbourPlanesValue(Vec3 p) const;
     /// Its d/dx and d/dy at p, as gradientXy takes F's. O(1).
@@ -63,7 +56,6 @@ class SliceInterpolant {
     double tangent(std::size_t slice, Point2 xy, double below, double here, double above) const;
 
     const SliceFields& fields_;
-    std::vector<double> bulgeMm_;  // per slab; empty: none
 };
 
 }  // namespace dfrecon
