@@ -83,25 +83,34 @@ class EdgeMiddles {
 
 /// What bending reads and records: the smooth surface's field, how near its
 /// zero set a vertex must land, which vertices ever moved, and the counts.
+/// The bulge group of vertex v in slab `slab`: the slab's parts of v's
+/// component of the surface.
+std::size_t groupOf(std::size_t slab, const SurfaceComponents& components, std::size_t v) {
+    const std::uint32_t c = components.ofVertex[v];
+    return slab * components.count + (c == SurfaceComponents::kNone ? 0 : c);
+}
+
 struct Bending {
     const SliceInterpolant& field;
     double toleranceMm;
     std::vector<bool>& moved;
     LoftSmoothingStats& stats;
     bool withinNeighbourPlanes = false;  // LoftSmoothingTargets' field of that name
-    /// The slabs' parts, each part's bulge and each slab's (mm at
-    /// mid-slab); none (before the volume passes): no bulge.
+    /// The slabs' parts, the surface's components, each nested part's bulge
+    /// and each group's (a slab's parts of one component; mm at mid-slab);
+    /// none (before the volume passes): no bulge.
     const SlabParts* parts = nullptr;
     const PlaneSections* planes = nullptr;
+    const SurfaceComponents* components = nullptr;
     const std::vector<double>* bulgeOfPart = nullptr;
-    const std::vector<double>* bulgeOfSlab = nullptr;
+    const std::vector<double>* bulgeOfGroup = nullptr;
 
     std::uint32_t partOf(std::size_t v) const {
         return parts && v < parts->partOfVertex.size() ? parts->partOfVertex[v] : SlabParts::kNone;
     }
     /// How far vertex v's bulge moves the zero set outward at its height z:
     /// b · 4t(1 − t), t the height within the slab z lies in, b its part's
-    /// bulge where the part is nested, else its slab's. O(log slices).
+    /// bulge where the part is nested, else its group's. O(log slices).
     double bulgeOf(std::size_t v, double zMm) const {
         const std::uint32_t part = partOf(v);
         if (part == SlabParts::kNone) return 0;
@@ -111,8 +120,9 @@ struct Bending {
         double bulge = 0;
         if (parts->nested[part]) {
             if (bulgeOfPart && part < bulgeOfPart->size()) bulge = (*bulgeOfPart)[part];
-        } else if (bulgeOfSlab && slab < bulgeOfSlab->size()) {
-            bulge = (*bulgeOfSlab)[slab];
+        } else if (bulgeOfGroup && components && v < components->ofVertex.size()) {
+            const std::size_t group = groupOf(slab, *components, v);
+            if (group < bulgeOfGroup->size()) bulge = (*bulgeOfGroup)[group];
         }
         return 4 * t * (1 - t) * bulge;
     }
@@ -364,12 +374,16 @@ BulgeBodies partBodies(const SlabParts& parts, const PlaneSections& planes) {
     return bodies;
 }
 
-BulgeBodies slabBodies(const PlaneSections& planes) {
+/// The groups (slab s, component c) in the order groupOf numbers them, from
+/// each component's sections.
+BulgeBodies groupBodies(const std::vector<PlaneSections>& sections) {
     BulgeBodies bodies;
-    for (std::size_t s = 0; s + 1 < planes.zMm.size(); ++s) {
-        bodies.heightMm.push_back(planes.zMm[s + 1] - planes.zMm[s]);
-        bodies.perimeterMm.push_back(planes.perimeterMm[s] + planes.perimeterMm[s + 1]);
-    }
+    const std::vector<double>& z = sections.front().zMm;
+    for (std::size_t s = 0; s + 1 < z.size(); ++s)
+        for (const PlaneSections& c : sections) {
+            bodies.heightMm.push_back(z[s + 1] - z[s]);
+            bodies.perimeterMm.push_back(c.perimeterMm[s] + c.perimeterMm[s + 1]);
+        }
     return bodies;
 }
 
@@ -763,11 +777,10 @@ class LoftSmoother {
             ++stats.volumePasses;
             bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
         }
-        slabTargets_ = slabVolumeTargets(planes_);
-        slabSteps_.start(slabTargets_.size());
+        startGroups();
         for (int pass = 0; pass < kVolumePasses; ++pass) {
-            if (!nextBulges(slabBodies(planes_), slabTargets_,
-                            slabVolumes(surface_, marks_.pieceOf, planes_), slabSteps_))
+            if (!nextBulges(groupBodies(componentPlanes_), groupTargets_, groupVolumes(),
+                            groupSteps_))
                 break;
             ++stats.volumePasses;
             bendNewVertices(surface_, marks_.contourVertices, marks_.isLoft, bending());
@@ -887,9 +900,44 @@ class LoftSmoother {
 
   private:
     Bending bending() {
-        return {field_,   toleranceMm_,           moved_,
-                stats,    withinNeighbourPlanes_, &parts_,
-                &planes_, &partSteps_.bulge,      &slabSteps_.bulge};
+        return {field_,
+                toleranceMm_,
+                moved_,
+                stats,
+                withinNeighbourPlanes_,
+                &parts_,
+                &planes_,
+                &components_,
+                &partSteps_.bulge,
+                &groupSteps_.bulge};
+    }
+
+    /// The groups that bulge together: each slab's parts (not nested) of one
+    /// connected component of the surface, so two objects of one ROI (two
+    /// blobs, an area and a speck beside it) each follow the bulge their own
+    /// sections ask for. With one component, one group per slab: each slab
+    /// to its planes' target.
+    void startGroups() {
+        components_ = surfaceComponents(surface_);
+        if (components_.count > 1) {
+            componentPlanes_ =
+                componentSections(surface_, planes_.zMm, stack_.planeLoops, components_);
+        } else {
+            components_.count = 1;
+            componentPlanes_ = {planes_};
+        }
+        const std::size_t count = components_.count;
+        std::vector<std::vector<double>> targets;
+        for (const PlaneSections& c : componentPlanes_) targets.push_back(slabVolumeTargets(c));
+        groupTargets_.clear();
+        for (std::size_t s = 0; s + 1 < planes_.zMm.size(); ++s)
+            for (std::size_t c = 0; c < count; ++c) groupTargets_.push_back(targets[c][s]);
+        groupSteps_.start(groupTargets_.size());
+    }
+
+    std::vector<double> groupVolumes() const {
+        if (components_.count == 1) return slabVolumes(surface_, marks_.pieceOf, planes_);
+        return componentSlabVolumes(surface_, marks_.pieceOf, componentPlanes_, components_);
     }
 
     LinearSurface roundedLinear() {
@@ -902,14 +950,17 @@ class LoftSmoother {
     /// does not hold: it starts afresh), only their free vertices move, and
     /// each pass is repaired again or undone.
     void bulgeRepairedSlabs(LocalRepair& repair) {
-        slabSteps_.lastBulge = slabSteps_.bulge;
-        std::vector<bool> repaired(slabTargets_.size(), false);
+        groupSteps_.lastBulge = groupSteps_.bulge;
+        std::vector<bool> repaired(groupTargets_.size(), false);
+        auto groupOfVertex = [&](std::size_t v) {
+            return groupOf(field_.slabAt(surface_.points[v].z), components_, v);
+        };
         for (std::size_t v = 0; v < surface_.points.size(); ++v)
-            if (repair.pinned(v)) repaired[field_.slabAt(surface_.points[v].z)] = true;
+            if (repair.pinned(v)) repaired[groupOfVertex(v)] = true;
         for (int pass = 0; pass < kVolumePassesAfterRepair; ++pass) {
-            const std::vector<double> bulgeBefore = slabSteps_.bulge;
-            if (!nextBulges(slabBodies(planes_), slabTargets_,
-                            slabVolumes(surface_, marks_.pieceOf, planes_), slabSteps_))
+            const std::vector<double> bulgeBefore = groupSteps_.bulge;
+            if (!nextBulges(groupBodies(componentPlanes_), groupTargets_, groupVolumes(),
+                            groupSteps_))
                 break;
             // As floats: the surface is rounded to float after every move.
             const std::vector<FloatPoint> before = written_.exact(surface_.points);
@@ -918,9 +969,10 @@ class LoftSmoother {
             // where pinned.
             std::vector<bool> free = moved_;
             for (std::size_t v = 0; v < free.size(); ++v) {
-                const std::size_t slab = field_.slabAt(surface_.points[v].z);
-                free[v] = free[v] && !repair.pinned(v) && repaired[slab] &&
-                          slabSteps_.bulge[slab] != bulgeBefore[slab];
+                if (!free[v]) continue;
+                const std::size_t group = groupOfVertex(v);
+                free[v] = !repair.pinned(v) && repaired[group] &&
+                          groupSteps_.bulge[group] != bulgeBefore[group];
             }
             bendVertices(surface_, free, bending());
             written_.round(surface_);
@@ -1015,8 +1067,10 @@ class LoftSmoother {
     std::vector<bool> moved_;
     std::vector<Edge> parents_;  // parents_[i]: the edge whose middle is new vertex i
     SlabParts parts_;            // none until refinement is done
-    std::vector<double> partTargets_, slabTargets_;
-    BulgeSteps partSteps_, slabSteps_;
+    SurfaceComponents components_;
+    std::vector<PlaneSections> componentPlanes_;  // per component, its sections
+    std::vector<double> partTargets_, groupTargets_;
+    BulgeSteps partSteps_, groupSteps_;
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "geometry/UnionFind.hpp"
+
 namespace dfrecon {
 
 PlaneSections sectionsOf(const std::vector<Slice>& slices) {
@@ -272,6 +274,78 @@ std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& pa
                    c = surface.points[tri[2]];
         const double areaZ = 0.5 * cross(b - a, c - a).z;
         volumes[part] += areaZ * ((a.z + b.z + c.z) / 3 - planes.zMm[parts.slabOf[part]]);
+    }
+    return volumes;
+}
+
+SurfaceComponents surfaceComponents(const TriangleSoup& surface) {
+    UnionFind sets(surface.points.size());
+    std::vector<bool> used(surface.points.size(), false);
+    for (const auto& tri : surface.triangles) {
+        sets.join(tri[0], tri[1]);
+        sets.join(tri[1], tri[2]);
+        used[tri[0]] = used[tri[1]] = used[tri[2]] = true;
+    }
+    SurfaceComponents components;
+    components.ofVertex.assign(surface.points.size(), SurfaceComponents::kNone);
+    std::vector<std::uint32_t> ofRoot(surface.points.size(), SurfaceComponents::kNone);
+    for (std::size_t v = 0; v < surface.points.size(); ++v) {
+        if (!used[v]) continue;
+        std::uint32_t& c = ofRoot[sets.find(v)];
+        if (c == SurfaceComponents::kNone) c = std::uint32_t(components.count++);
+        components.ofVertex[v] = c;
+    }
+    return components;
+}
+
+std::vector<PlaneSections> componentSections(
+    const TriangleSoup& surface, const std::vector<double>& planeZMm,
+    const std::vector<std::vector<std::vector<std::uint32_t>>>& planeLoops,
+    const SurfaceComponents& components) {
+    std::vector<PlaneSections> sections(components.count);
+    for (PlaneSections& c : sections) {
+        c.zMm = planeZMm;
+        c.areaMm2.assign(planeZMm.size(), 0);
+        c.perimeterMm.assign(planeZMm.size(), 0);
+    }
+    for (std::size_t k = 0; k < planeLoops.size() && k < planeZMm.size(); ++k)
+        for (const std::vector<std::uint32_t>& loop : planeLoops[k]) {
+            if (loop.empty()) continue;
+            const std::uint32_t c = components.ofVertex[loop[0]];
+            if (c == SurfaceComponents::kNone) continue;
+            double twiceArea = 0, perimeter = 0;
+            for (std::size_t i = 0; i < loop.size(); ++i) {
+                const Vec3 a = surface.points[loop[i]],
+                           b = surface.points[loop[(i + 1) % loop.size()]];
+                twiceArea += a.x * b.y - a.y * b.x;
+                perimeter += std::hypot(b.x - a.x, b.y - a.y);
+            }
+            sections[c].areaMm2[k] += 0.5 * twiceArea;
+            sections[c].perimeterMm[k] += perimeter;
+        }
+    return sections;
+}
+
+std::vector<double> componentSlabVolumes(const TriangleSoup& surface,
+                                         const std::vector<std::uint32_t>& pieceOf,
+                                         const std::vector<PlaneSections>& sections,
+                                         const SurfaceComponents& components) {
+    const std::size_t count = components.count;
+    if (count == 0) return {};
+    const std::vector<double>& z = sections[0].zMm;
+    const std::size_t slabs = z.size() > 1 ? z.size() - 1 : 0;
+    std::vector<double> volumes(slabs * count, 0);
+    for (std::size_t s = 0; s < slabs; ++s)
+        for (std::size_t c = 0; c < count; ++c)
+            volumes[s * count + c] = (z[s + 1] - z[s]) * sections[c].areaMm2[s + 1];
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+        if (pieceOf[t] == 0 || pieceOf[t] > slabs) continue;
+        const std::size_t s = pieceOf[t] - 1;
+        const auto& tri = surface.triangles[t];
+        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
+                   c = surface.points[tri[2]];
+        const double areaZ = 0.5 * cross(b - a, c - a).z;
+        volumes[s * count + components.ofVertex[tri[0]]] += areaZ * ((a.z + b.z + c.z) / 3 - z[s]);
     }
     return volumes;
 }

@@ -88,4 +88,34 @@ std::vector<double> partVolumeTargets(const SlabParts& parts, const PlaneSection
 std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& parts,
                                 const PlaneSections& planes);
 
+/// The connected components of a surface (vertices joined by its
+/// triangles): each vertex's (kNone for a vertex on no triangle) and their
+/// count. Separate objects of one ROI (two nodes, a structure and a speck
+/// beside it) bulge each by its own sections. O(T α(T)).
+struct SurfaceComponents {
+    static constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> ofVertex;
+    std::size_t count = 0;
+};
+SurfaceComponents surfaceComponents(const TriangleSoup& surface);
+
+/// Each component's sections on the planes `planeZMm`: the net area and
+/// perimeter of its loops there (`planeLoops`, per plane the contours as
+/// vertex ids of `surface`, the solid on their left, as
+/// geometry/StackedMeshCheck's PieceStack holds them). One PlaneSections per
+/// component. O(loop points).
+std::vector<PlaneSections> componentSections(
+    const TriangleSoup& surface, const std::vector<double>& planeZMm,
+    const std::vector<std::vector<std::vector<std::uint32_t>>>& planeLoops,
+    const SurfaceComponents& components);
+
+/// Per slab s and component c (index s · components.count + c), the volume
+/// the component's triangles in the slab's piece bound with its section on
+/// the slab's upper plane, as slabVolumes measures a whole slab (for one
+/// component, slabVolumes itself). O(T).
+std::vector<double> componentSlabVolumes(const TriangleSoup& surface,
+                                         const std::vector<std::uint32_t>& pieceOf,
+                                         const std::vector<PlaneSections>& sections,
+                                         const SurfaceComponents& components);
+
 }  // namespace dfrecon
