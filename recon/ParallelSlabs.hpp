@@ -11,6 +11,7 @@
 #include "cl/Runtime.hpp"
 #include "field/SliceFields.hpp"
 #include "recon/Reconstruction.hpp"
+#include "recon/SlabVolumes.hpp"
 #include "recon/SurfaceBuilder.hpp"
 
 namespace dfrecon {
@@ -24,6 +25,7 @@ struct SlabStack {
     const std::deque<Layer>& layers;
     const SliceFields& fields;
     const std::vector<Vec3>& contourPoints;
+    const PlaneSections& planes;  // the planes' net areas (intermediate contours' trend)
 };
 
 /// One slab built apart: its part of the surface, whether its piece's own

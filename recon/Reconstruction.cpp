@@ -90,6 +90,7 @@ struct RunState {
     // s) and topCap(); the layers' points are the builder's first
     // `contourVertices`, which never move.
     std::optional<SlabReconstructor> reconstructor;
+    PlaneSections planes;  // the slices' net areas, once slices are prepared
     std::deque<Layer> layers;
     std::size_t contourVertices = 0;
     // checkAndRepair: the planes and loops the checks read.
@@ -168,7 +169,8 @@ void buildPieces(ocl::Runtime& runtime, RunState& run,
     ReconstructionStats& stats = run.result.stats;
     const auto start = Clock::now();
     const double fieldsBefore = stats.fieldsSeconds;
-    run.reconstructor.emplace(runtime, run.options, run.grid, stats);
+    run.planes = sectionsOf(run.slices);
+    run.reconstructor.emplace(runtime, run.options, run.grid, stats, SurfaceBuilder{}, &run.planes);
     SurfaceBuilder& builder = run.builder();
     for (const Slice& s : run.slices) run.layers.push_back(makeLayer(builder, s.zMm, s.contours));
     run.contourVertices = builder.soup().points.size();
@@ -181,14 +183,14 @@ void buildPieces(ocl::Runtime& runtime, RunState& run,
     const std::vector<Vec3> contourPoints(
         builder.soup().points.begin(),
         builder.soup().points.begin() + std::ptrdiff_t(run.contourVertices));
-    const std::size_t helpers =
-        buildSlabs(runtime, {run.options, run.grid, run.layers, run.fields, contourPoints},
-                   progress, [&](std::size_t s, BuiltSlab&& slab) {
-                       builder.appendPart(std::move(slab.part));
-                       if (slab.searched) run.reconstructor->markSearched(std::uint32_t(s + 1));
-                       addSlabStats(stats, slab.stats);
-                       slabThreadSeconds += slab.seconds;
-                   });
+    const std::size_t helpers = buildSlabs(
+        runtime, {run.options, run.grid, run.layers, run.fields, contourPoints, run.planes},
+        progress, [&](std::size_t s, BuiltSlab&& slab) {
+            builder.appendPart(std::move(slab.part));
+            if (slab.searched) run.reconstructor->markSearched(std::uint32_t(s + 1));
+            addSlabStats(stats, slab.stats);
+            slabThreadSeconds += slab.seconds;
+        });
     const double slabsWallSeconds = secondsSince(slabsStart);
     releaseAfterSlabThreads(helpers);
     builder.setPiece(run.topCap());
@@ -296,7 +298,7 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     removeUnusedPointsFrom(result.surface, run.contourVertices);
     std::vector<std::uint32_t>().swap(run.fields.nearestId);
     SliceInterpolant interpolant(run.fields);
-    const PlaneSections planes = sectionsOf(run.slices);
+    const PlaneSections& planes = run.planes;
     const LoftSmoothingStats smooth = smoothLofts(
         result.surface, {std::move(built.pieces), std::move(built.lofts), run.contourVertices},
         run.stack, interpolant,

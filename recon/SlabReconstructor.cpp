@@ -111,11 +111,11 @@ double netAreaMm2(const LayerPart& part) {
 /// The intermediate contour half-way between parts x and y, whose fields
 /// are `sides`, from their sum `sumMm`: its zero set, raised (up to the
 /// slab's height, in mm of the summed distance) where it encloses less than
-/// the mean of x's and y's areas, within the union of their regions
-/// (isolinesEnclosing). Parts whose outermost contour is a hole keep the
-/// zero set.
+/// the mean of x's and y's areas times `areaRatio` (the planes' trend there,
+/// hermiteAreaRatio), within the union of their regions (isolinesEnclosing).
+/// Parts whose outermost contour is a hole keep the zero set.
 std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabFields& sides,
-                                    const LayerPart& x, const LayerPart& y) {
+                                    const LayerPart& x, const LayerPart& y, double areaRatio) {
     const SliceGrid& grid = sides.fields.grid;
     if (outermostIsHole(x, y)) return zeroIsolines(sumMm, grid);
     const std::size_t pixels = grid.pixelCount();
@@ -123,21 +123,22 @@ std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabF
     const float* upper = sides.fields.distanceMm.data() + sides.upper * pixels;
     std::vector<float> either(pixels);
     for (std::size_t k = 0; k < pixels; ++k) either[k] = std::min(lower[k], upper[k]);
-    return isolinesEnclosing(
-        sumMm, grid,
-        {0.5 * (netAreaMm2(x) + netAreaMm2(y)), std::abs(y.layer->zMm - x.layer->zMm), &either});
+    return isolinesEnclosing(sumMm, grid,
+                             {0.5 * (netAreaMm2(x) + netAreaMm2(y)) * areaRatio,
+                              std::abs(y.layer->zMm - x.layer->zMm), &either});
 }
 
 }  // namespace
 
 SlabReconstructor::SlabReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                                      const SliceGrid& grid, ReconstructionStats& stats,
-                                     SurfaceBuilder builder)
+                                     SurfaceBuilder builder, const PlaneSections* planes)
     : runtime_(runtime),
       options_(options),
       grid_(grid),
       stats_(stats),
-      builder_(std::move(builder)) {}
+      builder_(std::move(builder)),
+      planes_(planes) {}
 
 void SlabReconstructor::originalSlab(const Layer& lower, const Layer& upper,
                                      const SliceFields& fields, std::size_t lowerSlice,
@@ -375,7 +376,10 @@ void SlabReconstructor::recurse(const LayerPart& x, const LayerPart& y, int dept
         const ScopedSeconds timer(stats_.medialSeconds);
         const SliceSum sum =
             knownSum ? *knownSum : sumSlices(sides.fields, sides.lower, sides.upper);
-        std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides, x, y);
+        // The sections' trend (a waist between the planes, a small section
+        // under a growing one) sets how much the middle encloses.
+        const double areaRatio = planes_ ? hermiteAreaRatio(*planes_, middle.zMm) : 1.0;
+        std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides, x, y, areaRatio);
         // Pixel-step isolines carry far more points than the surface needs.
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))
             if (c.points.size() >= 3) middle.contours.push_back(std::move(c.points));

@@ -25,6 +25,7 @@
 #include "recon/MedialAxis.hpp"
 #include "recon/PrismClosing.hpp"
 #include "recon/Reconstruction.hpp"
+#include "recon/SlabVolumes.hpp"
 #include "recon/SurfaceBuilder.hpp"
 
 namespace dfrecon {
@@ -40,9 +41,11 @@ class SlabReconstructor final : public CapSite {
   public:
     /// Builds on `builder` with `runtime`'s queue, over `grid` (the ROI's);
     /// counts and seconds go to `stats`, which must outlive it.
+    /// `planes` (may be null): the stack's planes and net areas, whose trend
+    /// sets the area of the recursion's intermediate contours.
     SlabReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                       const SliceGrid& grid, ReconstructionStats& stats,
-                      SurfaceBuilder builder = {});
+                      SurfaceBuilder builder = {}, const PlaneSections* planes = nullptr);
 
     SurfaceBuilder& builder() override { return builder_; }
 
@@ -105,8 +108,9 @@ class SlabReconstructor final : public CapSite {
     const SliceGrid& grid_;
     ReconstructionStats& stats_;
     SurfaceBuilder builder_;
-    std::vector<bool> searched_;  // per piece
-    std::deque<Layer> layers_;    // intermediate contours; LayerParts point into it
+    const PlaneSections* planes_;  // may be null
+    std::vector<bool> searched_;   // per piece
+    std::deque<Layer> layers_;     // intermediate contours; LayerParts point into it
 };
 
 }  // namespace dfrecon

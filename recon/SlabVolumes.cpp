@@ -23,24 +23,49 @@ PlaneSections sectionsOf(const std::vector<Slice>& slices) {
     return planes;
 }
 
-std::vector<double> slabVolumeTargets(const PlaneSections& planes) {
+namespace {
+
+/// dA/dz at plane k (at least two planes): the slope of the parabola through
+/// it and its neighbours, the end slab's secant at the ends of the stack
+/// (recon/SliceInterpolant's tangents, applied to the areas).
+double areaTangent(const PlaneSections& planes, std::size_t k) {
     const std::vector<double>& z = planes.zMm;
     const std::vector<double>& a = planes.areaMm2;
     const std::size_t n = z.size();
+    auto secant = [&](std::size_t i) { return (a[i + 1] - a[i]) / (z[i + 1] - z[i]); };
+    if (k == 0) return secant(0);
+    if (k + 1 == n) return secant(n - 2);
+    const double below = z[k] - z[k - 1], above = z[k + 1] - z[k];
+    return (above * secant(k - 1) + below * secant(k)) / (below + above);
+}
+
+}  // namespace
+
+std::vector<double> slabVolumeTargets(const PlaneSections& planes) {
+    const std::vector<double>& z = planes.zMm;
+    const std::vector<double>& a = planes.areaMm2;
     std::vector<double> targets;
-    if (n < 2) return targets;
-    auto secant = [&](std::size_t k) { return (a[k + 1] - a[k]) / (z[k + 1] - z[k]); };
-    auto tangent = [&](std::size_t k) {
-        if (k == 0) return secant(0);
-        if (k + 1 == n) return secant(n - 2);
-        const double below = z[k] - z[k - 1], above = z[k + 1] - z[k];
-        return (above * secant(k - 1) + below * secant(k)) / (below + above);
-    };
-    for (std::size_t k = 0; k + 1 < n; ++k) {
+    for (std::size_t k = 0; k + 1 < z.size(); ++k) {
         const double h = z[k + 1] - z[k];
-        targets.push_back(0.5 * h * (a[k] + a[k + 1]) + h * h / 12 * (tangent(k) - tangent(k + 1)));
+        targets.push_back(0.5 * h * (a[k] + a[k + 1]) +
+                          h * h / 12 * (areaTangent(planes, k) - areaTangent(planes, k + 1)));
     }
     return targets;
+}
+
+double hermiteAreaRatio(const PlaneSections& planes, double zMm) {
+    const std::vector<double>& z = planes.zMm;
+    const std::vector<double>& a = planes.areaMm2;
+    if (z.size() < 2 || !(zMm > z.front() && zMm < z.back())) return 1;
+    const std::size_t k = std::size_t(std::upper_bound(z.begin(), z.end(), zMm) - z.begin()) - 1;
+    const double h = z[k + 1] - z[k], t = (zMm - z[k]) / h;
+    const double linear = (1 - t) * a[k] + t * a[k + 1];
+    const double t2 = t * t, t3 = t2 * t;
+    const double cubic = (2 * t3 - 3 * t2 + 1) * a[k] +
+                         (t3 - 2 * t2 + t) * h * areaTangent(planes, k) +
+                         (-2 * t3 + 3 * t2) * a[k + 1] + (t3 - t2) * h * areaTangent(planes, k + 1);
+    if (!(linear > 0) || !(cubic > 0)) return 1;
+    return std::clamp(cubic / linear, kMinAreaRatio, kMaxAreaRatio);
 }
 
 std::vector<double> slabVolumes(const TriangleSoup& surface,

@@ -32,6 +32,16 @@ PlaneSections sectionsOf(const std::vector<Slice>& slices);
 /// the stack). One value per slab. O(slices).
 std::vector<double> slabVolumeTargets(const PlaneSections& planes);
 
+/// The cubic Hermite interpolation of the planes' net areas at z (the
+/// tangents of slabVolumeTargets) over the straight one, within
+/// [kMinAreaRatio, kMaxAreaRatio]; 1 outside the stack, with fewer than two
+/// planes, or where either is not positive. What the sections' trend says
+/// about the area between two planes relative to the straight mean: below 1
+/// at a waist, above 1 where a small section meets a large one that keeps
+/// growing. O(log planes).
+inline constexpr double kMinAreaRatio = 0.5, kMaxAreaRatio = 2;
+double hermiteAreaRatio(const PlaneSections& planes, double zMm);
+
 /// The volume of a closed, outward-oriented surface between each pair of
 /// neighbouring planes, where triangle t lies in slab pieceOf[t] − 1
 /// (pieces 0 and slices are the end caps and are skipped) and every slab

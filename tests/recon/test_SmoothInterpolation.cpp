@@ -149,6 +149,32 @@ TEST(SmoothInterpolation, CloserToRoundShapesThroughEveryContourPointAndValid) {
         }
 }
 
+TEST(SlabVolumes, HermiteAreaRatioFollowsTheSectionsTrend) {
+    // A ball's section area is quadratic in z, which the parabola tangents
+    // reproduce between inner planes: the ratio is the exact area over the
+    // straight mean there.
+    PlaneSections ball;
+    for (double z = -15; z <= 15; z += 5) {
+        ball.zMm.push_back(z);
+        ball.areaMm2.push_back(kPi * (400 - z * z));
+        ball.perimeterMm.push_back(2 * kPi * std::sqrt(400 - z * z));
+    }
+    for (double z : {-8.0, -2.5, 1.0, 7.5}) {
+        const double z0 = 5 * std::floor(z / 5), t = (z - z0) / 5;
+        const double straight = kPi * ((1 - t) * (400 - z0 * z0) + t * (400 - (z0 + 5) * (z0 + 5)));
+        EXPECT_NEAR(hermiteAreaRatio(ball, z), kPi * (400 - z * z) / straight, 1e-9) << z;
+        EXPECT_GT(hermiteAreaRatio(ball, z), 1) << z;  // convex: above the chord
+    }
+    // A waist between two planes: less than the straight mean half-way.
+    const PlaneSections waist{{0, 5, 10, 15}, {300, 100, 100, 300}, {62, 36, 36, 62}};
+    EXPECT_LT(hermiteAreaRatio(waist, 7.5), 0.9);
+    EXPECT_GE(hermiteAreaRatio(waist, 7.5), kMinAreaRatio);
+    // Outside the stack, and with one plane, the straight mean stands.
+    EXPECT_EQ(hermiteAreaRatio(waist, -1), 1);
+    EXPECT_EQ(hermiteAreaRatio(waist, 16), 1);
+    EXPECT_EQ(hermiteAreaRatio(PlaneSections{{0}, {10}, {12}}, 0), 1);
+}
+
 TEST(SmoothInterpolation, SlabVolumesMatchTheirTargets) {
     // The volume matching itself: between the end planes, each slab of the
     // smooth surface holds the C1 integral of its planes' areas.
