@@ -362,12 +362,16 @@ void dome(SurfaceBuilder& builder, const LayerPart& end, CapShape shape, const S
 // widening), so ends that were narrowing keep narrowing to the lid
 // instead of stepping; the lid is the end contours inset by that much
 // (an isoline of their field), joined to them like any slab.
-void flat(CapSite& site, const LayerPart& end, bool up, double offsetMm, const SliceFields& fields,
+void flat(CapSite& site, const LayerPart& end, CapReach reach, const SliceFields& fields,
           std::size_t slice) {
+    const bool up = reach.up;
+    const double offsetMm = reach.offsetMm;
     const double z = end.layer->zMm + (up ? offsetMm : -offsetMm);
     const double slope = inwardSlope(end, up, fields, slice);
     const double insetMm = slope * offsetMm;
-    if (insetMm < fields.grid.pixelMm) {
+    // Voxels end in a prism: the slope of their staircase says nothing about
+    // the last voxel layer, which the contour volume counts whole.
+    if (reach.voxelEnds || insetMm < fields.grid.pixelMm) {
         prismCap(site.builder(), end, up, offsetMm);
         return;
     }
@@ -415,13 +419,14 @@ void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
     const bool up = reach.up;
     const double offsetMm = reach.offsetMm;
     if (mode == CapMode::Flat)
-        flat(site, split.rest, up, offsetMm, fields, slice);
+        flat(site, split.rest, reach, fields, slice);
     else
         dome(site.builder(), split.rest, {up, offsetMm, INFINITY}, fields, slice);
     const double lidMm = kCavityLidFraction * offsetMm;
     for (std::size_t h = 0; h < split.holes.size(); ++h) {
         prismCap(site.builder(), split.holes[h], up, lidMm);
-        capEnds(site, mode, split.holdings[h], {up, kCavityLidFraction * lidMm}, fields, slice);
+        capEnds(site, mode, split.holdings[h], {up, kCavityLidFraction * lidMm, reach.voxelEnds},
+                fields, slice);
     }
 }
 

@@ -26,6 +26,7 @@ class SurfaceBuilder;
 /// slice, a branch that stops).
 enum class CapMode {
     Flat,  // a flat lid at the cap offset, its rim continuing the side's slope from the last slab
+           // (vertical for voxel contours)
     Dome,  // a dome from the contour rising to the cap offset at its deepest point
     None,  // left open (the surface has boundary loops there)
 };
@@ -104,6 +105,10 @@ class CapSite {
 struct CapReach {
     bool up = true;       // upward (else downward) from the end's plane
     double offsetMm = 0;  // how far beyond the plane it may reach
+    /// The contours come from voxels (recon/PixelLattice): the end's voxel
+    /// layer is a prism, so a flat cap keeps vertical walls to its lid
+    /// instead of following the slope of the staircase below.
+    bool voxelEnds = false;
 };
 void capEnds(CapSite& site, CapMode mode, const LayerPart& end, CapReach reach,
              const SliceFields& fields, std::size_t slice);

@@ -928,7 +928,7 @@ class LoftSmoother {
         }
         const std::size_t count = components_.count;
         std::vector<std::vector<double>> targets;
-        for (const PlaneSections& c : componentPlanes_) targets.push_back(slabVolumeTargets(c));
+        for (const PlaneSections& c : componentPlanes_) targets.push_back(ownVolumeTargets(c));
         groupTargets_.clear();
         for (std::size_t s = 0; s + 1 < planes_.zMm.size(); ++s)
             for (std::size_t c = 0; c < count; ++c) groupTargets_.push_back(targets[c][s]);

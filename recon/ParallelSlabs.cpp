@@ -32,7 +32,7 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const SlabStack& stack,
     auto work = [&](ocl::Runtime& queue, bool caller, const std::atomic<bool>& stop) {
         ReconstructionStats stats;
         SlabReconstructor slab(queue, stack.options, stack.grid, stats,
-                               SurfaceBuilder(stack.contourPoints), &stack.planes);
+                               SurfaceBuilder(stack.contourPoints), stack.traits);
         for (std::size_t s; !stop && (s = next++) < slabs;) {
             stats = {};
             const auto start = std::chrono::steady_clock::now();

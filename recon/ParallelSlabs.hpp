@@ -11,7 +11,7 @@
 #include "cl/Runtime.hpp"
 #include "field/SliceFields.hpp"
 #include "recon/Reconstruction.hpp"
-#include "recon/SlabVolumes.hpp"
+#include "recon/SlabReconstructor.hpp"
 #include "recon/SurfaceBuilder.hpp"
 
 namespace dfrecon {
@@ -25,7 +25,7 @@ struct SlabStack {
     const std::deque<Layer>& layers;
     const SliceFields& fields;
     const std::vector<Vec3>& contourPoints;
-    const PlaneSections& planes;  // the planes' net areas (intermediate contours' trend)
+    StackTraits traits;  // the planes' net areas, voxel contours
 };
 
 /// One slab built apart: its part of the surface, whether its piece's own

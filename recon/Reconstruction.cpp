@@ -90,7 +90,8 @@ struct RunState {
     // s) and topCap(); the layers' points are the builder's first
     // `contourVertices`, which never move.
     std::optional<SlabReconstructor> reconstructor;
-    PlaneSections planes;  // the slices' net areas, once slices are prepared
+    PlaneSections planes;     // the slices' net areas, once slices are prepared
+    bool fromVoxels = false;  // contours on a pixel lattice (recon/PixelLattice)
     std::deque<Layer> layers;
     std::size_t contourVertices = 0;
     // checkAndRepair: the planes and loops the checks read.
@@ -113,7 +114,7 @@ struct RunState {
                     : lonePlaneThicknessMm(roi) > 0 ? lonePlaneThicknessMm(roi)
                                                     : 1.0;
         }
-        return {up, capOffsetMm(options.capOffsetMm, gapMm, false)};
+        return {up, capOffsetMm(options.capOffsetMm, gapMm, false), fromVoxels};
     }
     CapReach bottomReach() const { return capReach(0, false); }
     CapReach topReach() const { return capReach(slices.size() - 1, true); }
@@ -170,7 +171,9 @@ void buildPieces(ocl::Runtime& runtime, RunState& run,
     const auto start = Clock::now();
     const double fieldsBefore = stats.fieldsSeconds;
     run.planes = sectionsOf(run.slices);
-    run.reconstructor.emplace(runtime, run.options, run.grid, stats, SurfaceBuilder{}, &run.planes);
+    run.fromVoxels = followsPixelLattice(run.roi.slices);
+    run.reconstructor.emplace(runtime, run.options, run.grid, stats, SurfaceBuilder{},
+                              StackTraits{&run.planes, run.fromVoxels});
     SurfaceBuilder& builder = run.builder();
     for (const Slice& s : run.slices) run.layers.push_back(makeLayer(builder, s.zMm, s.contours));
     run.contourVertices = builder.soup().points.size();
@@ -183,14 +186,16 @@ void buildPieces(ocl::Runtime& runtime, RunState& run,
     const std::vector<Vec3> contourPoints(
         builder.soup().points.begin(),
         builder.soup().points.begin() + std::ptrdiff_t(run.contourVertices));
-    const std::size_t helpers = buildSlabs(
-        runtime, {run.options, run.grid, run.layers, run.fields, contourPoints, run.planes},
-        progress, [&](std::size_t s, BuiltSlab&& slab) {
-            builder.appendPart(std::move(slab.part));
-            if (slab.searched) run.reconstructor->markSearched(std::uint32_t(s + 1));
-            addSlabStats(stats, slab.stats);
-            slabThreadSeconds += slab.seconds;
-        });
+    const std::size_t helpers =
+        buildSlabs(runtime,
+                   {run.options, run.grid, run.layers, run.fields, contourPoints,
+                    StackTraits{&run.planes, run.fromVoxels}},
+                   progress, [&](std::size_t s, BuiltSlab&& slab) {
+                       builder.appendPart(std::move(slab.part));
+                       if (slab.searched) run.reconstructor->markSearched(std::uint32_t(s + 1));
+                       addSlabStats(stats, slab.stats);
+                       slabThreadSeconds += slab.seconds;
+                   });
     const double slabsWallSeconds = secondsSince(slabsStart);
     releaseAfterSlabThreads(helpers);
     builder.setPiece(run.topCap());
@@ -302,8 +307,7 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     const LoftSmoothingStats smooth = smoothLofts(
         result.surface, {std::move(built.pieces), std::move(built.lofts), run.contourVertices},
         run.stack, interpolant,
-        {planes, run.options.smoothToleranceMm, run.roi.frame, followsPixelLattice(run.roi.slices)},
-        result.check);
+        {planes, run.options.smoothToleranceMm, run.roi.frame, run.fromVoxels}, result.check);
     stats.smoothedVertices = smooth.movedVertices;
     stats.smoothRevertedPieces = smooth.revertedPieces;
     stats.smoothUnbentVertices = smooth.unbentVertices;

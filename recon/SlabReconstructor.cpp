@@ -132,13 +132,13 @@ std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabF
 
 SlabReconstructor::SlabReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                                      const SliceGrid& grid, ReconstructionStats& stats,
-                                     SurfaceBuilder builder, const PlaneSections* planes)
+                                     SurfaceBuilder builder, StackTraits stack)
     : runtime_(runtime),
       options_(options),
       grid_(grid),
       stats_(stats),
       builder_(std::move(builder)),
-      planes_(planes) {}
+      stack_(stack) {}
 
 void SlabReconstructor::originalSlab(const Layer& lower, const Layer& upper,
                                      const SliceFields& fields, std::size_t lowerSlice,
@@ -306,8 +306,8 @@ bool SlabReconstructor::slab(const LayerPart& lower, const LayerPart& upper, Sla
         const std::size_t capsBefore = builder_.triangleCount();
         const double offsetMm =
             capOffsetMm(options_.capOffsetMm, upper.layer->zMm - lower.layer->zMm, true);
-        cap(endingLower, {true, offsetMm}, fields, sides.lower);
-        cap(endingUpper, {false, offsetMm}, fields, sides.upper);
+        cap(endingLower, {true, offsetMm, stack_.fromVoxels}, fields, sides.lower);
+        cap(endingUpper, {false, offsetMm, stack_.fromVoxels}, fields, sides.upper);
         if (builder_.triangleCount() > capsBefore && breakTheirPiece(capsBefore)) return false;
     }
     for (const Component& c : components) {
@@ -378,7 +378,7 @@ void SlabReconstructor::recurse(const LayerPart& x, const LayerPart& y, int dept
             knownSum ? *knownSum : sumSlices(sides.fields, sides.lower, sides.upper);
         // The sections' trend (a waist between the planes, a small section
         // under a growing one) sets how much the middle encloses.
-        const double areaRatio = planes_ ? hermiteAreaRatio(*planes_, middle.zMm) : 1.0;
+        const double areaRatio = stack_.planes ? hermiteAreaRatio(*stack_.planes, middle.zMm) : 1.0;
         std::vector<Polygon> isolines = middleIsolines(sum.sumMm, sides, x, y, areaRatio);
         // Pixel-step isolines carry far more points than the surface needs.
         for (SimplifiedContour& c : simplifySlice(isolines, 0.25 * grid_.pixelMm))

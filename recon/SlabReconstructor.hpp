@@ -37,15 +37,25 @@ struct SlabFields {
     std::size_t lower = 0, upper = 1;
 };
 
+/// What a slab reads of the whole stack beyond its two planes.
+struct StackTraits {
+    /// The planes and their net areas (may be null): their trend sets the
+    /// area of the recursion's intermediate contours.
+    const PlaneSections* planes = nullptr;
+    /// The contours come from voxels (recon/PixelLattice): caps of contours
+    /// that end between planes keep vertical walls, as the voxels do.
+    bool fromVoxels = false;
+};
+
 class SlabReconstructor final : public CapSite {
   public:
     /// Builds on `builder` with `runtime`'s queue, over `grid` (the ROI's);
     /// counts and seconds go to `stats`, which must outlive it.
-    /// `planes` (may be null): the stack's planes and net areas, whose trend
-    /// sets the area of the recursion's intermediate contours.
+    /// `stack`: what is known of the whole stack (its planes' areas, whether
+    /// its contours come from voxels).
     SlabReconstructor(ocl::Runtime& runtime, const ReconstructionOptions& options,
                       const SliceGrid& grid, ReconstructionStats& stats,
-                      SurfaceBuilder builder = {}, const PlaneSections* planes = nullptr);
+                      SurfaceBuilder builder = {}, StackTraits stack = {});
 
     SurfaceBuilder& builder() override { return builder_; }
 
@@ -108,9 +118,9 @@ class SlabReconstructor final : public CapSite {
     const SliceGrid& grid_;
     ReconstructionStats& stats_;
     SurfaceBuilder builder_;
-    const PlaneSections* planes_;  // may be null
-    std::vector<bool> searched_;   // per piece
-    std::deque<Layer> layers_;     // intermediate contours; LayerParts point into it
+    StackTraits stack_;
+    std::vector<bool> searched_;  // per piece
+    std::deque<Layer> layers_;    // intermediate contours; LayerParts point into it
 };
 
 }  // namespace dfrecon

@@ -303,6 +303,24 @@ std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& pa
     return volumes;
 }
 
+std::vector<double> ownVolumeTargets(const PlaneSections& sections) {
+    const std::size_t n = sections.zMm.size();
+    std::vector<double> targets(n > 1 ? n - 1 : 0, 0.0);
+    std::size_t first = n, last = 0;
+    for (std::size_t k = 0; k < n; ++k)
+        if (sections.perimeterMm[k] > 0) first = std::min(first, k), last = k;
+    if (first >= last) return targets;
+    PlaneSections own;
+    for (std::size_t k = first; k <= last; ++k) {
+        own.zMm.push_back(sections.zMm[k]);
+        own.areaMm2.push_back(sections.areaMm2[k]);
+        own.perimeterMm.push_back(sections.perimeterMm[k]);
+    }
+    const std::vector<double> inner = slabVolumeTargets(own);
+    std::copy(inner.begin(), inner.end(), targets.begin() + std::ptrdiff_t(first));
+    return targets;
+}
+
 SurfaceComponents surfaceComponents(const TriangleSoup& surface) {
     UnionFind sets(surface.points.size());
     std::vector<bool> used(surface.points.size(), false);

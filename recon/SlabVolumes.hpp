@@ -119,6 +119,13 @@ std::vector<PlaneSections> componentSections(
     const std::vector<std::vector<std::vector<std::uint32_t>>>& planeLoops,
     const SurfaceComponents& components);
 
+/// slabVolumeTargets of one component's sections (componentSections) over
+/// the planes that hold them, so the component's first and last plane are
+/// the ends of its stack (the end slab's secant as tangent, as for a whole
+/// ROI): one that begins mid-stack does not bulge toward the empty plane
+/// below, which its cap closes already. 0 for the other slabs. O(slices).
+std::vector<double> ownVolumeTargets(const PlaneSections& sections);
+
 /// Per slab s and component c (index s · components.count + c), the volume
 /// the component's triangles in the slab's piece bound with its section on
 /// the slab's upper plane, as slabVolumes measures a whole slab (for one

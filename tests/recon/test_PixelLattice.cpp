@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/MeshCheck.hpp"
+#include "geometry/SurfaceMeasures.hpp"
 #include "io/contours/SlicesFile.hpp"
 #include "recon/PixelLattice.hpp"
 #include "recon/Reconstruction.hpp"
@@ -72,6 +73,31 @@ TEST(PixelLattice, SmoothSurfaceStaysWithinTheVoxelsOfALabelMap) {
                 worst = std::max(worst, outsideUnion({p.x, p.y}, {planes[k], planes[k + 1]}));
     }
     EXPECT_LE(worst, 0.01);
+}
+
+TEST(PixelLattice, TheEndsOfALabelMapAreItsLastVoxelLayers) {
+    // The balls' end planes hold small sections above larger ones: a flat
+    // cap following the staircase's slope narrowed to its lid and held less
+    // than the last voxel layer. From voxels, the cap is that layer: a prism
+    // of the end section, half a spacing deep, to the cubic millimetre.
+    const ContourSet set =
+        readSlicesFile(std::string(DFRECON_TEST_DATA) + "/recon/voxel-balls.slices").contours;
+    const Roi& roi = set.rois[0];
+    for (const Interpolation mode : {Interpolation::Smooth, Interpolation::Linear}) {
+        ReconstructionOptions options;
+        options.interpolation = mode;
+        const Reconstruction r = reconstructSurface(cpuRuntime(), roi, options);
+        ASSERT_TRUE(checkMesh(r.surface).validSolid());
+        const Slice& first = roi.slices.front();
+        const Slice& last = roi.slices.back();
+        const double halfSpacing = 0.5 * (roi.slices[1].zMm - first.zMm);
+        double firstArea = 0, lastArea = 0;
+        for (const Polygon& c : first.contours) firstArea += signedArea(c);
+        for (const Polygon& c : last.contours) lastArea += signedArea(c);
+        EXPECT_NEAR(volumeBelowPlane(r.surface, first.zMm), firstArea * halfSpacing, 1e-3);
+        EXPECT_NEAR(checkMesh(r.surface).volumeMm3 - volumeBelowPlane(r.surface, last.zMm),
+                    lastArea * halfSpacing, 1e-3);
+    }
 }
 
 }  // namespace

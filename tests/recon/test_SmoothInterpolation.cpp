@@ -175,6 +175,28 @@ TEST(SlabVolumes, HermiteAreaRatioFollowsTheSectionsTrend) {
     EXPECT_EQ(hermiteAreaRatio(PlaneSections{{0}, {10}, {12}}, 0), 1);
 }
 
+TEST(SlabVolumes, AComponentsTargetsEndWhereItsSectionsDo) {
+    // A component with sections on planes 2-4 of 0-6 (it begins and ends
+    // mid-stack, under caps of its own): its slabs' targets are those of its
+    // own stack, whose ends take the end slab's secant; the empty planes
+    // around it do not bend its areas toward zero.
+    const PlaneSections all{
+        {0, 2, 4, 6, 8, 10, 12}, {0, 0, 100, 160, 120, 0, 0}, {0, 0, 36, 45, 39, 0, 0}};
+    const PlaneSections own{{4, 6, 8}, {100, 160, 120}, {36, 45, 39}};
+    const std::vector<double> targets = ownVolumeTargets(all);
+    const std::vector<double> expected = slabVolumeTargets(own);
+    ASSERT_EQ(targets.size(), 6u);
+    EXPECT_EQ(targets[0], 0);
+    EXPECT_EQ(targets[1], 0);
+    EXPECT_DOUBLE_EQ(targets[2], expected[0]);
+    EXPECT_DOUBLE_EQ(targets[3], expected[1]);
+    EXPECT_EQ(targets[4], 0);
+    EXPECT_EQ(targets[5], 0);
+    // Taken over the whole stack, the empty planes would pull the tangents:
+    // more volume than the sections' own trend.
+    EXPECT_GT(slabVolumeTargets(all)[2], expected[0]);
+}
+
 TEST(SmoothInterpolation, SlabVolumesMatchTheirTargets) {
     // The volume matching itself: between the end planes, each slab of the
     // smooth surface holds the C1 integral of its planes' areas.
