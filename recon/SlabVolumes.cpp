@@ -68,13 +68,23 @@ double hermiteAreaRatio(const PlaneSections& planes, double zMm) {
     return std::clamp(cubic / linear, kMinAreaRatio, kMaxAreaRatio);
 }
 
-std::vector<double> slabVolumes(const TriangleSoup& surface,
-                                const std::vector<std::uint32_t>& pieceOf,
-                                const PlaneSections& planes) {
-    const std::size_t slabs = planes.zMm.size() > 1 ? planes.zMm.size() - 1 : 0;
-    std::vector<double> volumes(slabs, 0);
+namespace {
+
+/// Per slab s and group g (index s · groups + g), the volume between the
+/// slab's planes `z` that the group's triangles in the slab's piece bound
+/// with its section on the upper plane (`upperArea(s, g)`), by the
+/// divergence theorem; `groupOf(triangle)` names each triangle's group.
+/// O(T).
+template <class UpperArea, class GroupOf>
+std::vector<double> volumesBetweenPlanes(const TriangleSoup& surface,
+                                         const std::vector<std::uint32_t>& pieceOf,
+                                         const std::vector<double>& z, std::size_t groups,
+                                         UpperArea upperArea, GroupOf groupOf) {
+    const std::size_t slabs = z.size() > 1 ? z.size() - 1 : 0;
+    std::vector<double> volumes(slabs * groups, 0);
     for (std::size_t s = 0; s < slabs; ++s)
-        volumes[s] = (planes.zMm[s + 1] - planes.zMm[s]) * planes.areaMm2[s + 1];
+        for (std::size_t g = 0; g < groups; ++g)
+            volumes[s * groups + g] = (z[s + 1] - z[s]) * upperArea(s, g);
     for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
         if (pieceOf[t] == 0 || pieceOf[t] > slabs) continue;
         const std::size_t s = pieceOf[t] - 1;
@@ -84,9 +94,20 @@ std::vector<double> slabVolumes(const TriangleSoup& surface,
         // ∫ (z − z_s) n_z dA over a flat triangle: its z-facing area times
         // its mean height above the slab's floor.
         const double areaZ = 0.5 * cross(b - a, c - a).z;
-        volumes[s] += areaZ * ((a.z + b.z + c.z) / 3 - planes.zMm[s]);
+        volumes[s * groups + groupOf(tri)] += areaZ * ((a.z + b.z + c.z) / 3 - z[s]);
     }
     return volumes;
+}
+
+}  // namespace
+
+std::vector<double> slabVolumes(const TriangleSoup& surface,
+                                const std::vector<std::uint32_t>& pieceOf,
+                                const PlaneSections& planes) {
+    return volumesBetweenPlanes(
+        surface, pieceOf, planes.zMm, 1,
+        [&](std::size_t s, std::size_t) { return planes.areaMm2[s + 1]; },
+        [](const auto&) { return std::size_t(0); });
 }
 
 namespace {
@@ -373,24 +394,11 @@ std::vector<double> componentSlabVolumes(const TriangleSoup& surface,
                                          const std::vector<std::uint32_t>& pieceOf,
                                          const std::vector<PlaneSections>& sections,
                                          const SurfaceComponents& components) {
-    const std::size_t count = components.count;
-    if (count == 0) return {};
-    const std::vector<double>& z = sections[0].zMm;
-    const std::size_t slabs = z.size() > 1 ? z.size() - 1 : 0;
-    std::vector<double> volumes(slabs * count, 0);
-    for (std::size_t s = 0; s < slabs; ++s)
-        for (std::size_t c = 0; c < count; ++c)
-            volumes[s * count + c] = (z[s + 1] - z[s]) * sections[c].areaMm2[s + 1];
-    for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-        if (pieceOf[t] == 0 || pieceOf[t] > slabs) continue;
-        const std::size_t s = pieceOf[t] - 1;
-        const auto& tri = surface.triangles[t];
-        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
-                   c = surface.points[tri[2]];
-        const double areaZ = 0.5 * cross(b - a, c - a).z;
-        volumes[s * count + components.ofVertex[tri[0]]] += areaZ * ((a.z + b.z + c.z) / 3 - z[s]);
-    }
-    return volumes;
+    if (components.count == 0) return {};
+    return volumesBetweenPlanes(
+        surface, pieceOf, sections[0].zMm, components.count,
+        [&](std::size_t s, std::size_t c) { return sections[c].areaMm2[s + 1]; },
+        [&](const auto& tri) { return std::size_t(components.ofVertex[tri[0]]); });
 }
 
 }  // namespace dfrecon

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <set>
 #include <tuple>
@@ -26,6 +27,27 @@ double meanDistance(const AnalyticShape& shape, const TriangleSoup& soup, double
     for (const Vec3& p : sampleTriangles(soup, 20000, 5))
         if (p.z >= zLo && p.z <= zHi) sum += std::abs(shape.signedDistance(p)), ++count;
     return sum / double(std::max<std::size_t>(1, count));
+}
+
+/// A synth shape sliced `spacingMm` apart and reconstructed both ways.
+struct BothModes {
+    std::unique_ptr<AnalyticShape> shape;
+    ContourSet set;
+    Reconstruction linear, smooth;
+    const Roi& roi() const { return set.rois[0]; }
+};
+
+BothModes reconstructBothWays(const char* name, double spacingMm) {
+    BothModes both;
+    both.shape = makeShape(name);
+    SynthOptions options;
+    options.spacingMm = spacingMm;
+    both.set = sliceShape(*both.shape, options);
+    ReconstructionOptions linear;
+    linear.interpolation = Interpolation::Linear;
+    both.linear = reconstructSurface(cpuRuntime(), both.roi(), linear);
+    both.smooth = reconstructSurface(cpuRuntime(), both.roi());
+    return both;
 }
 
 }  // namespace
@@ -107,17 +129,10 @@ TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
 TEST(SmoothInterpolation, CloserToRoundShapesThroughEveryContourPointAndValid) {
     for (const char* name : {"sphere", "ellipsoid", "hollow-sphere"})
         for (double spacing : {2.0, 5.0}) {
-            const auto shape = makeShape(name);
-            SynthOptions options;
-            options.spacingMm = spacing;
-            const ContourSet set = sliceShape(*shape, options);
-            const Roi& roi = set.rois[0];
-            ReconstructionOptions linearOptions;
-            linearOptions.interpolation = Interpolation::Linear;
-            const Reconstruction linear = reconstructSurface(cpuRuntime(), roi, linearOptions);
-            ReconstructionOptions smoothOptions;
-            smoothOptions.interpolation = Interpolation::Smooth;
-            const Reconstruction smooth = reconstructSurface(cpuRuntime(), roi, smoothOptions);
+            const BothModes both = reconstructBothWays(name, spacing);
+            const AnalyticShape* shape = both.shape.get();
+            const Roi& roi = both.roi();
+            const Reconstruction &linear = both.linear, &smooth = both.smooth;
             const std::string label = std::string(name) + " " + std::to_string(spacing);
             ASSERT_TRUE(smooth.check.validSolid()) << label;
             EXPECT_TRUE(checkMesh(smooth.surface).validSolid()) << label;
@@ -222,15 +237,10 @@ TEST(SmoothInterpolation, ACavityWallFollowsTheCavitysOwnProfile) {
     // on the wall alone (samples nearer the cavity's sphere than the outer
     // one) against the exact surface: much closer than the straight wall.
     for (double spacing : {2.0, 5.0}) {
-        const auto shape = makeShape("hollow-sphere");  // r 20 around a cavity of r 10
-        SynthOptions options;
-        options.spacingMm = spacing;
-        const ContourSet set = sliceShape(*shape, options);
-        const Roi& roi = set.rois[0];
-        ReconstructionOptions linearOptions;
-        linearOptions.interpolation = Interpolation::Linear;
-        const Reconstruction linear = reconstructSurface(cpuRuntime(), roi, linearOptions);
-        const Reconstruction smooth = reconstructSurface(cpuRuntime(), roi);
+        const BothModes both = reconstructBothWays("hollow-sphere", spacing);  // r 20, cavity r 10
+        const AnalyticShape* shape = both.shape.get();
+        const Roi& roi = both.roi();
+        const Reconstruction &linear = both.linear, &smooth = both.smooth;
         ASSERT_TRUE(smooth.check.validSolid()) << spacing;
         ASSERT_FALSE(smooth.stats.smoothFellBack) << spacing;
         auto cavityWallMean = [&](const TriangleSoup& soup) {
@@ -257,21 +267,15 @@ TEST(SmoothInterpolation, SeparateObjectsOfOneRoiEachBulgeByTheirOwnSections) {
     // surface and bulges by its own sections: both lie much closer to the
     // exact balls than straight strips do.
     for (double spacing : {2.0, 5.0}) {
-        const auto shape = makeShape("two-blobs");
-        SynthOptions options;
-        options.spacingMm = spacing;
-        const ContourSet set = sliceShape(*shape, options);
-        const Roi& roi = set.rois[0];
-        ReconstructionOptions linearOptions;
-        linearOptions.interpolation = Interpolation::Linear;
-        const Reconstruction linear = reconstructSurface(cpuRuntime(), roi, linearOptions);
-        const Reconstruction smooth = reconstructSurface(cpuRuntime(), roi);
+        const BothModes both = reconstructBothWays("two-blobs", spacing);
+        const Roi& roi = both.roi();
+        const Reconstruction &linear = both.linear, &smooth = both.smooth;
         ASSERT_TRUE(smooth.check.validSolid()) << spacing;
         ASSERT_FALSE(smooth.stats.smoothFellBack) << spacing;
         EXPECT_EQ(smooth.check.components, 2u);
         const double lo = roi.slices.front().zMm, hi = roi.slices.back().zMm;
-        const double smoothMean = meanDistance(*shape, smooth.surface, lo, hi);
-        const double linearMean = meanDistance(*shape, linear.surface, lo, hi);
+        const double smoothMean = meanDistance(*both.shape, smooth.surface, lo, hi);
+        const double linearMean = meanDistance(*both.shape, linear.surface, lo, hi);
         // 0.43 and 0.36 of the straight strips' distance at 2 and 5 mm; with
         // one bulge per slab for both, 0.94 and 0.90.
         EXPECT_LT(smoothMean, 0.6 * linearMean) << spacing;
