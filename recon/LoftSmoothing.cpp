@@ -41,6 +41,8 @@ constexpr std::size_t kParallelFromVertices = 4096;
 // back its volume (JHU tracts at 5 mm: median volume error −1.0 % at a
 // quarter, −0.2 % at a half; docs/reconstruction.md).
 constexpr double kMaxBulge = 0.5;
+// The most bulge groups (slabs × surface components) kept apart.
+constexpr std::size_t kMaxGroups = 1'000'000;
 
 using Triangle = std::array<std::uint32_t, 3>;
 using Edge = std::array<std::uint32_t, 2>;
@@ -919,11 +921,17 @@ class LoftSmoother {
     /// to its planes' target.
     void startGroups() {
         components_ = surfaceComponents(surface_);
-        if (components_.count > 1) {
+        const std::size_t slabs = planes_.zMm.size() > 1 ? planes_.zMm.size() - 1 : 0;
+        // Groups are kept per slab and component: a surface of thousands of
+        // specks on hundreds of planes would hold millions, so past
+        // kMaxGroups its slabs bulge whole, as one component's do.
+        if (components_.count > 1 && components_.count * slabs <= kMaxGroups) {
             componentPlanes_ =
                 componentSections(surface_, planes_.zMm, stack_.planeLoops, components_);
         } else {
             components_.count = 1;
+            for (std::uint32_t& c : components_.ofVertex)
+                if (c != SurfaceComponents::kNone) c = 0;
             componentPlanes_ = {planes_};
         }
         const std::size_t count = components_.count;
