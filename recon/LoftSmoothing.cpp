@@ -360,7 +360,8 @@ void refineAndBend(TriangleSoup& surface, LoftMarks& marks, const Bending& bendi
 }
 
 /// What the secant steps read of each body that bulges on its own: a
-/// slab's part, or (for what the parts leave over) a whole slab.
+/// nested part of a slab, or a group (a slab's other parts of one surface
+/// component).
 struct BulgeBodies {
     std::vector<double> heightMm;     // its slab's
     std::vector<double> perimeterMm;  // its sections' on both planes, summed
@@ -762,8 +763,9 @@ class LoftSmoother {
         // First each nested part of a slab (a cavity's wall, an island in
         // it) by its own sections' profile: the solid's bulge would move a
         // cavity's wall into the cavity where the cavity widens. Then the
-        // slab's other parts with one bulge, to the volume its planes'
-        // sections imply, the nested parts as they are.
+        // other parts, one bulge per slab and surface component
+        // (startGroups), to the volume the component's sections imply, the
+        // nested parts as they are.
         parts_ = slabPartsOf(surface_, marks_.pieceOf, planes_);
         partTargets_ = partVolumeTargets(parts_, planes_);
         const BulgeBodies parts = partBodies(parts_, planes_);
@@ -771,7 +773,8 @@ class LoftSmoother {
         const bool anyNested =
             std::find(parts_.nested.begin(), parts_.nested.end(), true) != parts_.nested.end();
         for (int pass = 0; anyNested && pass < kVolumePasses; ++pass) {
-            // Parts that are not nested count as on target: the slab's bulge moves them.
+            // Parts that are not nested count as on target: their group's
+            // bulge moves them.
             std::vector<double> volumes = partVolumes(surface_, parts_, planes_);
             for (std::size_t p = 0; p < volumes.size(); ++p)
                 if (!parts_.nested[p]) volumes[p] = partTargets_[p];
