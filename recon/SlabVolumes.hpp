@@ -7,7 +7,9 @@
 // Measured against known truth (dfrecon-bench truth), the integral of a C1
 // interpolation in z of the planes' section areas is close to the true
 // volume between the planes; smooth mode bulges each slab until its volume
-// is that (recon/LoftSmoothing).
+// is that (recon/LoftSmoothing) — per nested part of a slab (SlabParts) and
+// per connected component of the surface (SurfaceComponents), each to the
+// integral of its own sections.
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -54,10 +56,10 @@ std::vector<double> slabVolumes(const TriangleSoup& surface,
                                 const PlaneSections& planes);
 
 /// The connected parts of each slab: its triangles joined where they share
-/// a vertex (two blobs side by side, or a part that begins in the slab
-/// under its own cap, are parts of their own). Each has its own volume
-/// target, bulge and reach: one bulge for a whole slab let a part near its
-/// pole follow a bulge sized for the part beside it.
+/// a vertex (two blobs side by side, a cavity's wall inside the outer wall,
+/// are parts of their own). A nested part gets its own volume target and
+/// bulge: one bulge for the whole slab moved a cavity's wall into the
+/// cavity where the cavity widens.
 struct SlabParts {
     static constexpr std::uint32_t kNone = UINT32_MAX;
     std::vector<std::uint32_t> partOfVertex;    // kNone: on a plane, or in a cap
