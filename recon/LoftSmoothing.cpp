@@ -946,9 +946,17 @@ class LoftSmoother {
         groupSteps_.start(groupTargets_.size());
     }
 
+    /// Each group's volume; a group whose component has no sections bounding
+    /// its slab (a piece the recursion closed between planes, a cap reaching
+    /// into the slab beyond its component's last plane) has no target to
+    /// bulge toward and counts as on it (0).
     std::vector<double> groupVolumes() const {
         if (components_.count == 1) return slabVolumes(surface_, marks_.pieceOf, planes_);
-        return componentSlabVolumes(surface_, marks_.pieceOf, componentPlanes_, components_);
+        std::vector<double> volumes =
+            componentSlabVolumes(surface_, marks_.pieceOf, componentPlanes_, components_);
+        for (std::size_t g = 0; g < volumes.size(); ++g)
+            if (groupTargets_[g] == 0) volumes[g] = 0;
+        return volumes;
     }
 
     LinearSurface roundedLinear() {
