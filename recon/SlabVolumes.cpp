@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
+#include "geometry/Polygon.hpp"
 #include "geometry/UnionFind.hpp"
 
 namespace dfrecon {
@@ -70,6 +70,13 @@ double hermiteAreaRatio(const PlaneSections& planes, double zMm) {
 
 namespace {
 
+/// ∫ (z − zFloor) n_z dA over the flat triangle abc: its z-facing area times
+/// its mean height above the floor (the divergence theorem's share of a
+/// triangle in the volume above zFloor). O(1).
+double fluxAboveFloor(Vec3 a, Vec3 b, Vec3 c, double zFloorMm) {
+    return 0.5 * cross(b - a, c - a).z * ((a.z + b.z + c.z) / 3 - zFloorMm);
+}
+
 /// Per slab s and group g (index s · groups + g), the volume between the
 /// slab's planes `z` that the group's triangles in the slab's piece bound
 /// with its section on the upper plane (`upperArea(s, g)`), by the
@@ -89,12 +96,8 @@ std::vector<double> volumesBetweenPlanes(const TriangleSoup& surface,
         if (pieceOf[t] == 0 || pieceOf[t] > slabs) continue;
         const std::size_t s = pieceOf[t] - 1;
         const auto& tri = surface.triangles[t];
-        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
-                   c = surface.points[tri[2]];
-        // ∫ (z − z_s) n_z dA over a flat triangle: its z-facing area times
-        // its mean height above the slab's floor.
-        const double areaZ = 0.5 * cross(b - a, c - a).z;
-        volumes[s * groups + groupOf(tri)] += areaZ * ((a.z + b.z + c.z) / 3 - z[s]);
+        volumes[s * groups + groupOf(tri)] += fluxAboveFloor(
+            surface.points[tri[0]], surface.points[tri[1]], surface.points[tri[2]], z[s]);
     }
     return volumes;
 }
@@ -117,20 +120,13 @@ namespace {
 // Points between the planes lie at least a 32nd of a slab away.
 constexpr double kOnPlaneMm = 1e-4;
 
-std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-}
-
 /// Whether `p` (on the plane of `edges`) lies inside the region they bound:
-/// an odd number of them crosses the ray from p along +x. Edges walked
-/// both ways (inside a part) cross twice and cancel. O(edges).
+/// their winding number around it is not 0 (geometry/Polygon's
+/// windingCrossing; edges walked both ways, inside a part, cancel). O(edges).
 bool enclosedBy(Vec3 p, const std::vector<std::pair<Vec3, Vec3>>& edges) {
-    bool inside = false;
-    for (const auto& [a, b] : edges)
-        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
-            inside = !inside;
-    return inside;
+    int winding = 0;
+    for (const auto& [a, b] : edges) winding += windingCrossing({p.x, p.y}, {a.x, a.y}, {b.x, b.y});
+    return winding != 0;
 }
 
 /// parts.nested: a part whose sections enclose less than nothing (holes: a
@@ -172,8 +168,7 @@ SlabParts slabPartsOf(const TriangleSoup& surface, const std::vector<std::uint32
     // plane is shared by the slabs below and above: it joins within a slab
     // only, so the first triangle of each (vertex, slab) is remembered per
     // slab side (below: the slab under the vertex's plane).
-    std::vector<std::size_t> parent(triangles);
-    std::iota(parent.begin(), parent.end(), std::size_t(0));
+    UnionFind sets(triangles);
     const std::size_t kUnseen = SIZE_MAX;
     std::vector<std::size_t> firstBelow(surface.points.size(), kUnseen),
         firstAbove(surface.points.size(), kUnseen);
@@ -188,7 +183,7 @@ SlabParts slabPartsOf(const TriangleSoup& surface, const std::vector<std::uint32
             if (first == kUnseen)
                 first = t;
             else
-                parent[findRoot(parent, t)] = findRoot(parent, first);
+                sets.join(t, first);
         }
     }
     SlabParts parts;
@@ -196,7 +191,7 @@ SlabParts slabPartsOf(const TriangleSoup& surface, const std::vector<std::uint32
     std::vector<std::uint32_t> partOfRoot(triangles, SlabParts::kNone);
     for (std::size_t t = 0; t < triangles; ++t) {
         if (!inSlab(t)) continue;
-        std::uint32_t& part = partOfRoot[findRoot(parent, t)];
+        std::uint32_t& part = partOfRoot[sets.find(t)];
         if (part == SlabParts::kNone) {
             part = std::uint32_t(parts.slabOf.size());
             parts.slabOf.push_back(pieceOf[t] - 1);
@@ -316,10 +311,8 @@ std::vector<double> partVolumes(const TriangleSoup& surface, const SlabParts& pa
         const std::uint32_t part = parts.partOfTriangle[t];
         if (part == SlabParts::kNone) continue;
         const auto& tri = surface.triangles[t];
-        const Vec3 a = surface.points[tri[0]], b = surface.points[tri[1]],
-                   c = surface.points[tri[2]];
-        const double areaZ = 0.5 * cross(b - a, c - a).z;
-        volumes[part] += areaZ * ((a.z + b.z + c.z) / 3 - planes.zMm[parts.slabOf[part]]);
+        volumes[part] += fluxAboveFloor(surface.points[tri[0]], surface.points[tri[1]],
+                                        surface.points[tri[2]], planes.zMm[parts.slabOf[part]]);
     }
     return volumes;
 }
@@ -377,15 +370,12 @@ std::vector<PlaneSections> componentSections(
             if (loop.empty()) continue;
             const std::uint32_t c = components.ofVertex[loop[0]];
             if (c == SurfaceComponents::kNone) continue;
-            double twiceArea = 0, perimeter = 0;
-            for (std::size_t i = 0; i < loop.size(); ++i) {
-                const Vec3 a = surface.points[loop[i]],
-                           b = surface.points[loop[(i + 1) % loop.size()]];
-                twiceArea += a.x * b.y - a.y * b.x;
-                perimeter += std::hypot(b.x - a.x, b.y - a.y);
-            }
-            sections[c].areaMm2[k] += 0.5 * twiceArea;
-            sections[c].perimeterMm[k] += perimeter;
+            Polygon contour;
+            contour.reserve(loop.size());
+            for (std::uint32_t v : loop)
+                contour.push_back({surface.points[v].x, surface.points[v].y});
+            sections[c].areaMm2[k] += signedArea(contour);
+            sections[c].perimeterMm[k] += perimeterMm(contour);
         }
     return sections;
 }
