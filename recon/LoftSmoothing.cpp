@@ -10,6 +10,7 @@
 #include "geometry/BoxGrid.hpp"
 #include "geometry/CoreBudget.hpp"
 #include "geometry/SurfaceMeasures.hpp"
+#include "recon/RingCoarsening.hpp"
 
 namespace dfrecon {
 
@@ -892,6 +893,17 @@ class LoftSmoother {
         return report;
     }
 
+    /// Refinement's rings thinned where the smooth surface lets them
+    /// (recon/RingCoarsening), on the valid surface, against the surface as
+    /// it is bent to (bulges included); `check` describes the result.
+    void coarsenRings(MeshCheckReport& check) {
+        const Bending bent = bending();
+        stats.coarsenedVertices = coarsenMiddleRings(
+            {surface_, marks_.pieceOf, marks_.isLoft}, linear_.points.size(), field_,
+            [&](std::size_t v, double zMm) { return bent.bulgeOf(v, zMm); },
+            {toleranceMm_, withinNeighbourPlanes_}, check);
+    }
+
     /// The last resort: the linear surface as it came, checked whole.
     MeshCheckReport fallBackToLinear() {
         surface_.points.resize(linear_.points.size());
@@ -1094,12 +1106,13 @@ class LoftSmoother {
 
 }  // namespace
 
-LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
-                               const SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
-                               MeshCheckReport& check) {
-    LoftSmoother smoother(surface, marks, stack, field, bendTo);
+namespace {
+
+/// Bends, bulges and repairs; `check` ends as the whole check of the
+/// result (valid, or the linear surface's verdict).
+void bendAndRepair(LoftSmoother& smoother, MeshCheckReport& check) {
     check = smoother.bendAndBulge();
-    if (check.validSolid()) return smoother.stats;
+    if (check.validSolid()) return;
     std::vector<std::size_t> suspects;
     // The whole check before the repair stopped counting: the next must be
     // whole too.
@@ -1113,16 +1126,27 @@ LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const Pie
         // times. The whole check stays as the last word on what is
         // reported valid.)
         check = smoother.checkWhole();
-        if (check.validSolid()) return smoother.stats;
+        if (check.validSolid()) return;
         suspects = check.defectiveTriangles;
         wholeChecks = true;
     }
     if (smoother.restorePieces(check, std::move(suspects), wholeChecks)) {
-        if (wholeChecks) return smoother.stats;
+        if (wholeChecks) return;
         check = smoother.checkWhole();  // the same confirmation, after local checks
-        if (check.validSolid()) return smoother.stats;
+        if (check.validSolid()) return;
     }
     check = smoother.fallBackToLinear();
+}
+
+}  // namespace
+
+LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,
+                               const SliceInterpolant& field, const LoftSmoothingTargets& bendTo,
+                               MeshCheckReport& check) {
+    LoftSmoother smoother(surface, marks, stack, field, bendTo);
+    bendAndRepair(smoother, check);
+    if (bendTo.coarsenRings && check.validSolid() && !smoother.stats.fellBack)
+        smoother.coarsenRings(check);
     return smoother.stats;
 }
 

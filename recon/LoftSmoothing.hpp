@@ -20,12 +20,13 @@
 namespace dfrecon {
 
 struct LoftSmoothingStats {
-    int rounds = 0;                  // refinement rounds that split something
-    std::size_t movedVertices = 0;   // new vertices bent onto the smooth surface
-    std::size_t revertedPieces = 0;  // pieces whose bent vertices went back (validity)
-    int volumePasses = 0;            // passes that changed a slab's bulge
-    std::size_t unbentVertices = 0;  // bent vertices put back on the linear surface (validity)
-    bool fellBack = false;           // the linear surface was kept
+    int rounds = 0;                     // refinement rounds that split something
+    std::size_t movedVertices = 0;      // new vertices bent onto the smooth surface
+    std::size_t coarsenedVertices = 0;  // refinement's ring vertices merged (RingCoarsening)
+    std::size_t revertedPieces = 0;     // pieces whose bent vertices went back (validity)
+    int volumePasses = 0;               // passes that changed a slab's bulge
+    std::size_t unbentVertices = 0;     // bent vertices put back on the linear surface (validity)
+    bool fellBack = false;              // the linear surface was kept
 };
 
 /// `surface` is a valid reconstruction whose triangle t lies in piece
@@ -83,6 +84,8 @@ struct LoftSmoothingTargets {
     /// Keep every bent vertex inside the union of its slab's two planes'
     /// regions (contours on a pixel lattice: the voxels bound the structure).
     bool withinNeighbourPlanes = false;
+    /// Thin refinement's rings afterwards (recon/RingCoarsening).
+    bool coarsenRings = true;
 };
 
 LoftSmoothingStats smoothLofts(TriangleSoup& surface, LoftMarks marks, const PieceStack& stack,

@@ -307,10 +307,13 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     const LoftSmoothingStats smooth = smoothLofts(
         result.surface, {std::move(built.pieces), std::move(built.lofts), run.contourVertices},
         run.stack, interpolant,
-        {planes, run.options.smoothToleranceMm, run.roi.frame, run.fromVoxels}, result.check);
+        {planes, run.options.smoothToleranceMm, run.roi.frame, run.fromVoxels,
+         run.options.coarsenRings},
+        result.check);
     stats.smoothedVertices = smooth.movedVertices;
     stats.smoothRevertedPieces = smooth.revertedPieces;
     stats.smoothUnbentVertices = smooth.unbentVertices;
+    stats.smoothCoarsenedVertices = smooth.coarsenedVertices;
     stats.smoothFellBack = smooth.fellBack;
 }
 
@@ -424,6 +427,7 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
         s.smoothedVertices += p.smoothedVertices;
         s.smoothRevertedPieces += p.smoothRevertedPieces;
         s.smoothUnbentVertices += p.smoothUnbentVertices;
+        s.smoothCoarsenedVertices += p.smoothCoarsenedVertices;
         s.smoothFellBack = s.smoothFellBack || p.smoothFellBack;
         s.simplifySeconds += p.simplifySeconds;
         s.triangulationSeconds += p.triangulationSeconds;

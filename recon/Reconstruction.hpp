@@ -52,6 +52,10 @@ struct ReconstructionOptions {
     /// Smooth mode: bands are halved in z until no straight edge strays
     /// farther than this from the smooth surface.
     double smoothToleranceMm = 0.05;
+    /// Smooth mode: the rings refinement made are thinned where the merged
+    /// triangles stay within smoothToleranceMm (recon/RingCoarsening); off
+    /// keeps every vertex refinement made (for comparison).
+    bool coarsenRings = true;
     FieldKernelOptions kernel;
 };
 
@@ -72,8 +76,9 @@ struct ReconstructionStats {
     std::size_t smoothedVertices = 0;  // smooth mode: vertices bent onto the smooth surface
     std::size_t smoothRevertedPieces = 0;  // smooth mode: pieces kept linear for validity
     std::size_t smoothUnbentVertices =
-        0;                        // smooth mode: bent vertices put back straight (validity)
-    bool smoothFellBack = false;  // smooth mode: the whole surface kept linear
+        0;  // smooth mode: bent vertices put back straight (validity)
+    std::size_t smoothCoarsenedVertices = 0;  // smooth mode: ring vertices merged away
+    bool smoothFellBack = false;              // smooth mode: the whole surface kept linear
     // Seconds per stage. The slabs run on the cores left free, and their
     // fields, axes and triangulation count per thread: the stages can add up
     // to more than the wall time.

@@ -905,8 +905,12 @@ TEST(Cli, RtStructConvertsAndReconstructsLikeTheSlicesFile) {
         return report["volumeCc"].get<double>();
     };
     // By number, as planning systems list ROIs; DS values keep 16 characters.
+    // Their last digits can tip a few of smooth mode's ring merges (each
+    // decided against a 0.05 mm tolerance) one way or the other: 6e-6 of
+    // the volume on this torus; without those merges the volumes agreed to
+    // 1e-6, the bound this test held until then.
     const double fromSlices = volumeOf(slices.string(), "torus");
-    EXPECT_NEAR(volumeOf(dicom.string(), "1"), fromSlices, 1e-6 * fromSlices);
+    EXPECT_NEAR(volumeOf(dicom.string(), "1"), fromSlices, 2e-5 * fromSlices);
 }
 
 TEST(Cli, BadRtStructExitsTwoNamingTheTag) {

@@ -283,3 +283,60 @@ TEST(SmoothInterpolation, SeparateObjectsOfOneRoiEachBulgeByTheirOwnSections) {
 }
 
 }  // namespace dfrecon
+
+namespace dfrecon {
+
+TEST(SmoothInterpolation, RingsAreThinnedWhereTheSurfaceLetsThem) {
+    // Refinement splits every sagging rung, so its rings have a vertex per
+    // rung; thinning merges ring neighbours where the merged triangles stay
+    // within the tolerance. Against the same surface with every ring vertex
+    // kept: fewer triangles, as close to the exact shape (the samples'
+    // largest distance within the tolerance of it), the same volume to 0.2 %,
+    // and a report that a whole check of the result confirms.
+    std::size_t fullTriangles = 0, thinTriangles = 0;
+    for (const char* name : {"sphere", "two-blobs", "hollow-sphere", "branch", "torus-30"}) {
+        const auto shape = makeShape(name);
+        SynthOptions slicing;
+        slicing.spacingMm = 2;
+        const ContourSet set = sliceShape(*shape, slicing);
+        const Roi& roi = set.rois[0];
+        ReconstructionOptions keepAll;
+        keepAll.coarsenRings = false;
+        const Reconstruction full = reconstructSurface(cpuRuntime(), roi, keepAll);
+        const Reconstruction thin = reconstructSurface(cpuRuntime(), roi);
+        ASSERT_TRUE(full.check.validSolid()) << name;
+        ASSERT_TRUE(thin.check.validSolid()) << name;
+        EXPECT_GT(thin.stats.smoothCoarsenedVertices, 0u) << name;
+        EXPECT_LT(thin.surface.triangles.size(), full.surface.triangles.size()) << name;
+        fullTriangles += full.surface.triangles.size();
+        thinTriangles += thin.surface.triangles.size();
+
+        const MeshCheckReport whole = checkMesh(thin.surface);
+        EXPECT_TRUE(whole.validSolid()) << name;
+        EXPECT_EQ(whole.vertices, thin.check.vertices) << name;
+        EXPECT_EQ(whole.edges, thin.check.edges) << name;
+        EXPECT_EQ(whole.triangles, thin.check.triangles) << name;
+        EXPECT_EQ(whole.components, thin.check.components) << name;
+        EXPECT_EQ(whole.genus, thin.check.genus) << name;
+        EXPECT_NEAR(whole.volumeMm3, thin.check.volumeMm3, 1e-6 * whole.volumeMm3) << name;
+        EXPECT_NEAR(thin.check.volumeMm3 / full.check.volumeMm3, 1, 2e-3) << name;
+
+        const double lo = roi.slices.front().zMm, hi = roi.slices.back().zMm;
+        auto farthest = [&](const TriangleSoup& soup) {
+            double most = 0;
+            for (const Vec3& p : sampleTriangles(soup, 40000, 3))
+                if (p.z >= lo && p.z <= hi)
+                    most = std::max(most, std::abs(shape->signedDistance(p)));
+            return most;
+        };
+        EXPECT_LE(farthest(thin.surface), farthest(full.surface) + 0.05) << name;
+        EXPECT_LT(meanDistance(*shape, thin.surface, lo, hi),
+                  1.1 * meanDistance(*shape, full.surface, lo, hi))
+            << name;
+    }
+    // Measured: 0.82 of the triangles over the five (sphere 0.75, branch
+    // 0.91).
+    EXPECT_LT(double(thinTriangles), 0.9 * double(fullTriangles));
+}
+
+}  // namespace dfrecon
