@@ -48,6 +48,7 @@ constexpr double kTouchGapMm = 2e-3;
 
 void addSlabStats(ReconstructionStats& into, const ReconstructionStats& slab) {
     into.strips += slab.strips;
+    into.slidStrips += slab.slidStrips;
     into.rejectedStrips += slab.rejectedStrips;
     into.recursions += slab.recursions;
     into.deepestLevel = std::max(into.deepestLevel, slab.deepestLevel);

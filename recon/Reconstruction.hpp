@@ -56,6 +56,12 @@ struct ReconstructionOptions {
     /// triangles stay within smoothToleranceMm (recon/RingCoarsening); off
     /// keeps every vertex refinement made (for comparison).
     bool coarsenRings = true;
+    /// A section that ends below and one that begins above, the same shape
+    /// slid farther than its width (a thin sheet or tube lying nearly flat),
+    /// are joined by a straight band instead of two caps
+    /// (recon/SlidingSections); not for contours on a pixel lattice, whose
+    /// voxels say where the structure is.
+    bool joinSlidSections = true;
     FieldKernelOptions kernel;
 };
 
@@ -65,6 +71,7 @@ struct ReconstructionStats {
     std::size_t runs = 1;    // pieces the ROI falls into where planes are left empty (PlaneGaps)
     std::size_t slabs = 0;   // pairs of neighbouring slices
     std::size_t strips = 0;  // contour pairs joined by tracing an axis
+    std::size_t slidStrips = 0;  // section pairs that slid apart, joined (recon/SlidingSections)
     std::size_t rejectedStrips = 0;    // strips that folded through themselves, solved again
     std::size_t recursions = 0;        // intermediate contour layers made
     int deepestLevel = 0;              // deepest recursion level used

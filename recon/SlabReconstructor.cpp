@@ -10,6 +10,7 @@
 #include "recon/ContourSimplification.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/ScopedSeconds.hpp"
+#include "recon/SlidingSections.hpp"
 #include "recon/StripStitching.hpp"
 
 namespace dfrecon {
@@ -297,6 +298,8 @@ bool SlabReconstructor::slab(const LayerPart& lower, const LayerPart& upper, Sla
         for (std::uint32_t k : c.lower) endingLower.contours.push_back(lower.contours[k]);
         for (std::uint32_t k : c.upper) endingUpper.contours.push_back(upper.contours[k]);
     }
+    if (depth == 0 && options_.joinSlidSections && !stack_.fromVoxels)
+        joinSlidSections(endingLower, endingUpper);
     if (depth == 0) {
         // Ends of the stack proper: capped as the user chose. Caps come first
         // because, between planes, the lids of contours ending below and
@@ -334,6 +337,40 @@ bool SlabReconstructor::slab(const LayerPart& lower, const LayerPart& upper, Sla
         closeByPrisms(builder_, {}, endingUpper, middle);
     }
     return true;
+}
+
+void SlabReconstructor::joinSlidSections(LayerPart& endingLower, LayerPart& endingUpper) {
+    const double heightMm = endingUpper.layer->zMm - endingLower.layer->zMm;
+    std::vector<bool> lowerJoined(endingLower.contours.size(), false),
+        upperJoined(endingUpper.contours.size(), false);
+    for (const SlidPair& pair : matchSlidingSections(endingLower, endingUpper, heightMm)) {
+        const std::uint32_t p = endingLower.contours[pair.lower],
+                            q = endingUpper.contours[pair.upper];
+        const Layer &lower = *endingLower.layer, &upper = *endingUpper.layer;
+        const auto [lowerAt, upperAt] = slidCorrespondence(lower.contours[p], upper.contours[q]);
+        const std::size_t before = builder_.triangleCount();
+        stitchStrip(builder_, lower.vertexIds[p], lowerAt, upper.vertexIds[q], upperAt);
+        // Not a loft band: the slices' interpolant has no zero set between
+        // sections that do not overlap, so smoothing leaves it straight. A
+        // band that folds through itself goes; the two are capped instead.
+        TriangleSoup band = builder_.trianglesSince(before);
+        roundPointsToFloat(band);
+        if (countSelfIntersections(band) > 0) {
+            builder_.truncateTriangles(before);
+            continue;
+        }
+        builder_.markSearchedTogetherSince(before);
+        lowerJoined[pair.lower] = upperJoined[pair.upper] = true;
+        ++stats_.slidStrips;
+    }
+    auto keepUnjoined = [](LayerPart& part, const std::vector<bool>& joined) {
+        std::vector<std::uint32_t> left;
+        for (std::size_t i = 0; i < part.contours.size(); ++i)
+            if (!joined[i]) left.push_back(part.contours[i]);
+        part.contours = std::move(left);
+    };
+    keepUnjoined(endingLower, lowerJoined);
+    keepUnjoined(endingUpper, upperJoined);
 }
 
 bool SlabReconstructor::strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,

@@ -103,6 +103,10 @@ class SlabReconstructor final : public CapSite {
     bool isCleanCap(std::size_t before, const LayerPart& end) override;
 
     bool slab(const LayerPart& lower, const LayerPart& upper, SlabFields sides, int depth);
+    /// Joins pairs of ending sections that slid farther than their width
+    /// between the planes (recon/SlidingSections) by straight bands, and
+    /// takes them off the ending lists.
+    void joinSlidSections(LayerPart& endingLower, LayerPart& endingUpper);
     bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,
                const SliceGrid& axisGrid, std::uint32_t lowerLocal, std::uint32_t upperLocal);
     void recurse(const LayerPart& x, const LayerPart& y, int depth, SlabFields sides,
