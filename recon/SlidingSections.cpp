@@ -57,22 +57,31 @@ Point2 pointAtShare(const Polygon& polygon, const std::vector<double>& shares, d
     return polygon[i] + t * (polygon[(i + 1) % n] - polygon[i]);
 }
 
-/// Intersection over union of the regions of `a` and of `b` moved by
-/// `shift`, sampled at the centres of a grid over both boxes.
-double alignedOverlap(const Polygon& a, const Polygon& b, Point2 shift) {
+/// How much the regions of `a` and of `b` moved by `shift` share, sampled
+/// at the centres of a grid over both boxes.
+struct Overlap {
+    double ofUnion = 0;    // intersection over union
+    double ofSmaller = 0;  // intersection over the smaller region
+};
+
+Overlap alignedOverlap(const Polygon& a, const Polygon& b, Point2 shift) {
     Box2 box = boundingBox(a);
     for (const Point2& p : b) box.add(p + shift);
     const double dx = (box.max.x - box.min.x) / kOverlapSamples,
                  dy = (box.max.y - box.min.y) / kOverlapSamples;
-    std::size_t both = 0, either = 0;
+    std::size_t both = 0, either = 0, onlyA = 0, onlyB = 0;
     for (int j = 0; j < kOverlapSamples; ++j)
         for (int i = 0; i < kOverlapSamples; ++i) {
             const Point2 p{box.min.x + (i + 0.5) * dx, box.min.y + (j + 0.5) * dy};
             const bool inA = windingNumber(p, a) != 0, inB = windingNumber(p - shift, b) != 0;
             both += inA && inB;
             either += inA || inB;
+            onlyA += inA && !inB;
+            onlyB += inB && !inA;
         }
-    return either == 0 ? 0 : double(both) / double(either);
+    if (either == 0) return {};
+    const std::size_t smaller = both + std::min(onlyA, onlyB);
+    return {double(both) / double(either), smaller == 0 ? 0 : double(both) / double(smaller)};
 }
 
 /// How far `polygon` reaches along the unit vector `along`.
@@ -127,17 +136,22 @@ std::vector<SlidPair> matchSlidingSections(const LayerPart& lowerEnding,
             if (!upperPlain[k]) continue;
             const Polygon& b = upperEnding.layer->contours[upperEnding.contours[k]];
             const double ratio = signedArea(b) / areaA;
+            const bool alike = ratio >= 0.5 && ratio <= 2;
+            const bool tapering =
+                !alike && ratio >= 1 / options.maxTaperRatio && ratio <= options.maxTaperRatio;
             const Point2 shift = ca - centroidOf(b);
             const double slide = length(shift);
-            if (ratio < 0.5 || ratio > 2 || slide > options.maxSlideSlabs * slabHeightMm) continue;
+            if (!(alike || tapering) || slide > options.maxSlideSlabs * slabHeightMm) continue;
             if (slide > 0) {
                 const Point2 along = (1 / slide) * shift;
                 if (slide > options.maxSlideExtents *
                                 std::max(extentAlong(a, along), extentAlong(b, along)))
                     continue;
             }
-            const double fit = alignedOverlap(a, b, shift);
-            if (fit >= options.minAlignedOverlap) overlap[i * m + k] = fit;
+            const Overlap fit = alignedOverlap(a, b, shift);
+            if (alike ? fit.ofUnion >= options.minAlignedOverlap
+                      : fit.ofSmaller >= options.minTaperContainment)
+                overlap[i * m + k] = fit.ofUnion;
         }
     }
     for (std::size_t i = 0; i < n; ++i) {

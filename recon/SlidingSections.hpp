@@ -29,6 +29,11 @@ struct SlidingSectionOptions {
     /// The least area the two must share (intersection over union) once the
     /// slide is taken out.
     double minAlignedOverlap = 0.5;
+    /// A sheet's last section (its tapering rim) may be smaller than the one
+    /// before by up to this factor; it must then lie within it once aligned
+    /// (minTaperContainment of its area).
+    double maxTaperRatio = 8;
+    double minTaperContainment = 0.9;
 };
 
 /// A pair of sections to join: indices into the two parts' contour lists.
@@ -40,10 +45,13 @@ struct SlidPair {
 /// plane, `upperEnding` on its upper one, none joined to anything across
 /// the slab): outer contours (no ending hole inside either) whose centroids
 /// lie within options.maxSlideSlabs × `slabHeightMm` and within
-/// options.maxSlideExtents × their extent along that slide, whose areas are
-/// within a factor of two and whose regions, centroids put on each other,
-/// overlap by options.minAlignedOverlap (sampled on a 40 × 40 grid); each
-/// the other's best such partner. Work: O(pairs × (1600 + points) points).
+/// options.maxSlideExtents × their extent along that slide, and whose
+/// regions, centroids put on each other, overlap by
+/// options.minAlignedOverlap (intersection over union, sampled on a 40 × 40
+/// grid) where their areas are within a factor of two, or where one is up
+/// to options.maxTaperRatio times smaller (a rim), lies within the other
+/// by options.minTaperContainment of its area; each the other's best such
+/// partner (by intersection over union). Work: O(pairs × (1600 + points) points).
 std::vector<SlidPair> matchSlidingSections(const LayerPart& lowerEnding,
                                            const LayerPart& upperEnding, double slabHeightMm,
                                            const SlidingSectionOptions& options = {});

@@ -56,8 +56,15 @@ TEST(SlidingSections, ABandSlidPastItsWidthIsJoinedWhatIsTooFarOrTooDifferentIsN
     upper.contours = {slidBand(0, 7.5, 20, 4)};
     EXPECT_EQ(matchSlidingSections(allOf(lower), allOf(upper), 5).size(), 1u);
     EXPECT_TRUE(matchSlidingSections(allOf(lower), allOf(upper), 2.4).empty());
-    // Areas more than a factor of two apart.
-    upper.contours = {slidBand(0, 6, 20, 1.5)};
+    // Areas more than a factor of two apart: a rim, joined where it lies
+    // within the larger section once aligned (a band 10 × 2 in the 20 × 4),
+    // not where it sticks out (a band 30 × 1.2, a third of the area).
+    upper.contours = {slidBand(5, 6, 10, 2)};
+    EXPECT_EQ(matchSlidingSections(allOf(lower), allOf(upper), 5).size(), 1u);
+    upper.contours = {slidBand(-5, 6, 30, 1.2)};
+    EXPECT_TRUE(matchSlidingSections(allOf(lower), allOf(upper), 5).empty());
+    // More than eight times smaller.
+    upper.contours = {slidBand(8, 6, 4, 2)};
     EXPECT_TRUE(matchSlidingSections(allOf(lower), allOf(upper), 5).empty());
     // The same area, another shape: a 9 × 9 square against the band
     // overlaps it by less than half once their centroids coincide.
