@@ -17,6 +17,19 @@ namespace dfrecon {
 
 namespace {
 
+// Where one side of a slab's part holds less than this share of the other's
+// area (a plane that barely cuts the structure: a speck under a large
+// section), the pair is not joined by one strip at the top level (a cone
+// from the speck holds a third of what the sections imply) but through an
+// intermediate contour, and that contour's level may rise up to
+// kSmallSideLevelSlabs slab heights to enclose its target area (the summed
+// fields stay high far from the speck; the union of the two regions still
+// bounds it). AAL at 2 mm, label 25: its speck of 6.5 mm2 under 522 mm2
+// held 198 of the slab's 528 mm3, now 512 (docs/reconstruction.md, "A plane
+// that barely cuts the structure").
+constexpr double kSmallSideAreaRatio = 0.2;
+constexpr double kSmallSideLevelSlabs = 10;
+
 /// What one slab's medial axes connect: contours of both sides (indices into
 /// the slab's field slices) and the axes between them.
 struct Component {
@@ -109,9 +122,18 @@ double netAreaMm2(const LayerPart& part) {
     return area;
 }
 
+/// Whether one side of a slab's part is far smaller than the other
+/// (kSmallSideAreaRatio): where a plane barely cuts a structure (a speck
+/// under a large section, an area's floor lying between two planes).
+bool oneSideFarSmaller(const LayerPart& x, const LayerPart& y) {
+    const double ax = std::abs(netAreaMm2(x)), ay = std::abs(netAreaMm2(y));
+    return std::min(ax, ay) < kSmallSideAreaRatio * std::max(ax, ay);
+}
+
 /// The intermediate contour half-way between parts x and y, whose fields
 /// are `sides`, from their sum `sumMm`: its zero set, raised (up to the
-/// slab's height, in mm of the summed distance) where it encloses less than
+/// slab's height, in mm of the summed distance; kSmallSideLevelSlabs
+/// heights where one side is far smaller) where it encloses less than
 /// the mean of x's and y's areas times `areaRatio` (the planes' trend there,
 /// hermiteAreaRatio), within the union of their regions (isolinesEnclosing).
 /// Parts whose outermost contour is a hole keep the zero set.
@@ -126,7 +148,9 @@ std::vector<Polygon> middleIsolines(const std::vector<float>& sumMm, const SlabF
     for (std::size_t k = 0; k < pixels; ++k) either[k] = std::min(lower[k], upper[k]);
     return isolinesEnclosing(sumMm, grid,
                              {0.5 * (netAreaMm2(x) + netAreaMm2(y)) * areaRatio,
-                              std::abs(y.layer->zMm - x.layer->zMm), &either});
+                              std::abs(y.layer->zMm - x.layer->zMm) *
+                                  (oneSideFarSmaller(x, y) ? kSmallSideLevelSlabs : 1.0),
+                              &either});
 }
 
 }  // namespace
@@ -317,6 +341,7 @@ bool SlabReconstructor::slab(const LayerPart& lower, const LayerPart& upper, Sla
         if (c.axes.empty()) continue;  // ending: capped above or closed below
         const LayerPart x = subset(lower, c.lower), y = subset(upper, c.upper);
         if (c.lower.size() == 1 && c.upper.size() == 1 && c.axes.size() == 1 &&
+            !(depth == 0 && oneSideFarSmaller(x, y)) &&
             strip(x, y, axes[c.axes[0]], fields.grid, c.lower[0], c.upper[0]))
             continue;
         if (depth >= options_.maxDepth) {
