@@ -33,6 +33,27 @@ double perimeterMm(const Polygon& polygon) {
     return sum;
 }
 
+Point2 regionCentroid(const Polygon& polygon) {
+    // Relative to the first point, as signedArea, so far from the origin the
+    // products keep their precision.
+    if (polygon.empty()) return {0, 0};
+    const Point2 o = polygon[0];
+    double twiceArea = 0, x = 0, y = 0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Point2 a = polygon[i] - o, b = polygon[(i + 1) % polygon.size()] - o;
+        const double w = cross(a, b);
+        twiceArea += w;
+        x += (a.x + b.x) * w;
+        y += (a.y + b.y) * w;
+    }
+    if (std::abs(twiceArea) < 1e-12) {
+        Point2 sum{0, 0};
+        for (const Point2& p : polygon) sum = sum + (p - o);
+        return o + (1.0 / double(polygon.size())) * sum;
+    }
+    return o + Point2{x / (3 * twiceArea), y / (3 * twiceArea)};
+}
+
 int windingNumber(Point2 p, const Polygon& polygon) {
     int winding = 0;
     const std::size_t n = polygon.size();

@@ -46,6 +46,9 @@ bool allCollinear(const Polygon& polygon);
 double signedArea(const Polygon& polygon);
 /// The length of the closed outline, mm. O(n).
 double perimeterMm(const Polygon& polygon);
+/// The centre of mass of the enclosed region (either orientation); the
+/// mean of the points where it encloses no area. O(n).
+Point2 regionCentroid(const Polygon& polygon);
 /// The net area of contours oriented as slices keep them (outer ones
 /// counter-clockwise, holes clockwise): their signed areas summed, holes
 /// subtracted. O(points).

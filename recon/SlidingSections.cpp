@@ -14,25 +14,6 @@ constexpr int kOverlapSamples = 40;  // a side of the overlap's sample grid
 constexpr int kFitSamples = 64;      // points compared per turn tried
 constexpr int kTurns = 256;          // starts of the upper contour tried
 
-/// The centroid of a simple polygon's region (either orientation); its mean
-/// point where it encloses no area.
-Point2 centroidOf(const Polygon& polygon) {
-    double area = 0, x = 0, y = 0;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const Point2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
-        const double w = cross(a, b);
-        area += w;
-        x += (a.x + b.x) * w;
-        y += (a.y + b.y) * w;
-    }
-    if (std::abs(area) < 1e-12) {
-        Point2 mean{0, 0};
-        for (const Point2& p : polygon) mean = mean + p;
-        return (1.0 / double(std::max<std::size_t>(polygon.size(), 1))) * mean;
-    }
-    return {x / (3 * area), y / (3 * area)};
-}
-
 /// Each vertex's share of the contour's length from vertex 0, in [0, 1).
 std::vector<double> lengthShares(const Polygon& polygon) {
     std::vector<double> shares(polygon.size(), 0);
@@ -131,7 +112,7 @@ std::vector<SlidPair> matchSlidingSections(const LayerPart& lowerEnding,
         if (!lowerPlain[i]) continue;
         const Polygon& a = lowerEnding.layer->contours[lowerEnding.contours[i]];
         const double areaA = signedArea(a);
-        const Point2 ca = centroidOf(a);
+        const Point2 ca = regionCentroid(a);
         for (std::size_t k = 0; k < m; ++k) {
             if (!upperPlain[k]) continue;
             const Polygon& b = upperEnding.layer->contours[upperEnding.contours[k]];
@@ -139,7 +120,7 @@ std::vector<SlidPair> matchSlidingSections(const LayerPart& lowerEnding,
             const bool alike = ratio >= 0.5 && ratio <= 2;
             const bool tapering =
                 !alike && ratio >= 1 / options.maxTaperRatio && ratio <= options.maxTaperRatio;
-            const Point2 shift = ca - centroidOf(b);
+            const Point2 shift = ca - regionCentroid(b);
             const double slide = length(shift);
             if (!(alike || tapering) || slide > options.maxSlideSlabs * slabHeightMm) continue;
             if (slide > 0) {
@@ -169,7 +150,7 @@ std::vector<SlidPair> matchSlidingSections(const LayerPart& lowerEnding,
 std::pair<AxisPositions, AxisPositions> slidCorrespondence(const Polygon& lower,
                                                            const Polygon& upper) {
     const std::vector<double> lowerShares = lengthShares(lower), upperShares = lengthShares(upper);
-    const Point2 shift = centroidOf(lower) - centroidOf(upper);
+    const Point2 shift = regionCentroid(lower) - regionCentroid(upper);
     std::vector<Point2> lowerSamples;
     for (int s = 0; s < kFitSamples; ++s)
         lowerSamples.push_back(pointAtShare(lower, lowerShares, double(s) / kFitSamples));

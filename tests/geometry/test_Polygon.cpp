@@ -18,6 +18,24 @@ TEST(Polygon, SignedAreaFarFromOriginKeepsPrecision) {
     EXPECT_NEAR(signedArea(square), 1e-6, 1e-12);
 }
 
+TEST(Polygon, RegionCentroidIsTheCentreOfMass) {
+    // An L of three unit squares: the mean of their centres, (5/6, 5/6);
+    // either orientation, and far from the origin.
+    const Polygon l{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    const Point2 c = regionCentroid(l);
+    EXPECT_NEAR(c.x, 5.0 / 6.0, 1e-12);
+    EXPECT_NEAR(c.y, 5.0 / 6.0, 1e-12);
+    Polygon far(l.rbegin(), l.rend());
+    for (Point2& p : far) p = p + Point2{1e5, -2e5};
+    const Point2 cf = regionCentroid(far);
+    EXPECT_NEAR(cf.x, 1e5 + 5.0 / 6.0, 1e-9);
+    EXPECT_NEAR(cf.y, -2e5 + 5.0 / 6.0, 1e-9);
+    // No area: the mean of the points.
+    const Point2 flat = regionCentroid({{0, 0}, {2, 0}, {4, 0}});
+    EXPECT_NEAR(flat.x, 2, 1e-12);
+    EXPECT_NEAR(flat.y, 0, 1e-12);
+}
+
 TEST(Polygon, WindingNumberCountsTurns) {
     const Polygon ccw{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
     Polygon cw = ccw;
