@@ -1,6 +1,7 @@
 #include "recon/RingCoarsening.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -43,6 +44,57 @@ void updateReport(MeshCheckReport& check, const TriangleSoup& soup, std::size_t 
     check.volumeMm3 = measures.volumeMm3;
     check.areaMm2 = measures.areaMm2;
 }
+
+/// One pass of collapses and what it takes to undo them.
+class RingCoarseningPass {
+  public:
+    /// What a merged triangle is measured against.
+    struct Judge {
+        const SliceInterpolant& field;
+        const RingCoarseningOptions& options;
+        // How far vertex v's zero set is moved outward at height z, mm.
+        const std::function<double(std::size_t, double)>& bulgeMm;
+    };
+
+    RingCoarseningPass(MarkedTriangles surface, std::size_t firstMade, const Judge& judge);
+
+    /// Collapses what it can; returns the ids of the triangles changed
+    /// (the triangles are renumbered: the two at each collapsed edge go).
+    std::vector<std::size_t> collapse();
+    /// Undoes every collapse one of whose triangles is in `defective`;
+    /// returns the ids of the triangles it put back (changed ones, and the
+    /// two removed ones appended at the end), empty when none was undone.
+    std::vector<std::size_t> undo(const std::vector<std::size_t>& defective);
+    /// Every collapse still made, undone; the ids as undo's.
+    std::vector<std::size_t> undoAll();
+    /// Triangles of every collapse still made (changed ones).
+    std::vector<std::size_t> liveTriangles() const;
+    std::size_t liveCollapses() const;
+
+  private:
+    struct Collapse {
+        std::uint32_t from, into;          // v went into w
+        std::vector<std::size_t> changed;  // triangle ids (current numbering)
+        std::array<std::array<std::uint32_t, 3>, 2> removed;
+        std::array<std::uint32_t, 2> removedPieces;
+        bool live = true;
+    };
+    bool free(std::uint32_t v) const;
+    std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
+    bool follows(const Vec3& p, std::uint32_t v) const;
+    bool tryCollapse(std::uint32_t v, std::uint32_t w, const std::vector<std::uint32_t>& nv,
+                     std::vector<bool>& gone);
+    std::vector<std::size_t> undoWhere(const std::vector<bool>& which);
+
+    MarkedTriangles surface_;
+    std::size_t first_;
+    Judge judge_;
+    std::vector<std::uint32_t> fanStart_, fan_;  // per made vertex, its triangles at the start
+    std::vector<bool> locked_;
+    std::vector<std::uint32_t> degree_;  // per vertex, its triangles now
+    std::vector<Collapse> collapses_;
+    std::vector<std::uint32_t> ownerOf_;  // per triangle, the collapse that changed it, or none
+};
 
 }  // namespace
 

@@ -373,18 +373,11 @@ void SlabReconstructor::joinSlidSections(LayerPart& endingLower, LayerPart& endi
                             q = endingUpper.contours[pair.upper];
         const Layer &lower = *endingLower.layer, &upper = *endingUpper.layer;
         const auto [lowerAt, upperAt] = slidCorrespondence(lower.contours[p], upper.contours[q]);
-        const std::size_t before = builder_.triangleCount();
-        stitchStrip(builder_, lower.vertexIds[p], lowerAt, upper.vertexIds[q], upperAt);
         // Not a loft band: the slices' interpolant has no zero set between
         // sections that do not overlap, so smoothing leaves it straight. A
         // band that folds through itself goes; the two are capped instead.
-        TriangleSoup band = builder_.trianglesSince(before);
-        roundPointsToFloat(band);
-        if (countSelfIntersections(band) > 0) {
-            builder_.truncateTriangles(before);
+        if (!stitchUnfolded(lower.vertexIds[p], lowerAt, upper.vertexIds[q], upperAt, false))
             continue;
-        }
-        builder_.markSearchedTogetherSince(before);
         lowerJoined[pair.lower] = upperJoined[pair.upper] = true;
         ++stats_.slidStrips;
     }
@@ -408,23 +401,33 @@ bool SlabReconstructor::strip(const LayerPart& x, const LayerPart& y, const Medi
     if (!lowerAt) return false;
     const auto upperAt = positionsAlongAxis(axis, axisGrid, upper.contours[q], upperLocal, false);
     if (!upperAt) return false;
-    const std::size_t before = builder_.triangleCount();
-    stitchStrip(builder_, lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt);
-    builder_.markLoftSince(before);
     // Contours that zigzag or lean far can make a strip fold through itself;
     // such a band is solved again with an intermediate contour instead (and
-    // at the limit closed by prisms, which cannot fold). Searched as a mesh
-    // file will hold it, as its piece is checked, so that check need not
-    // search these pairs again.
+    // at the limit closed by prisms, which cannot fold).
+    if (!stitchUnfolded(lower.vertexIds[p], *lowerAt, upper.vertexIds[q], *upperAt, true)) {
+        ++stats_.rejectedStrips;
+        return false;
+    }
+    ++stats_.strips;
+    return true;
+}
+
+bool SlabReconstructor::stitchUnfolded(const std::vector<std::uint32_t>& lowerIds,
+                                       const AxisPositions& lowerAt,
+                                       const std::vector<std::uint32_t>& upperIds,
+                                       const AxisPositions& upperAt, bool loft) {
+    const std::size_t before = builder_.triangleCount();
+    stitchStrip(builder_, lowerIds, lowerAt, upperIds, upperAt);
+    if (loft) builder_.markLoftSince(before);
+    // Searched as a mesh file will hold it, as its piece is checked, so that
+    // check need not search these pairs again.
     TriangleSoup band = builder_.trianglesSince(before);
     roundPointsToFloat(band);
     if (countSelfIntersections(band) > 0) {
         builder_.truncateTriangles(before);
-        ++stats_.rejectedStrips;
         return false;
     }
     builder_.markSearchedTogetherSince(before);
-    ++stats_.strips;
     return true;
 }
 

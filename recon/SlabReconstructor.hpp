@@ -26,6 +26,7 @@
 #include "recon/PrismClosing.hpp"
 #include "recon/Reconstruction.hpp"
 #include "recon/SlabVolumes.hpp"
+#include "recon/StripStitching.hpp"
 #include "recon/SurfaceBuilder.hpp"
 
 namespace dfrecon {
@@ -107,6 +108,13 @@ class SlabReconstructor final : public CapSite {
     /// between the planes (recon/SlidingSections) by straight bands, and
     /// takes them off the ending lists.
     void joinSlidSections(LayerPart& endingLower, LayerPart& endingUpper);
+    /// The band stitchStrip makes between two contours (marked a loft band
+    /// where `loft`), kept unless it folds through itself as a mesh file
+    /// holds it (then nothing is added: false); its own pairs are then known
+    /// clean. O(p log p) in its p triangles.
+    bool stitchUnfolded(const std::vector<std::uint32_t>& lowerIds, const AxisPositions& lowerAt,
+                        const std::vector<std::uint32_t>& upperIds, const AxisPositions& upperAt,
+                        bool loft);
     bool strip(const LayerPart& x, const LayerPart& y, const MedialAxis& axis,
                const SliceGrid& axisGrid, std::uint32_t lowerLocal, std::uint32_t upperLocal);
     void recurse(const LayerPart& x, const LayerPart& y, int depth, SlabFields sides,
