@@ -6,6 +6,7 @@
 
 #include "geometry/CoreBudget.hpp"
 #include "recon/SlabReconstructor.hpp"
+#include "recon/StepSlabs.hpp"
 
 namespace dfrecon {
 
@@ -37,7 +38,11 @@ std::size_t buildSlabs(ocl::Runtime& runtime, const SlabStack& stack,
             stats = {};
             const auto start = std::chrono::steady_clock::now();
             slab.builder().setPiece(std::uint32_t(s + 1));
-            slab.originalSlab(stack.layers[s], stack.layers[s + 1], stack.fields, s, s + 1);
+            const bool step = stack.options.interpolation == Interpolation::Smooth &&
+                              stack.options.stepBetweenRepeats && isStepSlab(stack.layers, s) &&
+                              slab.stepSlab(stack.layers[s], stack.layers[s + 1]);
+            if (!step)
+                slab.originalSlab(stack.layers[s], stack.layers[s + 1], stack.fields, s, s + 1);
             BuiltSlab out;
             out.part = slab.takePart(stack.contourPoints.size(), out.searched);
             out.stats = stats;

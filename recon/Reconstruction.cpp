@@ -55,6 +55,7 @@ void addSlabStats(ReconstructionStats& into, const ReconstructionStats& slab) {
     into.limitClosings += slab.limitClosings;
     into.caps += slab.caps;
     into.fallbackSlabs += slab.fallbackSlabs;
+    into.stepSlabs += slab.stepSlabs;
     into.fieldsSeconds += slab.fieldsSeconds;
     into.medialSeconds += slab.medialSeconds;
 }

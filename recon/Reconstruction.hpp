@@ -62,6 +62,10 @@ struct ReconstructionOptions {
     /// (recon/SlidingSections); not for contours on a pixel lattice, whose
     /// voxels say where the structure is.
     bool joinSlidSections = true;
+    /// Smooth mode: a slab whose lower plane repeats the plane below and
+    /// whose upper plane repeats the plane above is closed as a step at its
+    /// middle (recon/StepSlabs); off interpolates across it like any slab.
+    bool stepBetweenRepeats = true;
     FieldKernelOptions kernel;
 };
 
@@ -78,6 +82,7 @@ struct ReconstructionStats {
     std::size_t limitClosings = 0;     // regions closed by prisms at the recursion limit
     std::size_t caps = 0;              // end contours capped (or left open with CapMode::None)
     std::size_t fallbackSlabs = 0;     // slabs whose pieces met, closed as one prism piece
+    std::size_t stepSlabs = 0;         // slabs between repeated contours, closed as a step
     std::size_t touchesOpened = 0;     // points where contours of one plane touched, opened
     std::size_t repairedPieces = 0;    // slabs or caps closed again after the whole-surface check
     std::size_t smoothedVertices = 0;  // smooth mode: vertices bent onto the smooth surface

@@ -204,6 +204,17 @@ bool SlabReconstructor::closeSlabByPrisms(const Layer& lower, const Layer& upper
     return closeByPrisms(builder_, whole(lower), whole(upper), 0.5 * (lower.zMm + upper.zMm));
 }
 
+bool SlabReconstructor::stepSlab(const Layer& lower, const Layer& upper) {
+    const std::size_t before = builder_.triangleCount();
+    if (!closeSlabByPrisms(lower, upper)) {
+        builder_.truncateTriangles(before);
+        return false;
+    }
+    markSearched();
+    ++stats_.stepSlabs;
+    return true;
+}
+
 void SlabReconstructor::capLayer(const Layer& end, CapReach reach, const SliceFields& fields,
                                  std::size_t slice) {
     const LayerPart ends = whole(end);

@@ -80,6 +80,10 @@ class SlabReconstructor final : public CapSite {
     /// piece over all their contours. True when it holds as floats
     /// (closeByPrisms).
     bool closeSlabByPrisms(const Layer& lower, const Layer& upper);
+    /// The slab between two layers of repeated contours (recon/StepSlabs)
+    /// as one prism piece stepping at its middle height; false, with nothing
+    /// added, where that closing does not hold as floats.
+    bool stepSlab(const Layer& lower, const Layer& upper);
 
     /// Per piece, whether its own pairs were searched (clean) at the
     /// coordinates a mesh file holds: the whole check need not search them
