@@ -12,6 +12,7 @@
 
 #include "geometry/MeshCheck.hpp"
 #include "recon/ContourSimplification.hpp"
+#include "recon/HermiteTangents.hpp"
 #include "recon/IsoContours.hpp"
 #include "recon/PlanarRegion.hpp"
 #include "recon/PrismClosing.hpp"
@@ -133,9 +134,10 @@ void roundedCap(SurfaceBuilder& builder, const LayerPart& part, CapShape shape,
 // `fields`): how far outside (> 0) or inside (< 0) that slice's solid each
 // lies. Empty when there is no such slice or it has no contours there.
 std::vector<double> fieldBeyond(const LayerPart& end, const std::vector<std::uint32_t>& which,
-                                bool up, const SliceFields& fields, std::size_t slice) {
-    if (up ? slice == 0 : slice + 1 >= fields.sliceCount()) return {};
-    const std::size_t other = up ? slice - 1 : slice + 1;
+                                bool up, const SliceFields& fields, std::size_t slice,
+                                std::size_t planesAway = 1) {
+    if (up ? slice < planesAway : slice + planesAway >= fields.sliceCount()) return {};
+    const std::size_t other = up ? slice - planesAway : slice + planesAway;
     const SliceGrid& grid = fields.grid;
     std::vector<double> values;
     for (std::uint32_t c : which)
@@ -151,23 +153,44 @@ std::vector<double> fieldBeyond(const LayerPart& end, const std::vector<std::uin
     return values;
 }
 
-// How fast the region of `end` (slice `slice` of `fields`) shrinks per mm
-// of z toward its end, judged from the slice on the other side: the mean
-// of its field at their vertices over the gap. Outer contours shrink where
-// that slice's solid lies under them (the field there is negative); a
-// cavity's own end (its outermost contour a hole) where that slice's
-// cavity does (positive: its vertices lie in the empty space beyond). 0
-// when there is no such slice or the region grows.
-double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std::size_t slice) {
-    const std::vector<double> beyond = fieldBeyond(end, end.contours, up, fields, slice);
-    if (beyond.empty()) return 0;
+// How far the region of `end` (slice `slice` of `fields`) lies inside the
+// solid of the slice `planesAway` planes on the other side: the mean of
+// that slice's field at end's vertices, negated for outer contours (their
+// solid lies under them where the region narrows toward its end) and kept
+// for a cavity's own end (its outermost contour a hole: that slice's
+// cavity lies under it). Empty when there is no such slice.
+std::optional<double> meanDepthBeyond(const LayerPart& end, bool up, const SliceFields& fields,
+                                      std::size_t slice, std::size_t planesAway) {
+    const std::vector<double> beyond =
+        fieldBeyond(end, end.contours, up, fields, slice, planesAway);
+    if (beyond.empty()) return std::nullopt;
     double sum = 0;
     for (double d : beyond) sum += d;
     const double mean = sum / double(beyond.size());
-    const std::size_t other = up ? slice - 1 : slice + 1;
-    const double gap = std::fabs(fields.zMm[slice] - fields.zMm[other]);
-    const double shrink = outermostIsHole(end) ? mean : -mean;
-    return gap > 0 ? std::max(0.0, shrink / gap) : 0.0;
+    return outermostIsHole(end) ? mean : -mean;
+}
+
+// How fast the region of `end` (slice `slice` of `fields`) shrinks per mm
+// of z toward its end, in either mode: the slope smooth mode's
+// interpolation has at an end plane (recon/HermiteTangents). From the slice
+// on the other side alone, the end slab's secant; with the one beyond it
+// too, the parabola through the end slab with that slice's tangent, steeper
+// at a rounded end (a ball's pole, a tube's rounded tip), so the lid's rim
+// follows the rounding instead of running straight on. 0 when there is no
+// such slice or the region grows. O(points).
+double inwardSlope(const LayerPart& end, bool up, const SliceFields& fields, std::size_t slice) {
+    const std::optional<double> depth = meanDepthBeyond(end, up, fields, slice, 1);
+    if (!depth) return 0;
+    const auto zAway = [&](std::size_t k) { return fields.zMm[up ? slice - k : slice + k]; };
+    const double gap = std::fabs(fields.zMm[slice] - zAway(1));
+    if (!(gap > 0)) return 0;
+    const double secant = std::max(0.0, *depth / gap);
+    const std::optional<double> deeper = meanDepthBeyond(end, up, fields, slice, 2);
+    if (secant <= 0 || !deeper) return secant;
+    const double gapBeyond = std::fabs(zAway(1) - zAway(2));
+    const double beyondTangent =
+        parabolaTangent(gap, secant, gapBeyond, (*deeper - *depth) / gapBeyond);
+    return endTangent(secant, beyondTangent);
 }
 
 // An end's contours where a cavity closes before the end does. A hole of

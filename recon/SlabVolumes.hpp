@@ -29,9 +29,10 @@ PlaneSections sectionsOf(const std::vector<Slice>& slices);
 
 /// Each slab's target volume: the integral of the cubic Hermite
 /// interpolation of the section areas in z, h/2 (A0 + A1) + h²/12 (m0 − m1),
-/// with the tangents of recon/SliceInterpolant (the slope of the parabola
-/// through a plane and its neighbours; the end slab's secant at the ends of
-/// the stack). One value per slab. O(slices).
+/// with the tangents of recon/SliceInterpolant inside the stack
+/// (recon/HermiteTangents: the slope of the parabola through a plane and
+/// its neighbours, 0 beside a straight stretch) and the end slab's secant
+/// at its ends. One value per slab. O(slices).
 std::vector<double> slabVolumeTargets(const PlaneSections& planes);
 
 /// The cubic Hermite interpolation of the planes' net areas at z (the

@@ -4,16 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "recon/HermiteTangents.hpp"
+
 namespace dfrecon {
-
-namespace {
-
-// A secant at most this fraction of the one on the plane's other side
-// counts as flat (the field did not change over that slab): exactly flat on
-// identical planes, with room for the fields' float rounding.
-constexpr double kFlatSecantRatio = 0.05;
-
-}  // namespace
 
 SliceInterpolant::SliceInterpolant(const SliceFields& fields) : fields_(fields) {
     if (fields.sliceCount() == 0 || fields.grid.pixelCount() == 0)
@@ -78,16 +71,13 @@ double SliceInterpolant::tangent(std::size_t slice, Point2 xy, double below, dou
     // side. One flat slab alone is no straight stretch (a bulge symmetric
     // about the middle of a slab has one too), so the next one decides, and
     // where there is none the parabola stays.
-    auto flat = [](double d, double other) {
-        return std::fabs(d) <= kFlatSecantRatio * std::fabs(other);
-    };
-    if (slice >= 2 && flat(dBelow, dAbove) &&
-        flat((below - planeValue(slice - 2, xy)) / (z[slice - 1] - z[slice - 2]), dAbove))
+    if (slice >= 2 && flatBeside(dBelow, dAbove) &&
+        flatBeside((below - planeValue(slice - 2, xy)) / (z[slice - 1] - z[slice - 2]), dAbove))
         return 0;
-    if (slice + 2 < n && flat(dAbove, dBelow) &&
-        flat((planeValue(slice + 2, xy) - above) / (z[slice + 2] - z[slice + 1]), dBelow))
+    if (slice + 2 < n && flatBeside(dAbove, dBelow) &&
+        flatBeside((planeValue(slice + 2, xy) - above) / (z[slice + 2] - z[slice + 1]), dBelow))
         return 0;
-    return (hAbove * dBelow + hBelow * dAbove) / (hBelow + hAbove);
+    return parabolaTangent(hBelow, dBelow, hAbove, dAbove);
 }
 
 double SliceInterpolant::value(Vec3 p) const {

@@ -4,7 +4,8 @@
 // the planes, a cubic Hermite interpolation in z whose tangent at a plane is
 // the slope of the parabola through that plane's value and its neighbours'
 // (0 where the field is flat over the two slabs on one side: a straight
-// stretch stays straight).
+// stretch stays straight; the end slab's secant at the first and last
+// plane: recon/HermiteTangents).
 // It equals each slice's field on its plane, has a continuous z-derivative
 // across planes (the tangent is shared by the slabs above and below), and
 // reproduces any field quadratic in z, so a surface that bulges between two

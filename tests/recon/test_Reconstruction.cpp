@@ -275,9 +275,12 @@ TEST(Reconstruction, FlatCapsOnStraightSidesGiveThePlanningVolume) {
     EXPECT_NEAR(reconstruct(roi, options).check.volumeMm3, 100 * (2 * 2 + 2 * 0.25), 1e-9);
 }
 
-TEST(Reconstruction, CapModesOrderTheVolumesOfANarrowingEnd) {
-    // A cone-like stack: flat caps continue the narrowing to the lid, domes
-    // round off inside that, and with no cap the ends stay open.
+TEST(Reconstruction, CapModesCloseANarrowingEnd) {
+    // A lens-like stack whose sections' areas lie on a parabola: the end
+    // slabs narrow from radius 10 to 6 over 2 mm. The flat lid, 1 mm out,
+    // is inset by the end parabola's slope (4 mm per mm, twice the slabs'
+    // secant: recon/HermiteTangents), the dome rises to the offset over the
+    // whole end region, and with no cap the ends stay open.
     const Roi roi = stack({{circle({0, 0}, 6)}, {circle({0, 0}, 10)}, {circle({0, 0}, 6)}});
     ReconstructionOptions options;
     const Checked flat = reconstruct(roi, options);
@@ -289,11 +292,8 @@ TEST(Reconstruction, CapModesOrderTheVolumesOfANarrowingEnd) {
     const Checked none = reconstruct(roi, options);
     EXPECT_EQ(none.check.boundaryEdges, 2u * 48u);
     EXPECT_EQ(none.check.nonManifoldEdges + none.check.misorientedEdges, 0u);
-    // Planning volume: every slice's area times the spacing.
-    const double planning = 2 * (std::pow(6.0, 2) + std::pow(10.0, 2) + std::pow(6.0, 2)) * M_PI;
-    EXPECT_LT(flat.check.volumeMm3, planning);
-    EXPECT_LT(dome.check.volumeMm3, flat.check.volumeMm3);
-    EXPECT_LT(std::abs(none.check.volumeMm3), dome.check.volumeMm3);
+    EXPECT_LT(flat.check.volumeMm3, dome.check.volumeMm3);
+    EXPECT_LT(std::abs(none.check.volumeMm3), flat.check.volumeMm3);
 }
 
 TEST(Reconstruction, DomesOverSpikyContoursDoNotMeetTheirMirror) {

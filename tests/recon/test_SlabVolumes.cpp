@@ -43,6 +43,19 @@ TEST(SlabVolumes, TargetsIntegrateQuadraticAreasExactlyInside) {
     }
 }
 
+TEST(SlabVolumes, AStraightStretchLendsNoSlopeToTheSlabWhereItEnds) {
+    // Three equal sections (a tube), then a larger one: the tangent at the
+    // tube's last plane is 0, as the field's is there (recon/HermiteTangents),
+    // so the last slab's target is h/2 (A2 + A3) + h²/12 (0 − 60), not the
+    // parabola's h²/12 (30 − 60).
+    const PlaneSections planes{{0, 1, 2, 3}, {100, 100, 100, 160}, {40, 40, 40, 50}};
+    const std::vector<double> targets = slabVolumeTargets(planes);
+    ASSERT_EQ(targets.size(), 3u);
+    EXPECT_NEAR(targets[0], 100, 1e-9);
+    EXPECT_NEAR(targets[1], 100, 1e-9);
+    EXPECT_NEAR(targets[2], 130 - 60.0 / 12, 1e-9);
+}
+
 TEST(SlabVolumes, SectionsAreNetAreasAndPerimeters) {
     Slice slice{2, {square(4, {0, 0}), square(1, {1, 1})}};
     std::reverse(slice.contours[1].begin(), slice.contours[1].end());  // a hole

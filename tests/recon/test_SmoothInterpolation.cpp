@@ -11,6 +11,7 @@
 
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
+#include "recon/HermiteTangents.hpp"
 #include "recon/Reconstruction.hpp"
 #include "recon/SlabVolumes.hpp"
 #include "recon/SliceInterpolant.hpp"
@@ -107,6 +108,24 @@ TEST(SliceInterpolant, EqualsEachPlaneReproducesQuadraticsAndIsC1) {
 // The same value at every pixel of a plane, one value per plane.
 SliceFields uniformFields(const std::vector<double>& zMm, const std::vector<double>& values) {
     return handMadeFields(zMm, [&](int, int, std::size_t s) { return values[s]; });
+}
+
+TEST(HermiteTangents, EndTangentsFollowTheEndSlabsParabolaWithinBounds) {
+    // A cone's end: the inner tangent equals the secant, and so does the end's.
+    EXPECT_DOUBLE_EQ(endTangent(1, 1), 1);
+    // The widest section at the inner plane (tangent 0): twice the secant,
+    // the parabola's slope at its end; either sign.
+    EXPECT_DOUBLE_EQ(endTangent(1, 0), 2);
+    EXPECT_DOUBLE_EQ(endTangent(-0.5, 0), -1);
+    // At most three times the secant; never across 0 (an end that closes
+    // stays one that closes).
+    EXPECT_DOUBLE_EQ(endTangent(1, -5), 3);
+    EXPECT_DOUBLE_EQ(endTangent(1, 3), 0);
+    // Inside: a weighted mean of the secants, each weighted by the other
+    // slab's height (the parabola's slope at the plane).
+    EXPECT_DOUBLE_EQ(parabolaTangent(1, 1, 2, 4), (2 * 1 + 1 * 4) / 3.0);
+    EXPECT_TRUE(flatBeside(0.04, 1));
+    EXPECT_FALSE(flatBeside(0.06, 1));
 }
 
 TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
