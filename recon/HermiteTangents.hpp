@@ -32,16 +32,19 @@ inline double parabolaTangent(double hBelow, double secantBelow, double hAbove,
 /// planes with `innerTangent`, the tangent at the slab's other plane:
 /// 2·secant − innerTangent. A rounded end (a ball's pole region, a
 /// capsule's tip) leaves its last plane steeper than the end slab's secant,
-/// a cone's end as steep as it. Kept on the secant's side of 0 and at most
-/// three times as steep (the bound that keeps a cubic monotone between its
-/// ends), so it never turns an end that closes into one that opens. The
+/// a cone's end as steep as it. Kept on the secant's side of 0 (an end that
+/// closes never turns into one that opens) and at most twice as steep: the
+/// parabola whose vertex is the inner plane, the widest section the planes
+/// saw. Steeper would say the section peaks between the planes, where no
+/// plane saw it (three times, the monotone-cubic bound, shrank lens-like
+/// areas of three planes: docs/reconstruction.md). The
 /// caps' rims follow it; the field and the areas keep the end slab's
 /// secant at the end planes (docs/reconstruction.md, "Caps that follow a
 /// rounded end", says what using it there did). O(1).
 inline double endTangent(double secant, double innerTangent) {
     const double m = 2 * secant - innerTangent;
     if (m * secant <= 0) return 0;
-    return std::fabs(m) > 3 * std::fabs(secant) ? 3 * secant : m;
+    return std::fabs(m) > 2 * std::fabs(secant) ? 2 * secant : m;
 }
 
 }  // namespace dfrecon

@@ -117,9 +117,10 @@ TEST(HermiteTangents, EndTangentsFollowTheEndSlabsParabolaWithinBounds) {
     // the parabola's slope at its end; either sign.
     EXPECT_DOUBLE_EQ(endTangent(1, 0), 2);
     EXPECT_DOUBLE_EQ(endTangent(-0.5, 0), -1);
-    // At most three times the secant; never across 0 (an end that closes
-    // stays one that closes).
-    EXPECT_DOUBLE_EQ(endTangent(1, -5), 3);
+    // At most twice the secant (the parabola whose vertex is the inner
+    // plane); never across 0 (an end that closes stays one that closes).
+    EXPECT_DOUBLE_EQ(endTangent(1, -5), 2);
+    EXPECT_DOUBLE_EQ(endTangent(1, 0.5), 1.5);
     EXPECT_DOUBLE_EQ(endTangent(1, 3), 0);
     // Inside: a weighted mean of the secants, each weighted by the other
     // slab's height (the parabola's slope at the plane).
