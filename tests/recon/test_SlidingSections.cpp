@@ -4,13 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 
 #include "geometry/MeshCheck.hpp"
 #include "recon/Reconstruction.hpp"
 #include "recon/SlidingSections.hpp"
 #include "shapes/AnalyticShapes.hpp"
-#include "simplify/SimplificationVerifier.hpp"
 #include "tests/CpuRuntime.hpp"
+#include "tests/DistancesBetweenPlanes.hpp"
 
 namespace dfrecon {
 namespace {
@@ -127,12 +128,9 @@ TEST(SlidingSections, AThinPlateLyingNearlyFlatIsJoinedWhereItsSectionsMatch) {
     EXPECT_EQ(capped.check.components, 3u);
     EXPECT_EQ(joined.check.components, 2u);
     auto meanBetweenPlanes = [&](const TriangleSoup& soup) {
-        const double lo = roi.slices.front().zMm, hi = roi.slices.back().zMm;
-        double sum = 0;
-        std::size_t count = 0;
-        for (const Vec3& p : sampleTriangles(soup, 20000, 5))
-            if (p.z >= lo && p.z <= hi) sum += std::abs(shape->signedDistance(p)), ++count;
-        return sum / double(std::max<std::size_t>(count, 1));
+        const std::vector<double> d = testing::distancesBetweenPlanes(*shape, roi, soup);
+        return std::accumulate(d.begin(), d.end(), 0.0) /
+               double(std::max<std::size_t>(d.size(), 1));
     };
     EXPECT_LT(meanBetweenPlanes(joined.surface), 0.7 * meanBetweenPlanes(capped.surface));
 }

@@ -2,6 +2,7 @@
 // splitting into two branches against its exact surface.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "contours/ContourSet.hpp"
@@ -9,8 +10,8 @@
 #include "recon/Reconstruction.hpp"
 #include "recon/StepSlabs.hpp"
 #include "shapes/AnalyticShapes.hpp"
-#include "simplify/SimplificationVerifier.hpp"
 #include "tests/CpuRuntime.hpp"
+#include "tests/DistancesBetweenPlanes.hpp"
 
 namespace dfrecon {
 namespace {
@@ -78,12 +79,8 @@ TEST(StepSlabs, AStemSplittingIntoBranchesStepsWhereTheDataSaysNothingOfASlope) 
     EXPECT_EQ(slope.stats.stepSlabs, 0u);
     EXPECT_EQ(step.stats.stepSlabs, 1u);
     auto farthestBetweenPlanes = [&](const TriangleSoup& soup) {
-        const double lo = roi.slices.front().zMm, hi = roi.slices.back().zMm;
-        double farthest = 0;
-        for (const Vec3& p : sampleTriangles(soup, 20000, 5))
-            if (p.z >= lo && p.z <= hi)
-                farthest = std::max(farthest, std::abs(shape->signedDistance(p)));
-        return farthest;
+        const std::vector<double> d = testing::distancesBetweenPlanes(*shape, roi, soup);
+        return d.empty() ? 0.0 : *std::max_element(d.begin(), d.end());
     };
     EXPECT_GT(farthestBetweenPlanes(slope.surface), 0.5);
     // The sections are 96-gons in the circles: their sag is the distance left.
