@@ -37,10 +37,10 @@ inline double parabolaTangent(double hBelow, double secantBelow, double hAbove,
 /// parabola whose vertex is the inner plane, the widest section the planes
 /// saw. Steeper would say the section peaks between the planes, where no
 /// plane saw it (three times, the monotone-cubic bound, shrank lens-like
-/// areas of three planes: docs/reconstruction.md). The
-/// caps' rims follow it; the field and the areas keep the end slab's
-/// secant at the end planes (docs/reconstruction.md, "Caps that follow a
-/// rounded end", says what using it there did). O(1).
+/// areas of three planes). The caps' rims follow it; the field and the
+/// areas keep the end slab's secant at the end planes
+/// (docs/reconstruction.md, "Caps that follow a rounded end", says what
+/// using it there did). O(1).
 inline double endTangent(double secant, double innerTangent) {
     const double m = 2 * secant - innerTangent;
     if (m * secant <= 0) return 0;

@@ -28,11 +28,21 @@ bool samePoints(const Polygon& a, const Polygon& b, double toleranceMm) {
 
 bool sameContours(const Layer& a, const Layer& b, double toleranceMm) {
     if (a.contours.size() != b.contours.size()) return false;
+    // Candidates must agree in point count and bounds first (O(1) each), so
+    // a plane of many small contours costs one cheap test per pair, as the
+    // plane reading's own pairing does, and a point walk only per match.
+    std::vector<Box2> boxesOfB;
+    for (const Polygon& contour : b.contours) boxesOfB.push_back(boundingBox(contour));
+    auto near = [&](Point2 p, Point2 q) { return length(p - q) <= toleranceMm; };
     std::vector<bool> used(b.contours.size(), false);
     for (const Polygon& contour : a.contours) {
+        const Box2 box = boundingBox(contour);
         bool found = false;
         for (std::size_t j = 0; j < b.contours.size() && !found; ++j)
-            if (!used[j] && samePoints(contour, b.contours[j], toleranceMm)) used[j] = found = true;
+            if (!used[j] && b.contours[j].size() == contour.size() &&
+                near(box.min, boxesOfB[j].min) && near(box.max, boxesOfB[j].max) &&
+                samePoints(contour, b.contours[j], toleranceMm))
+                used[j] = found = true;
         if (!found) return false;
     }
     return true;

@@ -19,8 +19,9 @@ namespace dfrecon {
 
 /// Do `a` and `b` hold the same contours: as many, each with a contour of
 /// the other holding the same points in the same cyclic order (any start),
-/// each within `toleranceMm` in the plane? O(points) per pair of contours
-/// compared; pairs differing in point count are skipped at once.
+/// each within `toleranceMm` in the plane? O(c²) for c contours a plane (a
+/// point count and bounds compared per pair), plus O(points) per pair that
+/// passes.
 bool sameContours(const Layer& a, const Layer& b, double toleranceMm);
 
 /// Is the slab between layers `s` and `s + 1` a step: layer s repeats layer
