@@ -20,13 +20,14 @@
 namespace dfrecon {
 
 struct LoftSmoothingStats {
-    int rounds = 0;                     // refinement rounds that split something
-    std::size_t movedVertices = 0;      // new vertices bent onto the smooth surface
-    std::size_t coarsenedVertices = 0;  // refinement's ring vertices merged (RingCoarsening)
-    std::size_t revertedPieces = 0;     // pieces whose bent vertices went back (validity)
-    int volumePasses = 0;               // passes that changed a slab's bulge
-    std::size_t unbentVertices = 0;     // bent vertices put back on the linear surface (validity)
-    bool fellBack = false;              // the linear surface was kept
+    int rounds = 0;                      // refinement rounds that split something
+    std::size_t movedVertices = 0;       // new vertices bent onto the smooth surface
+    std::size_t coarsenedVertices = 0;   // refinement's ring vertices merged (RingCoarsening)
+    std::size_t revertedPieces = 0;      // pieces whose bent vertices went back (validity)
+    int volumePasses = 0;                // passes that changed a slab's bulge
+    std::size_t unbentVertices = 0;      // bent vertices put back on the linear surface (validity)
+    std::size_t halfUnbentVertices = 0;  // bent vertices moved halfway back to it (validity)
+    bool fellBack = false;               // the linear surface was kept
 };
 
 /// `surface` is a valid reconstruction whose triangle t lies in piece

@@ -315,6 +315,7 @@ void smoothPieces(RunState& run, SurfaceBuilder::Released built) {
     stats.smoothedVertices = smooth.movedVertices;
     stats.smoothRevertedPieces = smooth.revertedPieces;
     stats.smoothUnbentVertices = smooth.unbentVertices;
+    stats.smoothHalfUnbentVertices = smooth.halfUnbentVertices;
     stats.smoothCoarsenedVertices = smooth.coarsenedVertices;
     stats.smoothFellBack = smooth.fellBack;
 }
@@ -429,6 +430,7 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
         s.smoothedVertices += p.smoothedVertices;
         s.smoothRevertedPieces += p.smoothRevertedPieces;
         s.smoothUnbentVertices += p.smoothUnbentVertices;
+        s.smoothHalfUnbentVertices += p.smoothHalfUnbentVertices;
         s.smoothCoarsenedVertices += p.smoothCoarsenedVertices;
         s.smoothFellBack = s.smoothFellBack || p.smoothFellBack;
         s.simplifySeconds += p.simplifySeconds;

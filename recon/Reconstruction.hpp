@@ -89,6 +89,8 @@ struct ReconstructionStats {
     std::size_t smoothRevertedPieces = 0;  // smooth mode: pieces kept linear for validity
     std::size_t smoothUnbentVertices =
         0;  // smooth mode: bent vertices put back straight (validity)
+    std::size_t smoothHalfUnbentVertices =
+        0;  // smooth mode: bent vertices moved halfway back to straight (validity)
     std::size_t smoothCoarsenedVertices = 0;  // smooth mode: ring vertices merged away
     bool smoothFellBack = false;              // smooth mode: the whole surface kept linear
     // Seconds per stage. The slabs run on the cores left free, and their

@@ -425,6 +425,22 @@ TEST(Reconstruction, SlabsWhosePiecesMeetAreClosedAsOnePrismPiece) {
     }
 }
 
+// Where bent bands pass through each other, the broken triangles' corners
+// first go halfway back to the straight surface: on this stack every
+// crossing parts that way (each had put its vertex and a ring of
+// neighbours straight before), and the surface stays a valid solid through
+// every contour point.
+TEST(Reconstruction, BentBandsThatMeetGiveBackHalfTheirBendFirst) {
+    const ContourSet set =
+        readSlicesFile(std::string(DFRECON_TEST_DATA) + "/recon/random-blobs-329.slices").contours;
+    const Checked c = reconstruct(set.rois[0]);
+    EXPECT_TRUE(c.check.validSolid());
+    EXPECT_GT(c.result.stats.smoothHalfUnbentVertices, 0u) << "bands met and were eased apart";
+    EXPECT_EQ(c.result.stats.smoothUnbentVertices, 0u) << "none had to go back straight";
+    EXPECT_EQ(c.result.stats.smoothRevertedPieces, 0u);
+    expectContoursAreVertices(set.rois[0], c.result.surface);
+}
+
 TEST(Reconstruction, ASlabWhoseCapsMeetIsGivenUpBeforeItsBranchesAreBuilt) {
     // Two contours of neighbouring planes touch at a corner in projection, so
     // the lids of both (each ends in the slab) meet in its middle plane. The
