@@ -680,25 +680,9 @@ class LocalRepair {
         std::vector<std::size_t> broken = brokenAmong(surface_, near, suspects);
         for (int attempt = 0; attempt < kHalfwayAttempts && !broken.empty(); ++attempt)
             broken = retest(near, broken, easeBack(broken, 0, 0.5, stats.halfUnbentVertices));
-        for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt) {
-            // What is still broken with wider rings straight was broken by
-            // refinement, not by bending (thin triangles halved and rounded
-            // to float fold where nothing bent): those rings would stay
-            // straight for nothing while the piece gets its linear triangles
-            // back, so an attempt that mends nothing is taken back.
-            const std::vector<Vec3> points = surface_.points;
-            const std::vector<bool> pinned = pinned_;
-            const std::size_t unbent = stats.unbentVertices;
-            std::vector<std::size_t> left = retest(
-                near, broken, easeBack(broken, kUnbendRings[attempt], 1.0, stats.unbentVertices));
-            if (left.size() >= broken.size()) {
-                surface_.points = points;
-                pinned_ = pinned;
-                stats.unbentVertices = unbent;
-                break;
-            }
-            broken = std::move(left);
-        }
+        for (int attempt = 0; attempt < kUnbendAttempts && !broken.empty(); ++attempt)
+            broken = retest(near, broken,
+                            easeBack(broken, kUnbendRings[attempt], 1.0, stats.unbentVertices));
         return broken.empty();
     }
 

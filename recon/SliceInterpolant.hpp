@@ -5,10 +5,15 @@
 // the slope of the parabola through that plane's value and its neighbours'
 // (0 where the field is flat over the two slabs on one side: a straight
 // stretch stays straight; the end slab's secant at the first and last
-// plane: recon/HermiteTangents).
+// plane: recon/HermiteTangents). A neighbour's secant counts less where the
+// two planes' gradients at the point point apart: there the point lies
+// across a medial axis on one of them (the far face of a thin tilted plate,
+// one plane away), and the parabola through both faces' distances would
+// bend the near face outward.
 // It equals each slice's field on its plane, has a continuous z-derivative
 // across planes (the tangent is shared by the slabs above and below), and
-// reproduces any field quadratic in z, so a surface that bulges between two
+// reproduces any field quadratic in z whose gradient keeps its direction
+// from plane to plane, so a surface that bulges between two
 // planes (convex anatomy half-way) bulges in F too, which a monotone
 // interpolant cannot do. Its zero set, moved outward in the plane by a
 // bulge per slab (or per nested part of a slab, recon/LoftSmoothing), is what
@@ -49,12 +54,21 @@ class SliceInterpolant {
 
   private:
     double planeValue(std::size_t slice, Point2 p) const;
+    /// A plane's field at p and its gradient there (per pixel, not per mm:
+    /// only its direction is read), of the same bilinear cell. O(1).
+    struct PlaneSample {
+        double value = 0;
+        Point2 gradient{0, 0};
+    };
+    PlaneSample planeSample(std::size_t slice, Point2 p) const;
     /// dF/dz at plane `slice`, from the field there (`here`) and on the
     /// planes below and above it (unused where the stack ends): the slope of
-    /// the parabola through the three, or 0 where the field is flat over the
-    /// two slabs on one side of the plane (reading the plane beyond, at
-    /// `xy`, only then).
-    double tangent(std::size_t slice, Point2 xy, double below, double here, double above) const;
+    /// the parabola through the three, its secants weighed by how far each
+    /// can be trusted (`trustBelow`, `trustAbove`: less across a medial
+    /// axis), or 0 where the field is flat over the two slabs on one side of
+    /// the plane (reading the plane beyond, at `xy`, only then).
+    double tangent(std::size_t slice, Point2 xy, double below, double here, double above,
+                   double trustBelow, double trustAbove) const;
 
     const SliceFields& fields_;
 };

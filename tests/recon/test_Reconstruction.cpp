@@ -441,26 +441,22 @@ TEST(Reconstruction, BentBandsThatMeetGiveBackHalfTheirBendFirst) {
     expectContoursAreVertices(set.rois[0], c.result.surface);
 }
 
-// Heschl's gyrus (AAL label 80 cut every 2 mm, truth_set.py --gap 2):
-// thin and oblique, its first two slabs folded where refinement halved
-// thin triangles, straight or bent, and went back to their linear
-// triangles. The unbending with three and eight rings of neighbours before
-// that mended nothing, yet left 1141 of its 1581 bent vertices straight
-// (-4.2 % of its contour volume); an attempt that mends nothing is taken
-// back now (207 straight, -3.8 %).
-TEST(Reconstruction, AnUnbendingThatMendsNothingIsTakenBack) {
+// Heschl's gyrus (AAL label 80 cut every 2 mm, truth_set.py --gap 2), one
+// of the small areas issue 66 names: thin and oblique, so a point on one
+// face lies across the next plane's medial axis. The tangents read the far
+// face there and bent the near one out; the folds that made, and their
+// repairs (1141 of its 1581 bent vertices went back straight, two slabs
+// kept linear), left it 4.2 % below its contour volume. With the far face's
+// secant weighed down it is within 1 %, with no piece kept linear.
+TEST(Reconstruction, AThinObliqueGyrusKeepsItsContourVolume) {
     const ContourSet set =
         readSlicesFile(std::string(DFRECON_TEST_DATA) + "/recon/heschl-gyrus.slices").contours;
     const Roi& roi = set.rois[0];
     const Checked c = reconstruct(roi);
     EXPECT_TRUE(c.check.validSolid());
     expectContoursAreVertices(roi, c.result.surface);
-    EXPECT_GT(c.result.stats.smoothRevertedPieces, 0u) << "refinement folds were met";
-    EXPECT_LT(c.result.stats.smoothUnbentVertices * 4, c.result.stats.smoothedVertices)
-        << "most of the bend is kept";
-    const double ratio = c.check.volumeMm3 / contourVolumeMm3(roi);
-    EXPECT_GT(ratio, 0.95);
-    EXPECT_LT(ratio, 1.0);
+    EXPECT_EQ(c.result.stats.smoothRevertedPieces, 0u);
+    EXPECT_NEAR(c.check.volumeMm3 / contourVolumeMm3(roi), 1.0, 0.01);
 }
 
 TEST(Reconstruction, ASlabWhoseCapsMeetIsGivenUpBeforeItsBranchesAreBuilt) {

@@ -146,6 +146,40 @@ TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
     for (double z : {-0.5, 0.0, 0.7}) EXPECT_NEAR(round.value({0, 0, z}), z * z, 1e-6) << z;
 }
 
+TEST(SliceInterpolant, ANeighboursFarFaceCountsLessInTheTangent) {
+    // A thin tilted plate: on plane s (z = 2s) the band |x - 5.5 s| <= 4.4,
+    // so its lower face runs straight from x = -4.4 at z = 0 by 2.75 mm per
+    // mm of z. Mid-slab between z = 2 and 4 the face is at x = 3.85; there
+    // plane 0's field measures the band's far edge (its gradient points the
+    // other way), and the plain parabola's tangent at z = 2 is 0.825 where
+    // the face's is 2.75: F = -0.48 on the true face. That secant now counts
+    // at 0.3: F = 0.25 (0.3 (-1.1) + 2.75) / 1.3 - 0.25 * 2.75 = -0.222.
+    SliceFields bands;
+    bands.grid.originMm = {-10, -0.2};
+    bands.grid.pixelMm = 0.1;
+    bands.grid.width = 400;
+    bands.grid.height = 4;
+    bands.zMm = {0, 2, 4, 6};
+    for (std::size_t s = 0; s < bands.zMm.size(); ++s)
+        for (int j = 0; j < bands.grid.height; ++j)
+            for (int i = 0; i < bands.grid.width; ++i) {
+                const double x = bands.grid.pixelCentre(i, j).x;
+                bands.distanceMm.push_back(float(std::abs(x - 5.5 * double(s)) - 4.4));
+                bands.nearestId.push_back(kNoPrimitive);
+            }
+    const SliceInterpolant field(bands);
+    const double plainParabola = 0.25 * (parabolaTangent(2, -1.1, 2, 2.75) - 2.75);
+    EXPECT_NEAR(plainParabola, -0.48125, 1e-9);
+    const double onFace = field.value({3.85, 0, 3});
+    EXPECT_NEAR(onFace, 0.25 * ((0.3 * -1.1 + 2.75) / 1.3 - 2.75), 1e-3);
+    EXPECT_LT(std::abs(onFace), 0.5 * std::abs(plainParabola));
+    // Where every plane read sees the same face (the lowest slab's lower
+    // face, x = -1.65 at z = 1: the end slab's secant, then the parabola
+    // through three distances to that face) nothing changes: a straight
+    // face is the face.
+    EXPECT_NEAR(field.value({-1.65, 0, 1}), 0, 1e-3);
+}
+
 TEST(SmoothInterpolation, CloserToRoundShapesThroughEveryContourPointAndValid) {
     for (const char* name : {"sphere", "ellipsoid", "hollow-sphere"})
         for (double spacing : {2.0, 5.0}) {
