@@ -6,6 +6,7 @@
 // of z from the secants of the slabs around a plane.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace dfrecon {
 
@@ -26,6 +27,33 @@ inline bool flatBeside(double secant, double other) {
 inline double parabolaTangent(double hBelow, double secantBelow, double hAbove,
                               double secantAbove) {
     return (hAbove * secantBelow + hBelow * secantAbove) / (hBelow + hAbove);
+}
+
+/// Inside the stack, the tangent both interpolants use: the parabola's
+/// weighted mean of the secants below and above (dBelow over a slab hBelow
+/// high, dAbove over hAbove), each weighed down further by how far it can be
+/// trusted (`trustBelow`, `trustAbove` in (0, 1]; 1 and 1: parabolaTangent
+/// exactly), or 0 where the value has not changed over the two slabs on one
+/// side (a straight stretch: a stem below a branching, a cylinder that
+/// starts to narrow), so the surface leaves the plane straight instead of
+/// bending the stretch's last slab toward the change on the other side. One
+/// flat slab alone is no straight stretch (a bulge symmetric about a slab's
+/// middle has one too): the next one decides, read only then —
+/// `secantBeyondBelow()` and `secantBeyondAbove()` give the secant of the
+/// slab beyond each, or nothing where the stack ends. O(1).
+template <class BeyondBelow, class BeyondAbove>
+double innerTangent(double hBelow, double dBelow, double hAbove, double dAbove,
+                    BeyondBelow&& secantBeyondBelow, BeyondAbove&& secantBeyondAbove,
+                    double trustBelow = 1, double trustAbove = 1) {
+    if (flatBeside(dBelow, dAbove)) {
+        const std::optional<double> beyond = secantBeyondBelow();
+        if (beyond && flatBeside(*beyond, dAbove)) return 0;
+    }
+    if (flatBeside(dAbove, dBelow)) {
+        const std::optional<double> beyond = secantBeyondAbove();
+        if (beyond && flatBeside(*beyond, dBelow)) return 0;
+    }
+    return parabolaTangent(hBelow * trustAbove, dBelow, hAbove * trustBelow, dAbove);
 }
 
 /// At an end plane: the slope of the parabola through the end slab's two

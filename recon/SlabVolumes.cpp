@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/Polygon.hpp"
 #include "geometry/UnionFind.hpp"
@@ -45,11 +46,16 @@ double areaTangent(const PlaneSections& planes, std::size_t k) {
     auto secant = [&](std::size_t i) { return (a[i + 1] - a[i]) / (z[i + 1] - z[i]); };
     if (k == 0) return secant(0);
     if (k + 1 == n) return secant(n - 2);
-    const double below = z[k] - z[k - 1], above = z[k + 1] - z[k];
-    const double dBelow = secant(k - 1), dAbove = secant(k);
-    if (k >= 2 && flatBeside(dBelow, dAbove) && flatBeside(secant(k - 2), dAbove)) return 0;
-    if (k + 2 < n && flatBeside(dAbove, dBelow) && flatBeside(secant(k + 1), dBelow)) return 0;
-    return parabolaTangent(below, dBelow, above, dAbove);
+    const auto beyondBelow = [&]() -> std::optional<double> {
+        if (k < 2) return std::nullopt;
+        return secant(k - 2);
+    };
+    const auto beyondAbove = [&]() -> std::optional<double> {
+        if (k + 2 >= n) return std::nullopt;
+        return secant(k + 1);
+    };
+    return innerTangent(z[k] - z[k - 1], secant(k - 1), z[k + 1] - z[k], secant(k), beyondBelow,
+                        beyondAbove);
 }
 
 }  // namespace

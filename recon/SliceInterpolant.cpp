@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "recon/HermiteTangents.hpp"
@@ -94,31 +95,24 @@ double SliceInterpolant::tangent(std::size_t slice, Point2 xy, double below, dou
                                  double above, double trustBelow, double trustAbove) const {
     const std::vector<double>& z = fields_.zMm;
     const std::size_t n = z.size();
-    // Inside the stack, the slope of the parabola through the plane and its
-    // two neighbours: a weighted mean of the secants below and above, never
-    // steeper than the steeper of them, and exact for a quadratic in z. At
-    // the ends, the end slab's secant (no extrapolation where a shape ends).
+    // Inside the stack, recon/HermiteTangents' innerTangent (the parabola
+    // through the plane and its two neighbours, 0 beside a straight
+    // stretch). At the ends, the end slab's secant (no extrapolation where a
+    // shape ends).
     if (slice == 0) return (above - here) / (z[1] - z[0]);
     if (slice + 1 == n) return (here - below) / (z[n - 1] - z[n - 2]);
     const double hBelow = z[slice] - z[slice - 1], hAbove = z[slice + 1] - z[slice];
-    const double dBelow = (here - below) / hBelow, dAbove = (above - here) / hAbove;
-    // Where the field has not changed over the two slabs on one side (a
-    // straight stretch: a stem below a branching, a cylinder that starts to
-    // narrow), the surface leaves the plane straight: the parabola would
-    // bend the straight stretch's last slab toward the change on the other
-    // side. One flat slab alone is no straight stretch (a bulge symmetric
-    // about the middle of a slab has one too), so the next one decides, and
-    // where there is none the parabola stays.
-    if (slice >= 2 && flatBeside(dBelow, dAbove) &&
-        flatBeside((below - planeValue(slice - 2, xy)) / (z[slice - 1] - z[slice - 2]), dAbove))
-        return 0;
-    if (slice + 2 < n && flatBeside(dAbove, dBelow) &&
-        flatBeside((planeValue(slice + 2, xy) - above) / (z[slice + 2] - z[slice + 1]), dBelow))
-        return 0;
-    // The parabola's weighted mean of the secants, each weighed down by
-    // how far it can be trusted (secantTrust).
-    const double wBelow = trustBelow * hAbove, wAbove = trustAbove * hBelow;
-    return (wBelow * dBelow + wAbove * dAbove) / (wBelow + wAbove);
+    // The planes two away are read only where a straight stretch may begin.
+    const auto beyondBelow = [&]() -> std::optional<double> {
+        if (slice < 2) return std::nullopt;
+        return (below - planeValue(slice - 2, xy)) / (z[slice - 1] - z[slice - 2]);
+    };
+    const auto beyondAbove = [&]() -> std::optional<double> {
+        if (slice + 2 >= n) return std::nullopt;
+        return (planeValue(slice + 2, xy) - above) / (z[slice + 2] - z[slice + 1]);
+    };
+    return innerTangent(hBelow, (here - below) / hBelow, hAbove, (above - here) / hAbove,
+                        beyondBelow, beyondAbove, trustBelow, trustAbove);
 }
 
 double SliceInterpolant::value(Vec3 p) const {

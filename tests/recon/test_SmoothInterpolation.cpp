@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <set>
 #include <tuple>
@@ -127,6 +128,23 @@ TEST(HermiteTangents, EndTangentsFollowTheEndSlabsParabolaWithinBounds) {
     EXPECT_DOUBLE_EQ(parabolaTangent(1, 1, 2, 4), (2 * 1 + 1 * 4) / 3.0);
     EXPECT_TRUE(flatBeside(0.04, 1));
     EXPECT_FALSE(flatBeside(0.06, 1));
+}
+
+TEST(HermiteTangents, InnerTangentIsTheParabolaBesideNoStraightStretch) {
+    const auto none = [] { return std::optional<double>(); };
+    const auto flat = [] { return std::optional<double>(0.0); };
+    const auto steep = [] { return std::optional<double>(3.0); };
+    // Trusted whole: the parabola's slope, bit for bit.
+    EXPECT_EQ(innerTangent(1, 1, 2, 4, none, none), parabolaTangent(1, 1, 2, 4));
+    // A flat slab below with another flat one beyond it: a straight stretch.
+    EXPECT_EQ(innerTangent(1, 0, 1, 2, flat, none), 0);
+    // One flat slab alone (the next one changes, or the stack ends there).
+    EXPECT_EQ(innerTangent(1, 0, 1, 2, steep, none), 1);
+    EXPECT_EQ(innerTangent(1, 0, 1, 2, none, none), 1);
+    // Likewise above.
+    EXPECT_EQ(innerTangent(1, 2, 1, 0, none, flat), 0);
+    // A secant trusted at 0.3 weighs 0.3 of the other: (0.3·(-1) + 2) / 1.3.
+    EXPECT_DOUBLE_EQ(innerTangent(2, -1, 2, 2, none, none, 0.3, 1), (0.3 * -1 + 2) / 1.3);
 }
 
 TEST(SliceInterpolant, AStraightStretchEndsStraightWhereTheChangeBegins) {
