@@ -30,6 +30,7 @@
 #include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "cl/WorkerRuntimes.hpp"
+#include "dfrecon/Contours.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/OrderedParallel.hpp"
 #include "io/dicom/RtStruct.hpp"
@@ -122,7 +123,8 @@ Case fileCase(std::string name, const std::filesystem::path& path, std::vector<s
         return c;
     }
     c.load = [path, rois] {
-        ContourSet set = readRtStruct(path.string()).contours;
+        // As users' files are read: runs of planes found (contours/PlaneGaps).
+        ContourSet set = readContours(path.string()).contours;
         if (!rois.empty())
             set.rois.erase(std::remove_if(set.rois.begin(), set.rois.end(),
                                           [&](const Roi& roi) {

@@ -12,11 +12,16 @@
 // and split by where they lie: near a plane (t < 0.25 or t > 0.75 of the
 // slab), mid-slab, or beyond the end planes (caps). Volumes are split the
 // same way: between the end planes and beyond them (geometry/SurfaceMeasures).
+// The sets are read as users' files are (api readContours): an ROI with
+// planes left empty (a sagittal set's two hemispheres) is one piece per run
+// of planes for every system, the baselines included, and the gap between
+// runs is no slab (contours/PlaneGaps).
 // One JSON line per ROI and system, then one `truth-summary` line per set
 // and system with the targets.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <numeric>
@@ -26,10 +31,11 @@
 #include "baselines/MarchingCubesBaselines.hpp"
 #include "bench/Benchmarks.hpp"
 #include "bench/SlabErrors.hpp"
+#include "contours/PlaneGaps.hpp"
+#include "dfrecon/Contours.hpp"
 #include "geometry/MeshCheck.hpp"
 #include "geometry/SurfaceMeasures.hpp"
 #include "geometry/TriangleBvh.hpp"
-#include "io/dicom/RtStruct.hpp"
 #include "io/mesh/MeshIO.hpp"
 #include "recon/Reconstruction.hpp"
 #include "simplify/SimplificationVerifier.hpp"
@@ -41,33 +47,12 @@ namespace {
 constexpr std::size_t kSamples = 20000;
 constexpr double kBaselineVoxelMm = 0.5;
 
-/// Σ net area (holes subtract) × the plane's share of the spacing: half
-/// the gaps to its neighbours, a whole gap at the ends (the slab
-/// thickness if the ROI gives one).
-double contourImpliedVolume(const Roi& roi) {
-    std::vector<std::pair<double, double>> planes;  // z, area
-    for (const Slice& s : roi.slices) {
-        if (s.contours.empty()) continue;
-        planes.push_back({s.zMm, netArea(s.contours)});
-    }
-    double volume = 0;
-    for (std::size_t k = 0; k < planes.size(); ++k) {
-        double thickness = roi.slabThicknessMm;
-        if (thickness <= 0) {
-            const double below = k > 0 ? planes[k].first - planes[k - 1].first : 0;
-            const double above = k + 1 < planes.size() ? planes[k + 1].first - planes[k].first : 0;
-            thickness = k == 0 ? above : k + 1 == planes.size() ? below : 0.5 * (below + above);
-        }
-        volume += planes[k].second * thickness;
-    }
-    return volume;
-}
-
 struct Case {
     std::string set, name;
     TriangleSoup truth;  // in the ROI's plane frame
     double truthVolumeMm3 = 0, truthBetweenMm3 = 0;
-    std::vector<double> planesMm;
+    std::vector<std::vector<double>> runsMm;  // each run's planes (contours/PlaneGaps)
+    std::size_t planes = 0;
     std::vector<Vec3> truthSamples;
     TriangleBvh* truthBvh = nullptr;
 };
@@ -81,6 +66,32 @@ struct Row {
     ErrorStats caps;
 };
 
+/// The volume of `soup` between the end planes of each run.
+double volumeBetweenPlanes(const TriangleSoup& soup,
+                           const std::vector<std::vector<double>>& runsMm) {
+    double volume = 0;
+    for (const std::vector<double>& planesMm : runsMm)
+        volume +=
+            volumeBelowPlane(soup, planesMm.back()) - volumeBelowPlane(soup, planesMm.front());
+    return volume;
+}
+
+/// Each run of `roi`'s planes reconstructed by `baseline` on its own, as
+/// reconstructSurface does for dfrecon: no baseline bridges a gap.
+TriangleSoup perRun(const Roi& roi, const std::function<TriangleSoup(const Roi&)>& baseline) {
+    TriangleSoup all;
+    for (const Roi& run : planeRuns(roi)) {
+        const TriangleSoup part = baseline(run);
+        const auto offset = std::uint32_t(all.points.size());
+        all.points.insert(all.points.end(), part.points.begin(), part.points.end());
+        for (auto t : part.triangles) {
+            for (auto& v : t) v += offset;
+            all.triangles.push_back(t);
+        }
+    }
+    return all;
+}
+
 Row measure(const Case& c, const std::string& system, double seconds, const TriangleSoup& soup) {
     Row row;
     row.system = system;
@@ -89,8 +100,7 @@ Row measure(const Case& c, const std::string& system, double seconds, const Tria
     row.valid = check.validSolid();
     row.triangles = check.triangles;
     row.volumeErrPct = 100 * (check.volumeMm3 / c.truthVolumeMm3 - 1);
-    const double between =
-        volumeBelowPlane(soup, c.planesMm.back()) - volumeBelowPlane(soup, c.planesMm.front());
+    const double between = volumeBetweenPlanes(soup, c.runsMm);
     // Both parts as a share of the true total, so they add up to the whole error.
     row.betweenErrPct = 100 * (between - c.truthBetweenMm3) / c.truthVolumeMm3;
     row.capsErrPct = row.volumeErrPct - row.betweenErrPct;
@@ -99,10 +109,10 @@ Row measure(const Case& c, const std::string& system, double seconds, const Tria
     for (const Vec3& p : sampleTriangles(soup, kSamples, 7))
         errors.push_back({p.z, c.truthBvh->nearest(p).distance});
     for (const Vec3& p : c.truthSamples) errors.push_back({p.z, bvh.nearest(p).distance});
-    row.split = splitBySlabPosition(errors, c.planesMm);
+    row.split = splitBySlabPosition(errors, c.runsMm);
     std::vector<ErrorSample> beyond;
     for (const ErrorSample& e : errors)
-        if (e.zMm < c.planesMm.front() || e.zMm > c.planesMm.back()) beyond.push_back(e);
+        if (beyondEveryRun(e.zMm, c.runsMm)) beyond.push_back(e);
     // The caps' samples as one "slab" spanning everything (planes ±inf).
     row.caps = splitBySlabPosition(beyond, {-1e300, 1e300}).slab;
     return row;
@@ -120,7 +130,7 @@ void printRow(const Case& c, const Row& r, double volumeErrPctOnly = NAN) {
     j["seconds"] = r.seconds;
     j["triangles"] = r.triangles;
     j["valid"] = r.valid;
-    j["planes"] = c.planesMm.size();
+    j["planes"] = c.planes;
     j["volume_err_pct"] = r.volumeErrPct;
     j["between_planes_volume_err_pct"] = r.betweenErrPct;
     j["caps_volume_err_pct"] = r.capsErrPct;
@@ -174,7 +184,7 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
     const ReconstructionOptions defaults;
     for (const std::filesystem::path& setDir : sets) {
         const std::string setName = setDir.filename().string();
-        const RtStructLoad load = readRtStruct((setDir / "set-rtstruct.dcm").string());
+        const ContoursRead load = readContours((setDir / "set-rtstruct.dcm").string());
         // Per system: each ROI's volume error and slab mean, for the summary.
         std::map<std::string, std::vector<double>> volumeErr, slabMean, triangles;
         std::map<std::string, std::size_t> validCount;
@@ -186,20 +196,23 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
             if (!std::filesystem::exists(plyPath) || roi.slices.size() < 2) continue;
             Case c{setName, roi.name, readTriangleSoup(plyPath.string()), 0, 0, {}, {}, {}};
             for (Vec3& p : c.truth.points) p = roi.frame.fromPatient(p);
-            for (const Slice& s : roi.slices)
-                if (!s.contours.empty()) c.planesMm.push_back(s.zMm);
+            for (const Roi& run : planeRuns(roi)) {
+                c.runsMm.emplace_back();
+                for (const Slice& s : run.slices)
+                    if (!s.contours.empty()) c.runsMm.back().push_back(s.zMm);
+                c.planes += c.runsMm.back().size();
+            }
             // The atlas's own axes may be mirrored (a NIfTI sform with a
             // negative determinant), which turns the true surface inside out.
             if (measureSurface(c.truth).volumeMm3 < 0)
                 for (auto& t : c.truth.triangles) std::swap(t[1], t[2]);
             c.truthVolumeMm3 = measureSurface(c.truth).volumeMm3;
-            c.truthBetweenMm3 = volumeBelowPlane(c.truth, c.planesMm.back()) -
-                                volumeBelowPlane(c.truth, c.planesMm.front());
+            c.truthBetweenMm3 = volumeBetweenPlanes(c.truth, c.runsMm);
             c.truthSamples = sampleTriangles(c.truth, kSamples, 11);
             TriangleBvh truthBvh(c.truth);
             c.truthBvh = &truthBvh;
 
-            const double implied = 100 * (contourImpliedVolume(roi) / c.truthVolumeMm3 - 1);
+            const double implied = 100 * (contourVolumeMm3(roi) / c.truthVolumeMm3 - 1);
             Row impliedRow;
             impliedRow.system = "contour-implied";
             printRow(c, impliedRow, implied);
@@ -208,12 +221,17 @@ int benchTruth(const std::string& device, const std::string& setsDir, const std:
             std::vector<Row> rows;
             TriangleSoup soup;
             double seconds = bestSeconds(1, [&] {
-                const SliceFields fields = computeSliceFields(
-                    runtime, roi.slices, gridForSlices(roi.slices, kBaselineVoxelMm));
-                soup = toTriangleSoup(levinBaseline(fields));
+                soup = perRun(roi, [&](const Roi& run) {
+                    const SliceFields fields = computeSliceFields(
+                        runtime, run.slices, gridForSlices(run.slices, kBaselineVoxelMm));
+                    return toTriangleSoup(levinBaseline(fields));
+                });
             });
             rows.push_back(measure(c, "levin-mc", seconds, soup));
-            seconds = bestSeconds(1, [&] { soup = rasterBaseline(roi, kBaselineVoxelMm); });
+            seconds = bestSeconds(1, [&] {
+                soup = perRun(roi,
+                              [](const Roi& run) { return rasterBaseline(run, kBaselineVoxelMm); });
+            });
             rows.push_back(measure(c, "raster-mc", seconds, soup));
             for (Interpolation mode : {Interpolation::Linear, Interpolation::Smooth}) {
                 ReconstructionOptions options;

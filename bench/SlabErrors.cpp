@@ -26,10 +26,16 @@ ErrorStats statsOf(std::vector<double> errors) {
 
 SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
                                const std::vector<double>& planesMm) {
+    return splitBySlabPosition(samples, std::vector<std::vector<double>>{planesMm});
+}
+
+SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
+                               const std::vector<std::vector<double>>& runsMm) {
     std::vector<double> slab, nearPlane, midSlab;
-    if (planesMm.size() >= 2)
-        for (const ErrorSample& s : samples) {
-            if (s.zMm < planesMm.front() || s.zMm > planesMm.back()) continue;
+    for (const ErrorSample& s : samples)
+        for (const std::vector<double>& planesMm : runsMm) {
+            if (planesMm.size() < 2 || s.zMm < planesMm.front() || s.zMm > planesMm.back())
+                continue;
             // The slab [z_k, z_k+1] holding z (the last one for z on the last plane).
             const auto above = std::upper_bound(planesMm.begin(), planesMm.end(), s.zMm);
             const std::size_t k =
@@ -38,8 +44,15 @@ SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
             const double t = (s.zMm - planesMm[k]) / (planesMm[k + 1] - planesMm[k]);
             slab.push_back(s.errorMm);
             (t < 0.25 || t > 0.75 ? nearPlane : midSlab).push_back(s.errorMm);
+            break;  // runs do not overlap: one slab per sample
         }
     return {statsOf(std::move(slab)), statsOf(std::move(nearPlane)), statsOf(std::move(midSlab))};
+}
+
+bool beyondEveryRun(double zMm, const std::vector<std::vector<double>>& runsMm) {
+    for (const std::vector<double>& planesMm : runsMm)
+        if (!planesMm.empty() && zMm >= planesMm.front() && zMm <= planesMm.back()) return false;
+    return true;
 }
 
 }  // namespace dfrecon::bench

@@ -38,4 +38,14 @@ inline nlohmann::json orNull(const ErrorStats& stats, double ErrorStats::*value)
 SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
                                const std::vector<double>& planesMm);
 
+/// The same for an ROI that ends and starts again (contours/PlaneGaps):
+/// `runsMm` holds each run's planes, sorted, the runs in order. Samples in
+/// the planes left empty between two runs lie beyond an end plane like the
+/// caps' and are left out as well; they are no slab.
+SlabErrors splitBySlabPosition(const std::vector<ErrorSample>& samples,
+                               const std::vector<std::vector<double>>& runsMm);
+
+/// Whether z lies beyond every run's end planes (a cap's or a gap's sample).
+bool beyondEveryRun(double zMm, const std::vector<std::vector<double>>& runsMm);
+
 }  // namespace dfrecon::bench
