@@ -150,7 +150,8 @@ void findGaps(ContoursRead& read, const std::string& source) {
                                  "ROI '" + roi.name + "' has planes left empty between " +
                                      where.str() + " mm: it ends and starts again there (" +
                                      std::to_string(roi.restartsAt.size() + 1) +
-                                     " pieces), as planning systems count its volume"});
+                                     " pieces), as planning systems count its volume",
+                                 roi.name});
     }
 }
 

@@ -96,7 +96,7 @@ void runAlgebra(const AlgebraArgs& args, const GlobalOptions& global, bool margi
     if (!args.name.empty()) checkName(args.name, "--name");
     if (!margin && !roiExpressionName(args.expression).empty())
         checkName(roiExpressionName(args.expression), "--expr");
-    const ContourInput input = loadContours(args.input, global);
+    const ContourInput input = loadContours(args.input, global, onlyRoi(args.roi));
 
     StructureAlgebraOptions options;
     options.sections.stepMm = args.stepMm;

@@ -34,7 +34,7 @@ void runConvert(const ConvertArgs& args, const GlobalOptions& global) {
         throw std::invalid_argument("--like applies to DICOM output only");
     if (!toDicom && args.roiTypeGiven)
         throw std::invalid_argument("--roi-type applies to DICOM output only");
-    const ContourInput input = loadContours(args.input, global);
+    const ContourInput input = loadContours(args.input, global, onlyRoi(args.roi));
     ContourSet chosen;
     if (args.roi.empty()) {
         for (const Roi& roi : input.contours.rois)

@@ -32,7 +32,7 @@ struct HistogramArgs {
 void runHistogram(const HistogramArgs& args, const GlobalOptions& global) {
     if (!(args.binMm > 0) || !(args.volumeStepMm > 0) || !(args.surfaceSpacingMm > 0))
         throw std::invalid_argument("--bin, --step and --surface-spacing must be > 0 mm");
-    const ContourInput input = loadContours(args.input, global);
+    const ContourInput input = loadContours(args.input, global, {args.oar, args.target});
     const Roi& oar = *selectRois(input.contours, args.oar, false).front();
     const Roi& target = *selectRois(input.contours, args.target, false).front();
     ocl::Runtime runtime(global.device);

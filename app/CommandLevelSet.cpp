@@ -36,7 +36,7 @@ struct FieldArgs {
 
 void runField(const FieldArgs& args, const GlobalOptions& global) {
     Stopwatch watch;
-    const ContourInput load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global, onlyRoi(args.roi));
     const Roi& roi = *selectRois(load.contours, args.roi, false).front();
 
     ocl::Runtime runtime(global.device);

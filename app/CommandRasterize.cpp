@@ -156,7 +156,7 @@ void runRasterize(const RasterizeArgs& args, const GlobalOptions& global) {
                                     "' must end in .nrrd, .seg.nrrd, .nii or .nii.gz");
     if (args.all && !args.roi.empty())
         throw std::invalid_argument("give --roi NAME or --all, not both");
-    const ContourInput input = loadContours(args.input, global);
+    const ContourInput input = loadContours(args.input, global, onlyRoi(args.roi));
     std::vector<const Roi*> rois;
     std::vector<std::string> notRead;
     for (const Roi* roi : selectRois(input.contours, args.roi, args.all)) {

@@ -60,7 +60,7 @@ nlohmann::ordered_json roiReportRow(const nlohmann::ordered_json& report) {
 void runReconstruct(const ReconstructArgs& args, const GlobalOptions& global) {
     namespace fs = std::filesystem;
     const Stopwatch watch;
-    const ContourInput load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global, onlyRoi(args.roi));
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
     // The colour an ROI is drawn in: the one `convert` gives it in an RTSTRUCT.
     const std::vector<Rgb> colours = displayColours(load.contours);

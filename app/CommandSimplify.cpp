@@ -59,7 +59,7 @@ void runSimplify(const SimplifyArgs& args, const GlobalOptions& global) {
     }
     ContourInput contours;
     if (!args.contours.empty()) {
-        contours = loadContours(args.contours, global);
+        contours = loadContours(args.contours, global, onlyRoi(args.roi));
         request.contours = selectRois(contours.contours, args.roi, false).front();
     }
     ocl::Runtime runtime(global.device);

@@ -149,7 +149,7 @@ nlohmann::ordered_json writeRoiFields(const Roi& roi, const std::string& fileSte
 
 void runFields(const FieldsArgs& args, const GlobalOptions& global) {
     Stopwatch watch;
-    const ContourInput load = loadContours(args.input, global);
+    const ContourInput load = loadContours(args.input, global, onlyRoi(args.roi));
     const std::vector<const Roi*> rois = selectRois(load.contours, args.roi, args.all);
     const double loadSeconds = watch.lap();
     std::filesystem::create_directories(args.outputDir);

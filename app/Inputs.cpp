@@ -1,5 +1,6 @@
 #include "app/Inputs.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <iostream>
 #include <map>
@@ -11,7 +12,36 @@
 
 namespace dfrecon::app {
 
-ContourInput loadContours(const std::string& path, const GlobalOptions& global) {
+static const Roi* findByNameOrNumber(const ContourSet& contours, const std::string& name);
+
+// The warnings `onlyRois` asks for (all when it is empty or names an ROI
+// the file lacks: the command's own error follows), and how many are left out.
+static void printWarnings(const ContourInput& input, const std::vector<std::string>& onlyRois) {
+    std::vector<std::string> names;
+    for (const std::string& wanted : onlyRois) {
+        const Roi* roi = findByNameOrNumber(input.contours, wanted);
+        if (!roi) {
+            names.clear();
+            break;
+        }
+        names.push_back(roi->name);
+    }
+    std::size_t hidden = 0;
+    for (const InputWarning& w : input.warnings) {
+        const bool shown = names.empty() || w.roi.empty() ||
+                           std::find(names.begin(), names.end(), w.roi) != names.end();
+        if (shown)
+            std::cerr << w.toString() << "\n";
+        else
+            ++hidden;
+    }
+    if (hidden > 0)
+        std::cerr << "dfrecon: " << hidden << " warning" << (hidden == 1 ? "" : "s")
+                  << " about other ROIs not shown (dfrecon info lists every one)\n";
+}
+
+ContourInput loadContours(const std::string& path, const GlobalOptions& global,
+                          const std::vector<std::string>& onlyRois) {
     ReadContoursOptions options;
     options.labelTable = global.labelTable;
     options.acceptIntensity = global.acceptIntensity;
@@ -24,8 +54,7 @@ ContourInput loadContours(const std::string& path, const GlobalOptions& global) 
         options.progress = [&](double f) { progress.update(f); };
         input = readContours(path, options);
     }
-    if (!global.quiet)
-        for (const InputWarning& w : input.warnings) std::cerr << w.toString() << "\n";
+    if (!global.quiet) printWarnings(input, onlyRois);
     return input;
 }
 

@@ -19,9 +19,20 @@ inline constexpr const char* kStandardInputName = "<stdin>";
 
 /// Loads and validates `path` by readContours (dfrecon/Contours.hpp), or "-",
 /// .slices text from standard input (app/StandardStreams.hpp), with progress
-/// on a TTY and the repairs' warnings on stderr unless quiet. Throws
-/// InputError (exit 2) on bad input.
-ContourInput loadContours(const std::string& path, const GlobalOptions& global);
+/// on a TTY and the repairs' warnings on stderr unless quiet. With `onlyRois`
+/// (the names or DICOM numbers a command was given) only the warnings about
+/// those ROIs and the file as a whole are shown, and one line counts the
+/// rest: a 40-ROI export read for one structure does not bury its warnings
+/// under the others'. Throws InputError (exit 2) on bad input.
+ContourInput loadContours(const std::string& path, const GlobalOptions& global,
+                          const std::vector<std::string>& onlyRois = {});
+
+/// The `onlyRois` of loadContours for a command given one ROI (`--roi`;
+/// empty: none given, every warning shows).
+inline std::vector<std::string> onlyRoi(const std::string& nameOrNumber) {
+    return nameOrNumber.empty() ? std::vector<std::string>{}
+                                : std::vector<std::string>{nameOrNumber};
+}
 
 /// The ROIs a command works on: `all` → every ROI with slices or a
 /// defect (Roi::defect: the reader could not read it; the command reports

@@ -26,6 +26,7 @@ struct InputWarning {
     std::string file;
     int line = 0;
     std::string message;
+    std::string roi;  // the ROI it is about; empty: the file as a whole
     std::string toString() const;
 };
 

@@ -114,6 +114,7 @@ class Parser {
             // A geometric defect (a crossing, too few points) is one ROI's:
             // the file's other ROIs still load, as from a clinical export.
             Roi header = source.roi;
+            finishing_ = source.roi.name;
             try {
                 result.contours.rois.push_back(finish(source));
             } catch (const InputError& e) {
@@ -130,7 +131,10 @@ class Parser {
     [[noreturn]] void fail(int line, const std::string& problem) const {
         throw InputError(file_, line, problem);
     }
-    void warn(int line, const std::string& message) { warnings_.push_back({file_, line, message}); }
+    // Warnings made while an ROI is finished carry its name (InputWarning::roi).
+    void warn(int line, const std::string& message) {
+        warnings_.push_back({file_, line, message, finishing_});
+    }
 
     // Reads one line with a hard length limit; false at end of input. Reads
     // the stream in chunks: per-character istream calls would dominate.
@@ -490,6 +494,7 @@ class Parser {
     std::size_t totalPoints_ = 0;
     std::vector<SourceRoi> rois_;
     std::vector<InputWarning> warnings_;
+    std::string finishing_;  // the ROI being finished, for its warnings
 };
 
 // Shortest text that parses back to exactly `v`.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "geometry/ContourValidation.hpp"
@@ -83,7 +84,20 @@ class Reader {
     [[noreturn]] void fail(const std::string& problem) const {
         throw InputError(file_, 0, problem);
     }
-    void warn(const std::string& message) { out_.warnings.push_back({file_, 0, message}); }
+    void warn(const std::string& message) {
+        out_.warnings.push_back({file_, 0, message, about_ ? out_.rois[*about_].name : ""});
+    }
+
+    // While one ROI's items are read its warnings carry its name
+    // (InputWarning::roi), so a command on one ROI shows only its own.
+    std::optional<std::size_t> about_;
+    struct About {
+        std::optional<std::size_t>& slot;
+        About(std::optional<std::size_t>& s, std::size_t r) : slot(s) { slot = r; }
+        ~About() { slot.reset(); }
+        About(const About&) = delete;
+        About& operator=(const About&) = delete;
+    };
 
     std::string roiLabel(std::size_t r) const {
         return "ROI " + std::to_string(out_.rois[r].number) + " '" + out_.rois[r].name + "'";
@@ -244,6 +258,7 @@ class Reader {
     }
 
     void readContours(DcmSequenceOfItems& sequence, std::size_t r, const std::string& parent) {
+        const About about(about_, r);
         RtStructRoiInfo& info = out_.rois[r];
         info.hasContourSequence = true;
         if (contours_[r].size() + sequence.card() > limits_.maxContoursPerRoi)
@@ -427,6 +442,7 @@ class Reader {
     }
 
     void buildSlices(std::size_t r) {
+        const About about(about_, r);
         Roi& roi = out_.contours.rois[r];
         RtStructRoiInfo& info = out_.rois[r];
         std::vector<RtStructContour>& contours = contours_[r];

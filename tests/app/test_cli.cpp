@@ -1169,3 +1169,34 @@ TEST(Cli, SdmWritesMapsMeshesAndAPairReport) {
     EXPECT_NE(bad.err.find("broken.off"), std::string::npos) << bad.err;
     EXPECT_FALSE(fs::exists(none));
 }
+
+// A command given one ROI shows that ROI's warnings and the file's, and
+// counts the others': each ROI here has a slice drawn twice (two warnings
+// naming it: the planes merged, the duplicate contour dropped).
+TEST(Cli, OneRoisCommandShowsItsOwnWarningsAndCountsTheOthers) {
+    const fs::path file = scratch() / "two-warned.slices";
+    {
+        std::ofstream out(file);
+        out << "dfrecon-slices 1\nunits mm\n";
+        for (const char* name : {"Left", "Right"}) {
+            const double x0 = std::string(name) == "Left" ? -20 : 10;
+            out << "roi " << name << "\n";
+            for (double z : {0.0, 2.0, 2.0, 4.0}) {
+                out << "slice " << z << "\ncontour 4\n";
+                out << x0 << " 0\n" << x0 + 10 << " 0\n" << x0 + 10 << " 10\n" << x0 << " 10\n";
+            }
+        }
+    }
+    const Result one = runDfrecon("reconstruct " + file.string() + " --roi Right -o " +
+                                  (scratch() / "right.ply").string());
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    EXPECT_NE(one.err.find("ROI 'Right' has slice z=2 twice"), std::string::npos) << one.err;
+    EXPECT_EQ(one.err.find("'Left'"), std::string::npos) << one.err;
+    EXPECT_NE(one.err.find("2 warnings about other ROIs not shown"), std::string::npos) << one.err;
+    const Result all =
+        runDfrecon("reconstruct " + file.string() + " --all -o " + (scratch() / "both").string());
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    EXPECT_NE(all.err.find("ROI 'Left' has slice z=2 twice"), std::string::npos) << all.err;
+    EXPECT_NE(all.err.find("ROI 'Right' has slice z=2 twice"), std::string::npos) << all.err;
+    EXPECT_EQ(all.err.find("not shown"), std::string::npos) << all.err;
+}

@@ -334,6 +334,9 @@ TEST(RtStruct, SagittalStackGetsItsFrame) {
     const Roi& read = load.contours.rois[0];
     EXPECT_STREQ(read.frame.orientationName(), "sagittal");
     EXPECT_TRUE(anyWarning(load, "sagittal"));
+    // The warning is the ROI's own (a command on another ROI leaves it out).
+    for (const InputWarning& w : load.warnings)
+        if (w.message.find("sagittal") != std::string::npos) EXPECT_EQ(w.roi, read.name);
     ASSERT_EQ(read.slices.size(), 3u);
     // Plane coordinates map back onto the written points.
     const Point2 first = read.slices[0].contours[0][0];
