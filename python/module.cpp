@@ -215,9 +215,14 @@ TriangleSoup soupOf(const py::handle& vertices, const py::handle& faces) {
 
 // ---- structure sets ---------------------------------------------------------
 
-py::dict roiDict(const Roi& roi) {
+py::dict roiDict(const Roi& roi, const std::vector<InputWarning>& warnings = {}) {
     py::dict d;
     d["name"] = roi.name;
+    // The reading's warnings about this ROI (InputWarning::roi).
+    py::list own;
+    for (const InputWarning& w : warnings)
+        if (w.roi == roi.name) own.append(w.toString());
+    d["warnings"] = own;
     d["number"] = roi.number ? py::object(py::int_(*roi.number)) : py::none();
     d["colour"] = roi.colour
                       ? py::object(py::make_tuple(int((*roi.colour)[0]), int((*roi.colour)[1]),
@@ -588,7 +593,8 @@ PYBIND11_MODULE(_dfrecon, m) {
         .def("_rois",
              [](const PyStructureSet& s) {
                  py::list rois;
-                 for (const Roi& roi : s.read.contours.rois) rois.append(roiDict(roi));
+                 for (const Roi& roi : s.read.contours.rois)
+                     rois.append(roiDict(roi, s.read.warnings));
                  return rois;
              })
         .def("_write_slices",

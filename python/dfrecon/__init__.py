@@ -105,11 +105,13 @@ class Roi:
     ('axial', 'sagittal', 'coronal' or 'oblique'), ``contour_volume_cc``
     (the planning system's sum of area x thickness), ``defect`` (why its
     contours cannot be used, or None), ``contour_reading`` (dict: what
-    reading changed, as ``reconstruct --json``'s ``contourReading``).
+    reading changed, as ``reconstruct --json``'s ``contourReading``),
+    ``warnings`` (list of str: the reading's warnings about this ROI; the
+    structure set's ``warnings`` hold every one).
     """
 
     __slots__ = ("name", "number", "colour", "interpreted_type", "planes", "contours",
-                 "orientation", "contour_volume_cc", "defect", "contour_reading")
+                 "orientation", "contour_volume_cc", "defect", "contour_reading", "warnings")
 
     def __init__(self, d):
         for key in self.__slots__:

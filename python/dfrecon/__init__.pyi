@@ -31,6 +31,7 @@ class Roi:
     contour_volume_cc: float
     defect: Optional[str]
     contour_reading: Dict[str, Any]
+    warnings: List[str]
 
 class StructureSet:
     rois: List[Roi]
