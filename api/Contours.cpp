@@ -1,5 +1,6 @@
 #include "dfrecon/Contours.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <regex>
@@ -135,11 +136,32 @@ std::string originOf(int line, const std::vector<std::string>& origins) {
     return line > 0 && std::size_t(line) < origins.size() ? origins[std::size_t(line)] : "";
 }
 
+// A warning for an ROI whose planes are unevenly spaced within a run (the
+// gaps where it ends and starts again do not count).
+void warnUnevenSpacing(ContoursRead& read, const Roi& roi, const std::string& source) {
+    double smallest = INFINITY, largest = 0;
+    for (std::size_t i = 1; i < roi.slices.size(); ++i) {
+        if (std::find(roi.restartsAt.begin(), roi.restartsAt.end(), i) != roi.restartsAt.end())
+            continue;
+        const double gap = roi.slices[i].zMm - roi.slices[i - 1].zMm;
+        smallest = std::min(smallest, gap);
+        largest = std::max(largest, gap);
+    }
+    if (largest - smallest <= 1e-3) return;  // SpacingStats::uniform's tolerance
+    std::ostringstream range;
+    range << smallest << " to " << largest;
+    read.warnings.push_back({source, 0,
+                             "ROI '" + roi.name + "': uneven slice spacing, " + range.str() + " mm",
+                             roi.name});
+}
+
 // Where ROIs end and start again across planes left empty
-// (contours/PlaneGaps), with a warning for each such ROI.
+// (contours/PlaneGaps), with a warning for each such ROI, and for each ROI
+// unevenly spaced within its runs.
 void findGaps(ContoursRead& read, const std::string& source) {
     findPlaneGaps(read.contours);
     for (const Roi& roi : read.contours.rois) {
+        warnUnevenSpacing(read, roi, source);
         if (roi.restartsAt.empty()) continue;
         std::ostringstream where;
         for (std::size_t k = 0; k < roi.restartsAt.size(); ++k) {
@@ -203,7 +225,8 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
         const std::string problem = roiNameProblem(roi.name);
         if (problem.empty()) continue;
         std::string mended = mendedRoiName(roi.name);
-        read.warnings.push_back({path, 0, "an ROI name " + problem + "; read as '" + mended + "'"});
+        read.warnings.push_back(
+            {path, 0, "an ROI name " + problem + "; read as '" + mended + "'", mended});
         roi.name = std::move(mended);
     }
     return read;

@@ -480,10 +480,9 @@ class Reader {
                                                       : HoleConvention::None;
         if (roi.reading.changedShape())
             warn(roiLabel(r) + ": read as planning systems read it: " + roi.reading.summary());
-        const SpacingStats spacing = spacingOf(roi);
-        if (!spacing.uniform)
-            warn(roiLabel(r) + ": uneven slice spacing, " + std::to_string(spacing.minMm) + " to " +
-                 std::to_string(spacing.maxMm) + " mm");
+        // Uneven spacing is judged per run of planes once the file's runs
+        // are known (api readContours): a gap where an ROI ends and starts
+        // again is no uneven spacing.
     }
 
     Slice buildSlice(std::size_t r, std::size_t begin, std::size_t end) {
