@@ -3,24 +3,17 @@
 #include <gtest/gtest.h>
 
 #include "contours/PlaneGaps.hpp"
+#include "tests/SquareStacks.hpp"
 
 using namespace dfrecon;
 
 namespace {
 
-// An ROI of 10 mm squares (100 mm²) on the planes `z`.
+// Shorter names for the stacks these tests build.
 Roi squares(const std::string& name, const std::vector<double>& z) {
-    Roi roi;
-    roi.name = name;
-    for (double zMm : z) roi.slices.push_back({zMm, {{{0, 0}, {10, 0}, {10, 10}, {0, 10}}}});
-    return roi;
+    return dfrecon::testing::squareStack(name, z);
 }
-
-std::vector<double> planesFrom(double from, double to, double step) {
-    std::vector<double> z;
-    for (double v = from; v <= to + 1e-9; v += step) z.push_back(v);
-    return z;
-}
+using dfrecon::testing::planesFrom;
 
 }  // namespace
 

@@ -6,27 +6,19 @@
 
 #include "dfrecon/Contours.hpp"
 #include "io/dicom/RtStruct.hpp"
+#include "tests/SquareStacks.hpp"
 #include "tests/TempDir.hpp"
 
 namespace dfrecon {
 namespace {
 
-// An ROI of 10 mm squares on the planes `z`.
-Roi squares(const std::string& name, const std::vector<double>& z) {
-    Roi roi;
-    roi.name = name;
-    for (double zMm : z) roi.slices.push_back({zMm, {{{0, 0}, {10, 0}, {10, 10}, {0, 10}}}});
-    return roi;
-}
-
 // Body on every plane 0..20 mm (the image planes); Gapped ends at 4 and
 // starts again at 10; Uneven is 2 then 3 mm apart.
 ContourSet gappedAndUneven() {
     ContourSet set;
-    std::vector<double> body;
-    for (int k = 0; k <= 10; ++k) body.push_back(2.0 * k);
-    set.rois = {squares("Body", body), squares("Gapped", {0, 2, 4, 10, 12}),
-                squares("Uneven", {0, 2, 5})};
+    set.rois = {testing::squareStack("Body", testing::planesFrom(0, 20, 2)),
+                testing::squareStack("Gapped", {0, 2, 4, 10, 12}),
+                testing::squareStack("Uneven", {0, 2, 5})};
     return set;
 }
 
