@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     const std::string usage =
         "usage: dfrecon-bench "
         "fields|recon|truth|simplify|slices-io|rtstruct|sdm|segment|structure-set|compare|margin|"
-        "label-maps|neighbours|"
+        "label-maps|neighbours|atlases|"
         "all "
         "[--device SPEC] [--truth-sets DIR] [--truth-set NAME]\n"
         "  fields     2D signed distance fields: kernel vs brute force vs OpenCV "
@@ -43,7 +43,10 @@ int main(int argc, char** argv) {
         "  label-maps label maps of the shared structure sets' ROIs (1 cc or more) from the "
         "reconstructed solid vs from the 3D distance field: volume against the surface's\n"
         "  neighbours touching ROIs (split ball, Brodmann atlas) reconstructed each on its own "
-        "vs moved apart: the overlap left between pairs (exact) and the volumes\n";
+        "vs moved apart: the overlap left between pairs (exact) and the volumes\n"
+        "  atlases    every area of AAL and AICHA cut by planes (scripts/atlas_sets.sh, into "
+        "build/atlas-sets): those of 0.5 cc or more beyond 2 % of their contour volume, each "
+        "against its true surface's volume\n";
     if (argc < 2) {
         std::cerr << usage;
         return 1;
@@ -71,12 +74,13 @@ int main(int argc, char** argv) {
         if (suite == "margin") return benchMargin(device);
         if (suite == "label-maps") return benchLabelMaps(device);
         if (suite == "neighbours") return benchNeighbours(device);
+        if (suite == "atlases") return benchAtlases(device);
         if (suite == "all")
             return benchSlicesIO() | benchRtStruct() | benchFields(device) | benchRecon(device) |
                    benchTruth(device, truthSets, truthSet) | benchSimplify(device) |
                    benchSdm(device) | benchSegment(device) | benchStructureSet(device) |
                    benchCompare(device) | benchMargin(device) | benchLabelMaps(device) |
-                   benchNeighbours(device);
+                   benchNeighbours(device) | benchAtlases(device);
     } catch (const std::exception& e) {
         std::cerr << "dfrecon-bench " << suite << ": " << e.what() << "\n";
         return 1;
