@@ -225,6 +225,9 @@ ContoursRead readContours(const std::string& path, const ReadContoursOptions& op
         const std::string problem = roiNameProblem(roi.name);
         if (problem.empty()) continue;
         std::string mended = mendedRoiName(roi.name);
+        // The warnings made about it so far follow it to its new name.
+        for (InputWarning& w : read.warnings)
+            if (w.roi == roi.name) w.roi = mended;
         read.warnings.push_back(
             {path, 0, "an ROI name " + problem + "; read as '" + mended + "'", mended});
         roi.name = std::move(mended);

@@ -1,5 +1,7 @@
 // A user's file read as the program reads it (api readContours): which
 // warnings reading gives, and which ROI each is about.
+#include <dcmtk/config/osconfig.h>  // first, as DCMTK requires
+#include <dcmtk/dcmdata/dctk.h>
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -58,6 +60,32 @@ TEST(ReadingWarnings, UnevenSpacingIsJudgedWithinRuns) {
         gapWarned = gapWarned ||
                     (w.roi == "Gapped" && w.message.find("planes left empty") != std::string::npos);
     EXPECT_TRUE(gapWarned);
+}
+
+// A name mended on reading (an RTSTRUCT's 300-byte name, cut to 256 after
+// the reader has warned about its ROI) takes those warnings along:
+// selecting the ROI by its new name still shows them.
+TEST(ReadingWarnings, AMendedNameKeepsItsWarnings) {
+    const testing::TempDir dir("reading-warnings");
+    const std::string path = dir / "long.dcm";
+    ContourSet set;
+    set.rois = {testing::squareStack("Uneven", {0, 2, 5})};
+    writeRtStruct(set, path);
+    const std::string longName(300, 'x');
+    {
+        DcmFileFormat file;
+        ASSERT_TRUE(file.loadFile(path.c_str()).good());
+        DcmItem* item = nullptr;
+        ASSERT_TRUE(
+            file.getDataset()->findAndGetSequenceItem(DCM_StructureSetROISequence, item, 0).good());
+        ASSERT_TRUE(item->putAndInsertString(DCM_ROIName, longName.c_str()).good());
+        ASSERT_TRUE(file.saveFile(path.c_str()).good());
+    }
+    const ContoursRead read = readContours(path);
+    ASSERT_EQ(read.contours.rois.size(), 1u);
+    const std::string mended = read.contours.rois[0].name;
+    ASSERT_LT(mended.size(), longName.size());
+    EXPECT_EQ(unevenlySpaced(read), std::vector<std::string>{mended});
 }
 
 }  // namespace dfrecon
