@@ -162,6 +162,16 @@ void findGaps(ContoursRead& read, const std::string& source) {
     findPlaneGaps(read.contours);
     for (const Roi& roi : read.contours.rois) {
         warnUnevenSpacing(read, roi, source);
+        // One plane and no other plane or slab thickness in the file: no
+        // thickness is known, which the reports would otherwise hide.
+        if (roi.slices.size() == 1 && lonePlaneThicknessMm(roi) <= 0)
+            read.warnings.push_back({source, 0,
+                                     "ROI '" + roi.name +
+                                         "' lies on one plane and nothing gives its thickness (no "
+                                         "other plane, no slab thickness): its contour volume "
+                                         "counts 0 and its surface stands 1 mm thick (the cap "
+                                         "offset sets how far it reaches each side)",
+                                     roi.name});
         if (roi.restartsAt.empty()) continue;
         std::ostringstream where;
         for (std::size_t k = 0; k < roi.restartsAt.size(); ++k) {

@@ -88,4 +88,31 @@ TEST(ReadingWarnings, AMendedNameKeepsItsWarnings) {
     EXPECT_EQ(unevenlySpaced(read), std::vector<std::string>{mended});
 }
 
+// An ROI alone on one plane in a file that says nothing of its thickness
+// is warned of: its contour volume is 0, its surface a 1 mm slab.
+TEST(ReadingWarnings, OnePlaneWithNoThicknessIsWarnedOf) {
+    std::istringstream in(
+        "dfrecon-slices 1\nunits mm\nroi Dot\nslice 4\ncontour 4\n"
+        "0 0\n10 0\n10 10\n0 10\n");
+    const ContoursRead read = readSlicesStream(in, "dot.slices");
+    ASSERT_EQ(read.contours.rois.size(), 1u);
+    EXPECT_EQ(contourVolumeMm3(read.contours.rois[0]), 0.0);
+    bool warned = false;
+    for (const InputWarning& w : read.warnings)
+        warned = warned || (w.roi == "Dot" &&
+                            w.message.find("nothing gives its thickness") != std::string::npos);
+    EXPECT_TRUE(warned);
+    // With a second ROI on other planes the image planes' spacing is its
+    // thickness, and nothing is said.
+    std::istringstream two(
+        "dfrecon-slices 1\nunits mm\nroi Dot\nslice 4\ncontour 4\n"
+        "0 0\n10 0\n10 10\n0 10\nroi Box\nslice 2\ncontour 4\n"
+        "0 0\n10 0\n10 10\n0 10\nslice 4\ncontour 4\n0 0\n10 0\n10 10\n"
+        "0 10\nslice 6\ncontour 4\n0 0\n10 0\n10 10\n0 10\n");
+    const ContoursRead read2 = readSlicesStream(two, "two.slices");
+    EXPECT_DOUBLE_EQ(contourVolumeMm3(read2.contours.rois[0]), 200.0);
+    for (const InputWarning& w : read2.warnings)
+        EXPECT_EQ(w.message.find("nothing gives its thickness"), std::string::npos) << w.message;
+}
+
 }  // namespace dfrecon

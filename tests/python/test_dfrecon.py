@@ -122,7 +122,7 @@ def test_crossing_contours_are_read_by_the_even_odd_rule():
     assert not ss["Box"].contour_reading["changed_shape"]
     # Each ROI holds the warnings about itself.
     assert tie.warnings and all("ROI 'Tie'" in w for w in tie.warnings), tie.warnings
-    assert ss["Box"].warnings == []
+    assert all("ROI 'Box'" in w for w in ss["Box"].warnings), ss["Box"].warnings
 
 
 def test_a_bad_file_names_itself(tmp_path):
