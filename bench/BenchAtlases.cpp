@@ -1,7 +1,7 @@
 // Whole atlases, every area (issue 66: "every ROI of at least 0.5 cc within
 // 2 % of its contour volume ... on the atlases you generate"): every label
 // of AAL and AICHA from Debian's mricron-data, smoothed and cut by planes
-// (scripts/atlas_sets.sh, the truth sets' cutter), read as the program
+// (scripts/truth_sets.sh --whole, the truth sets' cutter), read as the program
 // reads a user's file and reconstructed as `dfrecon reconstruct --all` does
 // (default options, as many ROIs at a time as it runs). Each area's volume
 // is set beside its contour volume (Σ area × thickness, what a planning
@@ -32,11 +32,11 @@ namespace {
 constexpr double kLeastMm3 = 500;      // the issue's 0.5 cc
 constexpr double kToleratedPct = 2.0;  // and its 2 %
 
-/// The folder of atlas sets: made by scripts/atlas_sets.sh when missing.
+/// The folder of atlas sets: made by scripts/truth_sets.sh --whole when missing.
 std::filesystem::path atlasSetsDir() {
     const std::filesystem::path dir = std::filesystem::path(DFRECON_BUILD_DIR) / "atlas-sets";
     const std::string command = std::string("bash '") + DFRECON_SOURCE_DIR +
-                                "/scripts/atlas_sets.sh' '" + dir.string() + "'";
+                                "/scripts/truth_sets.sh' --whole '" + dir.string() + "'";
     if (std::system(command.c_str()) != 0)
         throw std::runtime_error("atlases: " + command + " failed");
     return dir;

@@ -26,7 +26,7 @@ int benchNeighbours(const std::string& device);
 /// `setsDir` empty: build/truth-sets, made by scripts/truth_sets.sh where
 /// missing; `onlySet` empty: every set there.
 int benchTruth(const std::string& device, const std::string& setsDir, const std::string& onlySet);
-/// Every area of whole atlases (build/atlas-sets, made by scripts/atlas_sets.sh
+/// Every area of whole atlases (build/atlas-sets, made by scripts/truth_sets.sh --whole
 /// where missing): volume against contour volume and truth.
 int benchAtlases(const std::string& device);
 

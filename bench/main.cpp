@@ -44,7 +44,8 @@ int main(int argc, char** argv) {
         "reconstructed solid vs from the 3D distance field: volume against the surface's\n"
         "  neighbours touching ROIs (split ball, Brodmann atlas) reconstructed each on its own "
         "vs moved apart: the overlap left between pairs (exact) and the volumes\n"
-        "  atlases    every area of AAL and AICHA cut by planes (scripts/atlas_sets.sh, into "
+        "  atlases    every area of AAL and AICHA cut by planes (scripts/truth_sets.sh --whole, "
+        "into "
         "build/atlas-sets): those of 0.5 cc or more beyond 2 % of their contour volume, each "
         "against its true surface's volume\n";
     if (argc < 2) {
