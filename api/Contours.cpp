@@ -137,7 +137,7 @@ std::string originOf(int line, const std::vector<std::string>& origins) {
 }
 
 // A warning for an ROI whose planes are unevenly spaced within a run (the
-// gaps where it ends and starts again do not count).
+// gaps where it ends and starts again do not count), by spacingOf's rule.
 void warnUnevenSpacing(ContoursRead& read, const Roi& roi, const std::string& source) {
     double smallest = INFINITY, largest = 0;
     for (std::size_t i = 1; i < roi.slices.size(); ++i) {
@@ -147,7 +147,7 @@ void warnUnevenSpacing(ContoursRead& read, const Roi& roi, const std::string& so
         smallest = std::min(smallest, gap);
         largest = std::max(largest, gap);
     }
-    if (largest - smallest <= 1e-3) return;  // SpacingStats::uniform's tolerance
+    if (largest - smallest <= kUniformSpacingToleranceMm) return;
     std::ostringstream range;
     range << smallest << " to " << largest;
     read.warnings.push_back({source, 0,

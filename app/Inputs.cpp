@@ -12,7 +12,12 @@
 
 namespace dfrecon::app {
 
-static const Roi* findByNameOrNumber(const ContourSet& contours, const std::string& name);
+static const Roi* findByNameOrNumber(const ContourSet& contours, const std::string& name) {
+    if (const Roi* roi = contours.findRoi(name)) return roi;
+    const bool digits = !name.empty() && name.size() < 10 &&
+                        name.find_first_not_of("0123456789") == std::string::npos;
+    return digits ? contours.findRoiNumber(std::stoi(name)) : nullptr;
+}
 
 // The warnings `onlyRois` asks for (all when it is empty or names an ROI
 // the file lacks: the command's own error follows), and how many are left out.
@@ -66,13 +71,6 @@ static std::string roiNames(const ContourSet& contours) {
         if (roi.slices.empty()) names += " [empty]";
     }
     return names.empty() ? "(none)" : names;
-}
-
-static const Roi* findByNameOrNumber(const ContourSet& contours, const std::string& name) {
-    if (const Roi* roi = contours.findRoi(name)) return roi;
-    const bool digits = !name.empty() && name.size() < 10 &&
-                        name.find_first_not_of("0123456789") == std::string::npos;
-    return digits ? contours.findRoiNumber(std::stoi(name)) : nullptr;
 }
 
 std::vector<const Roi*> selectRois(const ContourSet& contours, const std::string& name, bool all) {

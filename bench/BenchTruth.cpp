@@ -80,15 +80,7 @@ double volumeBetweenPlanes(const TriangleSoup& soup,
 /// reconstructSurface does for dfrecon: no baseline bridges a gap.
 TriangleSoup perRun(const Roi& roi, const std::function<TriangleSoup(const Roi&)>& baseline) {
     TriangleSoup all;
-    for (const Roi& run : planeRuns(roi)) {
-        const TriangleSoup part = baseline(run);
-        const auto offset = std::uint32_t(all.points.size());
-        all.points.insert(all.points.end(), part.points.begin(), part.points.end());
-        for (auto t : part.triangles) {
-            for (auto& v : t) v += offset;
-            all.triangles.push_back(t);
-        }
-    }
+    for (const Roi& run : planeRuns(roi)) appendSoup(all, baseline(run));
     return all;
 }
 

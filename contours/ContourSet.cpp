@@ -157,7 +157,7 @@ SpacingStats spacingOf(const Roi& roi) {
         s.maxMm = std::max(s.maxMm, gap);
     }
     s.meanMm = (roi.slices.back().zMm - roi.slices.front().zMm) / double(roi.slices.size() - 1);
-    s.uniform = s.maxMm - s.minMm <= 1e-3;
+    s.uniform = s.maxMm - s.minMm <= kUniformSpacingToleranceMm;
     return s;
 }
 

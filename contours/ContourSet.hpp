@@ -107,10 +107,13 @@ Extent3 patientExtentOf(const Roi& roi);
 /// normals differ. O(points).
 void changeFrame(Roi& roi, const PlaneFrame& target);
 
+/// Gaps between planes that differ by no more than this are one spacing.
+inline constexpr double kUniformSpacingToleranceMm = 1e-3;
+
 /// Slice spacing statistics of an ROI (0 slices or 1 slice: all zero).
 struct SpacingStats {
     double minMm = 0, maxMm = 0, meanMm = 0;
-    bool uniform = true;  // max - min within 1e-3 mm
+    bool uniform = true;  // max - min within kUniformSpacingToleranceMm
 };
 SpacingStats spacingOf(const Roi& roi);
 

@@ -37,4 +37,9 @@ std::vector<Roi> planeRuns(const Roi& roi);
 /// O(1).
 double lonePlaneThicknessMm(const Roi& roi);
 
+/// How thick a surface stands on an ROI's one plane when nothing says
+/// (lonePlaneThicknessMm 0): its contour volume then counts 0, and reading
+/// warns of it.
+inline constexpr double kUnknownLonePlaneThicknessMm = 1.0;
+
 }  // namespace dfrecon

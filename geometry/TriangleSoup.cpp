@@ -21,6 +21,14 @@ TriangleSoup toTriangleSoup(const TriMesh& mesh) {
     return soup;
 }
 
+void appendSoup(TriangleSoup& soup, const TriangleSoup& part) {
+    const auto offset = std::uint32_t(soup.points.size());
+    soup.points.insert(soup.points.end(), part.points.begin(), part.points.end());
+    soup.triangles.reserve(soup.triangles.size() + part.triangles.size());
+    for (const auto& t : part.triangles)
+        soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
 void removeUnusedPoints(TriangleSoup& soup) {
     constexpr std::uint32_t kUnused = 0xffffffffu;
     std::vector<std::uint32_t> index(soup.points.size(), kUnused);

@@ -29,6 +29,11 @@ TriangleSoup soupOfTriangles(const TriangleSoup& soup, std::size_t first, std::s
 /// The same for the triangles `subset` (ids into soup.triangles), in order.
 TriangleSoup soupOfTriangles(const TriangleSoup& soup, const std::vector<std::size_t>& subset);
 
+/// Appends `part`'s points and triangles to `soup` (its triangles renumbered
+/// to the appended points): two surfaces as one soup, nothing shared.
+/// O(size of part).
+void appendSoup(TriangleSoup& soup, const TriangleSoup& part);
+
 /// Drops the points no triangle uses and renumbers the triangles. O(n).
 void removeUnusedPoints(TriangleSoup& soup);
 

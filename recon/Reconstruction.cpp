@@ -114,7 +114,7 @@ struct RunState {
             const SpacingStats spacing = spacingOf(roi);
             gapMm = spacing.meanMm > 0              ? spacing.meanMm
                     : lonePlaneThicknessMm(roi) > 0 ? lonePlaneThicknessMm(roi)
-                                                    : 1.0;
+                                                    : kUnknownLonePlaneThicknessMm;
         }
         return {up, capOffsetMm(options.capOffsetMm, gapMm, false), fromVoxels};
     }
@@ -402,20 +402,13 @@ Reconstruction reconstructRuns(ocl::Runtime& runtime, const Roi& roi,
     whole.check.genus = 0;
     ReconstructionStats& s = whole.stats;
     s.runs = runs.size();
-    std::size_t pointsBefore = 0;
     for (std::size_t k = 0; k < runs.size(); ++k) {
         const double done = double(k) / double(runs.size());
         Reconstruction part = reconstructWithin(runtime, runs[k], requested, [&](double f) {
             if (progress) progress(done + f / double(runs.size()));
         });
         const std::size_t trianglesBefore = whole.surface.triangles.size();
-        pointsBefore = whole.surface.points.size();
-        whole.surface.points.insert(whole.surface.points.end(), part.surface.points.begin(),
-                                    part.surface.points.end());
-        for (std::array<std::uint32_t, 3> t : part.surface.triangles) {
-            for (std::uint32_t& v : t) v += std::uint32_t(pointsBefore);
-            whole.surface.triangles.push_back(t);
-        }
+        appendSoup(whole.surface, part.surface);
         addDisjointCheck(whole.check, part.check, trianglesBefore);
         whole.brokenPieces.insert(whole.brokenPieces.end(), part.brokenPieces.begin(),
                                   part.brokenPieces.end());

@@ -10,10 +10,7 @@ namespace dfrecon {
 bool surfacesIntersect(const TriangleSoup& a, const TriangleSoup& b) {
     // One hierarchy over both; only pairs across the two count.
     TriangleSoup both = a;
-    const std::uint32_t offset = std::uint32_t(a.points.size());
-    both.points.insert(both.points.end(), b.points.begin(), b.points.end());
-    for (const auto& t : b.triangles)
-        both.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    appendSoup(both, b);
     const std::size_t firstOfB = a.triangles.size();
     const TriangleBvh bvh(both);
     bool found = false;
